@@ -1,0 +1,547 @@
+//! Points, segments, segment–segment intersection, point–segment distance and polylines,
+//! generic over the [`Scalar`] backend.
+//!
+//! The intersection test decides by the signs of cross products (no division), handles
+//! parallel and collinear segments, and returns shared endpoints exactly (the very point, with
+//! parameter 0 or 1), so that a crack that stops on another one ends exactly on it.
+//!
+//! With the Q16.16 backend the cross products are saturated beyond ±32768: keep coordinates
+//! within about ±128 units there.
+
+use core::ops::{Add, Mul, Neg, Sub};
+
+use crate::scalar::Scalar;
+
+/// A point (or vector) in the plane.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Point<S> {
+    /// x coordinate.
+    pub x: S,
+    /// y coordinate.
+    pub y: S,
+}
+
+impl<S: Scalar> Point<S> {
+    /// The point (x, y).
+    pub const fn new(x: S, y: S) -> Self {
+        Point { x, y }
+    }
+
+    /// The origin.
+    pub const ORIGIN: Self = Point {
+        x: S::ZERO,
+        y: S::ZERO,
+    };
+
+    /// Dot product.
+    pub fn dot(self, other: Self) -> S {
+        self.x * other.x + self.y * other.y
+    }
+
+    /// The z component of the cross product: positive when `other` is counter-clockwise
+    /// from `self`.
+    pub fn cross(self, other: Self) -> S {
+        self.x * other.y - self.y * other.x
+    }
+
+    /// Squared length.
+    pub fn length_squared(self) -> S {
+        self.dot(self)
+    }
+
+    /// Length.
+    pub fn length(self) -> S {
+        self.length_squared().sqrt()
+    }
+
+    /// Distance to another point.
+    pub fn distance(self, other: Self) -> S {
+        (other - self).length()
+    }
+
+    /// The point a fraction `t` of the way to `other`.
+    pub fn lerp(self, other: Self, t: S) -> Self {
+        self + (other - self) * t
+    }
+
+    /// The vector rotated by 90° counter-clockwise.
+    pub fn perpendicular(self) -> Self {
+        Point::new(-self.y, self.x)
+    }
+
+    /// The unit vector at `angle` radians from the x axis.
+    pub fn from_angle(angle: S) -> Self {
+        Point::new(angle.cos(), angle.sin())
+    }
+
+    /// The vector's angle from the x axis, in (−π, π].
+    pub fn angle(self) -> S {
+        self.y.atan2(self.x)
+    }
+
+    /// The vector rotated by `angle` radians counter-clockwise.
+    pub fn rotate(self, angle: S) -> Self {
+        let (sin, cos) = (angle.sin(), angle.cos());
+        Point::new(self.x * cos - self.y * sin, self.x * sin + self.y * cos)
+    }
+}
+
+impl<S: Scalar> Add for Point<S> {
+    type Output = Self;
+    fn add(self, rhs: Self) -> Self {
+        Point::new(self.x + rhs.x, self.y + rhs.y)
+    }
+}
+
+impl<S: Scalar> Sub for Point<S> {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
+        Point::new(self.x - rhs.x, self.y - rhs.y)
+    }
+}
+
+impl<S: Scalar> Mul<S> for Point<S> {
+    type Output = Self;
+    fn mul(self, k: S) -> Self {
+        Point::new(self.x * k, self.y * k)
+    }
+}
+
+impl<S: Scalar> Neg for Point<S> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Point::new(-self.x, -self.y)
+    }
+}
+
+/// The straight segment from `start` to `end`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Segment<S> {
+    /// Where the segment begins (parameter 0).
+    pub start: Point<S>,
+    /// Where the segment ends (parameter 1).
+    pub end: Point<S>,
+}
+
+/// Where two segments meet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Intersection<S> {
+    /// They do not meet.
+    None,
+    /// They meet in one point, at parameter `along_first` of the first segment and
+    /// `along_second` of the second (0 and 1 exactly at endpoints).
+    Point {
+        /// The meeting point (an endpoint, exactly, when one is shared or touched).
+        point: Point<S>,
+        /// Parameter along the first segment, in [0, 1].
+        along_first: S,
+        /// Parameter along the second segment, in [0, 1].
+        along_second: S,
+    },
+    /// They are collinear and share the stretch from `start` to `end`, ordered along the
+    /// first segment; both ends are endpoints of the inputs, exactly.
+    Overlap {
+        /// The end of the shared stretch nearer the first segment's start.
+        start: Point<S>,
+        /// The end of the shared stretch nearer the first segment's end.
+        end: Point<S>,
+    },
+}
+
+impl<S: Scalar> Segment<S> {
+    /// The segment from `start` to `end`.
+    pub const fn new(start: Point<S>, end: Point<S>) -> Self {
+        Segment { start, end }
+    }
+
+    /// `end − start`.
+    pub fn direction(self) -> Point<S> {
+        self.end - self.start
+    }
+
+    /// Length.
+    pub fn length(self) -> S {
+        self.direction().length()
+    }
+
+    /// The midpoint.
+    pub fn midpoint(self) -> Point<S> {
+        self.point_at(S::HALF)
+    }
+
+    /// The point at parameter `t` (0 at `start`, 1 at `end`; exact at both).
+    pub fn point_at(self, t: S) -> Point<S> {
+        if t == S::ZERO {
+            self.start
+        } else if t == S::ONE {
+            self.end
+        } else {
+            self.start.lerp(self.end, t)
+        }
+    }
+
+    /// The parameter in [0, 1] of the point of the segment closest to `p`.
+    pub fn closest_parameter(self, p: Point<S>) -> S {
+        let d = self.direction();
+        let dd = d.length_squared();
+        if dd == S::ZERO {
+            return S::ZERO;
+        }
+        ((p - self.start).dot(d) / dd).clamp(S::ZERO, S::ONE)
+    }
+
+    /// The point of the segment closest to `p`.
+    pub fn closest_point(self, p: Point<S>) -> Point<S> {
+        self.point_at(self.closest_parameter(p))
+    }
+
+    /// The distance from `p` to the nearest point of the segment.
+    pub fn distance_to_point(self, p: Point<S>) -> S {
+        self.closest_point(p).distance(p)
+    }
+
+    /// Whether `p` lies on the segment, decided exactly from the inputs' values.
+    pub fn contains(self, p: Point<S>) -> bool {
+        let d = self.direction();
+        let to_p = p - self.start;
+        if d.cross(to_p) != S::ZERO {
+            return false;
+        }
+        let along = to_p.dot(d);
+        along >= S::ZERO && along <= d.length_squared() && (d != Point::ORIGIN || p == self.start)
+    }
+
+    /// Where this segment meets `other` (see [`Intersection`]).
+    pub fn intersect(self, other: Segment<S>) -> Intersection<S> {
+        let r = self.direction();
+        let s = other.direction();
+        let denominator = r.cross(s);
+        if denominator == S::ZERO {
+            return self.intersect_parallel(other);
+        }
+        // Shared endpoints are answered exactly, before any arithmetic can blur them.
+        for (t, p) in [(S::ZERO, self.start), (S::ONE, self.end)] {
+            for (u, q) in [(S::ZERO, other.start), (S::ONE, other.end)] {
+                if p == q {
+                    return Intersection::Point {
+                        point: p,
+                        along_first: t,
+                        along_second: u,
+                    };
+                }
+            }
+        }
+        let qp = other.start - self.start;
+        let (mut t_num, mut u_num, mut den) = (qp.cross(s), qp.cross(r), denominator);
+        if den < S::ZERO {
+            (t_num, u_num, den) = (-t_num, -u_num, -den);
+        }
+        if t_num < S::ZERO || t_num > den || u_num < S::ZERO || u_num > den {
+            return Intersection::None;
+        }
+        let (t, u) = (t_num / den, u_num / den);
+        let point = if t_num == S::ZERO {
+            self.start
+        } else if t_num == den {
+            self.end
+        } else if u_num == S::ZERO {
+            other.start
+        } else if u_num == den {
+            other.end
+        } else {
+            self.start + r * t
+        };
+        Intersection::Point {
+            point,
+            along_first: if t_num == den { S::ONE } else { t },
+            along_second: if u_num == den { S::ONE } else { u },
+        }
+    }
+
+    /// The parallel case of [`Segment::intersect`]: nothing, a touching point, or an overlap.
+    fn intersect_parallel(self, other: Segment<S>) -> Intersection<S> {
+        let r = self.direction();
+        let rr = r.length_squared();
+        if rr == S::ZERO {
+            // The first segment is a point.
+            return if other.contains(self.start) {
+                Intersection::Point {
+                    point: self.start,
+                    along_first: S::ZERO,
+                    along_second: other.closest_parameter(self.start),
+                }
+            } else {
+                Intersection::None
+            };
+        }
+        if r.cross(other.start - self.start) != S::ZERO
+            || r.cross(other.end - self.start) != S::ZERO
+        {
+            return Intersection::None; // parallel on different lines
+        }
+        // Collinear: order the four endpoints by their projection onto the first segment.
+        let along = |p: Point<S>| (p - self.start).dot(r);
+        let (mut near, mut far) = (other.start, other.end);
+        if along(far) < along(near) {
+            (near, far) = (far, near);
+        }
+        let start = if along(near) > S::ZERO {
+            near
+        } else {
+            self.start
+        };
+        let end = if along(far) < rr { far } else { self.end };
+        let (a, b) = (along(start), along(end));
+        if a > b {
+            Intersection::None
+        } else if a == b {
+            Intersection::Point {
+                point: start,
+                along_first: self.closest_parameter(start),
+                along_second: other.closest_parameter(start),
+            }
+        } else {
+            Intersection::Overlap { start, end }
+        }
+    }
+}
+
+/// A polyline: the segments joining consecutive points of a borrowed slice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Polyline<'a, S> {
+    points: &'a [Point<S>],
+}
+
+impl<'a, S: Scalar> Polyline<'a, S> {
+    /// The polyline through `points` (fewer than two points make no segment).
+    pub const fn new(points: &'a [Point<S>]) -> Self {
+        Polyline { points }
+    }
+
+    /// Its vertices.
+    pub const fn points(&self) -> &'a [Point<S>] {
+        self.points
+    }
+
+    /// Its segments, in order.
+    pub fn segments(&self) -> impl Iterator<Item = Segment<S>> + 'a {
+        self.points.windows(2).map(|w| Segment::new(w[0], w[1]))
+    }
+
+    /// Total length.
+    pub fn length(&self) -> S {
+        self.segments().fold(S::ZERO, |sum, s| sum + s.length())
+    }
+
+    /// Distance from `p` to the nearest point of the polyline; `None` without segments.
+    pub fn distance_to_point(&self, p: Point<S>) -> Option<S> {
+        self.segments()
+            .map(|s| s.distance_to_point(p))
+            .reduce(S::min)
+    }
+
+    /// The first point where `path` meets the polyline, going from `path.start` (ties: the
+    /// earlier segment of the polyline): (segment index, parameter along `path`, point).
+    /// A collinear overlap counts from the end nearer `path.start`.
+    pub fn first_hit(&self, path: Segment<S>) -> Option<(usize, S, Point<S>)> {
+        let mut best: Option<(usize, S, Point<S>)> = None;
+        for (index, segment) in self.segments().enumerate() {
+            let hit = match path.intersect(segment) {
+                Intersection::None => continue,
+                Intersection::Point {
+                    point, along_first, ..
+                } => (index, along_first, point),
+                Intersection::Overlap { start, .. } => {
+                    (index, path.closest_parameter(start), start)
+                }
+            };
+            if best.is_none_or(|b| hit.1 < b.1) {
+                best = Some(hit);
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f32, y: f32) -> Point<f32> {
+        Point::new(x, y)
+    }
+    fn seg(a: (f32, f32), b: (f32, f32)) -> Segment<f32> {
+        Segment::new(p(a.0, a.1), p(b.0, b.1))
+    }
+    fn hit(point: Point<f32>, t: f32, u: f32) -> Intersection<f32> {
+        Intersection::Point {
+            point,
+            along_first: t,
+            along_second: u,
+        }
+    }
+
+    #[test]
+    fn crossing_segments_meet_inside() {
+        let i = seg((0.0, 0.0), (2.0, 2.0)).intersect(seg((0.0, 2.0), (2.0, 0.0)));
+        assert_eq!(i, hit(p(1.0, 1.0), 0.5, 0.5));
+        assert_eq!(
+            seg((0.0, 0.0), (1.0, 0.0)).intersect(seg((2.0, -1.0), (2.0, 1.0))),
+            Intersection::None
+        );
+    }
+
+    #[test]
+    fn shared_endpoints_are_exact_in_every_order() {
+        // Endpoints that no float arithmetic reproduces exactly.
+        let (a, b, c) = (p(0.1, 0.7), p(3.3, -1.9), p(-2.7, 5.1));
+        for (first, second, point, t, u) in [
+            (Segment::new(a, b), Segment::new(b, c), b, 1.0, 0.0),
+            (Segment::new(a, b), Segment::new(c, b), b, 1.0, 1.0),
+            (Segment::new(b, a), Segment::new(b, c), b, 0.0, 0.0),
+            (Segment::new(b, a), Segment::new(c, b), b, 0.0, 1.0),
+        ] {
+            assert_eq!(first.intersect(second), hit(point, t, u));
+        }
+    }
+
+    #[test]
+    fn t_junction_returns_the_touching_endpoint_exactly() {
+        let stem = Segment::new(p(0.3, 0.0), p(0.3, 0.9));
+        let bar = Segment::new(p(-1.0, 0.9), p(1.0, 0.9));
+        match stem.intersect(bar) {
+            Intersection::Point {
+                point, along_first, ..
+            } => {
+                assert_eq!(point, stem.end);
+                assert_eq!(along_first, 1.0);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn parallel_and_collinear_cases() {
+        let base = seg((0.0, 0.0), (4.0, 0.0));
+        // Parallel on another line.
+        assert_eq!(
+            base.intersect(seg((0.0, 1.0), (4.0, 1.0))),
+            Intersection::None
+        );
+        // Collinear, disjoint.
+        assert_eq!(
+            base.intersect(seg((5.0, 0.0), (6.0, 0.0))),
+            Intersection::None
+        );
+        // Collinear, touching at one endpoint.
+        assert_eq!(
+            base.intersect(seg((4.0, 0.0), (6.0, 0.0))),
+            hit(p(4.0, 0.0), 1.0, 0.0)
+        );
+        // Collinear overlap, either direction of the second segment.
+        let overlap = Intersection::Overlap {
+            start: p(1.0, 0.0),
+            end: p(4.0, 0.0),
+        };
+        assert_eq!(base.intersect(seg((1.0, 0.0), (6.0, 0.0))), overlap);
+        assert_eq!(base.intersect(seg((6.0, 0.0), (1.0, 0.0))), overlap);
+        // One inside the other.
+        assert_eq!(
+            base.intersect(seg((3.0, 0.0), (2.0, 0.0))),
+            Intersection::Overlap {
+                start: p(2.0, 0.0),
+                end: p(3.0, 0.0)
+            }
+        );
+        // Identical.
+        assert_eq!(
+            base.intersect(base),
+            Intersection::Overlap {
+                start: base.start,
+                end: base.end
+            }
+        );
+    }
+
+    #[test]
+    fn degenerate_segments_are_points() {
+        let point = seg((1.0, 1.0), (1.0, 1.0));
+        assert_eq!(
+            point.intersect(seg((0.0, 0.0), (2.0, 2.0))),
+            hit(p(1.0, 1.0), 0.0, 0.5)
+        );
+        assert_eq!(
+            point.intersect(seg((0.0, 1.5), (2.0, 1.5))),
+            Intersection::None
+        );
+        assert_eq!(
+            seg((0.0, 0.0), (2.0, 2.0)).intersect(point),
+            hit(p(1.0, 1.0), 0.5, 0.0)
+        );
+        assert_eq!(point.intersect(point), hit(p(1.0, 1.0), 0.0, 0.0));
+    }
+
+    #[test]
+    fn point_segment_distance() {
+        let s = seg((0.0, 0.0), (4.0, 0.0));
+        assert_eq!(s.distance_to_point(p(2.0, 3.0)), 3.0);
+        assert_eq!(s.distance_to_point(p(-3.0, 4.0)), 5.0);
+        assert_eq!(s.distance_to_point(p(7.0, -4.0)), 5.0);
+        assert_eq!(s.distance_to_point(p(1.5, 0.0)), 0.0);
+        assert_eq!(
+            seg((1.0, 1.0), (1.0, 1.0)).distance_to_point(p(4.0, 5.0)),
+            5.0
+        );
+        assert!(s.contains(p(4.0, 0.0)) && !s.contains(p(4.5, 0.0)) && !s.contains(p(2.0, 0.1)));
+    }
+
+    #[test]
+    fn polyline_length_distance_and_first_hit() {
+        let points = [p(0.0, 0.0), p(3.0, 0.0), p(3.0, 4.0), p(0.0, 4.0)];
+        let line = Polyline::new(&points);
+        assert_eq!(line.length(), 10.0);
+        assert_eq!(line.distance_to_point(p(1.0, 1.0)), Some(1.0));
+        assert_eq!(
+            Polyline::<f32>::new(&points[..1]).distance_to_point(p(0.0, 0.0)),
+            None
+        );
+        // A path crossing two segments reports the one nearer its start.
+        let path = seg((4.0, 3.0), (-1.0, -2.0));
+        let (index, t, point) = line.first_hit(path).unwrap();
+        assert_eq!((index, point), (1, p(3.0, 2.0)));
+        assert_eq!(t, 0.2);
+        // A path that ends exactly on a vertex hits it exactly.
+        let (_, t, point) = line.first_hit(seg((5.0, 4.0), (3.0, 4.0))).unwrap();
+        assert_eq!((t, point), (1.0, p(3.0, 4.0)));
+        assert_eq!(line.first_hit(seg((1.0, 1.0), (2.0, 2.0))), None);
+    }
+
+    #[test]
+    fn rotation_and_angles() {
+        let v = p(1.0, 0.0).rotate(core::f32::consts::FRAC_PI_2);
+        assert!((v.x).abs() < 1e-7 && (v.y - 1.0).abs() < 1e-7);
+        assert!((p(0.0, -2.0).angle() + core::f32::consts::FRAC_PI_2).abs() < 1e-7);
+        assert_eq!(p(1.0, 2.0).perpendicular(), p(-2.0, 1.0));
+    }
+
+    #[cfg(feature = "fixed")]
+    #[test]
+    fn geometry_runs_on_the_fixed_backend() {
+        use crate::scalar::Q16;
+        let q = |x: f32, y: f32| Point::new(Q16::from_f32(x), Q16::from_f32(y));
+        let a = Segment::new(q(0.0, 0.0), q(2.0, 2.0));
+        let b = Segment::new(q(0.0, 2.0), q(2.0, 0.0));
+        assert_eq!(
+            a.intersect(b),
+            Intersection::Point {
+                point: q(1.0, 1.0),
+                along_first: Q16::HALF,
+                along_second: Q16::HALF
+            }
+        );
+        assert_eq!(
+            Segment::new(q(0.0, 0.0), q(4.0, 0.0)).distance_to_point(q(2.0, 3.0)),
+            Q16::from_i32(3)
+        );
+    }
+}

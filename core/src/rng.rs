@@ -1,0 +1,366 @@
+//! The deterministic random source.
+//!
+//! Every random decision in hibi comes from a [`Rng`]: Xoshiro128++ (from `rand_xoshiro`)
+//! seeded from one `u64` run seed through SplitMix64. Each *purpose* (break strengths, speeds,
+//! jitter, ...) draws from its own [`Stream`], so adding a feature that draws more numbers
+//! for one purpose never reshuffles the decisions of another.
+//!
+//! The distributions are written here, from bits, so that they are the same on every
+//! platform: uniform `f32`/`f64` from the top bits of the generator, the standard normal by
+//! Marsaglia's polar method over `libm`, Poisson by Knuth's product method applied to
+//! small-mean pieces (exact for any mean up to [`POISSON_MAX_MEAN`]), and the papers'
+//! `Rand(x)`.
+
+use rand_core::{Rng as _, SeedableRng};
+use rand_xoshiro::Xoshiro128PlusPlus;
+
+/// The purposes that draw random numbers, each with its own independent stream.
+///
+/// The discriminants are part of the determinism contract: never renumber a variant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Stream {
+    /// Model A: per-spring break stretch κ_i = κ̄ + σ/√A_i·N(0,1).
+    BreakStretch = 1,
+    /// Model B: the number of radial cracks, M = Poisson_Rand(M_ave).
+    RadialCount = 16,
+    /// Model B: crack speeds V1, V2, V3 (`Rand`).
+    CrackSpeed = 17,
+    /// Model B: ring radii d_i = Rand(d_ave).
+    RingRadius = 18,
+    /// Model B: the direction of the random force F3.
+    RandomForce = 19,
+    /// Model C: site positions (uniform random layout).
+    SiteLayout = 32,
+    /// Model C: site jitter on lattice layouts.
+    SiteJitter = 33,
+    /// Model C: midpoint displacement of cell edges (keyed further by the edge).
+    EdgePerturbation = 34,
+}
+
+impl Stream {
+    /// Every stream, in discriminant order.
+    pub const ALL: [Stream; 8] = [
+        Stream::BreakStretch,
+        Stream::RadialCount,
+        Stream::CrackSpeed,
+        Stream::RingRadius,
+        Stream::RandomForce,
+        Stream::SiteLayout,
+        Stream::SiteJitter,
+        Stream::EdgePerturbation,
+    ];
+
+    /// The stream's key, as [`Rng::from_key`] takes it.
+    pub const fn key(self) -> u64 {
+        self as u64
+    }
+}
+
+/// The shape of the papers' `Rand(x)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Spread {
+    /// Uniform over [(1 − z)·x, (1 + z)·x].
+    Uniform = 0,
+    /// Normal with mean x and standard deviation z·x/3, redrawn until it falls within
+    /// [(1 − z)·x, (1 + z)·x] (so ±3σ spans the paper's range).
+    Normal = 1,
+}
+
+/// Largest mean [`Rng::poisson`] accepts. The cost is proportional to the mean.
+pub const POISSON_MAX_MEAN: f64 = 1.0e6;
+
+/// Knuth's product method stays exact in `f64` for means up to about 700 (exp(−λ) must not
+/// underflow); pieces of this mean keep every product far from the bottom of `f64`'s range.
+const POISSON_PIECE: f64 = 8.0;
+
+/// What a random draw can refuse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RngError {
+    /// The Poisson mean is negative, not finite, or above [`POISSON_MAX_MEAN`].
+    PoissonMean,
+    /// `Rand(x)`: `z` is outside [0, 1) or `x` is not finite.
+    RandArgument,
+}
+
+impl RngError {
+    /// A message naming what is wrong, NUL-terminated for C.
+    pub const fn message(self) -> &'static core::ffi::CStr {
+        match self {
+            RngError::PoissonMean => c"poisson mean must be finite and within [0, 1e6]",
+            RngError::RandArgument => c"Rand(x): x must be finite and z within [0, 1)",
+        }
+    }
+}
+
+impl core::fmt::Display for RngError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.message().to_str().unwrap_or("rng error"))
+    }
+}
+
+/// A deterministic random stream: Xoshiro128++ seeded through SplitMix64.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rng {
+    generator: Xoshiro128PlusPlus,
+}
+
+/// The SplitMix64 finaliser: a bijective mix of a 64-bit key.
+const fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+impl Rng {
+    /// The stream for `purpose` of the run seeded with `seed`.
+    pub fn new(seed: u64, purpose: Stream) -> Self {
+        Self::from_key(seed, purpose.key())
+    }
+
+    /// The stream with an arbitrary 64-bit key, for keys derived from data (an edge's
+    /// identity, a cell's index) or chosen by a C caller. Xoshiro128++ is seeded by SplitMix64
+    /// from `seed ^ mix64(key)`.
+    pub fn from_key(seed: u64, key: u64) -> Self {
+        Rng {
+            generator: Xoshiro128PlusPlus::seed_from_u64(seed ^ mix64(key)),
+        }
+    }
+
+    /// The next 32 raw bits.
+    pub fn next_u32(&mut self) -> u32 {
+        self.generator.next_u32()
+    }
+
+    /// Uniform in [0, 1) with 24 random bits (every representable multiple of 2⁻²⁴).
+    pub fn uniform_f32(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+
+    /// Uniform in [0, 1) with 53 random bits, from two 32-bit outputs (high word first).
+    pub fn uniform_f64(&mut self) -> f64 {
+        let high = u64::from(self.next_u32());
+        let low = u64::from(self.next_u32());
+        (((high << 32) | low) >> 11) as f64 * (1.0 / 9_007_199_254_740_992.0)
+    }
+
+    /// Uniform in [`low`, `high`).
+    pub fn uniform_range(&mut self, low: f32, high: f32) -> f32 {
+        low + (high - low) * self.uniform_f32()
+    }
+
+    /// A standard normal draw (mean 0, variance 1), Marsaglia's polar method in `f64`.
+    pub fn normal(&mut self) -> f64 {
+        loop {
+            let u = 2.0 * self.uniform_f64() - 1.0;
+            let v = 2.0 * self.uniform_f64() - 1.0;
+            let s = u * u + v * v;
+            if s > 0.0 && s < 1.0 {
+                return u * libm::sqrt(-2.0 * libm::log(s) / s);
+            }
+        }
+    }
+
+    /// A standard normal draw as `f32`.
+    pub fn normal_f32(&mut self) -> f32 {
+        self.normal() as f32
+    }
+
+    /// A Poisson draw with the given mean (the paper's `Poisson_Rand`).
+    ///
+    /// Exact: a Poisson variable of mean λ is the sum of independent Poisson variables whose
+    /// means add up to λ, so λ is cut into pieces of mean ≤ 8, each drawn by Knuth's product
+    /// method (count the uniforms whose running product stays above e^(−piece)).
+    pub fn poisson(&mut self, mean: f64) -> Result<u32, RngError> {
+        if !mean.is_finite() || !(0.0..=POISSON_MAX_MEAN).contains(&mean) {
+            return Err(RngError::PoissonMean);
+        }
+        let full_pieces = libm::floor(mean / POISSON_PIECE) as u32;
+        let rest = mean - f64::from(full_pieces) * POISSON_PIECE;
+        let full_limit = libm::exp(-POISSON_PIECE);
+        let mut count = 0u32;
+        for _ in 0..full_pieces {
+            count += self.poisson_knuth(full_limit);
+        }
+        if rest > 0.0 {
+            count += self.poisson_knuth(libm::exp(-rest));
+        }
+        Ok(count)
+    }
+
+    /// Knuth's method for a small mean λ, given `limit` = e^(−λ).
+    fn poisson_knuth(&mut self, limit: f64) -> u32 {
+        let mut product = 1.0;
+        let mut count = 0u32;
+        loop {
+            product *= self.uniform_f64();
+            if product <= limit {
+                return count;
+            }
+            count += 1;
+        }
+    }
+
+    /// The papers' `Rand(x)`: a value within [(1 − z)·x, (1 + z)·x], uniform or normal
+    /// (Agui et al. §4.1; see [`Spread`]).
+    pub fn rand(&mut self, x: f32, z: f32, spread: Spread) -> Result<f32, RngError> {
+        if !x.is_finite() || !(0.0..1.0).contains(&z) {
+            return Err(RngError::RandArgument);
+        }
+        let (x, z) = (f64::from(x), f64::from(z));
+        let value = match spread {
+            Spread::Uniform => x * (1.0 - z + 2.0 * z * self.uniform_f64()),
+            Spread::Normal => loop {
+                let offset = self.normal() / 3.0;
+                if (-1.0..=1.0).contains(&offset) {
+                    break x * (1.0 + z * offset);
+                }
+            },
+        };
+        Ok(value as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Mean and variance of `n` draws, by Welford's method.
+    fn moments(n: u32, mut draw: impl FnMut() -> f64) -> (f64, f64) {
+        let (mut mean, mut m2) = (0.0, 0.0);
+        for i in 1..=n {
+            let x = draw();
+            let delta = x - mean;
+            mean += delta / f64::from(i);
+            m2 += delta * (x - mean);
+        }
+        (mean, m2 / f64::from(n - 1))
+    }
+
+    /// The sample mean is within 4 standard errors of `mean`, and the sample variance within
+    /// 4 standard errors of `variance` (its standard error from the fourth central moment
+    /// `mu4`: Var(s²) ≈ (μ4 − σ⁴)/n).
+    fn assert_moments(n: u32, sample: (f64, f64), mean: f64, variance: f64, mu4: f64) {
+        let n = f64::from(n);
+        let mean_se = libm::sqrt(variance / n);
+        let var_se = libm::sqrt((mu4 - variance * variance) / n);
+        assert!(
+            (sample.0 - mean).abs() < 4.0 * mean_se,
+            "mean {} vs {mean} (se {mean_se})",
+            sample.0
+        );
+        assert!(
+            (sample.1 - variance).abs() < 4.0 * var_se,
+            "variance {} vs {variance} (se {var_se})",
+            sample.1
+        );
+    }
+
+    const DRAWS: u32 = 100_000;
+
+    #[test]
+    fn streams_are_distinct_and_repeatable() {
+        let first: [u32; 8] = Stream::ALL.map(|s| Rng::new(7, s).next_u32());
+        for (i, a) in first.iter().enumerate() {
+            for b in &first[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        assert_eq!(first, Stream::ALL.map(|s| Rng::new(7, s).next_u32()));
+        assert_ne!(
+            Rng::new(7, Stream::CrackSpeed),
+            Rng::new(8, Stream::CrackSpeed)
+        );
+    }
+
+    #[test]
+    fn uniform_f32_is_in_unit_interval_with_right_moments() {
+        let mut rng = Rng::new(1, Stream::SiteLayout);
+        let sample = moments(DRAWS, || {
+            let u = rng.uniform_f32();
+            assert!((0.0..1.0).contains(&u));
+            f64::from(u)
+        });
+        assert_moments(DRAWS, sample, 0.5, 1.0 / 12.0, 1.0 / 80.0);
+    }
+
+    #[test]
+    fn uniform_f64_has_right_moments() {
+        let mut rng = Rng::new(2, Stream::SiteLayout);
+        let sample = moments(DRAWS, || rng.uniform_f64());
+        assert_moments(DRAWS, sample, 0.5, 1.0 / 12.0, 1.0 / 80.0);
+    }
+
+    #[test]
+    fn normal_has_mean_zero_variance_one() {
+        let mut rng = Rng::new(3, Stream::BreakStretch);
+        let sample = moments(DRAWS, || rng.normal());
+        assert_moments(DRAWS, sample, 0.0, 1.0, 3.0);
+    }
+
+    #[test]
+    fn poisson_variance_matches_mean() {
+        for mean in [5.0, 100.0, 2000.0] {
+            let mut rng = Rng::new(4, Stream::RadialCount);
+            let sample = moments(DRAWS, || f64::from(rng.poisson(mean).unwrap()));
+            // Poisson: variance λ, fourth central moment λ(1 + 3λ).
+            assert_moments(DRAWS, sample, mean, mean, mean * (1.0 + 3.0 * mean));
+        }
+    }
+
+    #[test]
+    fn poisson_at_ten_thousand_is_exact_in_mean_and_variance() {
+        let mean = 10_000.0;
+        let n = 4_000;
+        let mut rng = Rng::new(5, Stream::RadialCount);
+        let sample = moments(n, || f64::from(rng.poisson(mean).unwrap()));
+        assert_moments(n, sample, mean, mean, mean * (1.0 + 3.0 * mean));
+    }
+
+    #[test]
+    fn poisson_edges() {
+        let mut rng = Rng::new(6, Stream::RadialCount);
+        assert_eq!(rng.poisson(0.0), Ok(0));
+        for bad in [-1.0, f64::NAN, f64::INFINITY, POISSON_MAX_MEAN * 2.0] {
+            assert_eq!(rng.poisson(bad), Err(RngError::PoissonMean));
+        }
+    }
+
+    #[test]
+    fn rand_stays_within_its_range_with_the_stated_moments() {
+        let (x, z) = (40.0f32, 0.3f32);
+        for spread in [Spread::Uniform, Spread::Normal] {
+            let mut rng = Rng::new(9, Stream::CrackSpeed);
+            let sample = moments(DRAWS, || {
+                let v = rng.rand(x, z, spread).unwrap();
+                assert!((28.0..=52.0).contains(&v), "{v}");
+                f64::from(v)
+            });
+            let half = f64::from(x * z);
+            let (variance, mu4) = match spread {
+                Spread::Uniform => (half * half / 3.0, half.powi(4) / 5.0),
+                // Normal with σ = half/3, truncated at ±3σ: variance factor 0.97333,
+                // fourth moment factor 2.6800 (of σ², σ⁴).
+                Spread::Normal => {
+                    let s2 = (half / 3.0) * (half / 3.0);
+                    (0.973_33 * s2, 2.680_0 * s2 * s2)
+                }
+            };
+            assert_moments(DRAWS, sample, f64::from(x), variance, mu4);
+        }
+        let mut rng = Rng::new(9, Stream::CrackSpeed);
+        assert_eq!(
+            rng.rand(1.0, 1.0, Spread::Uniform),
+            Err(RngError::RandArgument)
+        );
+        assert_eq!(
+            rng.rand(1.0, -0.1, Spread::Normal),
+            Err(RngError::RandArgument)
+        );
+        assert_eq!(
+            rng.rand(f32::NAN, 0.3, Spread::Normal),
+            Err(RngError::RandArgument)
+        );
+    }
+}
