@@ -1,1 +1,35 @@
-//! placeholder
+//! # hibi-ffi: the C ABI of hibi
+//!
+//! Builds `libhibi.so` and `libhibi.a`; the header is `include/hibi.h`, generated from this
+//! crate by cbindgen. Conventions (after Box2D v3 and rustls-ffi):
+//!
+//! - every name starts with `hibi_`; functions are `hibi_<object>_<verb>`;
+//! - fallible functions return a [`hibi_status`] (`HIBI_OK` = 0) and write their outputs
+//!   through out-parameters only on success; `hibi_status_string` explains any code;
+//! - every buffer pointer is followed by its length; NULL, misaligned and short buffers and
+//!   out-of-range enumeration values are statuses, never crashes;
+//! - objects are created in library memory (`*_create` / `*_destroy`) or in caller memory
+//!   (`*_memory_size` + `*_create_in`);
+//! - every exported function runs inside one guard: no panic ever unwinds into C.
+#![allow(non_camel_case_types)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+use core::ffi::c_char;
+
+mod guard;
+mod memory;
+pub mod rng;
+pub mod status;
+
+pub use rng::*;
+pub use status::*;
+
+/// The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_version() -> *const c_char {
+    guard::guard(|| {
+        concat!(env!("CARGO_PKG_VERSION"), "\0")
+            .as_ptr()
+            .cast::<c_char>()
+    })
+}

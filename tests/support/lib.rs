@@ -1,1 +1,48 @@
-//! x
+//! Helpers shared by the cross-crate tests in `tests/`.
+
+use std::path::{Path, PathBuf};
+
+/// A readable difference between two texts: every differing line, numbered, as
+/// `-expected` / `+actual`, with a count of the lines that differ.
+pub fn line_diff(expected: &str, actual: &str) -> String {
+    let (old, new): (Vec<&str>, Vec<&str>) = (expected.lines().collect(), actual.lines().collect());
+    let mut out = String::new();
+    let mut differing = 0;
+    for i in 0..old.len().max(new.len()) {
+        let (a, b) = (old.get(i), new.get(i));
+        if a != b {
+            differing += 1;
+            if differing <= 40 {
+                if let Some(a) = a {
+                    out += &format!("{:>5} -{a}\n", i + 1);
+                }
+                if let Some(b) = b {
+                    out += &format!("{:>5} +{b}\n", i + 1);
+                }
+            }
+        }
+    }
+    format!("{differing} line(s) differ (- checked in, + generated):\n{out}")
+}
+
+/// The workspace root.
+pub fn workspace_root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The directory cargo builds this profile into (`target/debug` or `target/release`), found
+/// from the running test binary (`target/<profile>/deps/<test>`).
+pub fn profile_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("test binary path");
+    exe.parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>/deps")
+        .to_path_buf()
+}
+
+/// FNV-1a, 64-bit: the hash of golden snapshots.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}

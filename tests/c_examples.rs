@@ -1,0 +1,237 @@
+//! The C99 and C++17 examples in `c_examples/` compile against `include/hibi.h` with
+//! `-Wall -Wextra -Wpedantic -Werror`, link the static and the shared library the way an
+//! engine does, run, and print exactly what hibi's Rust API computes.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use hibi_core::Rng;
+use hibi_tests::workspace_root;
+
+/// The native libraries a Rust static library needs on Linux
+/// (`rustc --print native-static-libs`).
+const NATIVE_STATIC_LIBS: &[&str] = &[
+    "-lgcc_s",
+    "-lutil",
+    "-lrt",
+    "-lpthread",
+    "-lm",
+    "-ldl",
+    "-lc",
+];
+
+/// Builds libhibi.a and libhibi.so in this test's profile, once, in a target directory of its
+/// own (so it never waits on the lock of the build that runs the tests).
+fn library_dir() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let target = workspace_root().join("target/c-link");
+        let mut cargo = Command::new(env!("CARGO"));
+        cargo
+            .args(["build", "-p", "hibi-ffi", "--target-dir"])
+            .arg(&target);
+        let profile = if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        };
+        if profile == "release" {
+            cargo.arg("--release");
+        }
+        let status = cargo
+            .current_dir(workspace_root())
+            .status()
+            .expect("run cargo");
+        assert!(status.success(), "cargo build -p hibi-ffi failed");
+        target.join(profile)
+    })
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Linkage {
+    Static,
+    Shared,
+}
+
+/// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
+/// returns what it printed.
+fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage) -> String {
+    let root = workspace_root();
+    let lib = library_dir();
+    let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let stem = Path::new(source)
+        .file_name()
+        .unwrap()
+        .to_string_lossy()
+        .replace('.', "_");
+    let exe = out_dir.join(format!("{stem}_{linkage:?}"));
+    let mut cc = Command::new(compiler);
+    cc.arg(format!("-std={standard}"))
+        .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
+        .arg(root.join("include"))
+        .arg(root.join(source))
+        .arg("-o")
+        .arg(&exe);
+    match linkage {
+        Linkage::Static => {
+            cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
+        }
+        Linkage::Shared => {
+            cc.arg("-L")
+                .arg(lib)
+                .arg("-lhibi")
+                .arg(format!("-Wl,-rpath,{}", lib.display()));
+        }
+    }
+    let compiled = cc.output().expect("run the C compiler");
+    assert!(
+        compiled.status.success(),
+        "{compiler} {source} ({linkage:?}) failed:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+    let run = Command::new(&exe).output().expect("run the example");
+    let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
+    assert!(
+        run.status.success(),
+        "{source} ({linkage:?}) exited with {}:\n{stdout}\n{}",
+        run.status,
+        String::from_utf8_lossy(&run.stderr)
+    );
+    stdout
+}
+
+/// What the examples must print for seed 42, stream 7, computed by the Rust API.
+fn expected_draws() -> (String, String) {
+    let mut rng = Rng::from_key(42, 7);
+    let bits: Vec<String> = (0..4).map(|_| rng.next_u32().to_string()).collect();
+    let uniform: Vec<String> = (0..3)
+        .map(|_| format!("{:.9}", f64::from(rng.uniform_f32())))
+        .collect();
+    (format!("next_u32: {}", bits.join(" ")), uniform.join(" "))
+}
+
+/// The uniform draws as printed by C's `%.9g`, reparsed so formatting differences vanish.
+fn reparse_uniform(line: &str) -> String {
+    line.trim_start_matches("uniform: ")
+        .split(' ')
+        .map(|v| format!("{:.9}", v.parse::<f64>().expect("a float")))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn line<'a>(output: &'a str, prefix: &str) -> &'a str {
+    output
+        .lines()
+        .find(|l| l.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no line {prefix:?} in:\n{output}"))
+}
+
+fn check_c_output(output: &str) {
+    let (bits, uniform) = expected_draws();
+    assert_eq!(
+        line(output, "hibi "),
+        format!("hibi {}", env!("CARGO_PKG_VERSION"))
+    );
+    assert_eq!(line(output, "next_u32:"), bits);
+    assert_eq!(reparse_uniform(line(output, "uniform:")), uniform);
+    let mut rng = Rng::from_key(42, 7);
+    for _ in 0..7 {
+        rng.next_u32();
+    }
+    let poisson = rng.poisson(100.0).unwrap();
+    assert_eq!(
+        line(output, "poisson(100):"),
+        format!("poisson(100): {poisson}")
+    );
+    assert_eq!(
+        line(output, "rand(40"),
+        "rand(40, 0.3, normal) within [28, 52]: yes"
+    );
+    assert_eq!(
+        line(output, "poisson(-1):"),
+        "poisson(-1): status 256, poisson mean must be finite and within [0, 1e6]; output untouched: yes"
+    );
+    assert_eq!(
+        line(output, "spread 9:"),
+        "spread 9: status 4, an enumeration value is out of range"
+    );
+    assert_eq!(
+        line(output, "NULL rng:"),
+        "NULL rng: status 1, a required pointer argument is NULL"
+    );
+    assert_eq!(
+        line(output, "short memory:"),
+        "short memory: status 3, a buffer is smaller than the call needs"
+    );
+    assert_eq!(
+        line(output, "misaligned memory:"),
+        "misaligned memory: status 2, a pointer argument is not aligned for its type"
+    );
+    assert_eq!(
+        line(output, "caller memory"),
+        "caller memory, same seed, same first draw: yes"
+    );
+}
+
+fn check_cpp_output(output: &str) {
+    let (bits, uniform) = expected_draws();
+    assert_eq!(line(output, "next_u32:"), bits);
+    assert_eq!(reparse_uniform(line(output, "uniform:")), uniform);
+    assert_eq!(
+        line(output, "poisson(-1)"),
+        "poisson(-1) threw: poisson mean must be finite and within [0, 1e6]"
+    );
+    assert_eq!(
+        line(output, "caller memory"),
+        "caller memory, same seed, same first draw: yes"
+    );
+}
+
+fn c_compiler() -> String {
+    std::env::var("CC").unwrap_or_else(|_| "cc".into())
+}
+
+fn cpp_compiler() -> String {
+    std::env::var("CXX").unwrap_or_else(|_| "c++".into())
+}
+
+#[test]
+fn c99_example_links_static_library() {
+    check_c_output(&build_and_run(
+        &c_compiler(),
+        "c99",
+        "c_examples/rng.c",
+        Linkage::Static,
+    ));
+}
+
+#[test]
+fn c99_example_links_shared_library() {
+    check_c_output(&build_and_run(
+        &c_compiler(),
+        "c99",
+        "c_examples/rng.c",
+        Linkage::Shared,
+    ));
+}
+
+#[test]
+fn cpp17_example_links_static_library() {
+    check_cpp_output(&build_and_run(
+        &cpp_compiler(),
+        "c++17",
+        "c_examples/rng.cpp",
+        Linkage::Static,
+    ));
+}
+
+#[test]
+fn cpp17_example_links_shared_library() {
+    check_cpp_output(&build_and_run(
+        &cpp_compiler(),
+        "c++17",
+        "c_examples/rng.cpp",
+        Linkage::Shared,
+    ));
+}
