@@ -1,6 +1,7 @@
 //! The C99 and C++17 examples in `c_examples/` compile against `include/hibi.h` with
 //! `-Wall -Wextra -Wpedantic -Werror`, link the static and the shared library the way an
-//! engine does, run, and print exactly what hibi's Rust API computes.
+//! engine does, run, and print exactly what hibi's Rust API computes. A third build links the
+//! static library under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -52,6 +53,8 @@ fn library_dir() -> &'static Path {
 enum Linkage {
     Static,
     Shared,
+    /// Static, with `-fsanitize=address,undefined`; any report fails the run.
+    Sanitized,
 }
 
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
@@ -76,6 +79,15 @@ fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage)
     match linkage {
         Linkage::Static => {
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
+        }
+        Linkage::Sanitized => {
+            cc.args([
+                "-fsanitize=address,undefined",
+                "-fno-sanitize-recover=all",
+                "-fno-omit-frame-pointer",
+            ])
+            .arg(lib.join("libhibi.a"))
+            .args(NATIVE_STATIC_LIBS);
         }
         Linkage::Shared => {
             cc.arg("-L")
@@ -213,6 +225,26 @@ fn c99_example_links_shared_library() {
         "c99",
         "c_examples/rng.c",
         Linkage::Shared,
+    ));
+}
+
+#[test]
+fn c99_example_is_clean_under_sanitizers() {
+    check_c_output(&build_and_run(
+        &c_compiler(),
+        "c99",
+        "c_examples/rng.c",
+        Linkage::Sanitized,
+    ));
+}
+
+#[test]
+fn cpp17_example_is_clean_under_sanitizers() {
+    check_cpp_output(&build_and_run(
+        &cpp_compiler(),
+        "c++17",
+        "c_examples/rng.cpp",
+        Linkage::Sanitized,
     ));
 }
 

@@ -200,3 +200,154 @@ pub unsafe extern "C" fn hibi_rng_rand(
         unsafe { write_out(out, value) }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::*;
+    use core::ffi::CStr;
+    use core::ptr::null_mut;
+
+    fn create(seed: u64, stream: u64) -> *mut hibi_rng {
+        let mut rng = null_mut();
+        // SAFETY: `rng` is a valid out-pointer.
+        assert_eq!(unsafe { hibi_rng_create(seed, stream, &mut rng) }, HIBI_OK);
+        rng
+    }
+
+    #[test]
+    fn draws_match_the_core_stream() {
+        let rng = create(3, 99);
+        let mut core = Rng::from_key(3, 99);
+        let mut bits = 0;
+        let mut values = [0.0f32; 5];
+        // SAFETY: live stream and valid buffers throughout.
+        unsafe {
+            assert_eq!(hibi_rng_next_u32(rng, &mut bits), HIBI_OK);
+            assert_eq!(bits, core.next_u32());
+            assert_eq!(
+                hibi_rng_uniform(rng, values.as_mut_ptr(), values.len()),
+                HIBI_OK
+            );
+            assert_eq!(
+                values,
+                core::array::from_fn::<f32, 5, _>(|_| core.uniform_f32())
+            );
+            assert_eq!(
+                hibi_rng_normal(rng, values.as_mut_ptr(), values.len()),
+                HIBI_OK
+            );
+            assert_eq!(
+                values,
+                core::array::from_fn::<f32, 5, _>(|_| core.normal_f32())
+            );
+            hibi_rng_destroy(rng);
+        }
+    }
+
+    #[test]
+    fn failures_write_nothing_and_name_the_problem() {
+        let rng = create(1, 2);
+        let mut count = 77u32;
+        let mut value = -1.0f32;
+        // SAFETY: live stream; the failing calls are rejected before any access.
+        unsafe {
+            assert_eq!(
+                hibi_rng_poisson(rng, f64::NAN, &mut count),
+                HIBI_ERROR_POISSON_MEAN
+            );
+            assert_eq!(
+                hibi_rng_poisson(rng, 1e7, &mut count),
+                HIBI_ERROR_POISSON_MEAN
+            );
+            assert_eq!(count, 77);
+            assert_eq!(
+                hibi_rng_rand(rng, 1.0, 1.5, HIBI_SPREAD_UNIFORM, &mut value),
+                HIBI_ERROR_RAND_ARGUMENT
+            );
+            assert_eq!(
+                hibi_rng_rand(rng, 1.0, 0.5, 2, &mut value),
+                HIBI_ERROR_BAD_ENUM
+            );
+            assert_eq!(value, -1.0);
+            assert_eq!(
+                hibi_rng_uniform(rng, null_mut(), 4),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(hibi_rng_uniform(rng, null_mut(), 0), HIBI_OK);
+            assert_eq!(hibi_rng_next_u32(rng, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(
+                hibi_rng_next_u32(null_mut(), &mut count),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(hibi_rng_create(0, 0, null_mut()), HIBI_ERROR_NULL_POINTER);
+            hibi_rng_destroy(rng);
+            hibi_rng_destroy(null_mut());
+        }
+    }
+
+    #[test]
+    fn caller_memory_is_checked_then_used() {
+        let mut memory = [0u64; 8];
+        assert!(hibi_rng_memory_size() <= size_of_val(&memory));
+        assert!(hibi_rng_memory_align() <= align_of::<u64>());
+        let base = memory.as_mut_ptr().cast::<c_void>();
+        let mut out = null_mut();
+        // SAFETY: `memory` outlives the stream; failing calls are rejected before any access.
+        unsafe {
+            let size = hibi_rng_memory_size();
+            assert_eq!(
+                hibi_rng_create_in(5, 6, null_mut(), size, &mut out),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(
+                hibi_rng_create_in(5, 6, base, size - 1, &mut out),
+                HIBI_ERROR_BUFFER_TOO_SMALL
+            );
+            let odd = base.cast::<u8>().add(1).cast::<c_void>();
+            assert_eq!(
+                hibi_rng_create_in(5, 6, odd, size, &mut out),
+                HIBI_ERROR_MISALIGNED
+            );
+            assert!(out.is_null());
+            assert_eq!(hibi_rng_create_in(5, 6, base, size, &mut out), HIBI_OK);
+            assert_eq!(out.cast::<c_void>(), base);
+            let mut bits = 0;
+            assert_eq!(hibi_rng_next_u32(out, &mut bits), HIBI_OK);
+            assert_eq!(bits, Rng::from_key(5, 6).next_u32());
+            hibi_rng_destroy(out); // drops only; the memory stays ours
+        }
+    }
+
+    #[test]
+    fn every_status_has_its_own_message() {
+        let codes = [
+            HIBI_OK,
+            HIBI_ERROR_NULL_POINTER,
+            HIBI_ERROR_MISALIGNED,
+            HIBI_ERROR_BUFFER_TOO_SMALL,
+            HIBI_ERROR_BAD_ENUM,
+            HIBI_ERROR_OUT_OF_MEMORY,
+            HIBI_ERROR_SIZE_OVERFLOW,
+            HIBI_ERROR_PANIC,
+            HIBI_ERROR_POISSON_MEAN,
+            HIBI_ERROR_RAND_ARGUMENT,
+        ];
+        // SAFETY: hibi_status_string returns static NUL-terminated strings.
+        let text = |code| {
+            unsafe { CStr::from_ptr(hibi_status_string(code)) }
+                .to_str()
+                .unwrap()
+        };
+        for (i, a) in codes.iter().enumerate() {
+            assert_ne!(text(*a), "unknown status code");
+            for b in &codes[i + 1..] {
+                assert_ne!(text(*a), text(*b));
+            }
+        }
+        assert_eq!(text(9999), "unknown status code");
+        // SAFETY: static NUL-terminated string.
+        let version = unsafe { CStr::from_ptr(crate::hibi_version()) };
+        assert_eq!(version.to_str(), Ok(env!("CARGO_PKG_VERSION")));
+    }
+}
