@@ -127,12 +127,8 @@ pub unsafe extern "C" fn hibi_rng_uniform(
     values: *mut f32,
     len: usize,
 ) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let (rng, values) = unsafe { (object(rng)?, buffer(values, len)?) };
-        values.iter_mut().for_each(|v| *v = rng.rng.uniform_f32());
-        Ok(())
-    })
+    // SAFETY: the caller's contract, passed on.
+    unsafe { fill(rng, values, len, Rng::uniform_f32) }
 }
 
 /// Fills `values[0..len]` with standard normal draws.
@@ -145,10 +141,24 @@ pub unsafe extern "C" fn hibi_rng_normal(
     values: *mut f32,
     len: usize,
 ) -> hibi_status {
+    // SAFETY: the caller's contract, passed on.
+    unsafe { fill(rng, values, len, Rng::normal_f32) }
+}
+
+/// Fills a caller buffer with draws of one distribution.
+///
+/// # Safety
+/// As `hibi_rng_uniform`.
+unsafe fn fill(
+    rng: *mut hibi_rng,
+    values: *mut f32,
+    len: usize,
+    draw: fn(&mut Rng) -> f32,
+) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let (rng, values) = unsafe { (object(rng)?, buffer(values, len)?) };
-        values.iter_mut().for_each(|v| *v = rng.rng.normal_f32());
+        values.iter_mut().for_each(|v| *v = draw(&mut rng.rng));
         Ok(())
     })
 }
