@@ -12,11 +12,15 @@
 //! - [`rng`]: the deterministic random source (Xoshiro128++, one stream per purpose).
 //! - [`scalar`]: the number type the models compute in (`f32`, `micromath`, Q16.16).
 //! - [`geom`]: points, segments, intersections, polylines.
+//! - [`mud`]: model A, the drying-mud spring lattice.
+//! - [`raster`]: drawing into caller buffers.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod geom;
+pub mod mud;
+pub mod raster;
 pub mod rng;
 pub mod scalar;
 

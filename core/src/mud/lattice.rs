@@ -1,0 +1,423 @@
+//! The node lattice (paper Fig. 4) in lattice units (the element size W is 1): which springs
+//! join which nodes, where the deep-layer nodes sit, and the mesh cells whose broken sides
+//! are traced into cracks (Fig. 5).
+//!
+//! Node (i, j) is index `j·columns + i`. Square lattices sit at (i, j) with springs to the
+//! right and up. Hexagonal elements form a triangular lattice of nodes at
+//! (i + ½·(j mod 2), j·√3/2) with springs to the right, up-right and up-left. Spring
+//! `node·directions + d` leaves `node` in direction `d`; at an open edge it is absent.
+
+use super::params::{Boundary, Topology};
+
+/// √3/2: the row pitch of the triangular lattice.
+pub const ROW_PITCH_HEX: f32 = 0.866_025_4;
+
+/// The shape of a lattice: topology, edges and size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Lattice {
+    /// Square or hexagonal elements.
+    pub topology: Topology,
+    /// Open or periodic edges.
+    pub boundary: Boundary,
+    /// Nodes per row.
+    pub columns: u32,
+    /// Rows of nodes.
+    pub rows: u32,
+}
+
+/// A mesh cell (a square, or a triangle of the hexagonal model) for crack tracing: its
+/// corners (node and the unwrapped lattice offset of the corner from the cell's base node)
+/// and its sides (springs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    /// Corner nodes; only the first `corners` entries are used.
+    pub nodes: [u32; 4],
+    /// Number of corners and sides (3 or 4).
+    pub corners: usize,
+    /// The spring of each side; side k joins corner k and corner k + 1.
+    pub sides: [u32; 4],
+    /// Unwrapped reference position of each corner, in lattice units.
+    pub reference: [[f32; 2]; 4],
+}
+
+impl Lattice {
+    /// Springs leaving each node: 2 (square) or 3 (hexagonal).
+    pub const fn directions(&self) -> usize {
+        match self.topology {
+            Topology::Square => 2,
+            Topology::Hexagonal => 3,
+        }
+    }
+
+    /// Number of nodes.
+    pub const fn node_count(&self) -> usize {
+        self.columns as usize * self.rows as usize
+    }
+
+    /// Number of spring slots (absent springs at open edges included).
+    pub const fn spring_count(&self) -> usize {
+        self.node_count() * self.directions()
+    }
+
+    /// Mesh cells per node: 1 square or 2 triangles.
+    pub const fn cells_per_node(&self) -> usize {
+        match self.topology {
+            Topology::Square => 1,
+            Topology::Hexagonal => 2,
+        }
+    }
+
+    /// The spacing between rows.
+    pub const fn row_pitch(&self) -> f32 {
+        match self.topology {
+            Topology::Square => 1.0,
+            Topology::Hexagonal => ROW_PITCH_HEX,
+        }
+    }
+
+    /// Width and height of the lattice's domain (one period when periodic), lattice units.
+    pub fn extent(&self) -> [f32; 2] {
+        [self.columns as f32, self.rows as f32 * self.row_pitch()]
+    }
+
+    /// The element's area in the plane (B/W²): 1 or √3/2.
+    pub const fn element_area(&self) -> f32 {
+        match self.topology {
+            Topology::Square => 1.0,
+            Topology::Hexagonal => ROW_PITCH_HEX,
+        }
+    }
+
+    /// Length of the element face a spring crosses (per W): 1 or 1/√3.
+    pub const fn face_length(&self) -> f32 {
+        match self.topology {
+            Topology::Square => 1.0,
+            Topology::Hexagonal => 0.577_350_26,
+        }
+    }
+
+    /// Unit vector of direction `d`.
+    pub const fn direction_vector(&self, d: usize) -> [f32; 2] {
+        match (self.topology, d) {
+            (Topology::Square, 0) => [1.0, 0.0],
+            (Topology::Square, _) => [0.0, 1.0],
+            (Topology::Hexagonal, 0) => [1.0, 0.0],
+            (Topology::Hexagonal, 1) => [0.5, ROW_PITCH_HEX],
+            (Topology::Hexagonal, _) => [-0.5, ROW_PITCH_HEX],
+        }
+    }
+
+    /// Reference (deep-layer) position of a node, lattice units.
+    pub fn reference(&self, node: usize) -> [f32; 2] {
+        let (i, j) = (node % self.columns as usize, node / self.columns as usize);
+        let shift = if self.topology == Topology::Hexagonal && j % 2 == 1 {
+            0.5
+        } else {
+            0.0
+        };
+        [i as f32 + shift, j as f32 * self.row_pitch()]
+    }
+
+    /// The node at column `i`, row `j` (possibly outside), wrapped when periodic.
+    fn node_at(&self, i: i64, j: i64) -> Option<usize> {
+        let (c, r) = (i64::from(self.columns), i64::from(self.rows));
+        let (i, j) = match self.boundary {
+            Boundary::Periodic => (i.rem_euclid(c), j.rem_euclid(r)),
+            Boundary::Open if (0..c).contains(&i) && (0..r).contains(&j) => (i, j),
+            Boundary::Open => return None,
+        };
+        Some((j * c + i) as usize)
+    }
+
+    /// Column and row offset of the neighbour in direction `d` of a node in row `j`.
+    const fn step(&self, d: usize, j: usize) -> (i64, i64) {
+        let odd = (j % 2) as i64;
+        match (self.topology, d) {
+            (Topology::Square, 0) => (1, 0),
+            (Topology::Square, _) => (0, 1),
+            (Topology::Hexagonal, 0) => (1, 0),
+            (Topology::Hexagonal, 1) => (odd, 1),
+            (Topology::Hexagonal, _) => (odd - 1, 1),
+        }
+    }
+
+    /// The node that spring `d` of `node` reaches, if the spring exists.
+    pub fn neighbour(&self, node: usize, d: usize) -> Option<usize> {
+        let c = self.columns as usize;
+        let (i, j) = (node % c, node / c);
+        let (di, dj) = self.step(d, j);
+        self.node_at(i as i64 + di, j as i64 + dj)
+    }
+
+    /// The node whose spring `d` reaches `node`, if that spring exists.
+    pub fn back_neighbour(&self, node: usize, d: usize) -> Option<usize> {
+        let c = self.columns as usize;
+        let (i, j) = (node % c, node / c);
+        // The neighbour is in row j − dj, whose parity decides the column offset.
+        let (_, dj) = self.step(d, 0);
+        let row = (j as i64 - dj).rem_euclid(i64::from(self.rows)) as usize;
+        let (di, _) = self.step(d, row);
+        self.node_at(i as i64 - di, j as i64 - dj)
+    }
+
+    /// The two nodes of a spring, if it exists.
+    pub fn spring_nodes(&self, spring: usize) -> Option<(usize, usize)> {
+        let (node, d) = (spring / self.directions(), spring % self.directions());
+        self.neighbour(node, d).map(|other| (node, other))
+    }
+
+    /// Calls `visit(spring, other_node, sign)` for every existing spring at `node`, in a
+    /// fixed order: outgoing springs (sign +1: the spring points away from `node`), then
+    /// incoming ones (sign −1).
+    pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, f32)) {
+        let dirs = self.directions();
+        let c = self.columns as usize;
+        let (i, j) = (node % c, node / c);
+        if i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize {
+            // Interior node: neighbours are fixed offsets (no wrapping, no edges).
+            match self.topology {
+                Topology::Square => {
+                    visit(node * 2, node + 1, 1.0);
+                    visit(node * 2 + 1, node + c, 1.0);
+                    visit((node - 1) * 2, node - 1, -1.0);
+                    visit((node - c) * 2 + 1, node - c, -1.0);
+                }
+                Topology::Hexagonal => {
+                    let odd = j % 2;
+                    let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
+                    let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
+                    visit(node * 3, node + 1, 1.0);
+                    visit(node * 3 + 1, up_right, 1.0);
+                    visit(node * 3 + 2, up_left, 1.0);
+                    visit((node - 1) * 3, node - 1, -1.0);
+                    visit(down_left * 3 + 1, down_left, -1.0);
+                    visit(down_right * 3 + 2, down_right, -1.0);
+                }
+            }
+            return;
+        }
+        for d in 0..dirs {
+            if let Some(other) = self.neighbour(node, d) {
+                visit(node * dirs + d, other, 1.0);
+            }
+        }
+        for d in 0..dirs {
+            if let Some(other) = self.back_neighbour(node, d) {
+                visit(other * dirs + d, other, -1.0);
+            }
+        }
+    }
+
+    /// Mesh cell `cell` (`node·cells_per_node + k`), if all its sides exist.
+    pub fn cell(&self, cell: usize) -> Option<Cell> {
+        let per = self.cells_per_node();
+        let (base, k) = (cell / per, cell % per);
+        let dirs = self.directions();
+        let at = self.reference(base);
+        let offset = |d: usize| {
+            let v = self.direction_vector(d);
+            [at[0] + v[0], at[1] + v[1]]
+        };
+        match (self.topology, k) {
+            (Topology::Square, _) => {
+                let right = self.neighbour(base, 0)?;
+                let up = self.neighbour(base, 1)?;
+                let diagonal = self.neighbour(right, 1)?;
+                Some(Cell {
+                    nodes: [base as u32, right as u32, diagonal as u32, up as u32],
+                    corners: 4,
+                    sides: [
+                        (base * dirs) as u32,
+                        (right * dirs + 1) as u32,
+                        (up * dirs) as u32,
+                        (base * dirs + 1) as u32,
+                    ],
+                    reference: [at, offset(0), [at[0] + 1.0, at[1] + 1.0], offset(1)],
+                })
+            }
+            (Topology::Hexagonal, 0) => {
+                // Upward triangle: base, right, up-right.
+                let right = self.neighbour(base, 0)?;
+                let upper = self.neighbour(base, 1)?;
+                self.neighbour(right, 2)?;
+                Some(Cell {
+                    nodes: [base as u32, right as u32, upper as u32, 0],
+                    corners: 3,
+                    sides: [
+                        (base * dirs) as u32,
+                        (right * dirs + 2) as u32,
+                        (base * dirs + 1) as u32,
+                        0,
+                    ],
+                    reference: [at, offset(0), offset(1), [0.0; 2]],
+                })
+            }
+            (Topology::Hexagonal, _) => {
+                // Downward-pointing triangle above the base: base, up-right, up-left.
+                let upper_right = self.neighbour(base, 1)?;
+                let upper_left = self.neighbour(base, 2)?;
+                self.neighbour(upper_left, 0)?;
+                Some(Cell {
+                    nodes: [base as u32, upper_right as u32, upper_left as u32, 0],
+                    corners: 3,
+                    sides: [
+                        (base * dirs + 1) as u32,
+                        (upper_left * dirs) as u32,
+                        (base * dirs + 2) as u32,
+                        0,
+                    ],
+                    reference: [at, offset(1), offset(2), [0.0; 2]],
+                })
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice(topology: Topology, boundary: Boundary, columns: u32, rows: u32) -> Lattice {
+        Lattice {
+            topology,
+            boundary,
+            columns,
+            rows,
+        }
+    }
+
+    #[test]
+    fn every_node_of_a_periodic_lattice_has_all_neighbours() {
+        for (topology, degree) in [(Topology::Square, 4), (Topology::Hexagonal, 6)] {
+            let l = lattice(topology, Boundary::Periodic, 6, 4);
+            for node in 0..l.node_count() {
+                let mut seen = 0;
+                l.for_each_spring_at(node, |spring, other, _| {
+                    let (a, b) = l.spring_nodes(spring).unwrap();
+                    assert!(a == node && b == other || b == node && a == other);
+                    seen += 1;
+                });
+                assert_eq!(seen, degree);
+            }
+        }
+    }
+
+    #[test]
+    fn interior_fast_path_matches_the_general_rule() {
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            let l = lattice(topology, Boundary::Open, 7, 6);
+            for node in 0..l.node_count() {
+                let mut fast = [(0, 0, 0.0); 6];
+                let mut n = 0;
+                l.for_each_spring_at(node, |s, o, sign| {
+                    fast[n] = (s, o, sign);
+                    n += 1;
+                });
+                let mut general = [(0, 0, 0.0); 6];
+                let mut m = 0;
+                for d in 0..l.directions() {
+                    if let Some(o) = l.neighbour(node, d) {
+                        general[m] = (node * l.directions() + d, o, 1.0);
+                        m += 1;
+                    }
+                }
+                for d in 0..l.directions() {
+                    if let Some(o) = l.back_neighbour(node, d) {
+                        general[m] = (o * l.directions() + d, o, -1.0);
+                        m += 1;
+                    }
+                }
+                assert_eq!(fast[..n], general[..m], "{topology:?} node {node}");
+            }
+        }
+    }
+
+    #[test]
+    fn back_neighbour_inverts_neighbour() {
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            for boundary in [Boundary::Open, Boundary::Periodic] {
+                let l = lattice(topology, boundary, 5, 6);
+                for node in 0..l.node_count() {
+                    for d in 0..l.directions() {
+                        if let Some(n) = l.neighbour(node, d) {
+                            assert_eq!(
+                                l.back_neighbour(n, d),
+                                Some(node),
+                                "{topology:?} {boundary:?} {node} {d}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn springs_join_nodes_one_spacing_apart() {
+        let l = lattice(Topology::Hexagonal, Boundary::Open, 7, 6);
+        for spring in 0..l.spring_count() {
+            if let Some((a, b)) = l.spring_nodes(spring) {
+                let (pa, pb) = (l.reference(a), l.reference(b));
+                let d = libm::hypotf(pb[0] - pa[0], pb[1] - pa[1]);
+                assert!((d - 1.0).abs() < 1e-6, "{spring}: {d}");
+                let v = l.direction_vector(spring % 3);
+                assert!((pb[0] - pa[0] - v[0]).abs() < 1e-6 && (pb[1] - pa[1] - v[1]).abs() < 1e-6);
+            }
+        }
+    }
+
+    #[test]
+    fn cells_tile_the_periodic_domain() {
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            let l = lattice(topology, Boundary::Periodic, 6, 4);
+            let cells = l.node_count() * l.cells_per_node();
+            let mut area = 0.0;
+            let mut side_uses = [0u32; 72];
+            for c in 0..cells {
+                let cell = l.cell(c).unwrap();
+                let r = &cell.reference[..cell.corners];
+                // Shoelace area; corners are counter-clockwise.
+                let mut twice = 0.0;
+                for k in 0..cell.corners {
+                    let (p, q) = (r[k], r[(k + 1) % cell.corners]);
+                    twice += p[0] * q[1] - q[0] * p[1];
+                    let (a, b) = l.spring_nodes(cell.sides[k] as usize).unwrap();
+                    let ends = [
+                        cell.nodes[k] as usize,
+                        cell.nodes[(k + 1) % cell.corners] as usize,
+                    ];
+                    assert!(ends == [a, b] || ends == [b, a], "side {k} of cell {c}");
+                    side_uses[cell.sides[k] as usize] += 1;
+                }
+                assert!(twice > 0.0);
+                area += twice / 2.0;
+            }
+            let [w, h] = l.extent();
+            assert!(
+                (area - w * h).abs() < 1e-3,
+                "{topology:?}: {area} vs {}",
+                w * h
+            );
+            // Every spring separates exactly two cells.
+            assert!(
+                side_uses[..l.spring_count()].iter().all(|&n| n == 2),
+                "{topology:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn open_edges_drop_springs_and_cells() {
+        let l = lattice(Topology::Square, Boundary::Open, 3, 3);
+        assert_eq!(
+            (0..l.spring_count())
+                .filter(|&s| l.spring_nodes(s).is_some())
+                .count(),
+            12
+        );
+        assert_eq!(
+            (0..l.node_count()).filter(|&c| l.cell(c).is_some()).count(),
+            4
+        );
+    }
+}

@@ -1,0 +1,502 @@
+//! Model A: drying mud (Hirota, Hoshino, Kaneko, "Generation of Crack Patterns Based on a
+//! Physical Model"; MODELS.md §A).
+//!
+//! A surface layer of nodes joined by springs sits on a deep layer that never cracks; each
+//! surface node is tied to its deep node by a shear spring. The surface shrinks (or the deep
+//! layer grows), springs stretch past their break stretch and break, and the broken springs,
+//! traced through the mesh cells (Fig. 5), are the cracks.
+//!
+//! ```
+//! use hibi_core::mud::{Mud, MudParams};
+//!
+//! let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
+//! let memory = params.memory().unwrap();
+//! let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+//! let mut mud = Mud::new(&params, &mut scalars, &mut words).unwrap();
+//! while !mud.step(100_000).finished {}
+//! let mut segments = vec![Default::default(); mud.segment_count()];
+//! mud.segments(&mut segments).unwrap();
+//! assert!(!segments.is_empty());
+//! ```
+//!
+//! Memory is the caller's: [`MudParams::memory`] tells how many scalars and words a run needs,
+//! [`MudStorage`] holds them in fixed-size arrays for callers without a heap.
+
+mod explicit;
+pub mod lattice;
+pub mod material;
+pub mod params;
+mod quasi_static;
+pub mod render;
+pub mod spacing;
+pub mod trace;
+
+pub use lattice::Lattice;
+pub use material::Material;
+pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
+pub use render::{MudLayer, MudRender};
+pub use spacing::{SpacingPrediction, predict_spacing};
+pub use trace::CrackSegment;
+
+use crate::rng::{Rng, Stream};
+use crate::scalar::Scalar;
+
+/// Marks an intact spring in the break-time table.
+const INTACT: u32 = u32::MAX;
+/// Marks a missing spring (beyond an open edge) in the neighbour table.
+const ABSENT: u32 = u32::MAX;
+
+/// How much caller memory a run needs: `scalars` elements of the scalar type and `words`
+/// `u32`s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MudMemory {
+    /// Elements of the scalar type (`f32`, `Q16`, ...).
+    pub scalars: usize,
+    /// `u32` words.
+    pub words: usize,
+}
+
+/// The memory a lattice of this shape needs with this solver; `None` if it overflows.
+pub const fn memory_for(
+    topology: Topology,
+    solver: Solver,
+    columns: u32,
+    rows: u32,
+) -> Option<MudMemory> {
+    let dirs = match topology {
+        Topology::Square => 2,
+        Topology::Hexagonal => 3,
+    };
+    let Some(nodes) = (columns as usize).checked_mul(rows as usize) else {
+        return None;
+    };
+    let Some(springs) = nodes.checked_mul(dirs) else {
+        return None;
+    };
+    // Per node: displacement (x, y); explicit adds velocity and force (x, y).
+    // Per spring: break stretch; quasi-static adds its break misfit.
+    // Words per spring: the other node and the break time; quasi-static adds a tournament
+    // tree over springs (2·P, P the next power of two), a work queue, node flags and a list
+    // of relaxed nodes (3 per node).
+    let (node_scalars, spring_scalars) = match solver {
+        Solver::Explicit => (6, 1),
+        Solver::QuasiStatic => (2, 2),
+    };
+    let Some(a) = nodes.checked_mul(node_scalars) else {
+        return None;
+    };
+    let Some(b) = springs.checked_mul(spring_scalars) else {
+        return None;
+    };
+    let Some(scalars) = a.checked_add(b) else {
+        return None;
+    };
+    let Some(mut words) = springs.checked_mul(2) else {
+        return None;
+    };
+    if let Solver::QuasiStatic = solver {
+        let Some(leaves) = springs.checked_next_power_of_two() else {
+            return None;
+        };
+        let Some(tree) = leaves.checked_mul(2) else {
+            return None;
+        };
+        let Some(queue) = nodes.checked_mul(3) else {
+            return None;
+        };
+        let Some(extra) = tree.checked_add(queue) else {
+            return None;
+        };
+        let Some(total) = words.checked_add(extra) else {
+            return None;
+        };
+        words = total;
+    }
+    // Keep every element count addressable in bytes (the largest element is 8 bytes).
+    if scalars > isize::MAX as usize / 8 || words > isize::MAX as usize / 8 {
+        return None;
+    }
+    Some(MudMemory { scalars, words })
+}
+
+impl MudParams {
+    /// Validates the parameters and returns the memory a run needs.
+    pub fn memory(&self) -> Result<MudMemory, MudParamError> {
+        self.validate()?;
+        memory_for(self.topology, self.solver, self.columns, self.rows)
+            .ok_or(MudParamError::SizeOverflow)
+    }
+
+    /// The lattice these parameters describe.
+    pub const fn lattice(&self) -> Lattice {
+        Lattice {
+            topology: self.topology,
+            boundary: self.boundary,
+            columns: self.columns,
+            rows: self.rows,
+        }
+    }
+}
+
+/// Fixed-size storage for callers without a heap: `SCALARS` and `WORDS` come from
+/// [`memory_for`] (a `const fn`), e.g.
+/// `MudStorage<f32, { memory_for(..).unwrap().scalars }, { ... .words }>`.
+pub struct MudStorage<S, const SCALARS: usize, const WORDS: usize> {
+    /// Scalar storage.
+    pub scalars: [S; SCALARS],
+    /// Word storage.
+    pub words: [u32; WORDS],
+}
+
+impl<S: Scalar, const SCALARS: usize, const WORDS: usize> MudStorage<S, SCALARS, WORDS> {
+    /// Zeroed storage.
+    pub const fn new() -> Self {
+        MudStorage {
+            scalars: [S::ZERO; SCALARS],
+            words: [0; WORDS],
+        }
+    }
+
+    /// A run of `params` in this storage.
+    pub fn mud(&mut self, params: &MudParams) -> Result<Mud<'_, S>, MudError> {
+        Mud::new(params, &mut self.scalars, &mut self.words)
+    }
+}
+
+impl<S: Scalar, const SCALARS: usize, const WORDS: usize> Default
+    for MudStorage<S, SCALARS, WORDS>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Why a run could not be created or an output written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MudError {
+    /// A parameter is out of range.
+    Param(MudParamError),
+    /// A caller buffer is too small: `needed` elements are required.
+    BufferTooSmall {
+        /// Elements the buffer must hold.
+        needed: usize,
+    },
+}
+
+impl From<MudParamError> for MudError {
+    fn from(e: MudParamError) -> Self {
+        MudError::Param(e)
+    }
+}
+
+/// Where a run stands, as [`Mud::step`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// The misfit between the layers: shrink 1 − r (growth: 1/r − 1).
+    pub shrink: f32,
+    /// Time in long steps T (fractional for the quasi-static solver).
+    pub time: f32,
+    /// Springs broken so far.
+    pub broken_springs: u32,
+    /// Crack length per area [1/cm].
+    pub crack_density: f32,
+    /// The run reached its end (target shrink or crack density, or nothing left to happen).
+    pub finished: bool,
+}
+
+/// A drying-mud run over caller memory.
+pub struct Mud<'a, S: Scalar> {
+    params: MudParams,
+    lattice: Lattice,
+    material: Material<S>,
+    /// Displacement of each surface node from its deep node (x, y). The quasi-static solver
+    /// keeps the displacement per unit misfit here instead.
+    ux: &'a mut [S],
+    uy: &'a mut [S],
+    /// Per spring: κ_i (margin scaled by anisotropy).
+    break_stretch: &'a mut [S],
+    /// Per spring: the node it reaches, or ABSENT.
+    other: &'a mut [u32],
+    /// Per spring: the time it broke (f32 bits, long steps), or INTACT.
+    break_time: &'a mut [u32],
+    solver: SolverState<'a, S>,
+    /// Long steps taken (explicit) and the misfit now.
+    long_steps: u32,
+    misfit: S,
+    broken: u32,
+    finished: bool,
+}
+
+/// The arrays only one solver needs.
+enum SolverState<'a, S> {
+    Explicit(explicit::Dynamics<'a, S>),
+    QuasiStatic(quasi_static::Relaxation<'a, S>),
+}
+
+/// Cuts the first `n` elements off a buffer.
+fn take<'a, T>(buffer: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+    let (head, tail) = core::mem::take(buffer).split_at_mut(n);
+    *buffer = tail;
+    head
+}
+
+impl<'a, S: Scalar> Mud<'a, S> {
+    /// Sets up a run of `params` in caller memory of at least [`MudParams::memory`] elements:
+    /// draws every spring's break stretch and, for open edges, relaxes the boundary layer.
+    /// Nothing is written to the buffers on failure.
+    pub fn new(
+        params: &MudParams,
+        scalars: &'a mut [S],
+        words: &'a mut [u32],
+    ) -> Result<Self, MudError> {
+        let memory = params.memory()?;
+        if scalars.len() < memory.scalars {
+            return Err(MudError::BufferTooSmall {
+                needed: memory.scalars,
+            });
+        }
+        if words.len() < memory.words {
+            return Err(MudError::BufferTooSmall {
+                needed: memory.words,
+            });
+        }
+        let lattice = params.lattice();
+        let material = Material::new(params, &lattice)?;
+        let (nodes, springs) = (lattice.node_count(), lattice.spring_count());
+        let mut scalars = scalars;
+        let mut words = words;
+        let ux = take(&mut scalars, nodes);
+        let uy = take(&mut scalars, nodes);
+        let break_stretch = take(&mut scalars, springs);
+        let other = take(&mut words, springs);
+        let break_time = take(&mut words, springs);
+        ux.fill(S::ZERO);
+        uy.fill(S::ZERO);
+        break_time.fill(INTACT);
+        let mut rng = Rng::new(params.seed, Stream::BreakStretch);
+        for spring in 0..springs {
+            other[spring] = lattice
+                .spring_nodes(spring)
+                .map_or(ABSENT, |(_, b)| b as u32);
+            // κ_i = κ̄ + σ/√A_i·N(0,1); anisotropy scales the margin κ_i − 1 (Fig. 7). The
+            // draw is made for absent springs too, so a spring's κ does not depend on edges.
+            let kappa =
+                params.break_stretch_mean + material.break_stretch_spread * rng.normal_f32();
+            let factor = material.margin_factor[spring % lattice.directions()];
+            break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
+        }
+        let solver = match params.solver {
+            Solver::Explicit => {
+                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, nodes, &material))
+            }
+            Solver::QuasiStatic => SolverState::QuasiStatic(quasi_static::Relaxation::new(
+                &mut scalars,
+                &mut words,
+                nodes,
+                springs,
+            )),
+        };
+        let mut mud = Mud {
+            params: *params,
+            lattice,
+            material,
+            ux,
+            uy,
+            break_stretch,
+            other,
+            break_time,
+            solver,
+            long_steps: 0,
+            misfit: S::ZERO,
+            broken: 0,
+            finished: false,
+        };
+        if let SolverState::QuasiStatic(_) = mud.solver {
+            mud.quasi_static_setup();
+        }
+        Ok(mud)
+    }
+
+    /// Advances the run by at most `budget` units of work (one unit is one spring visited),
+    /// but always by at least one indivisible piece: a short step of the explicit solver, or
+    /// a node relaxation or break event of the quasi-static one.
+    pub fn step(&mut self, budget: u64) -> Progress {
+        let mut work = 0u64;
+        while !self.finished {
+            work += match self.solver {
+                SolverState::Explicit(_) => self.explicit_step(),
+                SolverState::QuasiStatic(_) => self.quasi_static_step(),
+            };
+            if work >= budget {
+                break;
+            }
+        }
+        self.progress()
+    }
+
+    /// Runs to the end (target shrink or crack density).
+    pub fn run(&mut self) -> Progress {
+        self.step(u64::MAX)
+    }
+
+    /// Where the run stands.
+    pub fn progress(&self) -> Progress {
+        Progress {
+            shrink: self.misfit.to_f32(),
+            time: self.time_now(),
+            broken_springs: self.broken,
+            crack_density: self.crack_density(),
+            finished: self.finished,
+        }
+    }
+
+    /// The parameters of the run.
+    pub fn params(&self) -> &MudParams {
+        &self.params
+    }
+
+    /// The lattice of the run.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// Crack length per area [1/cm]: broken faces over the lattice's area.
+    pub fn crack_density(&self) -> f32 {
+        let l = &self.lattice;
+        let area = l.node_count() as f32 * l.element_area();
+        self.broken as f32 * l.face_length() / (area * self.params.element_size)
+    }
+
+    /// Whether spring `spring` exists and is broken.
+    pub fn is_broken(&self, spring: usize) -> bool {
+        self.break_time.get(spring).is_some_and(|&t| t != INTACT)
+    }
+
+    /// The long step at which `spring` broke, if it did.
+    pub fn spring_break_time(&self, spring: usize) -> Option<f32> {
+        self.break_time
+            .get(spring)
+            .filter(|&&t| t != INTACT)
+            .map(|&t| f32::from_bits(t))
+    }
+
+    /// The rest factor r and the deep factor of the current misfit: shrink (r, 1), growth
+    /// (1, 1 + misfit).
+    fn factors(&self) -> (S, S) {
+        match self.params.drive {
+            Drive::Shrink => (S::ONE - self.misfit, S::ONE),
+            Drive::Growth => (S::ONE, S::ONE + self.misfit),
+        }
+    }
+
+    /// The misfit after `n` long steps: r = γⁿ (Eq. 1).
+    fn misfit_at(&self, n: u32) -> S {
+        let r = libm::powf(self.params.shrink_ratio, n as f32);
+        S::from_f32(match self.params.drive {
+            Drive::Shrink => 1.0 - r,
+            Drive::Growth => 1.0 / r - 1.0,
+        })
+    }
+
+    /// The time, in long steps, at which the misfit is `misfit`: n = ln r / ln γ.
+    fn time_at(&self, misfit: S) -> f32 {
+        let m = misfit.to_f32();
+        let r = match self.params.drive {
+            Drive::Shrink => 1.0 - m,
+            Drive::Growth => 1.0 / (1.0 + m),
+        };
+        let ln_gamma = libm::logf(self.params.shrink_ratio);
+        if ln_gamma == 0.0 || r <= 0.0 {
+            0.0
+        } else {
+            libm::logf(r) / ln_gamma
+        }
+    }
+
+    fn time_now(&self) -> f32 {
+        match self.solver {
+            SolverState::Explicit(_) => self.long_steps as f32,
+            SolverState::QuasiStatic(_) => self.time_at(self.misfit),
+        }
+    }
+
+    /// The target misfit, if any.
+    fn target_misfit(&self) -> Option<S> {
+        (self.params.target_shrink > 0.0).then(|| S::from_f32(self.params.target_shrink))
+    }
+
+    /// Whether the crack density reached its target.
+    fn density_reached(&self) -> bool {
+        self.params.target_crack_density > 0.0
+            && self.crack_density() >= self.params.target_crack_density
+    }
+
+    /// Breaks `spring` now.
+    fn break_spring(&mut self, spring: usize) {
+        self.break_time[spring] = self.time_now().to_bits();
+        self.broken += 1;
+        if self.density_reached() {
+            self.finished = true;
+        }
+    }
+
+    /// Current displacement of `node` from its deep node.
+    fn displacement(&self, node: usize) -> (S, S) {
+        match self.solver {
+            SolverState::Explicit(_) => (self.ux[node], self.uy[node]),
+            SolverState::QuasiStatic(_) => {
+                (self.misfit * self.ux[node], self.misfit * self.uy[node])
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::vec;
+
+    #[test]
+    fn memory_is_exact_and_checked() {
+        let p = MudParams {
+            columns: 10,
+            rows: 8,
+            ..MudParams::default()
+        };
+        let m = p.memory().unwrap();
+        assert_eq!(m.scalars, 80 * 2 + 240 * 2);
+        assert_eq!(m.words, 240 * 2 + 2 * 256 + 240);
+        let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        assert!(Mud::new(&p, &mut s[..m.scalars - 1], &mut w).is_err());
+        assert_eq!(
+            Mud::new(&p, &mut s, &mut w[..m.words - 1]).err(),
+            Some(MudError::BufferTooSmall { needed: m.words })
+        );
+        // Nothing was written on failure.
+        assert!(s.iter().all(|&x| x == 0.0) && w.iter().all(|&x| x == 0));
+        assert!(Mud::new(&p, &mut s, &mut w).is_ok());
+        let huge = MudParams {
+            columns: u32::MAX,
+            rows: u32::MAX - 1,
+            ..MudParams::default()
+        };
+        assert_eq!(huge.memory(), Err(MudParamError::SizeOverflow));
+    }
+
+    #[test]
+    fn fixed_storage_serves_small_lattices() {
+        const M: MudMemory = match memory_for(Topology::Hexagonal, Solver::QuasiStatic, 16, 16) {
+            Some(m) => m,
+            None => panic!(),
+        };
+        let mut storage = MudStorage::<f32, { M.scalars }, { M.words }>::new();
+        let p = MudParams {
+            columns: 16,
+            rows: 16,
+            ..MudParams::default()
+        };
+        let mut mud = storage.mud(&p).unwrap();
+        assert!(mud.run().finished);
+    }
+}

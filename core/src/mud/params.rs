@@ -1,0 +1,377 @@
+//! Parameters of the drying-mud model (Hirota et al. §2–3), in the paper's physical units
+//! (cm, g, s), with the paper's defaults and one validation that names the wrong field.
+
+/// Mesh topology (paper Fig. 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Topology {
+    /// Square elements: 4 neighbours, no in-plane shear; axis-aligned, short, fine cracks.
+    Square = 0,
+    /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours; isotropic cracks.
+    Hexagonal = 1,
+}
+
+/// What happens at the lattice's edges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Boundary {
+    /// Free edges: the outermost nodes have fewer springs.
+    Open = 0,
+    /// The lattice wraps around (a torus): tileable patterns. Hexagonal lattices need an even
+    /// number of rows.
+    Periodic = 1,
+}
+
+/// How the lattice is brought to equilibrium.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Solver {
+    /// The paper's loop exactly (Fig. 2): forces, stability test, exact damped short steps,
+    /// breaking after every short step, shrinking by long steps.
+    Explicit = 0,
+    /// Linear quasi-static equilibrium with event-driven breaking: the shrink jumps straight
+    /// to the next break, local relaxation after each break. Same statistics, far faster.
+    QuasiStatic = 1,
+}
+
+/// What drives the misfit between the two layers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Drive {
+    /// The surface dries and shrinks: rest lengths l0·r(t), r(t) = γ^(t/T) (Eq. 1).
+    Shrink = 0,
+    /// The deep layer grows (tree bark): its node spacing expands by 1/r(t), surface rest
+    /// lengths stay; the pattern is drawn in the growing frame.
+    Growth = 1,
+}
+
+/// The parameters of a drying-mud run. `Default` gives the paper's values and ours where the
+/// paper gives none (see each field).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MudParams {
+    /// Mesh topology.
+    pub topology: Topology,
+    /// Edges: open or periodic (tileable).
+    pub boundary: Boundary,
+    /// Equilibrium solver.
+    pub solver: Solver,
+    /// Shrinking surface or growing deep layer.
+    pub drive: Drive,
+    /// Nodes per row.
+    pub columns: u32,
+    /// Rows of nodes.
+    pub rows: u32,
+    /// Seed of every random draw of the run.
+    pub seed: u64,
+
+    /// H: thickness of the surface layer [cm]. Not given by the paper: 1 cm, with W = 1 cm,
+    /// gives the closed polygonal cells of its figures (MODELS.md §A, measured note).
+    pub layer_thickness: f32,
+    /// W: element size, the lattice spacing [cm]. Not given by the paper: 1 cm (see H).
+    pub element_size: f32,
+    /// T: the long time step [s]; break times are reported in long steps.
+    pub long_step: f32,
+    /// τ: the short time step of the explicit solver [s]. Paper: 0.001.
+    pub short_step: f32,
+    /// γ: shrink ratio per long step, in (0, 1]. Paper: 0.9999.
+    pub shrink_ratio: f32,
+    /// δx: allowed displacement error [cm]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
+    pub displacement_tolerance: f32,
+    /// α: damping factor, c = 2·√(k_max·m)·α. Paper: 20 (empirically stable).
+    pub damping_factor: f32,
+
+    /// ρ: density [g/cm³]. Not given by the paper: 1.8, wet clayey mud.
+    pub density: f32,
+    /// E: Young's modulus [g/(cm·s²)]. Paper: 1.0e6.
+    pub young_modulus: f32,
+    /// G: shear modulus [g/(cm·s²)]. Paper: 2.0e5.
+    pub shear_modulus: f32,
+    /// κ̄: mean break stretch, > 1. Paper: 1.02.
+    pub break_stretch_mean: f32,
+    /// σ: spread of the break stretch per unit area [1/cm]; κ_i = κ̄ + σ/√A_i·N(0,1).
+    /// Paper: 0.001.
+    pub break_stretch_spread: f32,
+
+    /// φ: the direction cracks prefer to run along [radians from the x axis] (paper Fig. 7).
+    pub anisotropy_direction: f32,
+    /// How much weaker springs across φ are than springs along φ: the break margin κ − 1 of a
+    /// spring at angle θ is (κ − 1)·(cos²(θ − φ) + sin²(θ − φ)/ratio). 1 = isotropic; ≥ 1.
+    pub anisotropy_ratio: f32,
+    /// Optional stiffness anisotropy: k(θ) = k·(cos²(θ − φ) + sin²(θ − φ)/ratio). 1 = none; ≥ 1.
+    pub stiffness_anisotropy_ratio: f32,
+
+    /// The run ends when the shrink 1 − r reaches this (growth: 1/r − 1). 0 = no limit.
+    /// Default 0.022: closed polygonal cells, before they subdivide towards lattice scale.
+    pub target_shrink: f32,
+    /// The run also ends when the crack length per area reaches this [1/cm]. 0 = no limit.
+    pub target_crack_density: f32,
+}
+
+impl Default for MudParams {
+    fn default() -> Self {
+        MudParams {
+            topology: Topology::Hexagonal,
+            boundary: Boundary::Periodic,
+            solver: Solver::QuasiStatic,
+            drive: Drive::Shrink,
+            columns: 128,
+            rows: 128,
+            seed: 1,
+            layer_thickness: 1.0,
+            element_size: 1.0,
+            long_step: 1.0,
+            short_step: 0.001,
+            shrink_ratio: 0.9999,
+            displacement_tolerance: 1.0e-4,
+            damping_factor: 20.0,
+            density: 1.8,
+            young_modulus: 1.0e6,
+            shear_modulus: 2.0e5,
+            break_stretch_mean: 1.02,
+            break_stretch_spread: 0.001,
+            anisotropy_direction: 0.0,
+            anisotropy_ratio: 1.0,
+            stiffness_anisotropy_ratio: 1.0,
+            target_shrink: 0.022,
+            target_crack_density: 0.0,
+        }
+    }
+}
+
+/// A parameter that is out of its range; each names the field and its constraint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum MudParamError {
+    /// `columns` must be ≥ 2 (≥ 3 when periodic).
+    Columns = 0,
+    /// `rows` must be ≥ 2 (≥ 4 and even for a periodic hexagonal lattice, ≥ 3 periodic square).
+    Rows = 1,
+    /// `layer_thickness` (H) must be finite and > 0.
+    LayerThickness = 2,
+    /// `element_size` (W) must be finite and > 0.
+    ElementSize = 3,
+    /// `long_step` (T) must be finite and > 0.
+    LongStep = 4,
+    /// `short_step` (τ) must be finite and > 0.
+    ShortStep = 5,
+    /// `shrink_ratio` (γ) must be within (0, 1].
+    ShrinkRatio = 6,
+    /// `displacement_tolerance` (δx) must be finite and > 0.
+    DisplacementTolerance = 7,
+    /// `damping_factor` (α) must be finite and > 0.
+    DampingFactor = 8,
+    /// `density` (ρ) must be finite and > 0.
+    Density = 9,
+    /// `young_modulus` (E) must be finite and > 0.
+    YoungModulus = 10,
+    /// `shear_modulus` (G) must be finite and > 0.
+    ShearModulus = 11,
+    /// `break_stretch_mean` (κ̄) must be finite and > 1.
+    BreakStretchMean = 12,
+    /// `break_stretch_spread` (σ) must be finite and ≥ 0.
+    BreakStretchSpread = 13,
+    /// `anisotropy_direction` (φ) must be finite.
+    AnisotropyDirection = 14,
+    /// `anisotropy_ratio` must be finite and ≥ 1.
+    AnisotropyRatio = 15,
+    /// `stiffness_anisotropy_ratio` must be finite and ≥ 1.
+    StiffnessAnisotropyRatio = 16,
+    /// `target_shrink` must be finite and within [0, 1).
+    TargetShrink = 17,
+    /// `target_crack_density` must be finite and ≥ 0.
+    TargetCrackDensity = 18,
+    /// The lattice is too large: its memory size overflows the address space.
+    SizeOverflow = 19,
+    /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
+    /// sizes and time steps put a derived constant outside (1e-6, 1e6).
+    Scale = 20,
+}
+
+impl MudParamError {
+    /// The field's name and its constraint, NUL-terminated for C.
+    pub const fn message(self) -> &'static core::ffi::CStr {
+        use MudParamError::*;
+        match self {
+            Columns => c"mud: columns must be >= 2 (>= 3 when periodic)",
+            Rows => c"mud: rows must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal)",
+            LayerThickness => c"mud: layer_thickness (H) must be finite and > 0",
+            ElementSize => c"mud: element_size (W) must be finite and > 0",
+            LongStep => c"mud: long_step (T) must be finite and > 0",
+            ShortStep => c"mud: short_step (tau) must be finite and > 0",
+            ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1]",
+            DisplacementTolerance => {
+                c"mud: displacement_tolerance (delta x) must be finite and > 0"
+            }
+            DampingFactor => c"mud: damping_factor (alpha) must be finite and > 0",
+            Density => c"mud: density (rho) must be finite and > 0",
+            YoungModulus => c"mud: young_modulus (E) must be finite and > 0",
+            ShearModulus => c"mud: shear_modulus (G) must be finite and > 0",
+            BreakStretchMean => c"mud: break_stretch_mean (kappa) must be finite and > 1",
+            BreakStretchSpread => c"mud: break_stretch_spread (sigma) must be finite and >= 0",
+            AnisotropyDirection => c"mud: anisotropy_direction must be finite",
+            AnisotropyRatio => c"mud: anisotropy_ratio must be finite and >= 1",
+            StiffnessAnisotropyRatio => c"mud: stiffness_anisotropy_ratio must be finite and >= 1",
+            TargetShrink => c"mud: target_shrink must be finite and within [0, 1)",
+            TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
+            SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
+            Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
+        }
+    }
+}
+
+impl core::fmt::Display for MudParamError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.message().to_str().unwrap_or("mud parameter error"))
+    }
+}
+
+/// `x` is finite and > 0.
+fn positive(x: f32) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+impl MudParams {
+    /// Checks every field; the first wrong one is named.
+    pub fn validate(&self) -> Result<(), MudParamError> {
+        use MudParamError::*;
+        let periodic = self.boundary == Boundary::Periodic;
+        let min_columns = if periodic { 3 } else { 2 };
+        if self.columns < min_columns {
+            return Err(Columns);
+        }
+        let rows_ok = match (self.boundary, self.topology) {
+            (Boundary::Open, _) => self.rows >= 2,
+            (Boundary::Periodic, Topology::Square) => self.rows >= 3,
+            (Boundary::Periodic, Topology::Hexagonal) => {
+                self.rows >= 4 && self.rows.is_multiple_of(2)
+            }
+        };
+        if !rows_ok {
+            return Err(Rows);
+        }
+        let checks = [
+            (positive(self.layer_thickness), LayerThickness),
+            (positive(self.element_size), ElementSize),
+            (positive(self.long_step), LongStep),
+            (positive(self.short_step), ShortStep),
+            (
+                self.shrink_ratio > 0.0 && self.shrink_ratio <= 1.0,
+                ShrinkRatio,
+            ),
+            (positive(self.displacement_tolerance), DisplacementTolerance),
+            (positive(self.damping_factor), DampingFactor),
+            (positive(self.density), Density),
+            (positive(self.young_modulus), YoungModulus),
+            (positive(self.shear_modulus), ShearModulus),
+            (
+                self.break_stretch_mean.is_finite() && self.break_stretch_mean > 1.0,
+                BreakStretchMean,
+            ),
+            (
+                self.break_stretch_spread.is_finite() && self.break_stretch_spread >= 0.0,
+                BreakStretchSpread,
+            ),
+            (self.anisotropy_direction.is_finite(), AnisotropyDirection),
+            (
+                self.anisotropy_ratio.is_finite() && self.anisotropy_ratio >= 1.0,
+                AnisotropyRatio,
+            ),
+            (
+                self.stiffness_anisotropy_ratio.is_finite()
+                    && self.stiffness_anisotropy_ratio >= 1.0,
+                StiffnessAnisotropyRatio,
+            ),
+            (
+                self.target_shrink.is_finite() && (0.0..1.0).contains(&self.target_shrink),
+                TargetShrink,
+            ),
+            (
+                self.target_crack_density.is_finite() && self.target_crack_density >= 0.0,
+                TargetCrackDensity,
+            ),
+        ];
+        if let Some(&(_, error)) = checks.iter().find(|(ok, _)| !ok) {
+            return Err(error);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_the_papers() {
+        let p = MudParams::default();
+        assert_eq!(p.validate(), Ok(()));
+        assert_eq!((p.young_modulus, p.shear_modulus), (1.0e6, 2.0e5));
+        assert_eq!(
+            (p.break_stretch_mean, p.break_stretch_spread),
+            (1.02, 0.001)
+        );
+        assert_eq!(
+            (
+                p.shrink_ratio,
+                p.short_step,
+                p.displacement_tolerance,
+                p.damping_factor
+            ),
+            (0.9999, 0.001, 1e-4, 20.0)
+        );
+    }
+
+    #[test]
+    fn every_bad_field_is_named() {
+        let base = MudParams::default();
+        type Spoil = fn(&mut MudParams);
+        let cases: [(Spoil, MudParamError); 20] = [
+            (|p| p.columns = 1, MudParamError::Columns),
+            (|p| p.rows = 5, MudParamError::Rows),
+            (|p| p.layer_thickness = 0.0, MudParamError::LayerThickness),
+            (|p| p.element_size = f32::NAN, MudParamError::ElementSize),
+            (|p| p.long_step = f32::INFINITY, MudParamError::LongStep),
+            (|p| p.short_step = -1.0, MudParamError::ShortStep),
+            (|p| p.shrink_ratio = 1.5, MudParamError::ShrinkRatio),
+            (|p| p.shrink_ratio = 0.0, MudParamError::ShrinkRatio),
+            (
+                |p| p.displacement_tolerance = 0.0,
+                MudParamError::DisplacementTolerance,
+            ),
+            (
+                |p| p.damping_factor = f32::NEG_INFINITY,
+                MudParamError::DampingFactor,
+            ),
+            (|p| p.density = -2.0, MudParamError::Density),
+            (|p| p.young_modulus = 0.0, MudParamError::YoungModulus),
+            (|p| p.shear_modulus = -1.0, MudParamError::ShearModulus),
+            (
+                |p| p.break_stretch_mean = 1.0,
+                MudParamError::BreakStretchMean,
+            ),
+            (
+                |p| p.break_stretch_spread = -0.001,
+                MudParamError::BreakStretchSpread,
+            ),
+            (
+                |p| p.anisotropy_direction = f32::NAN,
+                MudParamError::AnisotropyDirection,
+            ),
+            (|p| p.anisotropy_ratio = 0.5, MudParamError::AnisotropyRatio),
+            (
+                |p| p.stiffness_anisotropy_ratio = f32::NAN,
+                MudParamError::StiffnessAnisotropyRatio,
+            ),
+            (|p| p.target_shrink = 1.0, MudParamError::TargetShrink),
+            (
+                |p| p.target_crack_density = -1.0,
+                MudParamError::TargetCrackDensity,
+            ),
+        ];
+        for (spoil, error) in cases {
+            let mut p = base;
+            spoil(&mut p);
+            assert_eq!(p.validate(), Err(error), "{p:?}");
+        }
+    }
+}

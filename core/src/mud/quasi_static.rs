@@ -1,0 +1,303 @@
+//! The fast solver: linear quasi-static equilibrium with event-driven breaking.
+//!
+//! Linearised about the deep layer, the equilibrium of Eq. 2 at misfit s (shrink 1 − r,
+//! growth 1/r − 1) is linear in s: the displacements are s·u, where u solves, at every node,
+//!
+//! (h·I + Σ_j k_ij e_ij e_ijᵀ)·u_i = Σ_j k_ij (l0 + e_ij·u_j) e_ij
+//!
+//! (e_ij the unit vector from i to j, intact springs only). Spring i–j is then stretched to
+//! l = l0·deep + s·e_ij·(u_j − u_i) and breaks (Eq. 5) when l > κ·l0·rest, i.e. at the misfit
+//!
+//! s_break = (κ − 1) / (e·(u_j − u_i) + a + κ·b)   (l0 = 1; shrink a = 0, b = 1; growth a = 1, b = 0).
+//!
+//! So instead of creeping up the shrink by long steps, the solver jumps the misfit straight
+//! to the smallest s_break, breaks that spring, re-relaxes the nodes around it (Gauss–Seidel
+//! on a work queue: a node whose u changes by more than the tolerance queues its neighbours),
+//! and repeats. Springs whose s_break is already below the misfit break first, in order of
+//! s_break (the spring that would have broken first under a slowly growing misfit: the most
+//! overstrained). A tournament tree over springs keeps the smallest s_break in O(log n).
+
+use super::{ABSENT, Drive, INTACT, Mud, SolverState, take};
+use crate::scalar::Scalar;
+
+/// No index (empty tree slot, empty queue flag).
+const NONE: u32 = u32::MAX;
+
+/// The smallest misfit the relaxation tolerance is scaled by (see [`Mud::relax`]).
+const TOLERANCE_MISFIT_FLOOR: f32 = 0.005;
+
+/// Successive over-relaxation factor of the node updates.
+const OVER_RELAXATION: f32 = 1.2;
+
+/// Arrays of the quasi-static solver.
+pub(super) struct Relaxation<'a, S> {
+    /// Per spring: the misfit at which it breaks (S::MAX: never, broken or absent).
+    break_misfit: &'a mut [S],
+    /// Tournament tree over springs: `tree[leaves + s]` holds spring s; each inner slot the
+    /// winner (smallest break misfit, then lowest index) of its two children; `tree[1]` wins.
+    tree: &'a mut [u32],
+    leaves: usize,
+    /// FIFO ring of nodes to relax.
+    queue: &'a mut [u32],
+    /// Per node: QUEUED and TOUCHED bits.
+    flags: &'a mut [u32],
+    head: usize,
+    len: usize,
+    /// Nodes relaxed since the tree was last brought up to date.
+    touched: &'a mut [u32],
+    touched_len: usize,
+}
+
+/// The node is in the queue.
+const QUEUED: u32 = 1;
+/// The node is in the touched list.
+const TOUCHED: u32 = 2;
+
+impl<'a, S: Scalar> Relaxation<'a, S> {
+    pub(super) fn new(
+        scalars: &mut &'a mut [S],
+        words: &mut &'a mut [u32],
+        nodes: usize,
+        springs: usize,
+    ) -> Self {
+        let leaves = springs.next_power_of_two();
+        let break_misfit = take(scalars, springs);
+        let tree = take(words, 2 * leaves);
+        let queue = take(words, nodes);
+        let flags = take(words, nodes);
+        let touched = take(words, nodes);
+        flags.fill(0);
+        Relaxation {
+            break_misfit,
+            tree,
+            leaves,
+            queue,
+            flags,
+            head: 0,
+            len: 0,
+            touched,
+            touched_len: 0,
+        }
+    }
+
+    /// The better of two tree entries.
+    fn winner(&self, a: u32, b: u32) -> u32 {
+        match (a, b) {
+            (NONE, _) => b,
+            (_, NONE) => a,
+            _ if self.break_misfit[b as usize] < self.break_misfit[a as usize] => b,
+            _ => a, // ties go to the lower index, which is always `a`
+        }
+    }
+
+    /// Re-decides the path from spring `s`'s leaf to the root after its value changed. Stops
+    /// early where a slot keeps a winner other than `s`: nothing above it can change.
+    fn update(&mut self, s: usize) {
+        let mut slot = (self.leaves + s) / 2;
+        while slot >= 1 {
+            let before = self.tree[slot];
+            let after = self.winner(self.tree[2 * slot], self.tree[2 * slot + 1]);
+            if after == before && after != s as u32 {
+                return;
+            }
+            self.tree[slot] = after;
+            slot /= 2;
+        }
+    }
+
+    fn push(&mut self, node: usize) {
+        if self.flags[node] & QUEUED == 0 {
+            self.flags[node] |= QUEUED;
+            let capacity = self.queue.len();
+            self.queue[(self.head + self.len) % capacity] = node as u32;
+            self.len += 1;
+        }
+    }
+
+    fn pop(&mut self) -> Option<usize> {
+        if self.len == 0 {
+            return None;
+        }
+        let node = self.queue[self.head] as usize;
+        self.head = (self.head + 1) % self.queue.len();
+        self.len -= 1;
+        self.flags[node] &= !QUEUED;
+        if self.flags[node] & TOUCHED == 0 {
+            self.flags[node] |= TOUCHED;
+            self.touched[self.touched_len] = node as u32;
+            self.touched_len += 1;
+        }
+        Some(node)
+    }
+}
+
+impl<'a, S: Scalar> Mud<'a, S> {
+    /// The misfit at which `spring` breaks given the current u; S::MAX if never.
+    fn break_misfit_of(&self, spring: usize) -> S {
+        let j = self.other[spring];
+        if j == ABSENT || self.break_time[spring] != INTACT {
+            return S::MAX;
+        }
+        let dirs = self.lattice.directions();
+        let (i, j) = (spring / dirs, j as usize);
+        let e = self
+            .lattice
+            .direction_vector(spring % dirs)
+            .map(S::from_f32);
+        let opening = e[0] * (self.ux[j] - self.ux[i]) + e[1] * (self.uy[j] - self.uy[i]);
+        let kappa = self.break_stretch[spring];
+        let (denominator, limit) = match self.params.drive {
+            Drive::Shrink => (opening + kappa, S::from_f32(0.99)),
+            Drive::Growth => (opening + S::ONE, S::from_f32(100.0)),
+        };
+        if denominator <= S::ZERO {
+            return S::MAX;
+        }
+        let s = (kappa - S::ONE) / denominator;
+        if s > limit { S::MAX } else { s.max(S::ZERO) }
+    }
+
+    fn relaxation<'s>(&'s mut self) -> &'s mut Relaxation<'a, S> {
+        match &mut self.solver {
+            SolverState::QuasiStatic(r) => r,
+            SolverState::Explicit(_) => unreachable!("quasi-static step on another solver"),
+        }
+    }
+
+    /// Computes every spring's break misfit, builds the tree, and queues every node when
+    /// the edges are open (their boundary layer needs relaxing; a periodic lattice is in
+    /// equilibrium at u = 0 by symmetry).
+    pub(super) fn quasi_static_setup(&mut self) {
+        let springs = self.lattice.spring_count();
+        for s in 0..springs {
+            let value = self.break_misfit_of(s);
+            self.relaxation().break_misfit[s] = value;
+        }
+        let r = self.relaxation();
+        r.tree.fill(NONE);
+        for s in 0..springs {
+            r.tree[r.leaves + s] = s as u32;
+        }
+        for slot in (1..r.leaves).rev() {
+            r.tree[slot] = r.winner(r.tree[2 * slot], r.tree[2 * slot + 1]);
+        }
+        if self.params.boundary == super::Boundary::Open {
+            for node in 0..self.lattice.node_count() {
+                self.relaxation().push(node);
+            }
+        }
+    }
+
+    /// Solves node `node`'s 2×2 equilibrium for u (over-relaxed), and queues its neighbours
+    /// if u moved by more than the tolerance. Returns the springs visited.
+    ///
+    /// The tolerance is the paper's δx: displacements are s·u, so u needs resolving to
+    /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse).
+    fn relax(&mut self, node: usize) -> u64 {
+        let h = self.material.shear;
+        let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
+        let (mut b0, mut b1) = (S::ZERO, S::ZERO);
+        let mut visited = 0u64;
+        let dirs = self.lattice.directions();
+        self.lattice
+            .for_each_spring_at(node, |spring, other, sign| {
+                visited += 1;
+                if self.break_time[spring] != INTACT {
+                    return;
+                }
+                let v = self.lattice.direction_vector(spring % dirs);
+                let (ex, ey) = (S::from_f32(v[0] * sign), S::from_f32(v[1] * sign));
+                let k = self.material.stiffness[spring % dirs];
+                a00 += k * ex * ex;
+                a01 += k * ex * ey;
+                a11 += k * ey * ey;
+                let pull = k * (S::ONE + ex * self.ux[other] + ey * self.uy[other]);
+                b0 += pull * ex;
+                b1 += pull * ey;
+            });
+        let det = a00 * a11 - a01 * a01;
+        let (old_x, old_y) = (self.ux[node], self.uy[node]);
+        let omega = S::from_f32(OVER_RELAXATION);
+        let x = old_x + omega * ((a11 * b0 - a01 * b1) / det - old_x);
+        let y = old_y + omega * ((a00 * b1 - a01 * b0) / det - old_y);
+        let moved = (x - old_x).abs().max((y - old_y).abs());
+        self.ux[node] = x;
+        self.uy[node] = y;
+        let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
+        let tolerance =
+            S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
+        if moved > tolerance {
+            let lattice = self.lattice;
+            lattice.for_each_spring_at(node, |spring, other, _| {
+                if self.break_time[spring] == INTACT {
+                    self.relaxation().push(other);
+                }
+            });
+        }
+        visited
+    }
+
+    /// Brings the break misfits of the springs at every touched node up to date in the tree.
+    fn refresh_touched(&mut self) {
+        let lattice = self.lattice;
+        let count = self.relaxation().touched_len;
+        for t in 0..count {
+            let node = self.relaxation().touched[t] as usize;
+            self.relaxation().flags[node] &= !TOUCHED;
+            lattice.for_each_spring_at(node, |spring, _, _| {
+                if self.break_time[spring] != INTACT {
+                    return;
+                }
+                let value = self.break_misfit_of(spring);
+                let r = self.relaxation();
+                if r.break_misfit[spring] != value {
+                    r.break_misfit[spring] = value;
+                    r.update(spring);
+                }
+            });
+        }
+        self.relaxation().touched_len = 0;
+    }
+
+    /// One piece of quasi-static work: relax one queued node, or break the next spring
+    /// (jumping the misfit to it). Returns the work done (springs visited).
+    pub(super) fn quasi_static_step(&mut self) -> u64 {
+        if let Some(node) = self.relaxation().pop() {
+            return self.relax(node);
+        }
+        if self.relaxation().touched_len > 0 {
+            self.refresh_touched();
+        }
+        let r = self.relaxation();
+        let next = r.tree[1];
+        let at = if next == NONE {
+            S::MAX
+        } else {
+            r.break_misfit[next as usize]
+        };
+        if at == S::MAX {
+            self.finished = true; // nothing left that can break
+            return 1;
+        }
+        if at > self.misfit {
+            if let Some(target) = self.target_misfit().filter(|&t| at > t) {
+                self.misfit = target;
+                self.finished = true;
+                return 1;
+            }
+            self.misfit = at;
+        }
+        let spring = next as usize;
+        self.break_spring(spring);
+        let (a, b) = (
+            spring / self.lattice.directions(),
+            self.other[spring] as usize,
+        );
+        let r = self.relaxation();
+        r.break_misfit[spring] = S::MAX;
+        r.update(spring);
+        r.push(a);
+        r.push(b);
+        1
+    }
+}

@@ -1,0 +1,149 @@
+//! Rasters of a drying-mud run into caller buffers of any size: an anti-aliased,
+//! width-aware crack mask, a break-time map (so a shader can make the cracks appear over
+//! time), and a height map with the cracks as grooves. Periodic lattices give seamless
+//! rasters: strokes wrap around the domain.
+
+use super::{Mud, trace::CrackSegment};
+use crate::raster::{Frame, RasterError, Stroke, StrokeHit, for_each_hit, pixel_count};
+use crate::scalar::Scalar;
+
+/// Which raster to draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum MudLayer {
+    /// Crack coverage, 0 (none) to 255 (full).
+    Mask = 0,
+    /// Height: 1 on the surface, down to 1 − `groove_depth` in the widest crack.
+    Height = 1,
+    /// Break time in long steps of the crack covering the pixel; +∞ where there is none.
+    Time = 2,
+}
+
+/// How to draw: raster size and stroke widths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MudRender {
+    /// Raster width in pixels; the lattice's domain is stretched over it.
+    pub width: u32,
+    /// Raster height in pixels.
+    pub height: u32,
+    /// Crack widths are multiplied by this before drawing (1 = true width).
+    pub width_scale: f32,
+    /// The narrowest stroke, in pixels, so that hairline cracks stay visible.
+    pub min_width: f32,
+    /// Depth of the widest groove in the height map.
+    pub groove_depth: f32,
+}
+
+impl Default for MudRender {
+    fn default() -> Self {
+        MudRender {
+            width: 512,
+            height: 512,
+            width_scale: 1.0,
+            min_width: 1.0,
+            groove_depth: 1.0,
+        }
+    }
+}
+
+impl MudRender {
+    fn validate(&self) -> Result<usize, RasterError> {
+        if !(self.width_scale.is_finite() && self.width_scale >= 0.0) {
+            return Err(RasterError::Param("width_scale must be finite and >= 0"));
+        }
+        if !(self.min_width.is_finite() && self.min_width >= 0.0) {
+            return Err(RasterError::Param("min_width must be finite and >= 0"));
+        }
+        if !(self.groove_depth.is_finite() && self.groove_depth >= 0.0) {
+            return Err(RasterError::Param("groove_depth must be finite and >= 0"));
+        }
+        pixel_count(self.width, self.height)
+    }
+}
+
+impl<S: Scalar> Mud<'_, S> {
+    /// The frame that maps the (deformed-frame) domain onto the raster.
+    fn frame(&self, render: &MudRender) -> Frame {
+        let (_, deep) = self.factors();
+        let [w, h] = self.lattice.extent().map(|e| e * deep.to_f32());
+        Frame {
+            width: render.width,
+            height: render.height,
+            scale: [render.width as f32 / w, render.height as f32 / h],
+            period: (self.params.boundary == super::Boundary::Periodic).then_some([w, h]),
+        }
+    }
+
+    /// Calls `visit` for every pixel of every crack stroke.
+    fn draw(&self, render: &MudRender, mut visit: impl FnMut(StrokeHit)) {
+        let frame = self.frame(render);
+        let pixels_per_unit = 0.5 * (frame.scale[0] + frame.scale[1]);
+        let half = |w: f32| {
+            0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width)
+        };
+        self.trace(|s: CrackSegment| {
+            let stroke = Stroke {
+                start: s.start,
+                end: s.end,
+                half_width: [half(s.width[0]), half(s.width[1])],
+                value: s.time,
+            };
+            for_each_hit(&frame, &stroke, &mut visit);
+        });
+    }
+
+    /// Draws `layer` into `out` (row-major, `width × height` values; the mask as `u8`,
+    /// height and time as `f32`). Nothing is written on failure.
+    pub fn render_mask(&self, render: &MudRender, out: &mut [u8]) -> Result<(), RasterError> {
+        let pixels = render.validate()?;
+        if out.len() < pixels {
+            return Err(RasterError::BufferTooSmall { needed: pixels });
+        }
+        out[..pixels].fill(0);
+        self.draw(render, |hit| {
+            let v = libm::roundf(hit.coverage * 255.0) as u8;
+            out[hit.pixel] = out[hit.pixel].max(v);
+        });
+        Ok(())
+    }
+
+    /// The break-time map: for each pixel the earliest break time (long steps) of the cracks
+    /// covering at least half of it; +∞ where none does. Nothing is written on failure.
+    pub fn render_time(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
+        let pixels = render.validate()?;
+        if out.len() < pixels {
+            return Err(RasterError::BufferTooSmall { needed: pixels });
+        }
+        out[..pixels].fill(f32::INFINITY);
+        self.draw(render, |hit| {
+            if hit.coverage >= 0.5 {
+                out[hit.pixel] = out[hit.pixel].min(hit.value);
+            }
+        });
+        Ok(())
+    }
+
+    /// The height map: 1 on the surface; each crack a parabolic groove whose depth is
+    /// `groove_depth` times its width over the widest crack's. Nothing is written on failure.
+    pub fn render_height(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
+        let pixels = render.validate()?;
+        if out.len() < pixels {
+            return Err(RasterError::BufferTooSmall { needed: pixels });
+        }
+        let mut widest = 0.0f32;
+        self.draw(render, |hit| widest = widest.max(hit.half_width));
+        out[..pixels].fill(1.0);
+        if widest <= 0.0 {
+            return Ok(());
+        }
+        self.draw(render, |hit| {
+            let across = hit.depth.min(1.0);
+            let groove = render.groove_depth
+                * (hit.half_width / widest)
+                * (1.0 - across * across)
+                * hit.coverage;
+            out[hit.pixel] = out[hit.pixel].min(1.0 - groove);
+        });
+        Ok(())
+    }
+}
