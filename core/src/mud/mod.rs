@@ -27,6 +27,7 @@ pub mod lattice;
 pub mod material;
 pub mod params;
 mod quasi_static;
+pub mod regions;
 pub mod render;
 pub mod spacing;
 pub mod trace;
@@ -34,6 +35,7 @@ pub mod trace;
 pub use lattice::Lattice;
 pub use material::Material;
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
+pub use regions::CrackStatistics;
 pub use render::{MudLayer, MudRender};
 pub use spacing::{SpacingPrediction, predict_spacing};
 pub use trace::CrackSegment;
@@ -482,6 +484,36 @@ mod tests {
             ..MudParams::default()
         };
         assert_eq!(huge.memory(), Err(MudParamError::SizeOverflow));
+    }
+
+    #[test]
+    fn cells_are_the_regions_the_drawn_cracks_enclose() {
+        let p = MudParams {
+            columns: 12,
+            rows: 12,
+            topology: Topology::Square,
+            ..MudParams::default()
+        };
+        let m = p.memory().unwrap();
+        let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        let mut mud = Mud::new(&p, &mut s, &mut w).unwrap();
+        let pixels = mud.statistics_pixels();
+        let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
+        assert_eq!(mud.statistics(&mut mask, &mut labels).unwrap().cells, 1);
+        // Cut the periodic square lattice along two columns: springs in direction 0 leaving
+        // columns 2 and 8 in every row. Two bands remain, each half the area.
+        for row in 0..12 {
+            for column in [2, 8] {
+                mud.break_spring((row * 12 + column) * 2);
+            }
+        }
+        let stats = mud.statistics(&mut mask, &mut labels).unwrap();
+        assert_eq!(stats.cells, 2);
+        assert_eq!(stats.mean_cell_area, 72.0);
+        assert_eq!(
+            mud.statistics(&mut mask[..pixels - 1], &mut labels),
+            Err(MudError::BufferTooSmall { needed: pixels })
+        );
     }
 
     #[test]
