@@ -4,17 +4,28 @@
 //!
 //! One short step visits every spring once: it tests the spring for breaking against the
 //! positions of the previous move (Eq. 5, "go to 2"), then adds its force (Eq. 2).
+//!
+//! The pass runs direction by direction and row by row: a row's springs in one direction
+//! join two contiguous runs of nodes, so the inner loop has no branches and no indirection
+//! and vectorises. Breaks are found in that loop and applied in a scalar pass over the row.
+//! The order of every sum is fixed, so the result is the same bit for bit on every build.
 
+use super::lattice::Lattice;
 use super::material::Material;
-use super::{ABSENT, INTACT, Mud, SolverState, take};
+use super::{ABSENT, Boundary, Mud, SolverState, take};
 use crate::scalar::Scalar;
 
-/// Velocities, forces and the constants of the damped step.
+/// Velocities, forces, spring liveness and the constants of the damped step.
 pub(super) struct Dynamics<'a, S> {
     vx: &'a mut [S],
     vy: &'a mut [S],
     fx: &'a mut [S],
     fy: &'a mut [S],
+    /// Per spring: 1 while intact, 0 once broken or absent (it multiplies the force).
+    alive: &'a mut [S],
+    /// One row's spring force vectors.
+    gx: &'a mut [S],
+    gy: &'a mut [S],
     /// exp(−c·τ/m) − 1.
     decay: S,
     /// −(m/c)·(exp(−c·τ/m) − 1).
@@ -26,10 +37,21 @@ pub(super) struct Dynamics<'a, S> {
 }
 
 impl<'a, S: Scalar> Dynamics<'a, S> {
-    pub(super) fn new(scalars: &mut &'a mut [S], nodes: usize, material: &Material<S>) -> Self {
+    pub(super) fn new(
+        scalars: &mut &'a mut [S],
+        lattice: &Lattice,
+        other: &[u32],
+        material: &Material<S>,
+    ) -> Self {
+        let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
+        let alive = take(scalars, lattice.spring_count());
+        let [gx, gy] = [(); 2].map(|_| take(scalars, lattice.columns as usize));
         vx.fill(S::ZERO);
         vy.fill(S::ZERO);
+        for (a, &o) in alive.iter_mut().zip(other.iter()) {
+            *a = if o == ABSENT { S::ZERO } else { S::ONE };
+        }
         let (m, c, tau) = (material.mass, material.damping, material.short_step);
         let decay = (-(c * tau / m)).exp() - S::ONE;
         Dynamics {
@@ -37,6 +59,9 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             vy,
             fx,
             fy,
+            alive,
+            gx,
+            gy,
             decay,
             drift: -(m / c) * decay,
             inverse_damping: S::ONE / c,
@@ -58,9 +83,70 @@ fn below<S: Scalar>(fx: S, fy: S, tolerance: S) -> bool {
     rx * rx + ry * ry < S::ONE
 }
 
+/// One spring's state for the force pass: the rest length, the deep-layer vector e·deep and
+/// the stiffness of its direction.
+#[derive(Clone, Copy)]
+struct SpringLaw<S> {
+    rest: S,
+    ex: S,
+    ey: S,
+    stiffness: S,
+}
+
+impl<S: Scalar> SpringLaw<S> {
+    /// The force vector a spring from (ax, ay) to (bx, by) (displacements) exerts on its first
+    /// node (Eq. 2), times `alive`, and whether it is stretched past `kappa` (Eq. 5).
+    ///
+    /// k·(l − l0)·d/l is computed as k·(1 − l0/l)·d with 1/l from `inverse_sqrt`, and the
+    /// break test l > κ·l0 as l² > (κ·l0)²: no square root and no division, so that the row
+    /// loop vectorises.
+    #[inline(always)]
+    fn force(&self, ax: S, ay: S, bx: S, by: S, alive: S, kappa: S) -> (S, S, bool) {
+        let dx = self.ex + bx - ax;
+        let dy = self.ey + by - ay;
+        let squared = dx * dx + dy * dy;
+        let over = (squared > self.limit_squared(kappa)) & (alive > S::ZERO);
+        let inverse_length = squared.max(S::RESOLUTION).inverse_sqrt();
+        let f = alive * self.stiffness * (S::ONE - self.rest * inverse_length);
+        (f * dx, f * dy, over)
+    }
+
+    /// (κ·l0)²: the squared length past which a spring breaks.
+    #[inline(always)]
+    fn limit_squared(&self, kappa: S) -> S {
+        let limit = kappa * self.rest;
+        limit * limit
+    }
+}
+
+/// The force vectors of a row's springs in one direction, from the displacements of their
+/// first nodes `a` and second nodes `b`; whether any intact one is past its break stretch.
+/// Equal-length slices and plain indexing let the loop vectorise.
+#[inline(always)]
+fn row_forces<S: Scalar>(
+    law: &SpringLaw<S>,
+    a: (&[S], &[S]),
+    b: (&[S], &[S]),
+    springs: (&[S], &[S]),
+    out: (&mut [S], &mut [S]),
+) -> bool {
+    let n = out.0.len();
+    let (ax, ay, bx, by) = (&a.0[..n], &a.1[..n], &b.0[..n], &b.1[..n]);
+    let (alive, kappa) = (&springs.0[..n], &springs.1[..n]);
+    let (gx, gy) = (&mut out.0[..n], &mut out.1[..n]);
+    let mut over = false;
+    for t in 0..n {
+        let (x, y, o) = law.force(ax[t], ay[t], bx[t], by[t], alive[t], kappa[t]);
+        gx[t] = x;
+        gy[t] = y;
+        over |= o;
+    }
+    over
+}
+
 impl<S: Scalar> Mud<'_, S> {
     /// One short step: forces and breaks, then either a long step (stable) or a move.
-    /// Returns the work done (springs visited).
+    /// Returns the work done (spring slots visited).
     pub(super) fn explicit_step(&mut self) -> u64 {
         let (rest, deep) = self.factors();
         let time = (self.long_steps as f32).to_bits();
@@ -69,58 +155,135 @@ impl<S: Scalar> Mud<'_, S> {
         };
         let (ux, uy) = (&mut *self.ux, &mut *self.uy);
         let m = &self.material;
-        let lattice = &self.lattice;
-        let dirs = lattice.directions();
-        let nodes = lattice.node_count();
-        let vectors: [[S; 2]; 3] =
-            core::array::from_fn(|k| lattice.direction_vector(k).map(S::from_f32));
+        let lattice = self.lattice;
+        let (nodes, columns, rows) = (
+            lattice.node_count(),
+            lattice.columns as usize,
+            lattice.rows as usize,
+        );
+        let periodic = lattice.boundary == Boundary::Periodic;
+        let (fx, fy, alive) = (&mut *d.fx, &mut *d.fy, &mut *d.alive);
+        let (gx, gy) = (&mut *d.gx, &mut *d.gy);
+        let (break_time, break_stretch) = (&mut *self.break_time, &*self.break_stretch);
 
         // Eq. 2, shear part: −h·(x_i − X_i).
-        for i in 0..nodes {
-            d.fx[i] = -(m.shear * ux[i]);
-            d.fy[i] = -(m.shear * uy[i]);
+        for ((f, g), (x, y)) in fx
+            .iter_mut()
+            .zip(fy.iter_mut())
+            .zip(ux.iter().zip(uy.iter()))
+        {
+            *f = -(m.shear * *x);
+            *g = -(m.shear * *y);
         }
-        // Eq. 5 then Eq. 2, spring part.
+        // Eq. 5 then Eq. 2, spring part, direction by direction, row by row.
         let mut newly_broken = 0;
-        for i in 0..nodes {
-            for (k, vector) in vectors.iter().enumerate().take(dirs) {
-                let spring = i * dirs + k;
-                let j = self.other[spring];
-                if j == ABSENT || self.break_time[spring] != INTACT {
-                    continue;
+        for k in 0..lattice.directions() {
+            let v = lattice.direction_vector(k);
+            let law = SpringLaw {
+                rest,
+                ex: S::from_f32(v[0]) * deep,
+                ey: S::from_f32(v[1]) * deep,
+                stiffness: m.stiffness[k],
+            };
+            for row in 0..rows {
+                let (di, dj) = lattice.step(k, row);
+                let mut next_row = row + dj as usize;
+                if next_row >= rows {
+                    if !periodic {
+                        continue;
+                    }
+                    next_row -= rows;
                 }
-                let j = j as usize;
-                let dx = vector[0] * deep + ux[j] - ux[i];
-                let dy = vector[1] * deep + uy[j] - uy[i];
-                let length = (dx * dx + dy * dy).sqrt();
-                if length > self.break_stretch[spring] * rest {
-                    self.break_time[spring] = time;
-                    newly_broken += 1;
-                    continue;
+                // The contiguous run: columns whose neighbour stays in the lattice.
+                let (lo, hi) = (usize::from(di < 0), columns - usize::from(di > 0));
+                let len = hi - lo;
+                let a = row * columns + lo;
+                let b = (next_row * columns + lo) as i64 + di;
+                let b = b as usize;
+                let s = k * nodes + a;
+                let over = row_forces(
+                    &law,
+                    (&ux[a..a + len], &uy[a..a + len]),
+                    (&ux[b..b + len], &uy[b..b + len]),
+                    (&alive[s..s + len], &break_stretch[s..s + len]),
+                    (&mut gx[..len], &mut gy[..len]),
+                );
+                if over {
+                    for t in 0..len {
+                        let (x, y) = (
+                            law.ex + ux[b + t] - ux[a + t],
+                            law.ey + uy[b + t] - uy[a + t],
+                        );
+                        if alive[s + t] > S::ZERO
+                            && x * x + y * y > law.limit_squared(break_stretch[s + t])
+                        {
+                            alive[s + t] = S::ZERO;
+                            break_time[s + t] = time;
+                            newly_broken += 1;
+                            gx[t] = S::ZERO;
+                            gy[t] = S::ZERO;
+                        }
+                    }
                 }
-                if length == S::ZERO {
-                    continue;
+                for ((f, g), (&x, &y)) in fx[a..a + len]
+                    .iter_mut()
+                    .zip(&mut fy[a..a + len])
+                    .zip(gx[..len].iter().zip(&gy[..len]))
+                {
+                    *f += x;
+                    *g += y;
                 }
-                let f = m.stiffness[k] * (length - rest) / length;
-                let (gx, gy) = (f * dx, f * dy);
-                d.fx[i] += gx;
-                d.fy[i] += gy;
-                d.fx[j] -= gx;
-                d.fy[j] -= gy;
+                for ((f, g), (&x, &y)) in fx[b..b + len]
+                    .iter_mut()
+                    .zip(&mut fy[b..b + len])
+                    .zip(gx[..len].iter().zip(&gy[..len]))
+                {
+                    *f -= x;
+                    *g -= y;
+                }
+                // The spring that wraps around the row's end.
+                if periodic && di != 0 {
+                    let (i, j) = if di > 0 {
+                        (row * columns + columns - 1, next_row * columns)
+                    } else {
+                        (row * columns, next_row * columns + columns - 1)
+                    };
+                    let s = k * nodes + i;
+                    let (x, y, o) =
+                        law.force(ux[i], uy[i], ux[j], uy[j], alive[s], break_stretch[s]);
+                    if o {
+                        alive[s] = S::ZERO;
+                        break_time[s] = time;
+                        newly_broken += 1;
+                    } else {
+                        fx[i] += x;
+                        fy[i] += y;
+                        fx[j] -= x;
+                        fy[j] -= y;
+                    }
+                }
             }
         }
         // Eq. 3: stable when every |F_i| < δF.
-        let stable = (0..nodes).all(|i| below(d.fx[i], d.fy[i], m.force_tolerance));
+        let stable = fx
+            .iter()
+            .zip(fy.iter())
+            .all(|(&x, &y)| below(x, y, m.force_tolerance));
         if !stable {
             // Eq. 4: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
             //        x = xᵖ + (vᵖ − F/c)(−m/c)(e^(−cτ/m) − 1) + (F/c)·τ.
-            for i in 0..nodes {
-                let qx = d.vx[i] - d.fx[i] * d.inverse_damping;
-                let qy = d.vy[i] - d.fy[i] * d.inverse_damping;
-                d.vx[i] += qx * d.decay;
-                d.vy[i] += qy * d.decay;
-                ux[i] += qx * d.drift + d.fx[i] * d.step_over_damping;
-                uy[i] += qy * d.drift + d.fy[i] * d.step_over_damping;
+            let (decay, drift, inverse_damping, step_over_damping) =
+                (d.decay, d.drift, d.inverse_damping, d.step_over_damping);
+            let velocities = d.vx.iter_mut().zip(d.vy.iter_mut());
+            let forces = fx.iter().zip(fy.iter());
+            let positions = ux.iter_mut().zip(uy.iter_mut());
+            for (((vx, vy), (&fx, &fy)), (x, y)) in velocities.zip(forces).zip(positions) {
+                let qx = *vx - fx * inverse_damping;
+                let qy = *vy - fy * inverse_damping;
+                *vx += qx * decay;
+                *vy += qy * decay;
+                *x += qx * drift + fx * step_over_damping;
+                *y += qy * drift + fy * step_over_damping;
             }
         }
         self.broken += newly_broken;
@@ -141,6 +304,6 @@ impl<S: Scalar> Mud<'_, S> {
                 self.misfit = self.misfit_at(self.long_steps);
             }
         }
-        (nodes * dirs) as u64
+        lattice.spring_count() as u64
     }
 }

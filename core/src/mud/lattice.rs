@@ -4,8 +4,9 @@
 //!
 //! Node (i, j) is index `j·columns + i`. Square lattices sit at (i, j) with springs to the
 //! right and up. Hexagonal elements form a triangular lattice of nodes at
-//! (i + ½·(j mod 2), j·√3/2) with springs to the right, up-right and up-left. Spring
-//! `node·directions + d` leaves `node` in direction `d`; at an open edge it is absent.
+//! (i + ½·(j mod 2), j·√3/2) with springs to the right, up-right and up-left. Springs are
+//! stored direction by direction: spring `d·nodes + node` leaves `node` in direction `d`
+//! (so a row's springs of one direction are contiguous); at an open edge it is absent.
 
 use super::params::{Boundary, Topology};
 
@@ -129,8 +130,18 @@ impl Lattice {
         Some((j * c + i) as usize)
     }
 
+    /// The spring leaving `node` in direction `d`.
+    pub const fn spring(&self, node: usize, d: usize) -> usize {
+        d * self.node_count() + node
+    }
+
+    /// The node a spring leaves and its direction.
+    pub const fn spring_origin(&self, spring: usize) -> (usize, usize) {
+        (spring % self.node_count(), spring / self.node_count())
+    }
+
     /// Column and row offset of the neighbour in direction `d` of a node in row `j`.
-    const fn step(&self, d: usize, j: usize) -> (i64, i64) {
+    pub const fn step(&self, d: usize, j: usize) -> (i64, i64) {
         let odd = (j % 2) as i64;
         match (self.topology, d) {
             (Topology::Square, 0) => (1, 0),
@@ -162,48 +173,49 @@ impl Lattice {
 
     /// The two nodes of a spring, if it exists.
     pub fn spring_nodes(&self, spring: usize) -> Option<(usize, usize)> {
-        let (node, d) = (spring / self.directions(), spring % self.directions());
+        let (node, d) = self.spring_origin(spring);
         self.neighbour(node, d).map(|other| (node, other))
     }
 
-    /// Calls `visit(spring, other_node, sign)` for every existing spring at `node`, in a
-    /// fixed order: outgoing springs (sign +1: the spring points away from `node`), then
+    /// Calls `visit(spring, other_node, direction, sign)` for every existing spring at `node`,
+    /// in a fixed order: outgoing springs (sign +1: the spring points away from `node`), then
     /// incoming ones (sign −1).
-    pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, f32)) {
+    pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, usize, f32)) {
         let dirs = self.directions();
+        let n = self.node_count();
         let c = self.columns as usize;
         let (i, j) = (node % c, node / c);
         if i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize {
             // Interior node: neighbours are fixed offsets (no wrapping, no edges).
             match self.topology {
                 Topology::Square => {
-                    visit(node * 2, node + 1, 1.0);
-                    visit(node * 2 + 1, node + c, 1.0);
-                    visit((node - 1) * 2, node - 1, -1.0);
-                    visit((node - c) * 2 + 1, node - c, -1.0);
+                    visit(node, node + 1, 0, 1.0);
+                    visit(n + node, node + c, 1, 1.0);
+                    visit(node - 1, node - 1, 0, -1.0);
+                    visit(n + node - c, node - c, 1, -1.0);
                 }
                 Topology::Hexagonal => {
                     let odd = j % 2;
                     let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
                     let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
-                    visit(node * 3, node + 1, 1.0);
-                    visit(node * 3 + 1, up_right, 1.0);
-                    visit(node * 3 + 2, up_left, 1.0);
-                    visit((node - 1) * 3, node - 1, -1.0);
-                    visit(down_left * 3 + 1, down_left, -1.0);
-                    visit(down_right * 3 + 2, down_right, -1.0);
+                    visit(node, node + 1, 0, 1.0);
+                    visit(n + node, up_right, 1, 1.0);
+                    visit(2 * n + node, up_left, 2, 1.0);
+                    visit(node - 1, node - 1, 0, -1.0);
+                    visit(n + down_left, down_left, 1, -1.0);
+                    visit(2 * n + down_right, down_right, 2, -1.0);
                 }
             }
             return;
         }
         for d in 0..dirs {
             if let Some(other) = self.neighbour(node, d) {
-                visit(node * dirs + d, other, 1.0);
+                visit(self.spring(node, d), other, d, 1.0);
             }
         }
         for d in 0..dirs {
             if let Some(other) = self.back_neighbour(node, d) {
-                visit(other * dirs + d, other, -1.0);
+                visit(self.spring(other, d), other, d, -1.0);
             }
         }
     }
@@ -212,7 +224,6 @@ impl Lattice {
     pub fn cell(&self, cell: usize) -> Option<Cell> {
         let per = self.cells_per_node();
         let (base, k) = (cell / per, cell % per);
-        let dirs = self.directions();
         let at = self.reference(base);
         let offset = |d: usize| {
             let v = self.direction_vector(d);
@@ -227,10 +238,10 @@ impl Lattice {
                     nodes: [base as u32, right as u32, diagonal as u32, up as u32],
                     corners: 4,
                     sides: [
-                        (base * dirs) as u32,
-                        (right * dirs + 1) as u32,
-                        (up * dirs) as u32,
-                        (base * dirs + 1) as u32,
+                        self.spring(base, 0) as u32,
+                        self.spring(right, 1) as u32,
+                        self.spring(up, 0) as u32,
+                        self.spring(base, 1) as u32,
                     ],
                     reference: [at, offset(0), [at[0] + 1.0, at[1] + 1.0], offset(1)],
                 })
@@ -244,9 +255,9 @@ impl Lattice {
                     nodes: [base as u32, right as u32, upper as u32, 0],
                     corners: 3,
                     sides: [
-                        (base * dirs) as u32,
-                        (right * dirs + 2) as u32,
-                        (base * dirs + 1) as u32,
+                        self.spring(base, 0) as u32,
+                        self.spring(right, 2) as u32,
+                        self.spring(base, 1) as u32,
                         0,
                     ],
                     reference: [at, offset(0), offset(1), [0.0; 2]],
@@ -261,9 +272,9 @@ impl Lattice {
                     nodes: [base as u32, upper_right as u32, upper_left as u32, 0],
                     corners: 3,
                     sides: [
-                        (base * dirs + 1) as u32,
-                        (upper_left * dirs) as u32,
-                        (base * dirs + 2) as u32,
+                        self.spring(base, 1) as u32,
+                        self.spring(upper_left, 0) as u32,
+                        self.spring(base, 2) as u32,
                         0,
                     ],
                     reference: [at, offset(1), offset(2), [0.0; 2]],
@@ -292,7 +303,7 @@ mod tests {
             let l = lattice(topology, Boundary::Periodic, 6, 4);
             for node in 0..l.node_count() {
                 let mut seen = 0;
-                l.for_each_spring_at(node, |spring, other, _| {
+                l.for_each_spring_at(node, |spring, other, _, _| {
                     let (a, b) = l.spring_nodes(spring).unwrap();
                     assert!(a == node && b == other || b == node && a == other);
                     seen += 1;
@@ -307,23 +318,23 @@ mod tests {
         for topology in [Topology::Square, Topology::Hexagonal] {
             let l = lattice(topology, Boundary::Open, 7, 6);
             for node in 0..l.node_count() {
-                let mut fast = [(0, 0, 0.0); 6];
+                let mut fast = [(0, 0, 0, 0.0); 6];
                 let mut n = 0;
-                l.for_each_spring_at(node, |s, o, sign| {
-                    fast[n] = (s, o, sign);
+                l.for_each_spring_at(node, |s, o, d, sign| {
+                    fast[n] = (s, o, d, sign);
                     n += 1;
                 });
-                let mut general = [(0, 0, 0.0); 6];
+                let mut general = [(0, 0, 0, 0.0); 6];
                 let mut m = 0;
                 for d in 0..l.directions() {
                     if let Some(o) = l.neighbour(node, d) {
-                        general[m] = (node * l.directions() + d, o, 1.0);
+                        general[m] = (l.spring(node, d), o, d, 1.0);
                         m += 1;
                     }
                 }
                 for d in 0..l.directions() {
                     if let Some(o) = l.back_neighbour(node, d) {
-                        general[m] = (o * l.directions() + d, o, -1.0);
+                        general[m] = (l.spring(o, d), o, d, -1.0);
                         m += 1;
                     }
                 }
@@ -360,7 +371,7 @@ mod tests {
                 let (pa, pb) = (l.reference(a), l.reference(b));
                 let d = libm::hypotf(pb[0] - pa[0], pb[1] - pa[1]);
                 assert!((d - 1.0).abs() < 1e-6, "{spring}: {d}");
-                let v = l.direction_vector(spring % 3);
+                let v = l.direction_vector(l.spring_origin(spring).1);
                 assert!((pb[0] - pa[0] - v[0]).abs() < 1e-6 && (pb[1] - pa[1] - v[1]).abs() < 1e-6);
             }
         }

@@ -65,60 +65,42 @@ pub const fn memory_for(
     columns: u32,
     rows: u32,
 ) -> Option<MudMemory> {
-    let dirs = match topology {
+    // In u128 nothing below can overflow; the result is checked against the address space.
+    let dirs: u128 = match topology {
         Topology::Square => 2,
         Topology::Hexagonal => 3,
     };
-    let Some(nodes) = (columns as usize).checked_mul(rows as usize) else {
-        return None;
-    };
-    let Some(springs) = nodes.checked_mul(dirs) else {
-        return None;
-    };
+    let nodes = columns as u128 * rows as u128;
+    let springs = nodes * dirs;
     // Per node: displacement (x, y); explicit adds velocity and force (x, y).
-    // Per spring: break stretch; quasi-static adds its break misfit.
+    // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
+    // solver's break misfit. The explicit solver adds a row of force vectors (x, y).
     // Words per spring: the other node and the break time; quasi-static adds a tournament
     // tree over springs (2·P, P the next power of two), a work queue, node flags and a list
     // of relaxed nodes (3 per node).
-    let (node_scalars, spring_scalars) = match solver {
-        Solver::Explicit => (6, 1),
-        Solver::QuasiStatic => (2, 2),
+    let (scalars, words) = match solver {
+        Solver::Explicit => (6 * nodes + 2 * springs + 2 * columns as u128, 2 * springs),
+        Solver::QuasiStatic => {
+            let leaves = if springs <= 1 {
+                1
+            } else {
+                1u128 << (128 - (springs - 1).leading_zeros())
+            };
+            (
+                2 * nodes + 2 * springs,
+                2 * springs + 2 * leaves + 3 * nodes,
+            )
+        }
     };
-    let Some(a) = nodes.checked_mul(node_scalars) else {
-        return None;
-    };
-    let Some(b) = springs.checked_mul(spring_scalars) else {
-        return None;
-    };
-    let Some(scalars) = a.checked_add(b) else {
-        return None;
-    };
-    let Some(mut words) = springs.checked_mul(2) else {
-        return None;
-    };
-    if let Solver::QuasiStatic = solver {
-        let Some(leaves) = springs.checked_next_power_of_two() else {
-            return None;
-        };
-        let Some(tree) = leaves.checked_mul(2) else {
-            return None;
-        };
-        let Some(queue) = nodes.checked_mul(3) else {
-            return None;
-        };
-        let Some(extra) = tree.checked_add(queue) else {
-            return None;
-        };
-        let Some(total) = words.checked_add(extra) else {
-            return None;
-        };
-        words = total;
-    }
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
-    if scalars > isize::MAX as usize / 8 || words > isize::MAX as usize / 8 {
+    let limit = (isize::MAX / 8) as u128;
+    if scalars > limit || words > limit {
         return None;
     }
-    Some(MudMemory { scalars, words })
+    Some(MudMemory {
+        scalars: scalars as usize,
+        words: words as usize,
+    })
 }
 
 impl MudParams {
@@ -204,6 +186,8 @@ pub struct Progress {
     pub crack_density: f32,
     /// The run reached its end (target shrink or crack density, or nothing left to happen).
     pub finished: bool,
+    /// Work done since the run began, in the units of [`Mud::step`]'s budget.
+    pub work: u64,
 }
 
 /// A drying-mud run over caller memory.
@@ -227,6 +211,7 @@ pub struct Mud<'a, S: Scalar> {
     misfit: S,
     broken: u32,
     finished: bool,
+    work: u64,
 }
 
 /// The arrays only one solver needs.
@@ -284,13 +269,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
             // draw is made for absent springs too, so a spring's κ does not depend on edges.
             let kappa =
                 params.break_stretch_mean + material.break_stretch_spread * rng.normal_f32();
-            let factor = material.margin_factor[spring % lattice.directions()];
+            let factor = material.margin_factor[lattice.spring_origin(spring).1];
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
         }
         let solver = match params.solver {
-            Solver::Explicit => {
-                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, nodes, &material))
-            }
+            Solver::Explicit => SolverState::Explicit(explicit::Dynamics::new(
+                &mut scalars,
+                &lattice,
+                other,
+                &material,
+            )),
             Solver::QuasiStatic => SolverState::QuasiStatic(quasi_static::Relaxation::new(
                 &mut scalars,
                 &mut words,
@@ -312,6 +300,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             misfit: S::ZERO,
             broken: 0,
             finished: false,
+            work: 0,
         };
         if let SolverState::QuasiStatic(_) = mud.solver {
             mud.quasi_static_setup();
@@ -333,6 +322,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 break;
             }
         }
+        self.work += work;
         self.progress()
     }
 
@@ -349,6 +339,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             broken_springs: self.broken,
             crack_density: self.crack_density(),
             finished: self.finished,
+            work: self.work,
         }
     }
 
@@ -504,7 +495,7 @@ mod tests {
         // columns 2 and 8 in every row. Two bands remain, each half the area.
         for row in 0..12 {
             for column in [2, 8] {
-                mud.break_spring((row * 12 + column) * 2);
+                mud.break_spring(row * 12 + column);
             }
         }
         let stats = mud.statistics(&mut mask, &mut labels).unwrap();

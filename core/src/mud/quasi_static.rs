@@ -138,12 +138,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if j == ABSENT || self.break_time[spring] != INTACT {
             return S::MAX;
         }
-        let dirs = self.lattice.directions();
-        let (i, j) = (spring / dirs, j as usize);
-        let e = self
-            .lattice
-            .direction_vector(spring % dirs)
-            .map(S::from_f32);
+        let (i, d) = self.lattice.spring_origin(spring);
+        let j = j as usize;
+        let e = self.lattice.direction_vector(d).map(S::from_f32);
         let opening = e[0] * (self.ux[j] - self.ux[i]) + e[1] * (self.uy[j] - self.uy[i]);
         let kappa = self.break_stretch[spring];
         let (denominator, limit) = match self.params.drive {
@@ -198,16 +195,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
-        let dirs = self.lattice.directions();
         self.lattice
-            .for_each_spring_at(node, |spring, other, sign| {
+            .for_each_spring_at(node, |spring, other, d, sign| {
                 visited += 1;
                 if self.break_time[spring] != INTACT {
                     return;
                 }
-                let v = self.lattice.direction_vector(spring % dirs);
+                let v = self.lattice.direction_vector(d);
                 let (ex, ey) = (S::from_f32(v[0] * sign), S::from_f32(v[1] * sign));
-                let k = self.material.stiffness[spring % dirs];
+                let k = self.material.stiffness[d];
                 a00 += k * ex * ex;
                 a01 += k * ex * ey;
                 a11 += k * ey * ey;
@@ -228,7 +224,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
         if moved > tolerance {
             let lattice = self.lattice;
-            lattice.for_each_spring_at(node, |spring, other, _| {
+            lattice.for_each_spring_at(node, |spring, other, _, _| {
                 if self.break_time[spring] == INTACT {
                     self.relaxation().push(other);
                 }
@@ -244,7 +240,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         for t in 0..count {
             let node = self.relaxation().touched[t] as usize;
             self.relaxation().flags[node] &= !TOUCHED;
-            lattice.for_each_spring_at(node, |spring, _, _| {
+            lattice.for_each_spring_at(node, |spring, _, _, _| {
                 if self.break_time[spring] != INTACT {
                     return;
                 }
@@ -290,7 +286,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let spring = next as usize;
         self.break_spring(spring);
         let (a, b) = (
-            spring / self.lattice.directions(),
+            self.lattice.spring_origin(spring).0,
             self.other[spring] as usize,
         );
         let r = self.relaxation();
