@@ -16,12 +16,7 @@ struct Run {
 }
 
 fn run(size: u32, solver: Solver) -> Run {
-    let params = MudParams {
-        columns: size,
-        rows: size,
-        solver,
-        ..MudParams::default()
-    };
+    let params = MudParams { columns: size, rows: size, solver, ..MudParams::default() };
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let start = Instant::now();
@@ -30,29 +25,14 @@ fn run(size: u32, solver: Solver) -> Run {
     let seconds = start.elapsed().as_secs_f64();
     let pixels = mud.statistics_pixels();
     let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
-    let stats = mud
-        .statistics(&mut mask, &mut labels)
-        .expect("scratch suffices");
-    Run {
-        seconds,
-        work: progress.work,
-        stats,
-    }
+    let stats = mud.statistics(&mut mask, &mut labels).expect("scratch suffices");
+    Run { seconds, work: progress.work, stats }
 }
 
 fn main() {
-    let sizes: Vec<u32> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
-    let sizes = if sizes.is_empty() {
-        vec![128, 256]
-    } else {
-        sizes
-    };
-    println!(
-        "| lattice | solver | time | spring updates/s | crack density (1/cm) | cells | mean cell area (cm²) |"
-    );
+    let sizes: Vec<u32> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
+    let sizes = if sizes.is_empty() { vec![128, 256] } else { sizes };
+    println!("| lattice | solver | time | spring updates/s | crack density (1/cm) | cells | mean cell area (cm²) |");
     println!("|---|---|---|---|---|---|---|");
     for size in sizes {
         let fast = run(size, Solver::QuasiStatic);
@@ -67,9 +47,6 @@ fn main() {
                 r.stats.mean_cell_area
             );
         }
-        println!(
-            "| {size}² hex | speed ratio | {:.1}× | | | | |",
-            explicit.seconds / fast.seconds
-        );
+        println!("| {size}² hex | speed ratio | {:.1}× | | | | |", explicit.seconds / fast.seconds);
     }
 }

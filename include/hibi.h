@@ -18,6 +18,61 @@
 #include <stdint.h>
 
 /**
+ * Square elements: 4 neighbours, axis-aligned short cracks.
+ */
+#define HIBI_MUD_SQUARE 0
+
+/**
+ * Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
+ */
+#define HIBI_MUD_HEXAGONAL 1
+
+/**
+ * Free edges.
+ */
+#define HIBI_MUD_OPEN 0
+
+/**
+ * The lattice wraps around: tileable patterns.
+ */
+#define HIBI_MUD_PERIODIC 1
+
+/**
+ * The paper's explicit loop (reference; slow).
+ */
+#define HIBI_MUD_EXPLICIT 0
+
+/**
+ * Quasi-static equilibrium with event-driven breaking (fast; the default).
+ */
+#define HIBI_MUD_QUASI_STATIC 1
+
+/**
+ * The surface shrinks (drying mud).
+ */
+#define HIBI_MUD_SHRINK 0
+
+/**
+ * The deep layer grows (tree bark).
+ */
+#define HIBI_MUD_GROWTH 1
+
+/**
+ * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+ */
+#define HIBI_MUD_LAYER_MASK 0
+
+/**
+ * Render layer: height, `float` per pixel, 1 on the surface, lower in the cracks.
+ */
+#define HIBI_MUD_LAYER_HEIGHT 1
+
+/**
+ * Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
+ */
+#define HIBI_MUD_LAYER_TIME 2
+
+/**
  * `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
  */
 #define HIBI_SPREAD_UNIFORM 0
@@ -28,9 +83,122 @@
 #define HIBI_SPREAD_NORMAL 1
 
 /**
+ * A drying-mud run. Opaque.
+ */
+typedef struct hibi_mud hibi_mud;
+
+/**
  * A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
  */
 typedef struct hibi_rng hibi_rng;
+
+/**
+ * The parameters of a drying-mud run, in the paper's units (cm, g, s). Get them from
+ * `hibi_mud_params_default` (the paper's values), then change fields; `hibi_mud_create`
+ * rejects a struct that did not come from there.
+ */
+typedef struct hibi_mud_params {
+  /**
+   * Set by `hibi_mud_params_default`; leave it alone.
+   */
+  uint32_t cookie;
+  /**
+   * `HIBI_MUD_SQUARE` or `HIBI_MUD_HEXAGONAL` (default).
+   */
+  uint32_t topology;
+  /**
+   * `HIBI_MUD_OPEN` or `HIBI_MUD_PERIODIC` (default).
+   */
+  uint32_t boundary;
+  /**
+   * `HIBI_MUD_EXPLICIT` or `HIBI_MUD_QUASI_STATIC` (default).
+   */
+  uint32_t solver;
+  /**
+   * `HIBI_MUD_SHRINK` (default) or `HIBI_MUD_GROWTH`.
+   */
+  uint32_t drive;
+  /**
+   * Nodes per row (default 128).
+   */
+  uint32_t columns;
+  /**
+   * Rows of nodes (default 128; even for periodic hexagonal lattices).
+   */
+  uint32_t rows;
+  /**
+   * Seed of every random draw.
+   */
+  uint64_t seed;
+  /**
+   * H, surface layer thickness [cm] (default 1).
+   */
+  float layer_thickness;
+  /**
+   * W, element size [cm] (default 1).
+   */
+  float element_size;
+  /**
+   * T, long time step [s] (default 1).
+   */
+  float long_step;
+  /**
+   * τ, short time step [s] (paper: 0.001).
+   */
+  float short_step;
+  /**
+   * γ, shrink ratio per long step (paper: 0.9999).
+   */
+  float shrink_ratio;
+  /**
+   * δx, allowed displacement error [cm] (paper: 1e-4).
+   */
+  float displacement_tolerance;
+  /**
+   * α, damping factor (paper: 20).
+   */
+  float damping_factor;
+  /**
+   * ρ, density [g/cm³] (default 1.8).
+   */
+  float density;
+  /**
+   * E, Young's modulus [g/(cm·s²)] (paper: 1e6).
+   */
+  float young_modulus;
+  /**
+   * G, shear modulus [g/(cm·s²)] (paper: 2e5).
+   */
+  float shear_modulus;
+  /**
+   * κ̄, mean break stretch (paper: 1.02).
+   */
+  float break_stretch_mean;
+  /**
+   * σ, break stretch spread per unit area [1/cm] (paper: 0.001).
+   */
+  float break_stretch_spread;
+  /**
+   * Direction cracks prefer [radians] (default 0).
+   */
+  float anisotropy_direction;
+  /**
+   * How much weaker springs across that direction are (1 = isotropic, default).
+   */
+  float anisotropy_ratio;
+  /**
+   * Stiffness anisotropy ratio (1 = none, default).
+   */
+  float stiffness_anisotropy_ratio;
+  /**
+   * End at this shrink (default 0.022; 0 = no limit).
+   */
+  float target_shrink;
+  /**
+   * End at this crack length per area [1/cm] (default 0 = no limit).
+   */
+  float target_crack_density;
+} hibi_mud_params;
 
 /**
  * The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
@@ -38,6 +206,108 @@ typedef struct hibi_rng hibi_rng;
  * name the argument or parameter field that is wrong. `hibi_status_string` gives the message.
  */
 typedef uint32_t hibi_status;
+
+/**
+ * Where a run stands.
+ */
+typedef struct hibi_mud_progress {
+  /**
+   * Shrink 1 − r (growth: 1/r − 1).
+   */
+  float shrink;
+  /**
+   * Time in long steps.
+   */
+  float time;
+  /**
+   * Springs broken so far.
+   */
+  uint32_t broken_springs;
+  /**
+   * Crack length per area [1/cm].
+   */
+  float crack_density;
+  /**
+   * Work done since the run began (units of the step budget).
+   */
+  uint64_t work;
+  /**
+   * 1 when the run reached its end, else 0.
+   */
+  uint32_t finished;
+} hibi_mud_progress;
+
+/**
+ * One straight piece of crack, in lattice units (× element_size for cm). Each end carries
+ * the crack width and break time (long steps) of the spring it sits on.
+ */
+typedef struct hibi_mud_segment {
+  /**
+   * First end (x, y).
+   */
+  float start[2];
+  /**
+   * Second end (x, y).
+   */
+  float end[2];
+  /**
+   * Width at each end.
+   */
+  float width[2];
+  /**
+   * Break time at each end.
+   */
+  float time[2];
+} hibi_mud_segment;
+
+/**
+ * Crack statistics: density and the cells the drawn crack network encloses.
+ */
+typedef struct hibi_mud_statistics {
+  /**
+   * Crack length per area [1/cm].
+   */
+  float crack_density;
+  /**
+   * Cells enclosed by the drawn crack network.
+   */
+  uint32_t cells;
+  /**
+   * Mean cell area [cm²].
+   */
+  float mean_cell_area;
+} hibi_mud_statistics;
+
+/**
+ * How to draw a raster: its size and the stroke widths. Defaults from
+ * `hibi_mud_render_params_default`.
+ */
+typedef struct hibi_mud_render_params {
+  /**
+   * Raster width in pixels (default 512); the lattice's domain is stretched over it.
+   */
+  uint32_t width;
+  /**
+   * Raster height in pixels (default 512).
+   */
+  uint32_t height;
+  /**
+   * Crack widths are multiplied by this (default 1).
+   */
+  float width_scale;
+  /**
+   * The narrowest stroke in pixels (default 1).
+   */
+  float min_width;
+  /**
+   * Depth of the widest groove in the height layer (default 1).
+   */
+  float groove_depth;
+  /**
+   * Where the raster's top-left corner sits in the domain, lattice units (default 0, 0).
+   */
+  float offset[2];
+} hibi_mud_render_params;
 
 /**
  * Success.
@@ -89,6 +359,151 @@ typedef uint32_t hibi_status;
  */
 #define HIBI_ERROR_RAND_ARGUMENT 257
 
+/**
+ * Mud parameters: `columns` must be >= 2 (>= 3 when periodic).
+ */
+#define HIBI_ERROR_MUD_COLUMNS 512
+
+/**
+ * Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal).
+ */
+#define HIBI_ERROR_MUD_ROWS 513
+
+/**
+ * Mud parameters: `layer_thickness` (H) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_LAYER_THICKNESS 514
+
+/**
+ * Mud parameters: `element_size` (W) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_ELEMENT_SIZE 515
+
+/**
+ * Mud parameters: `long_step` (T) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_LONG_STEP 516
+
+/**
+ * Mud parameters: `short_step` (τ) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP 517
+
+/**
+ * Mud parameters: `shrink_ratio` (γ) must be within (0, 1].
+ */
+#define HIBI_ERROR_MUD_SHRINK_RATIO 518
+
+/**
+ * Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE 519
+
+/**
+ * Mud parameters: `damping_factor` (α) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DAMPING_FACTOR 520
+
+/**
+ * Mud parameters: `density` (ρ) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DENSITY 521
+
+/**
+ * Mud parameters: `young_modulus` (E) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_YOUNG_MODULUS 522
+
+/**
+ * Mud parameters: `shear_modulus` (G) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_SHEAR_MODULUS 523
+
+/**
+ * Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_MEAN 524
+
+/**
+ * Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD 525
+
+/**
+ * Mud parameters: `anisotropy_direction` must be finite.
+ */
+#define HIBI_ERROR_MUD_ANISOTROPY_DIRECTION 526
+
+/**
+ * Mud parameters: `anisotropy_ratio` must be finite and >= 1.
+ */
+#define HIBI_ERROR_MUD_ANISOTROPY_RATIO 527
+
+/**
+ * Mud parameters: `stiffness_anisotropy_ratio` must be finite and >= 1.
+ */
+#define HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO 528
+
+/**
+ * Mud parameters: `target_shrink` must be finite and within [0, 1).
+ */
+#define HIBI_ERROR_MUD_TARGET_SHRINK 529
+
+/**
+ * Mud parameters: `target_crack_density` must be finite and >= 0.
+ */
+#define HIBI_ERROR_MUD_TARGET_CRACK_DENSITY 530
+
+/**
+ * Mud parameters: The lattice is too large: its memory size overflows.
+ */
+#define HIBI_ERROR_MUD_SIZE_OVERFLOW 531
+
+/**
+ * Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
+ */
+#define HIBI_ERROR_MUD_SCALE 532
+
+/**
+ * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
+ */
+#define HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED 575
+
+/**
+ * Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
+ */
+#define HIBI_ERROR_MUD_ENUM 576
+
+/**
+ * Render: width and height must be > 0 and their product must fit in memory.
+ */
+#define HIBI_ERROR_RENDER_SIZE 768
+
+/**
+ * Render: `width_scale` must be finite and >= 0.
+ */
+#define HIBI_ERROR_RENDER_WIDTH_SCALE 769
+
+/**
+ * Render: `min_width` must be finite and >= 0.
+ */
+#define HIBI_ERROR_RENDER_MIN_WIDTH 770
+
+/**
+ * Render: `groove_depth` must be finite and >= 0.
+ */
+#define HIBI_ERROR_RENDER_GROOVE_DEPTH 771
+
+/**
+ * Render: `offset` must be finite.
+ */
+#define HIBI_ERROR_RENDER_OFFSET 772
+
+/**
+ * Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
+ */
+#define HIBI_ERROR_RENDER_LAYER 773
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -97,6 +512,119 @@ extern "C" {
  * The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.
  */
 const char *hibi_version(void);
+
+/**
+ * The paper's parameters (and ours where it gives none), with the cookie set.
+ */
+struct hibi_mud_params hibi_mud_params_default(void);
+
+/**
+ * Checks `params` and writes the bytes a run needs in caller memory (for
+ * `hibi_mud_create_in`). Every parameter error is reported here.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `size` NULL or writable.
+ */
+hibi_status hibi_mud_memory_size(const struct hibi_mud_params *params, size_t *size);
+
+/**
+ * Alignment, in bytes, that caller memory for `hibi_mud_create_in` must have (8).
+ */
+size_t hibi_mud_memory_align(void);
+
+/**
+ * Creates a run in library memory: draws every spring's break stretch, ready to step. Free
+ * it with `hibi_mud_destroy`. `*out` is written only on success.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `out` NULL or writable.
+ */
+hibi_status hibi_mud_create(const struct hibi_mud_params *params, struct hibi_mud **out);
+
+/**
+ * Creates a run in caller memory of at least `hibi_mud_memory_size` bytes aligned to
+ * `hibi_mud_memory_align()`. The memory stays the caller's (keep it untouched while the run
+ * lives); `hibi_mud_destroy` is optional. Nothing is written on failure.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+ * `out` NULL or writable.
+ */
+hibi_status hibi_mud_create_in(const struct hibi_mud_params *params,
+                               void *memory,
+                               size_t memory_len,
+                               struct hibi_mud **out);
+
+/**
+ * Destroys a run; frees its memory if `hibi_mud_create` allocated it. NULL is ignored.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run, not used afterwards.
+ */
+void hibi_mud_destroy(struct hibi_mud *mud);
+
+/**
+ * Advances the run by at most `budget` units of work (one unit: one spring visited), but
+ * always by at least one indivisible piece; writes where it stands to `*progress` unless it
+ * is NULL. Call until `progress.finished`.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `progress` NULL or writable.
+ */
+hibi_status hibi_mud_step(struct hibi_mud *mud,
+                          uint64_t budget,
+                          struct hibi_mud_progress *progress);
+
+/**
+ * Writes the number of crack segments `hibi_mud_segments` would write now.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `count` NULL or writable.
+ */
+hibi_status hibi_mud_segment_count(const struct hibi_mud *mud, size_t *count);
+
+/**
+ * Writes the crack segments (paper Fig. 5) into `segments[0..len]` and their number into
+ * `*written`. If `len` is smaller than `hibi_mud_segment_count`, nothing is written and the
+ * status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `segments` NULL (only with `len` 0) or writable for
+ * `len` segments; `written` NULL or writable.
+ */
+hibi_status hibi_mud_segments(const struct hibi_mud *mud,
+                              struct hibi_mud_segment *segments,
+                              size_t len,
+                              size_t *written);
+
+/**
+ * Crack density and the cells the drawn crack network encloses (the statistics the tests
+ * compare solvers and meshes by).
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `out` NULL or writable.
+ */
+hibi_status hibi_mud_measure(const struct hibi_mud *mud, struct hibi_mud_statistics *out);
+
+/**
+ * Default drawing: 512 × 512, true crack widths, 1-pixel minimum stroke, groove depth 1.
+ */
+struct hibi_mud_render_params hibi_mud_render_params_default(void);
+
+/**
+ * Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
+ * `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
+ * `pixels_len` counts values, not bytes. Nothing is written on failure.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `render` NULL or readable; `pixels` NULL (only with
+ * `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ */
+hibi_status hibi_mud_render(const struct hibi_mud *mud,
+                            const struct hibi_mud_render_params *render,
+                            uint32_t layer,
+                            void *pixels,
+                            size_t pixels_len);
 
 /**
  * Bytes a `hibi_rng` needs in caller memory (for `hibi_rng_create_in`).
@@ -115,7 +643,7 @@ size_t hibi_rng_memory_align(void);
  * # Safety
  * `out` must be NULL or valid for writing a pointer.
  */
-hibi_status hibi_rng_create(uint64_t seed, uint64_t stream, hibi_rng **out);
+hibi_status hibi_rng_create(uint64_t seed, uint64_t stream, struct hibi_rng **out);
 
 /**
  * Creates the stream in caller memory of at least `hibi_rng_memory_size()` bytes aligned to
@@ -130,7 +658,7 @@ hibi_status hibi_rng_create_in(uint64_t seed,
                                uint64_t stream,
                                void *memory,
                                size_t memory_len,
-                               hibi_rng **out);
+                               struct hibi_rng **out);
 
 /**
  * Destroys a stream; frees its memory if `hibi_rng_create` allocated it. NULL is ignored.
@@ -138,7 +666,7 @@ hibi_status hibi_rng_create_in(uint64_t seed,
  * # Safety
  * `rng` must be NULL or a live stream, not used afterwards.
  */
-void hibi_rng_destroy(hibi_rng *rng);
+void hibi_rng_destroy(struct hibi_rng *rng);
 
 /**
  * The next 32 raw bits of the stream.
@@ -146,7 +674,7 @@ void hibi_rng_destroy(hibi_rng *rng);
  * # Safety
  * `rng` must be NULL or a live stream; `out` NULL or valid for a write.
  */
-hibi_status hibi_rng_next_u32(hibi_rng *rng, uint32_t *out);
+hibi_status hibi_rng_next_u32(struct hibi_rng *rng, uint32_t *out);
 
 /**
  * Fills `values[0..len]` with uniform draws in [0, 1).
@@ -154,7 +682,7 @@ hibi_status hibi_rng_next_u32(hibi_rng *rng, uint32_t *out);
  * # Safety
  * `rng` must be NULL or a live stream; `values` NULL (only with `len` 0) or valid for `len` floats.
  */
-hibi_status hibi_rng_uniform(hibi_rng *rng, float *values, size_t len);
+hibi_status hibi_rng_uniform(struct hibi_rng *rng, float *values, size_t len);
 
 /**
  * Fills `values[0..len]` with standard normal draws.
@@ -162,7 +690,7 @@ hibi_status hibi_rng_uniform(hibi_rng *rng, float *values, size_t len);
  * # Safety
  * As `hibi_rng_uniform`.
  */
-hibi_status hibi_rng_normal(hibi_rng *rng, float *values, size_t len);
+hibi_status hibi_rng_normal(struct hibi_rng *rng, float *values, size_t len);
 
 /**
  * A Poisson draw with mean `mean` (0 ≤ mean ≤ 1e6), exact.
@@ -170,7 +698,7 @@ hibi_status hibi_rng_normal(hibi_rng *rng, float *values, size_t len);
  * # Safety
  * `rng` must be NULL or a live stream; `out` NULL or valid for a write.
  */
-hibi_status hibi_rng_poisson(hibi_rng *rng, double mean, uint32_t *out);
+hibi_status hibi_rng_poisson(struct hibi_rng *rng, double mean, uint32_t *out);
 
 /**
  * The papers' `Rand(x)`: a value within [(1 − z)x, (1 + z)x], `spread` one of
@@ -179,7 +707,7 @@ hibi_status hibi_rng_poisson(hibi_rng *rng, double mean, uint32_t *out);
  * # Safety
  * `rng` must be NULL or a live stream; `out` NULL or valid for a write.
  */
-hibi_status hibi_rng_rand(hibi_rng *rng, float x, float z, uint32_t spread, float *out);
+hibi_status hibi_rng_rand(struct hibi_rng *rng, float x, float z, uint32_t spread, float *out);
 
 /**
  * A static, NUL-terminated English message for `status`; never NULL (unknown codes give

@@ -12,15 +12,7 @@ use hibi_tests::workspace_root;
 
 /// The native libraries a Rust static library needs on Linux
 /// (`rustc --print native-static-libs`).
-const NATIVE_STATIC_LIBS: &[&str] = &[
-    "-lgcc_s",
-    "-lutil",
-    "-lrt",
-    "-lpthread",
-    "-lm",
-    "-ldl",
-    "-lc",
-];
+const NATIVE_STATIC_LIBS: &[&str] = &["-lgcc_s", "-lutil", "-lrt", "-lpthread", "-lm", "-ldl", "-lc"];
 
 /// Builds libhibi.a and libhibi.so in this test's profile, once, in a target directory of its
 /// own (so it never waits on the lock of the build that runs the tests).
@@ -29,21 +21,12 @@ fn library_dir() -> &'static Path {
     DIR.get_or_init(|| {
         let target = workspace_root().join("target/c-link");
         let mut cargo = Command::new(env!("CARGO"));
-        cargo
-            .args(["build", "-p", "hibi-ffi", "--target-dir"])
-            .arg(&target);
-        let profile = if cfg!(debug_assertions) {
-            "debug"
-        } else {
-            "release"
-        };
+        cargo.args(["build", "-p", "hibi-ffi", "--target-dir"]).arg(&target);
+        let profile = if cfg!(debug_assertions) { "debug" } else { "release" };
         if profile == "release" {
             cargo.arg("--release");
         }
-        let status = cargo
-            .current_dir(workspace_root())
-            .status()
-            .expect("run cargo");
+        let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
         assert!(status.success(), "cargo build -p hibi-ffi failed");
         target.join(profile)
     })
@@ -60,14 +43,15 @@ enum Linkage {
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
 /// returns what it printed.
 fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage) -> String {
+    build_and_run_with(compiler, standard, source, linkage, &[])
+}
+
+/// As [`build_and_run`], passing `args` to the program.
+fn build_and_run_with(compiler: &str, standard: &str, source: &str, linkage: Linkage, args: &[&str]) -> String {
     let root = workspace_root();
     let lib = library_dir();
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let stem = Path::new(source)
-        .file_name()
-        .unwrap()
-        .to_string_lossy()
-        .replace('.', "_");
+    let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
     let exe = out_dir.join(format!("{stem}_{linkage:?}"));
     let mut cc = Command::new(compiler);
     cc.arg(format!("-std={standard}"))
@@ -81,19 +65,12 @@ fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage)
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Sanitized => {
-            cc.args([
-                "-fsanitize=address,undefined",
-                "-fno-sanitize-recover=all",
-                "-fno-omit-frame-pointer",
-            ])
-            .arg(lib.join("libhibi.a"))
-            .args(NATIVE_STATIC_LIBS);
+            cc.args(["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"])
+                .arg(lib.join("libhibi.a"))
+                .args(NATIVE_STATIC_LIBS);
         }
         Linkage::Shared => {
-            cc.arg("-L")
-                .arg(lib)
-                .arg("-lhibi")
-                .arg(format!("-Wl,-rpath,{}", lib.display()));
+            cc.arg("-L").arg(lib).arg("-lhibi").arg(format!("-Wl,-rpath,{}", lib.display()));
         }
     }
     let compiled = cc.output().expect("run the C compiler");
@@ -102,7 +79,9 @@ fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage)
         "{compiler} {source} ({linkage:?}) failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
-    let run = Command::new(&exe).output().expect("run the example");
+    // cargo points LD_LIBRARY_PATH at its own target directories, which may hold another
+    // libhibi.so; the program must load the one it was linked with (its rpath).
+    let run = Command::new(&exe).args(args).env_remove("LD_LIBRARY_PATH").output().expect("run the example");
     let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
     assert!(
         run.status.success(),
@@ -117,9 +96,7 @@ fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage)
 fn expected_draws() -> (String, String) {
     let mut rng = Rng::from_key(42, 7);
     let bits: Vec<String> = (0..4).map(|_| rng.next_u32().to_string()).collect();
-    let uniform: Vec<String> = (0..3)
-        .map(|_| format!("{:.9}", f64::from(rng.uniform_f32())))
-        .collect();
+    let uniform: Vec<String> = (0..3).map(|_| format!("{:.9}", f64::from(rng.uniform_f32()))).collect();
     (format!("next_u32: {}", bits.join(" ")), uniform.join(" "))
 }
 
@@ -133,18 +110,12 @@ fn reparse_uniform(line: &str) -> String {
 }
 
 fn line<'a>(output: &'a str, prefix: &str) -> &'a str {
-    output
-        .lines()
-        .find(|l| l.starts_with(prefix))
-        .unwrap_or_else(|| panic!("no line {prefix:?} in:\n{output}"))
+    output.lines().find(|l| l.starts_with(prefix)).unwrap_or_else(|| panic!("no line {prefix:?} in:\n{output}"))
 }
 
 fn check_c_output(output: &str) {
     let (bits, uniform) = expected_draws();
-    assert_eq!(
-        line(output, "hibi "),
-        format!("hibi {}", env!("CARGO_PKG_VERSION"))
-    );
+    assert_eq!(line(output, "hibi "), format!("hibi {}", env!("CARGO_PKG_VERSION")));
     assert_eq!(line(output, "next_u32:"), bits);
     assert_eq!(reparse_uniform(line(output, "uniform:")), uniform);
     let mut rng = Rng::from_key(42, 7);
@@ -152,52 +123,28 @@ fn check_c_output(output: &str) {
         rng.next_u32();
     }
     let poisson = rng.poisson(100.0).unwrap();
-    assert_eq!(
-        line(output, "poisson(100):"),
-        format!("poisson(100): {poisson}")
-    );
-    assert_eq!(
-        line(output, "rand(40"),
-        "rand(40, 0.3, normal) within [28, 52]: yes"
-    );
+    assert_eq!(line(output, "poisson(100):"), format!("poisson(100): {poisson}"));
+    assert_eq!(line(output, "rand(40"), "rand(40, 0.3, normal) within [28, 52]: yes");
     assert_eq!(
         line(output, "poisson(-1):"),
         "poisson(-1): status 256, poisson mean must be finite and within [0, 1e6]; output untouched: yes"
     );
-    assert_eq!(
-        line(output, "spread 9:"),
-        "spread 9: status 4, an enumeration value is out of range"
-    );
-    assert_eq!(
-        line(output, "NULL rng:"),
-        "NULL rng: status 1, a required pointer argument is NULL"
-    );
-    assert_eq!(
-        line(output, "short memory:"),
-        "short memory: status 3, a buffer is smaller than the call needs"
-    );
+    assert_eq!(line(output, "spread 9:"), "spread 9: status 4, an enumeration value is out of range");
+    assert_eq!(line(output, "NULL rng:"), "NULL rng: status 1, a required pointer argument is NULL");
+    assert_eq!(line(output, "short memory:"), "short memory: status 3, a buffer is smaller than the call needs");
     assert_eq!(
         line(output, "misaligned memory:"),
         "misaligned memory: status 2, a pointer argument is not aligned for its type"
     );
-    assert_eq!(
-        line(output, "caller memory"),
-        "caller memory, same seed, same first draw: yes"
-    );
+    assert_eq!(line(output, "caller memory"), "caller memory, same seed, same first draw: yes");
 }
 
 fn check_cpp_output(output: &str) {
     let (bits, uniform) = expected_draws();
     assert_eq!(line(output, "next_u32:"), bits);
     assert_eq!(reparse_uniform(line(output, "uniform:")), uniform);
-    assert_eq!(
-        line(output, "poisson(-1)"),
-        "poisson(-1) threw: poisson mean must be finite and within [0, 1e6]"
-    );
-    assert_eq!(
-        line(output, "caller memory"),
-        "caller memory, same seed, same first draw: yes"
-    );
+    assert_eq!(line(output, "poisson(-1)"), "poisson(-1) threw: poisson mean must be finite and within [0, 1e6]");
+    assert_eq!(line(output, "caller memory"), "caller memory, same seed, same first draw: yes");
 }
 
 fn c_compiler() -> String {
@@ -210,60 +157,82 @@ fn cpp_compiler() -> String {
 
 #[test]
 fn c99_example_links_static_library() {
-    check_c_output(&build_and_run(
-        &c_compiler(),
-        "c99",
-        "c_examples/rng.c",
-        Linkage::Static,
-    ));
+    check_c_output(&build_and_run(&c_compiler(), "c99", "c_examples/rng.c", Linkage::Static));
 }
 
 #[test]
 fn c99_example_links_shared_library() {
-    check_c_output(&build_and_run(
-        &c_compiler(),
-        "c99",
-        "c_examples/rng.c",
-        Linkage::Shared,
-    ));
+    check_c_output(&build_and_run(&c_compiler(), "c99", "c_examples/rng.c", Linkage::Shared));
 }
 
 #[test]
 fn c99_example_is_clean_under_sanitizers() {
-    check_c_output(&build_and_run(
-        &c_compiler(),
-        "c99",
-        "c_examples/rng.c",
-        Linkage::Sanitized,
-    ));
+    check_c_output(&build_and_run(&c_compiler(), "c99", "c_examples/rng.c", Linkage::Sanitized));
 }
 
 #[test]
 fn cpp17_example_is_clean_under_sanitizers() {
-    check_cpp_output(&build_and_run(
-        &cpp_compiler(),
-        "c++17",
-        "c_examples/rng.cpp",
-        Linkage::Sanitized,
-    ));
+    check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Sanitized));
 }
 
 #[test]
 fn cpp17_example_links_static_library() {
-    check_cpp_output(&build_and_run(
-        &cpp_compiler(),
-        "c++17",
-        "c_examples/rng.cpp",
-        Linkage::Static,
-    ));
+    check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Static));
 }
 
 #[test]
 fn cpp17_example_links_shared_library() {
-    check_cpp_output(&build_and_run(
-        &cpp_compiler(),
-        "c++17",
-        "c_examples/rng.cpp",
-        Linkage::Shared,
-    ));
+    check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Shared));
+}
+
+/// The mud example's mask, as Rust draws it for the same parameters.
+fn expected_mud_mask() -> Vec<u8> {
+    use hibi_core::mud::{Mud, MudParams, MudRender};
+    let params = MudParams { columns: 96, rows: 96, seed: 7, ..MudParams::default() };
+    let memory = params.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&params, &mut scalars, &mut words).unwrap();
+    mud.run();
+    let render = MudRender { width: 384, height: 384, ..MudRender::default() };
+    let mut mask = vec![0u8; 384 * 384];
+    mud.render_mask(&render, &mut mask).unwrap();
+    mask.iter().map(|v| 255 - v).collect()
+}
+
+fn check_mud(linkage: Linkage) {
+    let pgm = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("mud_{linkage:?}.pgm"));
+    let output = build_and_run_with(&c_compiler(), "c99", "c_examples/mud.c", linkage, &[pgm.to_str().unwrap()]);
+    assert_eq!(
+        line(&output, "negative young_modulus:"),
+        "negative young_modulus: status 522, mud: young_modulus (E) must be finite and > 0"
+    );
+    assert_eq!(
+        line(&output, "params not from the default:"),
+        "params not from the default: status 575, mud: the params struct did not come from hibi_mud_params_default"
+    );
+    assert!(line(&output, "finished:").starts_with("finished: shrink 0.0220"), "{output}");
+    assert_eq!(
+        line(&output, "short pixel buffer:"),
+        "short pixel buffer: status 3, a buffer is smaller than the call needs"
+    );
+    assert_eq!(line(&output, "caller memory"), "caller memory, same bytes: yes");
+    let bytes = std::fs::read(&pgm).expect("the example wrote its PGM");
+    let header = b"P5\n384 384\n255\n";
+    assert_eq!(&bytes[..header.len()], header);
+    assert!(bytes[header.len()..] == expected_mud_mask()[..], "the C program's picture differs from Rust's");
+}
+
+#[test]
+fn mud_example_links_static_library() {
+    check_mud(Linkage::Static);
+}
+
+#[test]
+fn mud_example_links_shared_library() {
+    check_mud(Linkage::Shared);
+}
+
+#[test]
+fn mud_example_is_clean_under_sanitizers() {
+    check_mud(Linkage::Sanitized);
 }

@@ -13,29 +13,18 @@ fn run<S: Scalar>(params: &MudParams) -> (CrackStatistics, u64, Vec<hibi_core::m
     assert!(mud.run().finished);
     let pixels = mud.statistics_pixels();
     let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
-    let stats = mud
-        .statistics(&mut mask, &mut labels)
-        .expect("scratch suffices");
+    let stats = mud.statistics(&mut mask, &mut labels).expect("scratch suffices");
     let mut segments = vec![Default::default(); mud.segment_count()];
     mud.segments(&mut segments).expect("buffer suffices");
     let bytes: Vec<u8> = segments
         .iter()
-        .flat_map(|s| {
-            [s.start, s.end, s.width, s.time]
-                .into_iter()
-                .flatten()
-                .flat_map(|v| v.to_bits().to_le_bytes())
-        })
+        .flat_map(|s| [s.start, s.end, s.width, s.time].into_iter().flatten().flat_map(|v| v.to_bits().to_le_bytes()))
         .collect();
     (stats, fnv1a64(&bytes), segments)
 }
 
 fn params(size: u32) -> MudParams {
-    MudParams {
-        columns: size,
-        rows: size,
-        ..MudParams::default()
-    }
+    MudParams { columns: size, rows: size, ..MudParams::default() }
 }
 
 fn mean(values: impl Iterator<Item = f32>) -> f32 {
@@ -53,41 +42,14 @@ fn explicit_and_quasi_static_agree_over_eight_seeds() {
     let mut fast = Vec::new();
     for seed in 1..=8 {
         let p = MudParams { seed, ..params(48) };
-        explicit.push(
-            run::<f32>(&MudParams {
-                solver: Solver::Explicit,
-                ..p
-            })
-            .0,
-        );
-        fast.push(
-            run::<f32>(&MudParams {
-                solver: Solver::QuasiStatic,
-                ..p
-            })
-            .0,
-        );
+        explicit.push(run::<f32>(&MudParams { solver: Solver::Explicit, ..p }).0);
+        fast.push(run::<f32>(&MudParams { solver: Solver::QuasiStatic, ..p }).0);
     }
-    let density = (
-        mean(explicit.iter().map(|s| s.crack_density)),
-        mean(fast.iter().map(|s| s.crack_density)),
-    );
-    let area = (
-        mean(explicit.iter().map(|s| s.mean_cell_area)),
-        mean(fast.iter().map(|s| s.mean_cell_area)),
-    );
-    println!(
-        "crack density explicit {:.4} quasi-static {:.4}",
-        density.0, density.1
-    );
-    println!(
-        "mean cell area explicit {:.2} quasi-static {:.2} cm²",
-        area.0, area.1
-    );
-    assert!(
-        within(density.0, density.1, 0.15),
-        "crack density {density:?}"
-    );
+    let density = (mean(explicit.iter().map(|s| s.crack_density)), mean(fast.iter().map(|s| s.crack_density)));
+    let area = (mean(explicit.iter().map(|s| s.mean_cell_area)), mean(fast.iter().map(|s| s.mean_cell_area)));
+    println!("crack density explicit {:.4} quasi-static {:.4}", density.0, density.1);
+    println!("mean cell area explicit {:.2} quasi-static {:.2} cm²", area.0, area.1);
+    assert!(within(density.0, density.1, 0.15), "crack density {density:?}");
     assert!(within(area.0, area.1, 0.15), "mean cell area {area:?}");
 }
 
@@ -107,23 +69,14 @@ fn orientation_spread(segments: &[hibi_core::mud::CrackSegment]) -> f32 {
         bins[bin] += length;
     }
     let total: f32 = bins.iter().sum();
-    let entropy: f32 = bins
-        .iter()
-        .filter(|&&b| b > 0.0)
-        .map(|&b| -(b / total) * (b / total).ln())
-        .sum();
+    let entropy: f32 = bins.iter().filter(|&&b| b > 0.0).map(|&b| -(b / total) * (b / total).ln()).sum();
     entropy.exp() / 12.0
 }
 
 #[test]
 fn hexagonal_patterns_are_more_isotropic_than_square_ones() {
     let hex = run::<f32>(&params(64)).2;
-    let square = run::<f32>(&MudParams {
-        topology: Topology::Square,
-        target_shrink: 0.03,
-        ..params(64)
-    })
-    .2;
+    let square = run::<f32>(&MudParams { topology: Topology::Square, target_shrink: 0.03, ..params(64) }).2;
     let (h, s) = (orientation_spread(&hex), orientation_spread(&square));
     println!("orientation spread: hexagonal {h:.3}, square {s:.3}");
     assert!(h > s + 0.1, "hexagonal {h} vs square {s}");
@@ -133,19 +86,11 @@ fn hexagonal_patterns_are_more_isotropic_than_square_ones() {
 fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts() {
     // Halving G (E/G from 5 to 10) weakens the shear springs against the same surface ones.
     let base = params(64);
-    let soft_shear = MudParams {
-        shear_modulus: 1.0e5,
-        ..base
-    };
-    let predicted = (
-        base.predicted_spacing(0.022).unwrap().spacing,
-        soft_shear.predicted_spacing(0.022).unwrap().spacing,
-    );
+    let soft_shear = MudParams { shear_modulus: 1.0e5, ..base };
+    let predicted =
+        (base.predicted_spacing(0.022).unwrap().spacing, soft_shear.predicted_spacing(0.022).unwrap().spacing);
     assert!(predicted.1 > predicted.0, "{predicted:?}");
-    let measured = (
-        run::<f32>(&base).0.mean_cell_area,
-        run::<f32>(&soft_shear).0.mean_cell_area,
-    );
+    let measured = (run::<f32>(&base).0.mean_cell_area, run::<f32>(&soft_shear).0.mean_cell_area);
     println!("predicted spacing {predicted:?} cm; mean cell area {measured:?} cm²");
     assert!(measured.1 > measured.0 * 1.2, "{measured:?}");
 }
@@ -156,16 +101,9 @@ fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts()
 fn halving_the_element_size_keeps_the_mean_cell_area() {
     // The same 64 cm square plate, meshed at W = 1 cm and W = 0.5 cm.
     let coarse = run::<f32>(&params(64)).0;
-    let fine = run::<f32>(&MudParams {
-        element_size: 0.5,
-        ..params(128)
-    })
-    .0;
+    let fine = run::<f32>(&MudParams { element_size: 0.5, ..params(128) }).0;
     println!("W = 1 cm {coarse:?}\nW = 0.5 cm {fine:?}");
-    assert!(
-        within(coarse.mean_cell_area, fine.mean_cell_area, 0.30),
-        "{coarse:?} vs {fine:?}"
-    );
+    assert!(within(coarse.mean_cell_area, fine.mean_cell_area, 0.30), "{coarse:?} vs {fine:?}");
 }
 
 #[test]
@@ -178,22 +116,11 @@ fn periodic_rasters_are_seamless() {
     let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
     mud.run();
     let [w, h] = mud.lattice().extent();
-    let render = MudRender {
-        width: 256,
-        height: 256,
-        ..MudRender::default()
-    };
+    let render = MudRender { width: 256, height: 256, ..MudRender::default() };
     let mut tile = vec![0u8; 256 * 256];
     mud.render_mask(&render, &mut tile).unwrap();
     let mut panned = vec![0u8; 256 * 256];
-    mud.render_mask(
-        &MudRender {
-            offset: [w / 2.0, h / 2.0],
-            ..render
-        },
-        &mut panned,
-    )
-    .unwrap();
+    mud.render_mask(&MudRender { offset: [w / 2.0, h / 2.0], ..render }, &mut panned).unwrap();
     let mut worst = 0u8;
     let mut total = 0u64;
     for y in 0..256 {
@@ -204,35 +131,18 @@ fn periodic_rasters_are_seamless() {
             total += u64::from(a.abs_diff(b));
         }
     }
-    assert!(
-        tile.iter().filter(|&&v| v > 128).count() > 2000,
-        "the tile has cracks"
-    );
-    assert!(
-        worst <= 2 && total < 256 * 256 / 8,
-        "panned tile differs: worst {worst}, total {total}"
-    );
+    assert!(tile.iter().filter(|&&v| v > 128).count() > 2000, "the tile has cracks");
+    assert!(worst <= 2 && total < 256 * 256 / 8, "panned tile differs: worst {worst}, total {total}");
     // An open lattice is not seamless: the same comparison fails.
-    let open = MudParams {
-        boundary: Boundary::Open,
-        ..p
-    };
+    let open = MudParams { boundary: Boundary::Open, ..p };
     let memory = open.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&open, &mut scalars, &mut words).unwrap();
     mud.run();
     mud.render_mask(&render, &mut tile).unwrap();
-    mud.render_mask(
-        &MudRender {
-            offset: [w / 2.0, h / 2.0],
-            ..render
-        },
-        &mut panned,
-    )
-    .unwrap();
-    let differs = (0..256 * 256)
-        .filter(|&i| tile[((i / 256 + 128) % 256) * 256 + (i % 256 + 128) % 256] != panned[i])
-        .count();
+    mud.render_mask(&MudRender { offset: [w / 2.0, h / 2.0], ..render }, &mut panned).unwrap();
+    let differs =
+        (0..256 * 256).filter(|&i| tile[((i / 256 + 128) % 256) * 256 + (i % 256 + 128) % 256] != panned[i]).count();
     assert!(differs > 1000, "{differs}");
 }
 
@@ -242,28 +152,14 @@ fn fixed_point_and_float_agree_on_crack_statistics() {
     let float = run::<f32>(&p).0;
     let fixed = run::<Q16>(&p).0;
     println!("f32 {float:?}\nQ16 {fixed:?}");
-    assert!(
-        within(float.crack_density, fixed.crack_density, 0.20),
-        "{float:?} vs {fixed:?}"
-    );
-    assert!(
-        within(float.mean_cell_area, fixed.mean_cell_area, 0.20),
-        "{float:?} vs {fixed:?}"
-    );
+    assert!(within(float.crack_density, fixed.crack_density, 0.20), "{float:?} vs {fixed:?}");
+    assert!(within(float.mean_cell_area, fixed.mean_cell_area, 0.20), "{float:?} vs {fixed:?}");
 }
 
 /// The golden scene: the default parameters on a 64×64 lattice.
 #[test]
 fn golden_segments() {
     let p = params(64);
-    assert_eq!(
-        run::<f32>(&p).1,
-        7847952194047235786,
-        "the f32 scene changed"
-    );
-    assert_eq!(
-        run::<Q16>(&p).1,
-        7200401587114049055,
-        "the Q16.16 scene changed"
-    );
+    assert_eq!(run::<f32>(&p).1, 7847952194047235786, "the f32 scene changed");
+    assert_eq!(run::<Q16>(&p).1, 7200401587114049055, "the Q16.16 scene changed");
 }

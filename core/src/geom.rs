@@ -28,10 +28,7 @@ impl<S: Scalar> Point<S> {
     }
 
     /// The origin.
-    pub const ORIGIN: Self = Point {
-        x: S::ZERO,
-        y: S::ZERO,
-    };
+    pub const ORIGIN: Self = Point { x: S::ZERO, y: S::ZERO };
 
     /// Dot product.
     pub fn dot(self, other: Self) -> S {
@@ -223,11 +220,7 @@ impl<S: Scalar> Segment<S> {
         for (t, p) in [(S::ZERO, self.start), (S::ONE, self.end)] {
             for (u, q) in [(S::ZERO, other.start), (S::ONE, other.end)] {
                 if p == q {
-                    return Intersection::Point {
-                        point: p,
-                        along_first: t,
-                        along_second: u,
-                    };
+                    return Intersection::Point { point: p, along_first: t, along_second: u };
                 }
             }
         }
@@ -274,9 +267,7 @@ impl<S: Scalar> Segment<S> {
                 Intersection::None
             };
         }
-        if r.cross(other.start - self.start) != S::ZERO
-            || r.cross(other.end - self.start) != S::ZERO
-        {
+        if r.cross(other.start - self.start) != S::ZERO || r.cross(other.end - self.start) != S::ZERO {
             return Intersection::None; // parallel on different lines
         }
         // Collinear: order the four endpoints by their projection onto the first segment.
@@ -285,11 +276,7 @@ impl<S: Scalar> Segment<S> {
         if along(far) < along(near) {
             (near, far) = (far, near);
         }
-        let start = if along(near) > S::ZERO {
-            near
-        } else {
-            self.start
-        };
+        let start = if along(near) > S::ZERO { near } else { self.start };
         let end = if along(far) < rr { far } else { self.end };
         let (a, b) = (along(start), along(end));
         if a > b {
@@ -335,9 +322,7 @@ impl<'a, S: Scalar> Polyline<'a, S> {
 
     /// Distance from `p` to the nearest point of the polyline; `None` without segments.
     pub fn distance_to_point(&self, p: Point<S>) -> Option<S> {
-        self.segments()
-            .map(|s| s.distance_to_point(p))
-            .reduce(S::min)
+        self.segments().map(|s| s.distance_to_point(p)).reduce(S::min)
     }
 
     /// The first point where `path` meets the polyline, going from `path.start` (ties: the
@@ -348,12 +333,8 @@ impl<'a, S: Scalar> Polyline<'a, S> {
         for (index, segment) in self.segments().enumerate() {
             let hit = match path.intersect(segment) {
                 Intersection::None => continue,
-                Intersection::Point {
-                    point, along_first, ..
-                } => (index, along_first, point),
-                Intersection::Overlap { start, .. } => {
-                    (index, path.closest_parameter(start), start)
-                }
+                Intersection::Point { point, along_first, .. } => (index, along_first, point),
+                Intersection::Overlap { start, .. } => (index, path.closest_parameter(start), start),
             };
             if best.is_none_or(|b| hit.1 < b.1) {
                 best = Some(hit);
@@ -374,21 +355,14 @@ mod tests {
         Segment::new(p(a.0, a.1), p(b.0, b.1))
     }
     fn hit(point: Point<f32>, t: f32, u: f32) -> Intersection<f32> {
-        Intersection::Point {
-            point,
-            along_first: t,
-            along_second: u,
-        }
+        Intersection::Point { point, along_first: t, along_second: u }
     }
 
     #[test]
     fn crossing_segments_meet_inside() {
         let i = seg((0.0, 0.0), (2.0, 2.0)).intersect(seg((0.0, 2.0), (2.0, 0.0)));
         assert_eq!(i, hit(p(1.0, 1.0), 0.5, 0.5));
-        assert_eq!(
-            seg((0.0, 0.0), (1.0, 0.0)).intersect(seg((2.0, -1.0), (2.0, 1.0))),
-            Intersection::None
-        );
+        assert_eq!(seg((0.0, 0.0), (1.0, 0.0)).intersect(seg((2.0, -1.0), (2.0, 1.0))), Intersection::None);
     }
 
     #[test]
@@ -410,9 +384,7 @@ mod tests {
         let stem = Segment::new(p(0.3, 0.0), p(0.3, 0.9));
         let bar = Segment::new(p(-1.0, 0.9), p(1.0, 0.9));
         match stem.intersect(bar) {
-            Intersection::Point {
-                point, along_first, ..
-            } => {
+            Intersection::Point { point, along_first, .. } => {
                 assert_eq!(point, stem.end);
                 assert_eq!(along_first, 1.0);
             }
@@ -424,60 +396,30 @@ mod tests {
     fn parallel_and_collinear_cases() {
         let base = seg((0.0, 0.0), (4.0, 0.0));
         // Parallel on another line.
-        assert_eq!(
-            base.intersect(seg((0.0, 1.0), (4.0, 1.0))),
-            Intersection::None
-        );
+        assert_eq!(base.intersect(seg((0.0, 1.0), (4.0, 1.0))), Intersection::None);
         // Collinear, disjoint.
-        assert_eq!(
-            base.intersect(seg((5.0, 0.0), (6.0, 0.0))),
-            Intersection::None
-        );
+        assert_eq!(base.intersect(seg((5.0, 0.0), (6.0, 0.0))), Intersection::None);
         // Collinear, touching at one endpoint.
-        assert_eq!(
-            base.intersect(seg((4.0, 0.0), (6.0, 0.0))),
-            hit(p(4.0, 0.0), 1.0, 0.0)
-        );
+        assert_eq!(base.intersect(seg((4.0, 0.0), (6.0, 0.0))), hit(p(4.0, 0.0), 1.0, 0.0));
         // Collinear overlap, either direction of the second segment.
-        let overlap = Intersection::Overlap {
-            start: p(1.0, 0.0),
-            end: p(4.0, 0.0),
-        };
+        let overlap = Intersection::Overlap { start: p(1.0, 0.0), end: p(4.0, 0.0) };
         assert_eq!(base.intersect(seg((1.0, 0.0), (6.0, 0.0))), overlap);
         assert_eq!(base.intersect(seg((6.0, 0.0), (1.0, 0.0))), overlap);
         // One inside the other.
         assert_eq!(
             base.intersect(seg((3.0, 0.0), (2.0, 0.0))),
-            Intersection::Overlap {
-                start: p(2.0, 0.0),
-                end: p(3.0, 0.0)
-            }
+            Intersection::Overlap { start: p(2.0, 0.0), end: p(3.0, 0.0) }
         );
         // Identical.
-        assert_eq!(
-            base.intersect(base),
-            Intersection::Overlap {
-                start: base.start,
-                end: base.end
-            }
-        );
+        assert_eq!(base.intersect(base), Intersection::Overlap { start: base.start, end: base.end });
     }
 
     #[test]
     fn degenerate_segments_are_points() {
         let point = seg((1.0, 1.0), (1.0, 1.0));
-        assert_eq!(
-            point.intersect(seg((0.0, 0.0), (2.0, 2.0))),
-            hit(p(1.0, 1.0), 0.0, 0.5)
-        );
-        assert_eq!(
-            point.intersect(seg((0.0, 1.5), (2.0, 1.5))),
-            Intersection::None
-        );
-        assert_eq!(
-            seg((0.0, 0.0), (2.0, 2.0)).intersect(point),
-            hit(p(1.0, 1.0), 0.5, 0.0)
-        );
+        assert_eq!(point.intersect(seg((0.0, 0.0), (2.0, 2.0))), hit(p(1.0, 1.0), 0.0, 0.5));
+        assert_eq!(point.intersect(seg((0.0, 1.5), (2.0, 1.5))), Intersection::None);
+        assert_eq!(seg((0.0, 0.0), (2.0, 2.0)).intersect(point), hit(p(1.0, 1.0), 0.5, 0.0));
         assert_eq!(point.intersect(point), hit(p(1.0, 1.0), 0.0, 0.0));
     }
 
@@ -488,10 +430,7 @@ mod tests {
         assert_eq!(s.distance_to_point(p(-3.0, 4.0)), 5.0);
         assert_eq!(s.distance_to_point(p(7.0, -4.0)), 5.0);
         assert_eq!(s.distance_to_point(p(1.5, 0.0)), 0.0);
-        assert_eq!(
-            seg((1.0, 1.0), (1.0, 1.0)).distance_to_point(p(4.0, 5.0)),
-            5.0
-        );
+        assert_eq!(seg((1.0, 1.0), (1.0, 1.0)).distance_to_point(p(4.0, 5.0)), 5.0);
         assert!(s.contains(p(4.0, 0.0)) && !s.contains(p(4.5, 0.0)) && !s.contains(p(2.0, 0.1)));
     }
 
@@ -501,10 +440,7 @@ mod tests {
         let line = Polyline::new(&points);
         assert_eq!(line.length(), 10.0);
         assert_eq!(line.distance_to_point(p(1.0, 1.0)), Some(1.0));
-        assert_eq!(
-            Polyline::<f32>::new(&points[..1]).distance_to_point(p(0.0, 0.0)),
-            None
-        );
+        assert_eq!(Polyline::<f32>::new(&points[..1]).distance_to_point(p(0.0, 0.0)), None);
         // A path crossing two segments reports the one nearer its start.
         let path = seg((4.0, 3.0), (-1.0, -2.0));
         let (index, t, point) = line.first_hit(path).unwrap();
@@ -533,15 +469,8 @@ mod tests {
         let b = Segment::new(q(0.0, 2.0), q(2.0, 0.0));
         assert_eq!(
             a.intersect(b),
-            Intersection::Point {
-                point: q(1.0, 1.0),
-                along_first: Q16::HALF,
-                along_second: Q16::HALF
-            }
+            Intersection::Point { point: q(1.0, 1.0), along_first: Q16::HALF, along_second: Q16::HALF }
         );
-        assert_eq!(
-            Segment::new(q(0.0, 0.0), q(4.0, 0.0)).distance_to_point(q(2.0, 3.0)),
-            Q16::from_i32(3)
-        );
+        assert_eq!(Segment::new(q(0.0, 0.0), q(4.0, 0.0)).distance_to_point(q(2.0, 3.0)), Q16::from_i32(3));
     }
 }

@@ -123,9 +123,7 @@ impl Rng {
     /// identity, a cell's index) or chosen by a C caller. Xoshiro128++ is seeded by SplitMix64
     /// from `seed ^ mix64(key)`.
     pub fn from_key(seed: u64, key: u64) -> Self {
-        Rng {
-            generator: Xoshiro128PlusPlus::seed_from_u64(seed ^ mix64(key)),
-        }
+        Rng { generator: Xoshiro128PlusPlus::seed_from_u64(seed ^ mix64(key)) }
     }
 
     /// The next 32 raw bits.
@@ -245,16 +243,8 @@ mod tests {
         let n = f64::from(n);
         let mean_se = libm::sqrt(variance / n);
         let var_se = libm::sqrt((mu4 - variance * variance) / n);
-        assert!(
-            (sample.0 - mean).abs() < 4.0 * mean_se,
-            "mean {} vs {mean} (se {mean_se})",
-            sample.0
-        );
-        assert!(
-            (sample.1 - variance).abs() < 4.0 * var_se,
-            "variance {} vs {variance} (se {var_se})",
-            sample.1
-        );
+        assert!((sample.0 - mean).abs() < 4.0 * mean_se, "mean {} vs {mean} (se {mean_se})", sample.0);
+        assert!((sample.1 - variance).abs() < 4.0 * var_se, "variance {} vs {variance} (se {var_se})", sample.1);
     }
 
     const DRAWS: u32 = 100_000;
@@ -268,10 +258,7 @@ mod tests {
             }
         }
         assert_eq!(first, Stream::ALL.map(|s| Rng::new(7, s).next_u32()));
-        assert_ne!(
-            Rng::new(7, Stream::CrackSpeed),
-            Rng::new(8, Stream::CrackSpeed)
-        );
+        assert_ne!(Rng::new(7, Stream::CrackSpeed), Rng::new(8, Stream::CrackSpeed));
     }
 
     #[test]
@@ -350,17 +337,8 @@ mod tests {
             assert_moments(DRAWS, sample, f64::from(x), variance, mu4);
         }
         let mut rng = Rng::new(9, Stream::CrackSpeed);
-        assert_eq!(
-            rng.rand(1.0, 1.0, Spread::Uniform),
-            Err(RngError::RandArgument)
-        );
-        assert_eq!(
-            rng.rand(1.0, -0.1, Spread::Normal),
-            Err(RngError::RandArgument)
-        );
-        assert_eq!(
-            rng.rand(f32::NAN, 0.3, Spread::Normal),
-            Err(RngError::RandArgument)
-        );
+        assert_eq!(rng.rand(1.0, 1.0, Spread::Uniform), Err(RngError::RandArgument));
+        assert_eq!(rng.rand(1.0, -0.1, Spread::Normal), Err(RngError::RandArgument));
+        assert_eq!(rng.rand(f32::NAN, 0.3, Spread::Normal), Err(RngError::RandArgument));
     }
 }

@@ -169,11 +169,7 @@ impl Scalar for micromath::F32 {
     fn sqrt(self) -> Self {
         // micromath's bit-trick sqrt is off by up to 6 %, too coarse for spring lengths;
         // IEEE sqrt is correctly rounded, deterministic and cheap.
-        if self.0 > 0.0 {
-            micromath::F32(libm::sqrtf(self.0))
-        } else {
-            Self::ZERO
-        }
+        if self.0 > 0.0 { micromath::F32(libm::sqrtf(self.0)) } else { Self::ZERO }
     }
     fn sin(self) -> Self {
         micromath::F32::sin(self)
@@ -209,21 +205,11 @@ pub(crate) mod tests {
     pub(crate) fn check_backend<S: Scalar>(bounds: &Bounds) {
         let close = |name: &str, x: f64, got: S, want: f64, bound: f64| {
             let err = (f64::from(got.to_f32()) - want).abs();
-            assert!(
-                err <= bound,
-                "{name}({x}) = {:?}, want {want}, error {err} > {bound}",
-                got
-            );
+            assert!(err <= bound, "{name}({x}) = {:?}, want {want}, error {err} > {bound}", got);
         };
         let s = |x: f64| S::from_f32(x as f32);
         for x in grid(0.0, 100.0, 2000) {
-            close(
-                "sqrt",
-                x,
-                s(x).sqrt(),
-                libm::sqrt(x),
-                bounds.sqrt * (1.0 + libm::sqrt(x)),
-            );
+            close("sqrt", x, s(x).sqrt(), libm::sqrt(x), bounds.sqrt * (1.0 + libm::sqrt(x)));
         }
         assert_eq!(s(-4.0).sqrt(), S::ZERO);
         for x in grid(-20.0, 20.0, 4000) {
@@ -235,13 +221,7 @@ pub(crate) mod tests {
                 if x == 0.0 && y == 0.0 {
                     continue;
                 }
-                close(
-                    "atan2",
-                    y,
-                    s(y).atan2(s(x)),
-                    libm::atan2(y, x),
-                    bounds.atan2,
-                );
+                close("atan2", y, s(y).atan2(s(x)), libm::atan2(y, x), bounds.atan2);
             }
         }
         assert_eq!(S::ZERO.atan2(S::ZERO), S::ZERO);
@@ -254,20 +234,8 @@ pub(crate) mod tests {
         }
         for (a, b) in [(1.5, -2.25), (-3.0, 0.125), (7.0, 7.0)] {
             close("add", a, s(a) + s(b), a + b, bounds.arith);
-            close(
-                "mul",
-                a,
-                s(a) * s(b),
-                a * b,
-                bounds.arith * (1.0 + (a * b).abs()),
-            );
-            close(
-                "div",
-                a,
-                s(a) / s(b),
-                a / b,
-                bounds.arith * (1.0 + (a / b).abs()),
-            );
+            close("mul", a, s(a) * s(b), a * b, bounds.arith * (1.0 + (a * b).abs()));
+            close("div", a, s(a) / s(b), a / b, bounds.arith * (1.0 + (a / b).abs()));
             close("min", a, s(a).min(s(b)), a.min(b), 0.0);
             close("max", a, s(a).max(s(b)), a.max(b), 0.0);
             close("abs", a, s(a).abs(), a.abs(), 0.0);
@@ -299,13 +267,7 @@ pub(crate) mod tests {
 
     #[test]
     fn f32_libm_backend_is_within_a_few_ulps() {
-        check_backend::<f32>(&Bounds {
-            arith: 1e-6,
-            sqrt: 1e-7,
-            trig: 2e-6,
-            atan2: 1e-6,
-            exp: 1e-6,
-        });
+        check_backend::<f32>(&Bounds { arith: 1e-6, sqrt: 1e-7, trig: 2e-6, atan2: 1e-6, exp: 1e-6 });
     }
 
     #[test]
@@ -322,12 +284,6 @@ pub(crate) mod tests {
     #[cfg(feature = "micromath")]
     #[test]
     fn micromath_backend_is_within_its_documented_approximation() {
-        check_backend::<micromath::F32>(&Bounds {
-            arith: 1e-6,
-            sqrt: 1e-7,
-            trig: 1.5e-3,
-            atan2: 4e-3,
-            exp: 1.5e-3,
-        });
+        check_backend::<micromath::F32>(&Bounds { arith: 1e-6, sqrt: 1e-7, trig: 1.5e-3, atan2: 4e-3, exp: 1.5e-3 });
     }
 }

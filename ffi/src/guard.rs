@@ -9,12 +9,12 @@ use core::mem::{align_of, size_of};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use crate::status::{
-    HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_PANIC, HIBI_ERROR_SIZE_OVERFLOW,
-    HIBI_OK, hibi_status, message,
+    HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_PANIC, HIBI_ERROR_SIZE_OVERFLOW, HIBI_OK, hibi_status,
+    message,
 };
 
 /// What an exported function's body gives back, and what C sees instead if it panics.
-pub(crate) trait Outcome {
+pub trait Outcome {
     /// The C return type.
     type C;
     /// The value C sees on success.
@@ -110,10 +110,7 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize) -> Result<&'a mut [T
         return Ok(&mut []);
     }
     check_pointer(ptr)?;
-    if len
-        .checked_mul(size_of::<T>())
-        .is_none_or(|bytes| bytes > isize::MAX as usize)
-    {
+    if len.checked_mul(size_of::<T>()).is_none_or(|bytes| bytes > isize::MAX as usize) {
         return Err(HIBI_ERROR_SIZE_OVERFLOW);
     }
     // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
@@ -130,10 +127,7 @@ mod tests {
         let status = guard(|| -> Result<(), hibi_status> { panic!("deliberate") });
         assert_eq!(status, HIBI_ERROR_PANIC);
         assert_eq!(guard(|| -> usize { panic!("deliberate") }), 0);
-        assert_eq!(
-            guard(|| Err(HIBI_ERROR_BUFFER_TOO_SMALL)),
-            HIBI_ERROR_BUFFER_TOO_SMALL
-        );
+        assert_eq!(guard(|| Err(HIBI_ERROR_BUFFER_TOO_SMALL)), HIBI_ERROR_BUFFER_TOO_SMALL);
         assert_eq!(guard(|| Ok(())), HIBI_OK);
     }
 
@@ -141,25 +135,13 @@ mod tests {
     fn pointer_checks_name_the_problem() {
         let mut words = [0u32; 4];
         let base = words.as_mut_ptr();
-        assert_eq!(
-            check_pointer(core::ptr::null::<u32>()),
-            Err(HIBI_ERROR_NULL_POINTER)
-        );
-        assert_eq!(
-            check_pointer(base.cast::<u8>().wrapping_add(1).cast::<u32>()),
-            Err(HIBI_ERROR_MISALIGNED)
-        );
+        assert_eq!(check_pointer(core::ptr::null::<u32>()), Err(HIBI_ERROR_NULL_POINTER));
+        assert_eq!(check_pointer(base.cast::<u8>().wrapping_add(1).cast::<u32>()), Err(HIBI_ERROR_MISALIGNED));
         assert_eq!(check_pointer(base), Ok(()));
         // SAFETY: a null pointer with length 0 is the empty buffer; no access happens.
-        assert_eq!(
-            unsafe { buffer(core::ptr::null_mut::<u32>(), 0) }.map(|b| b.len()),
-            Ok(0)
-        );
+        assert_eq!(unsafe { buffer(core::ptr::null_mut::<u32>(), 0) }.map(|b| b.len()), Ok(0));
         // SAFETY: the checks fail before any access.
-        assert_eq!(
-            unsafe { buffer(base, usize::MAX / 2) }.err(),
-            Some(HIBI_ERROR_SIZE_OVERFLOW)
-        );
+        assert_eq!(unsafe { buffer(base, usize::MAX / 2) }.err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
         // SAFETY: `words` is valid for 4 u32.
         assert_eq!(unsafe { buffer(base, 4) }.map(|b| b.len()), Ok(4));
     }

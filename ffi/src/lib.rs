@@ -18,18 +18,16 @@ use core::ffi::c_char;
 
 mod guard;
 mod memory;
+pub mod mud;
 pub mod rng;
 pub mod status;
 
+pub use mud::*;
 pub use rng::*;
 pub use status::*;
 
 /// The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_version() -> *const c_char {
-    guard::guard(|| {
-        concat!(env!("CARGO_PKG_VERSION"), "\0")
-            .as_ptr()
-            .cast::<c_char>()
-    })
+    guard::guard(|| concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast::<c_char>())
 }

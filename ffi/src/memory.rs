@@ -1,67 +1,69 @@
 //! Where C-held objects live: in memory the library allocates (`*_create` / `*_destroy`) or
 //! in memory the caller hands in (`*_memory_size` + `*_create_in`), as engines with their own
-//! allocators need.
+//! allocators need. An object is a header (the Rust value) followed, for the models, by the
+//! arrays it computes in, all in one block.
 
 use core::ffi::c_void;
-use core::mem::size_of;
 use std::alloc::{Layout, alloc, dealloc};
 
-use crate::guard::check_pointer;
-use crate::status::{HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_OUT_OF_MEMORY, hibi_status};
+use crate::status::{
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_OUT_OF_MEMORY,
+    HIBI_ERROR_SIZE_OVERFLOW, hibi_status,
+};
 
-/// Who owns an object's memory, recorded in the object so that `*_destroy` frees only what
+/// Who owns an object's block, recorded in the object so that `*_destroy` frees only what
 /// the library allocated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Origin {
-    /// Allocated by `*_create`; `*_destroy` frees it.
-    Library,
+    /// Allocated by `*_create` with this size and alignment; `*_destroy` frees it.
+    Library {
+        /// Block size in bytes.
+        size: usize,
+        /// Block alignment in bytes.
+        align: usize,
+    },
     /// Placed in caller memory by `*_create_in`; `*_destroy` only drops it.
     Caller,
 }
 
-/// Moves `value` into caller memory, checking pointer, alignment and length first.
-///
-/// # Safety
-/// A non-null `memory` must be valid for writes of `memory_len` bytes and stay untouched by
-/// the caller while the object lives.
-pub(crate) unsafe fn place_in<T>(
-    memory: *mut c_void,
-    memory_len: usize,
-    value: T,
-) -> Result<*mut T, hibi_status> {
-    let ptr = memory.cast::<T>();
-    check_pointer(ptr)?;
-    if memory_len < size_of::<T>() {
+/// Checks caller memory for a block of `size` bytes aligned to `align`.
+pub(crate) fn caller_block(memory: *mut c_void, len: usize, size: usize, align: usize) -> Result<*mut u8, hibi_status> {
+    let ptr = memory.cast::<u8>();
+    if ptr.is_null() {
+        return Err(HIBI_ERROR_NULL_POINTER);
+    }
+    if ptr.align_offset(align) != 0 {
+        return Err(HIBI_ERROR_MISALIGNED);
+    }
+    if len < size {
         return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
     }
-    // SAFETY: non-null, aligned, long enough (checked); validity is the caller's contract.
-    unsafe { ptr.write(value) };
     Ok(ptr)
 }
 
-/// Moves `value` into memory the library allocates; `HIBI_ERROR_OUT_OF_MEMORY` if it can't.
-pub(crate) fn place_new<T>(value: T) -> Result<*mut T, hibi_status> {
-    let layout = Layout::new::<T>();
-    // SAFETY: every object type placed here has a non-zero size.
-    let ptr = unsafe { alloc(layout) }.cast::<T>();
+/// Allocates a block; the origin to record in the object placed there.
+pub(crate) fn library_block(size: usize, align: usize) -> Result<(*mut u8, Origin), hibi_status> {
+    let layout = Layout::from_size_align(size.max(1), align).map_err(|_| HIBI_ERROR_SIZE_OVERFLOW)?;
+    // SAFETY: the layout has a non-zero size.
+    let ptr = unsafe { alloc(layout) };
     if ptr.is_null() {
         return Err(HIBI_ERROR_OUT_OF_MEMORY);
     }
-    // SAFETY: freshly allocated with T's layout.
-    unsafe { ptr.write(value) };
-    Ok(ptr)
+    Ok((ptr, Origin::Library { size: size.max(1), align }))
 }
 
-/// Drops the object, and frees its memory if the library allocated it.
+/// Frees a block allocated by [`library_block`] if `origin` says so; nothing for caller memory.
 ///
 /// # Safety
-/// `ptr` must come from [`place_new`] or [`place_in`] with `origin` recorded truthfully, and
-/// must not be used afterwards.
-pub(crate) unsafe fn release<T>(ptr: *mut T, origin: Origin) {
-    // SAFETY: the caller's contract: a live object made by place_new or place_in.
-    unsafe { ptr.drop_in_place() };
-    if origin == Origin::Library {
-        // SAFETY: allocated by place_new with this layout.
-        unsafe { dealloc(ptr.cast(), Layout::new::<T>()) };
+/// `ptr` must be the start of a block whose origin is `origin`, not used afterwards.
+pub(crate) unsafe fn release_block(ptr: *mut u8, origin: Origin) {
+    if let Origin::Library { size, align } = origin {
+        // SAFETY: allocated by library_block with this size and alignment (the caller's contract).
+        unsafe { dealloc(ptr, Layout::from_size_align_unchecked(size, align)) };
     }
+}
+
+/// `size` rounded up to a multiple of `align` (a power of two).
+pub(crate) const fn round_up(size: usize, align: usize) -> usize {
+    (size + align - 1) & !(align - 1)
 }

@@ -7,16 +7,14 @@ use core::mem::{align_of, size_of};
 use hibi_core::{Rng, Spread};
 
 use crate::guard::{buffer, guard, object, write_out};
-use crate::memory::{Origin, place_in, place_new, release};
+use crate::memory::{Origin, caller_block, library_block, release_block};
 use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, rng_status};
 
 /// `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
 pub const HIBI_SPREAD_UNIFORM: u32 = 0;
 /// `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
 pub const HIBI_SPREAD_NORMAL: u32 = 1;
-const _: () = assert!(
-    HIBI_SPREAD_UNIFORM == Spread::Uniform as u32 && HIBI_SPREAD_NORMAL == Spread::Normal as u32
-);
+const _: () = assert!(HIBI_SPREAD_UNIFORM == Spread::Uniform as u32 && HIBI_SPREAD_NORMAL == Spread::Normal as u32);
 
 /// A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
 pub struct hibi_rng {
@@ -42,17 +40,13 @@ pub extern "C" fn hibi_rng_memory_align() -> usize {
 /// # Safety
 /// `out` must be NULL or valid for writing a pointer.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_rng_create(
-    seed: u64,
-    stream: u64,
-    out: *mut *mut hibi_rng,
-) -> hibi_status {
+pub unsafe extern "C" fn hibi_rng_create(seed: u64, stream: u64, out: *mut *mut hibi_rng) -> hibi_status {
     guard(|| {
         crate::guard::check_pointer(out)?;
-        let rng = place_new(hibi_rng {
-            rng: Rng::from_key(seed, stream),
-            origin: Origin::Library,
-        })?;
+        let (block, origin) = library_block(size_of::<hibi_rng>(), align_of::<hibi_rng>())?;
+        let rng = block.cast::<hibi_rng>();
+        // SAFETY: a fresh block sized and aligned for hibi_rng.
+        unsafe { rng.write(hibi_rng { rng: Rng::from_key(seed, stream), origin }) };
         // SAFETY: checked above; the caller's contract.
         unsafe { write_out(out, rng) }
     })
@@ -75,12 +69,10 @@ pub unsafe extern "C" fn hibi_rng_create_in(
 ) -> hibi_status {
     guard(|| {
         crate::guard::check_pointer(out)?;
-        let value = hibi_rng {
-            rng: Rng::from_key(seed, stream),
-            origin: Origin::Caller,
-        };
-        // SAFETY: the caller's contract on `memory`.
-        let rng = unsafe { place_in(memory, memory_len, value) }?;
+        let block = caller_block(memory, memory_len, size_of::<hibi_rng>(), align_of::<hibi_rng>())?;
+        let rng = block.cast::<hibi_rng>();
+        // SAFETY: checked non-null, aligned and long enough; the caller's contract.
+        unsafe { rng.write(hibi_rng { rng: Rng::from_key(seed, stream), origin: Origin::Caller }) };
         // SAFETY: checked above; the caller's contract.
         unsafe { write_out(out, rng) }
     })
@@ -96,8 +88,11 @@ pub unsafe extern "C" fn hibi_rng_destroy(rng: *mut hibi_rng) {
         // SAFETY: the caller's contract.
         if let Ok(live) = unsafe { object(rng) } {
             let origin = live.origin;
-            // SAFETY: made by place_new or place_in with this origin.
-            unsafe { release(rng, origin) };
+            // SAFETY: a live object made by hibi_rng_create or hibi_rng_create_in.
+            unsafe {
+                rng.drop_in_place();
+                release_block(rng.cast(), origin);
+            }
         }
     })
 }
@@ -122,11 +117,7 @@ pub unsafe extern "C" fn hibi_rng_next_u32(rng: *mut hibi_rng, out: *mut u32) ->
 /// # Safety
 /// `rng` must be NULL or a live stream; `values` NULL (only with `len` 0) or valid for `len` floats.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_rng_uniform(
-    rng: *mut hibi_rng,
-    values: *mut f32,
-    len: usize,
-) -> hibi_status {
+pub unsafe extern "C" fn hibi_rng_uniform(rng: *mut hibi_rng, values: *mut f32, len: usize) -> hibi_status {
     // SAFETY: the caller's contract, passed on.
     unsafe { fill(rng, values, len, Rng::uniform_f32) }
 }
@@ -136,11 +127,7 @@ pub unsafe extern "C" fn hibi_rng_uniform(
 /// # Safety
 /// As `hibi_rng_uniform`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_rng_normal(
-    rng: *mut hibi_rng,
-    values: *mut f32,
-    len: usize,
-) -> hibi_status {
+pub unsafe extern "C" fn hibi_rng_normal(rng: *mut hibi_rng, values: *mut f32, len: usize) -> hibi_status {
     // SAFETY: the caller's contract, passed on.
     unsafe { fill(rng, values, len, Rng::normal_f32) }
 }
@@ -149,12 +136,7 @@ pub unsafe extern "C" fn hibi_rng_normal(
 ///
 /// # Safety
 /// As `hibi_rng_uniform`.
-unsafe fn fill(
-    rng: *mut hibi_rng,
-    values: *mut f32,
-    len: usize,
-    draw: fn(&mut Rng) -> f32,
-) -> hibi_status {
+unsafe fn fill(rng: *mut hibi_rng, values: *mut f32, len: usize, draw: fn(&mut Rng) -> f32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let (rng, values) = unsafe { (object(rng)?, buffer(values, len)?) };
@@ -168,11 +150,7 @@ unsafe fn fill(
 /// # Safety
 /// `rng` must be NULL or a live stream; `out` NULL or valid for a write.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_rng_poisson(
-    rng: *mut hibi_rng,
-    mean: f64,
-    out: *mut u32,
-) -> hibi_status {
+pub unsafe extern "C" fn hibi_rng_poisson(rng: *mut hibi_rng, mean: f64, out: *mut u32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let rng = unsafe { object(rng) }?;
@@ -189,13 +167,7 @@ pub unsafe extern "C" fn hibi_rng_poisson(
 /// # Safety
 /// `rng` must be NULL or a live stream; `out` NULL or valid for a write.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_rng_rand(
-    rng: *mut hibi_rng,
-    x: f32,
-    z: f32,
-    spread: u32,
-    out: *mut f32,
-) -> hibi_status {
+pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, spread: u32, out: *mut f32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let rng = unsafe { object(rng) }?;
@@ -235,22 +207,10 @@ mod tests {
         unsafe {
             assert_eq!(hibi_rng_next_u32(rng, &mut bits), HIBI_OK);
             assert_eq!(bits, core.next_u32());
-            assert_eq!(
-                hibi_rng_uniform(rng, values.as_mut_ptr(), values.len()),
-                HIBI_OK
-            );
-            assert_eq!(
-                values,
-                core::array::from_fn::<f32, 5, _>(|_| core.uniform_f32())
-            );
-            assert_eq!(
-                hibi_rng_normal(rng, values.as_mut_ptr(), values.len()),
-                HIBI_OK
-            );
-            assert_eq!(
-                values,
-                core::array::from_fn::<f32, 5, _>(|_| core.normal_f32())
-            );
+            assert_eq!(hibi_rng_uniform(rng, values.as_mut_ptr(), values.len()), HIBI_OK);
+            assert_eq!(values, core::array::from_fn::<f32, 5, _>(|_| core.uniform_f32()));
+            assert_eq!(hibi_rng_normal(rng, values.as_mut_ptr(), values.len()), HIBI_OK);
+            assert_eq!(values, core::array::from_fn::<f32, 5, _>(|_| core.normal_f32()));
             hibi_rng_destroy(rng);
         }
     }
@@ -262,34 +222,16 @@ mod tests {
         let mut value = -1.0f32;
         // SAFETY: live stream; the failing calls are rejected before any access.
         unsafe {
-            assert_eq!(
-                hibi_rng_poisson(rng, f64::NAN, &mut count),
-                HIBI_ERROR_POISSON_MEAN
-            );
-            assert_eq!(
-                hibi_rng_poisson(rng, 1e7, &mut count),
-                HIBI_ERROR_POISSON_MEAN
-            );
+            assert_eq!(hibi_rng_poisson(rng, f64::NAN, &mut count), HIBI_ERROR_POISSON_MEAN);
+            assert_eq!(hibi_rng_poisson(rng, 1e7, &mut count), HIBI_ERROR_POISSON_MEAN);
             assert_eq!(count, 77);
-            assert_eq!(
-                hibi_rng_rand(rng, 1.0, 1.5, HIBI_SPREAD_UNIFORM, &mut value),
-                HIBI_ERROR_RAND_ARGUMENT
-            );
-            assert_eq!(
-                hibi_rng_rand(rng, 1.0, 0.5, 2, &mut value),
-                HIBI_ERROR_BAD_ENUM
-            );
+            assert_eq!(hibi_rng_rand(rng, 1.0, 1.5, HIBI_SPREAD_UNIFORM, &mut value), HIBI_ERROR_RAND_ARGUMENT);
+            assert_eq!(hibi_rng_rand(rng, 1.0, 0.5, 2, &mut value), HIBI_ERROR_BAD_ENUM);
             assert_eq!(value, -1.0);
-            assert_eq!(
-                hibi_rng_uniform(rng, null_mut(), 4),
-                HIBI_ERROR_NULL_POINTER
-            );
+            assert_eq!(hibi_rng_uniform(rng, null_mut(), 4), HIBI_ERROR_NULL_POINTER);
             assert_eq!(hibi_rng_uniform(rng, null_mut(), 0), HIBI_OK);
             assert_eq!(hibi_rng_next_u32(rng, null_mut()), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(
-                hibi_rng_next_u32(null_mut(), &mut count),
-                HIBI_ERROR_NULL_POINTER
-            );
+            assert_eq!(hibi_rng_next_u32(null_mut(), &mut count), HIBI_ERROR_NULL_POINTER);
             assert_eq!(hibi_rng_create(0, 0, null_mut()), HIBI_ERROR_NULL_POINTER);
             hibi_rng_destroy(rng);
             hibi_rng_destroy(null_mut());
@@ -306,19 +248,10 @@ mod tests {
         // SAFETY: `memory` outlives the stream; failing calls are rejected before any access.
         unsafe {
             let size = hibi_rng_memory_size();
-            assert_eq!(
-                hibi_rng_create_in(5, 6, null_mut(), size, &mut out),
-                HIBI_ERROR_NULL_POINTER
-            );
-            assert_eq!(
-                hibi_rng_create_in(5, 6, base, size - 1, &mut out),
-                HIBI_ERROR_BUFFER_TOO_SMALL
-            );
+            assert_eq!(hibi_rng_create_in(5, 6, null_mut(), size, &mut out), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_rng_create_in(5, 6, base, size - 1, &mut out), HIBI_ERROR_BUFFER_TOO_SMALL);
             let odd = base.cast::<u8>().add(1).cast::<c_void>();
-            assert_eq!(
-                hibi_rng_create_in(5, 6, odd, size, &mut out),
-                HIBI_ERROR_MISALIGNED
-            );
+            assert_eq!(hibi_rng_create_in(5, 6, odd, size, &mut out), HIBI_ERROR_MISALIGNED);
             assert!(out.is_null());
             assert_eq!(hibi_rng_create_in(5, 6, base, size, &mut out), HIBI_OK);
             assert_eq!(out.cast::<c_void>(), base);
@@ -344,11 +277,7 @@ mod tests {
             HIBI_ERROR_RAND_ARGUMENT,
         ];
         // SAFETY: hibi_status_string returns static NUL-terminated strings.
-        let text = |code| {
-            unsafe { CStr::from_ptr(hibi_status_string(code)) }
-                .to_str()
-                .unwrap()
-        };
+        let text = |code| unsafe { CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
         for (i, a) in codes.iter().enumerate() {
             assert_ne!(text(*a), "unknown status code");
             for b in &codes[i + 1..] {

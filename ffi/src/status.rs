@@ -3,6 +3,8 @@
 use core::ffi::{CStr, c_char};
 
 use hibi_core::RngError;
+use hibi_core::mud::MudParamError;
+use hibi_core::raster::RasterError;
 
 use crate::guard::guard;
 
@@ -32,6 +34,135 @@ pub const HIBI_ERROR_POISSON_MEAN: hibi_status = 256;
 /// `hibi_rng_rand`: x is not finite or z is outside [0, 1).
 pub const HIBI_ERROR_RAND_ARGUMENT: hibi_status = 257;
 
+/// Mud parameters: `columns` must be >= 2 (>= 3 when periodic).
+pub const HIBI_ERROR_MUD_COLUMNS: hibi_status = 512;
+/// Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal).
+pub const HIBI_ERROR_MUD_ROWS: hibi_status = 513;
+/// Mud parameters: `layer_thickness` (H) must be finite and > 0.
+pub const HIBI_ERROR_MUD_LAYER_THICKNESS: hibi_status = 514;
+/// Mud parameters: `element_size` (W) must be finite and > 0.
+pub const HIBI_ERROR_MUD_ELEMENT_SIZE: hibi_status = 515;
+/// Mud parameters: `long_step` (T) must be finite and > 0.
+pub const HIBI_ERROR_MUD_LONG_STEP: hibi_status = 516;
+/// Mud parameters: `short_step` (τ) must be finite and > 0.
+pub const HIBI_ERROR_MUD_SHORT_STEP: hibi_status = 517;
+/// Mud parameters: `shrink_ratio` (γ) must be within (0, 1].
+pub const HIBI_ERROR_MUD_SHRINK_RATIO: hibi_status = 518;
+/// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
+pub const HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: hibi_status = 519;
+/// Mud parameters: `damping_factor` (α) must be finite and > 0.
+pub const HIBI_ERROR_MUD_DAMPING_FACTOR: hibi_status = 520;
+/// Mud parameters: `density` (ρ) must be finite and > 0.
+pub const HIBI_ERROR_MUD_DENSITY: hibi_status = 521;
+/// Mud parameters: `young_modulus` (E) must be finite and > 0.
+pub const HIBI_ERROR_MUD_YOUNG_MODULUS: hibi_status = 522;
+/// Mud parameters: `shear_modulus` (G) must be finite and > 0.
+pub const HIBI_ERROR_MUD_SHEAR_MODULUS: hibi_status = 523;
+/// Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
+pub const HIBI_ERROR_MUD_BREAK_STRETCH_MEAN: hibi_status = 524;
+/// Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
+pub const HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD: hibi_status = 525;
+/// Mud parameters: `anisotropy_direction` must be finite.
+pub const HIBI_ERROR_MUD_ANISOTROPY_DIRECTION: hibi_status = 526;
+/// Mud parameters: `anisotropy_ratio` must be finite and >= 1.
+pub const HIBI_ERROR_MUD_ANISOTROPY_RATIO: hibi_status = 527;
+/// Mud parameters: `stiffness_anisotropy_ratio` must be finite and >= 1.
+pub const HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO: hibi_status = 528;
+/// Mud parameters: `target_shrink` must be finite and within [0, 1).
+pub const HIBI_ERROR_MUD_TARGET_SHRINK: hibi_status = 529;
+/// Mud parameters: `target_crack_density` must be finite and >= 0.
+pub const HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: hibi_status = 530;
+/// Mud parameters: The lattice is too large: its memory size overflows.
+pub const HIBI_ERROR_MUD_SIZE_OVERFLOW: hibi_status = 531;
+/// Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
+pub const HIBI_ERROR_MUD_SCALE: hibi_status = 532;
+/// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
+pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
+/// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
+pub const HIBI_ERROR_MUD_ENUM: hibi_status = 576;
+/// Render: width and height must be > 0 and their product must fit in memory.
+pub const HIBI_ERROR_RENDER_SIZE: hibi_status = 768;
+/// Render: `width_scale` must be finite and >= 0.
+pub const HIBI_ERROR_RENDER_WIDTH_SCALE: hibi_status = 769;
+/// Render: `min_width` must be finite and >= 0.
+pub const HIBI_ERROR_RENDER_MIN_WIDTH: hibi_status = 770;
+/// Render: `groove_depth` must be finite and >= 0.
+pub const HIBI_ERROR_RENDER_GROOVE_DEPTH: hibi_status = 771;
+/// Render: `offset` must be finite.
+pub const HIBI_ERROR_RENDER_OFFSET: hibi_status = 772;
+/// Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
+pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
+
+const _: () = {
+    assert!(HIBI_ERROR_MUD_COLUMNS == 512 + MudParamError::Columns as u32);
+    assert!(HIBI_ERROR_MUD_ROWS == 512 + MudParamError::Rows as u32);
+    assert!(HIBI_ERROR_MUD_LAYER_THICKNESS == 512 + MudParamError::LayerThickness as u32);
+    assert!(HIBI_ERROR_MUD_ELEMENT_SIZE == 512 + MudParamError::ElementSize as u32);
+    assert!(HIBI_ERROR_MUD_LONG_STEP == 512 + MudParamError::LongStep as u32);
+    assert!(HIBI_ERROR_MUD_SHORT_STEP == 512 + MudParamError::ShortStep as u32);
+    assert!(HIBI_ERROR_MUD_SHRINK_RATIO == 512 + MudParamError::ShrinkRatio as u32);
+    assert!(HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE == 512 + MudParamError::DisplacementTolerance as u32);
+    assert!(HIBI_ERROR_MUD_DAMPING_FACTOR == 512 + MudParamError::DampingFactor as u32);
+    assert!(HIBI_ERROR_MUD_DENSITY == 512 + MudParamError::Density as u32);
+    assert!(HIBI_ERROR_MUD_YOUNG_MODULUS == 512 + MudParamError::YoungModulus as u32);
+    assert!(HIBI_ERROR_MUD_SHEAR_MODULUS == 512 + MudParamError::ShearModulus as u32);
+    assert!(HIBI_ERROR_MUD_BREAK_STRETCH_MEAN == 512 + MudParamError::BreakStretchMean as u32);
+    assert!(HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD == 512 + MudParamError::BreakStretchSpread as u32);
+    assert!(HIBI_ERROR_MUD_ANISOTROPY_DIRECTION == 512 + MudParamError::AnisotropyDirection as u32);
+    assert!(HIBI_ERROR_MUD_ANISOTROPY_RATIO == 512 + MudParamError::AnisotropyRatio as u32);
+    assert!(HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO == 512 + MudParamError::StiffnessAnisotropyRatio as u32);
+    assert!(HIBI_ERROR_MUD_TARGET_SHRINK == 512 + MudParamError::TargetShrink as u32);
+    assert!(HIBI_ERROR_MUD_TARGET_CRACK_DENSITY == 512 + MudParamError::TargetCrackDensity as u32);
+    assert!(HIBI_ERROR_MUD_SIZE_OVERFLOW == 512 + MudParamError::SizeOverflow as u32);
+    assert!(HIBI_ERROR_MUD_SCALE == 512 + MudParamError::Scale as u32);
+};
+
+/// The status that reports a mud parameter error.
+pub(crate) fn mud_param_status(error: MudParamError) -> hibi_status {
+    512 + error as u32
+}
+
+/// The core error behind a mud parameter status.
+fn mud_param_error(status: hibi_status) -> Option<MudParamError> {
+    use MudParamError::*;
+    const ALL: [MudParamError; 21] = [
+        Columns,
+        Rows,
+        LayerThickness,
+        ElementSize,
+        LongStep,
+        ShortStep,
+        ShrinkRatio,
+        DisplacementTolerance,
+        DampingFactor,
+        Density,
+        YoungModulus,
+        ShearModulus,
+        BreakStretchMean,
+        BreakStretchSpread,
+        AnisotropyDirection,
+        AnisotropyRatio,
+        StiffnessAnisotropyRatio,
+        TargetShrink,
+        TargetCrackDensity,
+        SizeOverflow,
+        Scale,
+    ];
+    ALL.iter().copied().find(|e| mud_param_status(*e) == status)
+}
+
+/// The status that reports a raster error.
+pub(crate) fn raster_status(error: RasterError) -> hibi_status {
+    match error {
+        RasterError::Size => HIBI_ERROR_RENDER_SIZE,
+        RasterError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
+        RasterError::WidthScale => HIBI_ERROR_RENDER_WIDTH_SCALE,
+        RasterError::MinWidth => HIBI_ERROR_RENDER_MIN_WIDTH,
+        RasterError::GrooveDepth => HIBI_ERROR_RENDER_GROOVE_DEPTH,
+        RasterError::Offset => HIBI_ERROR_RENDER_OFFSET,
+    }
+}
+
 /// The status that reports a core random-source error.
 pub(crate) fn rng_status(error: RngError) -> hibi_status {
     match error {
@@ -53,7 +184,18 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_PANIC => c"internal error: a panic was caught at the C boundary (a bug in hibi)",
         HIBI_ERROR_POISSON_MEAN => RngError::PoissonMean.message(),
         HIBI_ERROR_RAND_ARGUMENT => RngError::RandArgument.message(),
-        _ => c"unknown status code",
+        HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED => c"mud: the params struct did not come from hibi_mud_params_default",
+        HIBI_ERROR_MUD_ENUM => c"mud: topology, boundary, solver or drive is not one of its HIBI_MUD_* constants",
+        HIBI_ERROR_RENDER_SIZE => RasterError::Size.message(),
+        HIBI_ERROR_RENDER_WIDTH_SCALE => RasterError::WidthScale.message(),
+        HIBI_ERROR_RENDER_MIN_WIDTH => RasterError::MinWidth.message(),
+        HIBI_ERROR_RENDER_GROOVE_DEPTH => RasterError::GrooveDepth.message(),
+        HIBI_ERROR_RENDER_OFFSET => RasterError::Offset.message(),
+        HIBI_ERROR_RENDER_LAYER => c"render: layer is not one of the HIBI_MUD_LAYER_* constants",
+        _ => match mud_param_error(status) {
+            Some(error) => error.message(),
+            None => c"unknown status code",
+        },
     }
 }
 

@@ -37,12 +37,7 @@ pub(super) struct Dynamics<'a, S> {
 }
 
 impl<'a, S: Scalar> Dynamics<'a, S> {
-    pub(super) fn new(
-        scalars: &mut &'a mut [S],
-        lattice: &Lattice,
-        other: &[u32],
-        material: &Material<S>,
-    ) -> Self {
+    pub(super) fn new(scalars: &mut &'a mut [S], lattice: &Lattice, other: &[u32], material: &Material<S>) -> Self {
         let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
         let alive = take(scalars, lattice.spring_count());
@@ -150,28 +145,18 @@ impl<S: Scalar> Mud<'_, S> {
     pub(super) fn explicit_step(&mut self) -> u64 {
         let (rest, deep) = self.factors();
         let time = (self.long_steps as f32).to_bits();
-        let SolverState::Explicit(d) = &mut self.solver else {
-            unreachable!("explicit step on another solver")
-        };
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
         let (ux, uy) = (&mut *self.ux, &mut *self.uy);
         let m = &self.material;
         let lattice = self.lattice;
-        let (nodes, columns, rows) = (
-            lattice.node_count(),
-            lattice.columns as usize,
-            lattice.rows as usize,
-        );
+        let (nodes, columns, rows) = (lattice.node_count(), lattice.columns as usize, lattice.rows as usize);
         let periodic = lattice.boundary == Boundary::Periodic;
         let (fx, fy, alive) = (&mut *d.fx, &mut *d.fy, &mut *d.alive);
         let (gx, gy) = (&mut *d.gx, &mut *d.gy);
         let (break_time, break_stretch) = (&mut *self.break_time, &*self.break_stretch);
 
         // Eq. 2, shear part: −h·(x_i − X_i).
-        for ((f, g), (x, y)) in fx
-            .iter_mut()
-            .zip(fy.iter_mut())
-            .zip(ux.iter().zip(uy.iter()))
-        {
+        for ((f, g), (x, y)) in fx.iter_mut().zip(fy.iter_mut()).zip(ux.iter().zip(uy.iter())) {
             *f = -(m.shear * *x);
             *g = -(m.shear * *y);
         }
@@ -210,13 +195,8 @@ impl<S: Scalar> Mud<'_, S> {
                 );
                 if over {
                     for t in 0..len {
-                        let (x, y) = (
-                            law.ex + ux[b + t] - ux[a + t],
-                            law.ey + uy[b + t] - uy[a + t],
-                        );
-                        if alive[s + t] > S::ZERO
-                            && x * x + y * y > law.limit_squared(break_stretch[s + t])
-                        {
+                        let (x, y) = (law.ex + ux[b + t] - ux[a + t], law.ey + uy[b + t] - uy[a + t]);
+                        if alive[s + t] > S::ZERO && x * x + y * y > law.limit_squared(break_stretch[s + t]) {
                             alive[s + t] = S::ZERO;
                             break_time[s + t] = time;
                             newly_broken += 1;
@@ -225,18 +205,14 @@ impl<S: Scalar> Mud<'_, S> {
                         }
                     }
                 }
-                for ((f, g), (&x, &y)) in fx[a..a + len]
-                    .iter_mut()
-                    .zip(&mut fy[a..a + len])
-                    .zip(gx[..len].iter().zip(&gy[..len]))
+                for ((f, g), (&x, &y)) in
+                    fx[a..a + len].iter_mut().zip(&mut fy[a..a + len]).zip(gx[..len].iter().zip(&gy[..len]))
                 {
                     *f += x;
                     *g += y;
                 }
-                for ((f, g), (&x, &y)) in fx[b..b + len]
-                    .iter_mut()
-                    .zip(&mut fy[b..b + len])
-                    .zip(gx[..len].iter().zip(&gy[..len]))
+                for ((f, g), (&x, &y)) in
+                    fx[b..b + len].iter_mut().zip(&mut fy[b..b + len]).zip(gx[..len].iter().zip(&gy[..len]))
                 {
                     *f -= x;
                     *g -= y;
@@ -249,8 +225,7 @@ impl<S: Scalar> Mud<'_, S> {
                         (row * columns, next_row * columns + columns - 1)
                     };
                     let s = k * nodes + i;
-                    let (x, y, o) =
-                        law.force(ux[i], uy[i], ux[j], uy[j], alive[s], break_stretch[s]);
+                    let (x, y, o) = law.force(ux[i], uy[i], ux[j], uy[j], alive[s], break_stretch[s]);
                     if o {
                         alive[s] = S::ZERO;
                         break_time[s] = time;
@@ -265,10 +240,7 @@ impl<S: Scalar> Mud<'_, S> {
             }
         }
         // Eq. 3: stable when every |F_i| < δF.
-        let stable = fx
-            .iter()
-            .zip(fy.iter())
-            .all(|(&x, &y)| below(x, y, m.force_tolerance));
+        let stable = fx.iter().zip(fy.iter()).all(|(&x, &y)| below(x, y, m.force_tolerance));
         if !stable {
             // Eq. 4: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
             //        x = xᵖ + (vᵖ − F/c)(−m/c)(e^(−cτ/m) − 1) + (F/c)·τ.
@@ -291,11 +263,7 @@ impl<S: Scalar> Mud<'_, S> {
             self.finished = true;
         }
         if stable && !self.finished {
-            if self.params.shrink_ratio == 1.0
-                || self
-                    .target_misfit()
-                    .is_some_and(|target| self.misfit >= target)
-            {
+            if self.params.shrink_ratio == 1.0 || self.target_misfit().is_some_and(|target| self.misfit >= target) {
                 // Stable at the target (or nothing drives the lattice any more).
                 self.finished = true;
             } else {

@@ -111,11 +111,7 @@ impl Lattice {
     /// Reference (deep-layer) position of a node, lattice units.
     pub fn reference(&self, node: usize) -> [f32; 2] {
         let (i, j) = (node % self.columns as usize, node / self.columns as usize);
-        let shift = if self.topology == Topology::Hexagonal && j % 2 == 1 {
-            0.5
-        } else {
-            0.0
-        };
+        let shift = if self.topology == Topology::Hexagonal && j % 2 == 1 { 0.5 } else { 0.0 };
         [i as f32 + shift, j as f32 * self.row_pitch()]
     }
 
@@ -254,12 +250,7 @@ impl Lattice {
                 Some(Cell {
                     nodes: [base as u32, right as u32, upper as u32, 0],
                     corners: 3,
-                    sides: [
-                        self.spring(base, 0) as u32,
-                        self.spring(right, 2) as u32,
-                        self.spring(base, 1) as u32,
-                        0,
-                    ],
+                    sides: [self.spring(base, 0) as u32, self.spring(right, 2) as u32, self.spring(base, 1) as u32, 0],
                     reference: [at, offset(0), offset(1), [0.0; 2]],
                 })
             }
@@ -289,12 +280,7 @@ mod tests {
     use super::*;
 
     fn lattice(topology: Topology, boundary: Boundary, columns: u32, rows: u32) -> Lattice {
-        Lattice {
-            topology,
-            boundary,
-            columns,
-            rows,
-        }
+        Lattice { topology, boundary, columns, rows }
     }
 
     #[test]
@@ -351,11 +337,7 @@ mod tests {
                 for node in 0..l.node_count() {
                     for d in 0..l.directions() {
                         if let Some(n) = l.neighbour(node, d) {
-                            assert_eq!(
-                                l.back_neighbour(n, d),
-                                Some(node),
-                                "{topology:?} {boundary:?} {node} {d}"
-                            );
+                            assert_eq!(l.back_neighbour(n, d), Some(node), "{topology:?} {boundary:?} {node} {d}");
                         }
                     }
                 }
@@ -393,10 +375,7 @@ mod tests {
                     let (p, q) = (r[k], r[(k + 1) % cell.corners]);
                     twice += p[0] * q[1] - q[0] * p[1];
                     let (a, b) = l.spring_nodes(cell.sides[k] as usize).unwrap();
-                    let ends = [
-                        cell.nodes[k] as usize,
-                        cell.nodes[(k + 1) % cell.corners] as usize,
-                    ];
+                    let ends = [cell.nodes[k] as usize, cell.nodes[(k + 1) % cell.corners] as usize];
                     assert!(ends == [a, b] || ends == [b, a], "side {k} of cell {c}");
                     side_uses[cell.sides[k] as usize] += 1;
                 }
@@ -404,31 +383,16 @@ mod tests {
                 area += twice / 2.0;
             }
             let [w, h] = l.extent();
-            assert!(
-                (area - w * h).abs() < 1e-3,
-                "{topology:?}: {area} vs {}",
-                w * h
-            );
+            assert!((area - w * h).abs() < 1e-3, "{topology:?}: {area} vs {}", w * h);
             // Every spring separates exactly two cells.
-            assert!(
-                side_uses[..l.spring_count()].iter().all(|&n| n == 2),
-                "{topology:?}"
-            );
+            assert!(side_uses[..l.spring_count()].iter().all(|&n| n == 2), "{topology:?}");
         }
     }
 
     #[test]
     fn open_edges_drop_springs_and_cells() {
         let l = lattice(Topology::Square, Boundary::Open, 3, 3);
-        assert_eq!(
-            (0..l.spring_count())
-                .filter(|&s| l.spring_nodes(s).is_some())
-                .count(),
-            12
-        );
-        assert_eq!(
-            (0..l.node_count()).filter(|&c| l.cell(c).is_some()).count(),
-            4
-        );
+        assert_eq!((0..l.spring_count()).filter(|&s| l.spring_nodes(s).is_some()).count(), 12);
+        assert_eq!((0..l.node_count()).filter(|&c| l.cell(c).is_some()).count(), 4);
     }
 }

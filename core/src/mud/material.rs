@@ -60,8 +60,7 @@ impl<S: Scalar> Material<S> {
         let mut margin_factor = [1.0f32; MAX_DIRECTIONS];
         for d in 0..lattice.directions() {
             let v = lattice.direction_vector(d);
-            stiffness[d] =
-                face * anisotropy(v, p.anisotropy_direction, p.stiffness_anisotropy_ratio);
+            stiffness[d] = face * anisotropy(v, p.anisotropy_direction, p.stiffness_anisotropy_ratio);
             margin_factor[d] = anisotropy(v, p.anisotropy_direction, p.anisotropy_ratio);
         }
         let shear = area * (p.shear_modulus / p.young_modulus) * (w / h_layer) * (w / h_layer);
@@ -99,20 +98,12 @@ mod tests {
     use crate::mud::params::{Boundary, Topology};
 
     fn lattice(topology: Topology) -> Lattice {
-        Lattice {
-            topology,
-            boundary: Boundary::Periodic,
-            columns: 8,
-            rows: 8,
-        }
+        Lattice { topology, boundary: Boundary::Periodic, columns: 8, rows: 8 }
     }
 
     #[test]
     fn square_constants_follow_the_paper() {
-        let p = MudParams {
-            topology: Topology::Square,
-            ..MudParams::default()
-        };
+        let p = MudParams { topology: Topology::Square, ..MudParams::default() };
         let m = Material::<f32>::new(&p, &lattice(Topology::Square)).unwrap();
         // k = A·E/l0 = (1 cm · 1 cm)·E / 1 cm = E·H: 1 in units of E·H.
         assert_eq!(m.stiffness[..2], [1.0, 1.0]);
@@ -137,11 +128,7 @@ mod tests {
 
     #[test]
     fn anisotropy_weakens_springs_across_the_preferred_direction() {
-        let p = MudParams {
-            topology: Topology::Square,
-            anisotropy_ratio: 4.0,
-            ..MudParams::default()
-        };
+        let p = MudParams { topology: Topology::Square, anisotropy_ratio: 4.0, ..MudParams::default() };
         let m = Material::<f32>::new(&p, &lattice(Topology::Square)).unwrap();
         assert_eq!(m.margin_factor[0], 1.0);
         assert!((m.margin_factor[1] - 0.25).abs() < 1e-6);
@@ -149,13 +136,7 @@ mod tests {
 
     #[test]
     fn absurd_ratios_are_refused() {
-        let p = MudParams {
-            young_modulus: 1e20,
-            ..MudParams::default()
-        };
-        assert_eq!(
-            Material::<f32>::new(&p, &lattice(Topology::Hexagonal)),
-            Err(MudParamError::Scale)
-        );
+        let p = MudParams { young_modulus: 1e20, ..MudParams::default() };
+        assert_eq!(Material::<f32>::new(&p, &lattice(Topology::Hexagonal)), Err(MudParamError::Scale));
     }
 }

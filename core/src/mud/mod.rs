@@ -59,12 +59,7 @@ pub struct MudMemory {
 }
 
 /// The memory a lattice of this shape needs with this solver; `None` if it overflows.
-pub const fn memory_for(
-    topology: Topology,
-    solver: Solver,
-    columns: u32,
-    rows: u32,
-) -> Option<MudMemory> {
+pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: u32) -> Option<MudMemory> {
     // In u128 nothing below can overflow; the result is checked against the address space.
     let dirs: u128 = match topology {
         Topology::Square => 2,
@@ -81,15 +76,8 @@ pub const fn memory_for(
     let (scalars, words) = match solver {
         Solver::Explicit => (6 * nodes + 2 * springs + 2 * columns as u128, 2 * springs),
         Solver::QuasiStatic => {
-            let leaves = if springs <= 1 {
-                1
-            } else {
-                1u128 << (128 - (springs - 1).leading_zeros())
-            };
-            (
-                2 * nodes + 2 * springs,
-                2 * springs + 2 * leaves + 3 * nodes,
-            )
+            let leaves = if springs <= 1 { 1 } else { 1u128 << (128 - (springs - 1).leading_zeros()) };
+            (2 * nodes + 2 * springs, 2 * springs + 2 * leaves + 3 * nodes)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -97,28 +85,23 @@ pub const fn memory_for(
     if scalars > limit || words > limit {
         return None;
     }
-    Some(MudMemory {
-        scalars: scalars as usize,
-        words: words as usize,
-    })
+    Some(MudMemory { scalars: scalars as usize, words: words as usize })
 }
 
 impl MudParams {
-    /// Validates the parameters and returns the memory a run needs.
+    /// Validates the parameters (fields and the scale of the derived constants) and returns
+    /// the memory a run needs.
     pub fn memory(&self) -> Result<MudMemory, MudParamError> {
         self.validate()?;
-        memory_for(self.topology, self.solver, self.columns, self.rows)
-            .ok_or(MudParamError::SizeOverflow)
+        let memory =
+            memory_for(self.topology, self.solver, self.columns, self.rows).ok_or(MudParamError::SizeOverflow)?;
+        Material::<f32>::new(self, &self.lattice())?;
+        Ok(memory)
     }
 
     /// The lattice these parameters describe.
     pub const fn lattice(&self) -> Lattice {
-        Lattice {
-            topology: self.topology,
-            boundary: self.boundary,
-            columns: self.columns,
-            rows: self.rows,
-        }
+        Lattice { topology: self.topology, boundary: self.boundary, columns: self.columns, rows: self.rows }
     }
 }
 
@@ -135,10 +118,7 @@ pub struct MudStorage<S, const SCALARS: usize, const WORDS: usize> {
 impl<S: Scalar, const SCALARS: usize, const WORDS: usize> MudStorage<S, SCALARS, WORDS> {
     /// Zeroed storage.
     pub const fn new() -> Self {
-        MudStorage {
-            scalars: [S::ZERO; SCALARS],
-            words: [0; WORDS],
-        }
+        MudStorage { scalars: [S::ZERO; SCALARS], words: [0; WORDS] }
     }
 
     /// A run of `params` in this storage.
@@ -147,9 +127,7 @@ impl<S: Scalar, const SCALARS: usize, const WORDS: usize> MudStorage<S, SCALARS,
     }
 }
 
-impl<S: Scalar, const SCALARS: usize, const WORDS: usize> Default
-    for MudStorage<S, SCALARS, WORDS>
-{
+impl<S: Scalar, const SCALARS: usize, const WORDS: usize> Default for MudStorage<S, SCALARS, WORDS> {
     fn default() -> Self {
         Self::new()
     }
@@ -231,21 +209,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Sets up a run of `params` in caller memory of at least [`MudParams::memory`] elements:
     /// draws every spring's break stretch and, for open edges, relaxes the boundary layer.
     /// Nothing is written to the buffers on failure.
-    pub fn new(
-        params: &MudParams,
-        scalars: &'a mut [S],
-        words: &'a mut [u32],
-    ) -> Result<Self, MudError> {
+    pub fn new(params: &MudParams, scalars: &'a mut [S], words: &'a mut [u32]) -> Result<Self, MudError> {
         let memory = params.memory()?;
         if scalars.len() < memory.scalars {
-            return Err(MudError::BufferTooSmall {
-                needed: memory.scalars,
-            });
+            return Err(MudError::BufferTooSmall { needed: memory.scalars });
         }
         if words.len() < memory.words {
-            return Err(MudError::BufferTooSmall {
-                needed: memory.words,
-            });
+            return Err(MudError::BufferTooSmall { needed: memory.words });
         }
         let lattice = params.lattice();
         let material = Material::new(params, &lattice)?;
@@ -262,29 +232,20 @@ impl<'a, S: Scalar> Mud<'a, S> {
         break_time.fill(INTACT);
         let mut rng = Rng::new(params.seed, Stream::BreakStretch);
         for spring in 0..springs {
-            other[spring] = lattice
-                .spring_nodes(spring)
-                .map_or(ABSENT, |(_, b)| b as u32);
+            other[spring] = lattice.spring_nodes(spring).map_or(ABSENT, |(_, b)| b as u32);
             // κ_i = κ̄ + σ/√A_i·N(0,1); anisotropy scales the margin κ_i − 1 (Fig. 7). The
             // draw is made for absent springs too, so a spring's κ does not depend on edges.
-            let kappa =
-                params.break_stretch_mean + material.break_stretch_spread * rng.normal_f32();
+            let kappa = params.break_stretch_mean + material.break_stretch_spread * rng.normal_f32();
             let factor = material.margin_factor[lattice.spring_origin(spring).1];
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
         }
         let solver = match params.solver {
-            Solver::Explicit => SolverState::Explicit(explicit::Dynamics::new(
-                &mut scalars,
-                &lattice,
-                other,
-                &material,
-            )),
-            Solver::QuasiStatic => SolverState::QuasiStatic(quasi_static::Relaxation::new(
-                &mut scalars,
-                &mut words,
-                nodes,
-                springs,
-            )),
+            Solver::Explicit => {
+                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &lattice, other, &material))
+            }
+            Solver::QuasiStatic => {
+                SolverState::QuasiStatic(quasi_static::Relaxation::new(&mut scalars, &mut words, nodes, springs))
+            }
         };
         let mut mud = Mud {
             params: *params,
@@ -367,10 +328,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// The long step at which `spring` broke, if it did.
     pub fn spring_break_time(&self, spring: usize) -> Option<f32> {
-        self.break_time
-            .get(spring)
-            .filter(|&&t| t != INTACT)
-            .map(|&t| f32::from_bits(t))
+        self.break_time.get(spring).filter(|&&t| t != INTACT).map(|&t| f32::from_bits(t))
     }
 
     /// The rest factor r and the deep factor of the current misfit: shrink (r, 1), growth
@@ -399,11 +357,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             Drive::Growth => 1.0 / (1.0 + m),
         };
         let ln_gamma = libm::logf(self.params.shrink_ratio);
-        if ln_gamma == 0.0 || r <= 0.0 {
-            0.0
-        } else {
-            libm::logf(r) / ln_gamma
-        }
+        if ln_gamma == 0.0 || r <= 0.0 { 0.0 } else { libm::logf(r) / ln_gamma }
     }
 
     fn time_now(&self) -> f32 {
@@ -420,8 +374,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// Whether the crack density reached its target.
     fn density_reached(&self) -> bool {
-        self.params.target_crack_density > 0.0
-            && self.crack_density() >= self.params.target_crack_density
+        self.params.target_crack_density > 0.0 && self.crack_density() >= self.params.target_crack_density
     }
 
     /// Breaks `spring` now.
@@ -437,9 +390,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     fn displacement(&self, node: usize) -> (S, S) {
         match self.solver {
             SolverState::Explicit(_) => (self.ux[node], self.uy[node]),
-            SolverState::QuasiStatic(_) => {
-                (self.misfit * self.ux[node], self.misfit * self.uy[node])
-            }
+            SolverState::QuasiStatic(_) => (self.misfit * self.ux[node], self.misfit * self.uy[node]),
         }
     }
 }
@@ -452,11 +403,7 @@ mod tests {
 
     #[test]
     fn memory_is_exact_and_checked() {
-        let p = MudParams {
-            columns: 10,
-            rows: 8,
-            ..MudParams::default()
-        };
+        let p = MudParams { columns: 10, rows: 8, ..MudParams::default() };
         let m = p.memory().unwrap();
         assert_eq!(m.scalars, 80 * 2 + 240 * 2);
         assert_eq!(m.words, 240 * 2 + 2 * 256 + 240);
@@ -469,22 +416,13 @@ mod tests {
         // Nothing was written on failure.
         assert!(s.iter().all(|&x| x == 0.0) && w.iter().all(|&x| x == 0));
         assert!(Mud::new(&p, &mut s, &mut w).is_ok());
-        let huge = MudParams {
-            columns: u32::MAX,
-            rows: u32::MAX - 1,
-            ..MudParams::default()
-        };
+        let huge = MudParams { columns: u32::MAX, rows: u32::MAX - 1, ..MudParams::default() };
         assert_eq!(huge.memory(), Err(MudParamError::SizeOverflow));
     }
 
     #[test]
     fn cells_are_the_regions_the_drawn_cracks_enclose() {
-        let p = MudParams {
-            columns: 12,
-            rows: 12,
-            topology: Topology::Square,
-            ..MudParams::default()
-        };
+        let p = MudParams { columns: 12, rows: 12, topology: Topology::Square, ..MudParams::default() };
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         let mut mud = Mud::new(&p, &mut s, &mut w).unwrap();
@@ -514,11 +452,7 @@ mod tests {
             None => panic!(),
         };
         let mut storage = MudStorage::<f32, { M.scalars }, { M.words }>::new();
-        let p = MudParams {
-            columns: 16,
-            rows: 16,
-            ..MudParams::default()
-        };
+        let p = MudParams { columns: 16, rows: 16, ..MudParams::default() };
         let mut mud = storage.mud(&p).unwrap();
         assert!(mud.run().finished);
     }

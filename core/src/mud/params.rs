@@ -199,9 +199,7 @@ impl MudParamError {
             LongStep => c"mud: long_step (T) must be finite and > 0",
             ShortStep => c"mud: short_step (tau) must be finite and > 0",
             ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1]",
-            DisplacementTolerance => {
-                c"mud: displacement_tolerance (delta x) must be finite and > 0"
-            }
+            DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
             DampingFactor => c"mud: damping_factor (alpha) must be finite and > 0",
             Density => c"mud: density (rho) must be finite and > 0",
             YoungModulus => c"mud: young_modulus (E) must be finite and > 0",
@@ -242,9 +240,7 @@ impl MudParams {
         let rows_ok = match (self.boundary, self.topology) {
             (Boundary::Open, _) => self.rows >= 2,
             (Boundary::Periodic, Topology::Square) => self.rows >= 3,
-            (Boundary::Periodic, Topology::Hexagonal) => {
-                self.rows >= 4 && self.rows.is_multiple_of(2)
-            }
+            (Boundary::Periodic, Topology::Hexagonal) => self.rows >= 4 && self.rows.is_multiple_of(2),
         };
         if !rows_ok {
             return Err(Rows);
@@ -254,41 +250,22 @@ impl MudParams {
             (positive(self.element_size), ElementSize),
             (positive(self.long_step), LongStep),
             (positive(self.short_step), ShortStep),
-            (
-                self.shrink_ratio > 0.0 && self.shrink_ratio <= 1.0,
-                ShrinkRatio,
-            ),
+            (self.shrink_ratio > 0.0 && self.shrink_ratio <= 1.0, ShrinkRatio),
             (positive(self.displacement_tolerance), DisplacementTolerance),
             (positive(self.damping_factor), DampingFactor),
             (positive(self.density), Density),
             (positive(self.young_modulus), YoungModulus),
             (positive(self.shear_modulus), ShearModulus),
-            (
-                self.break_stretch_mean.is_finite() && self.break_stretch_mean > 1.0,
-                BreakStretchMean,
-            ),
-            (
-                self.break_stretch_spread.is_finite() && self.break_stretch_spread >= 0.0,
-                BreakStretchSpread,
-            ),
+            (self.break_stretch_mean.is_finite() && self.break_stretch_mean > 1.0, BreakStretchMean),
+            (self.break_stretch_spread.is_finite() && self.break_stretch_spread >= 0.0, BreakStretchSpread),
             (self.anisotropy_direction.is_finite(), AnisotropyDirection),
+            (self.anisotropy_ratio.is_finite() && self.anisotropy_ratio >= 1.0, AnisotropyRatio),
             (
-                self.anisotropy_ratio.is_finite() && self.anisotropy_ratio >= 1.0,
-                AnisotropyRatio,
-            ),
-            (
-                self.stiffness_anisotropy_ratio.is_finite()
-                    && self.stiffness_anisotropy_ratio >= 1.0,
+                self.stiffness_anisotropy_ratio.is_finite() && self.stiffness_anisotropy_ratio >= 1.0,
                 StiffnessAnisotropyRatio,
             ),
-            (
-                self.target_shrink.is_finite() && (0.0..1.0).contains(&self.target_shrink),
-                TargetShrink,
-            ),
-            (
-                self.target_crack_density.is_finite() && self.target_crack_density >= 0.0,
-                TargetCrackDensity,
-            ),
+            (self.target_shrink.is_finite() && (0.0..1.0).contains(&self.target_shrink), TargetShrink),
+            (self.target_crack_density.is_finite() && self.target_crack_density >= 0.0, TargetCrackDensity),
         ];
         if let Some(&(_, error)) = checks.iter().find(|(ok, _)| !ok) {
             return Err(error);
@@ -306,17 +283,9 @@ mod tests {
         let p = MudParams::default();
         assert_eq!(p.validate(), Ok(()));
         assert_eq!((p.young_modulus, p.shear_modulus), (1.0e6, 2.0e5));
+        assert_eq!((p.break_stretch_mean, p.break_stretch_spread), (1.02, 0.001));
         assert_eq!(
-            (p.break_stretch_mean, p.break_stretch_spread),
-            (1.02, 0.001)
-        );
-        assert_eq!(
-            (
-                p.shrink_ratio,
-                p.short_step,
-                p.displacement_tolerance,
-                p.damping_factor
-            ),
+            (p.shrink_ratio, p.short_step, p.displacement_tolerance, p.damping_factor),
             (0.9999, 0.001, 1e-4, 20.0)
         );
     }
@@ -334,39 +303,18 @@ mod tests {
             (|p| p.short_step = -1.0, MudParamError::ShortStep),
             (|p| p.shrink_ratio = 1.5, MudParamError::ShrinkRatio),
             (|p| p.shrink_ratio = 0.0, MudParamError::ShrinkRatio),
-            (
-                |p| p.displacement_tolerance = 0.0,
-                MudParamError::DisplacementTolerance,
-            ),
-            (
-                |p| p.damping_factor = f32::NEG_INFINITY,
-                MudParamError::DampingFactor,
-            ),
+            (|p| p.displacement_tolerance = 0.0, MudParamError::DisplacementTolerance),
+            (|p| p.damping_factor = f32::NEG_INFINITY, MudParamError::DampingFactor),
             (|p| p.density = -2.0, MudParamError::Density),
             (|p| p.young_modulus = 0.0, MudParamError::YoungModulus),
             (|p| p.shear_modulus = -1.0, MudParamError::ShearModulus),
-            (
-                |p| p.break_stretch_mean = 1.0,
-                MudParamError::BreakStretchMean,
-            ),
-            (
-                |p| p.break_stretch_spread = -0.001,
-                MudParamError::BreakStretchSpread,
-            ),
-            (
-                |p| p.anisotropy_direction = f32::NAN,
-                MudParamError::AnisotropyDirection,
-            ),
+            (|p| p.break_stretch_mean = 1.0, MudParamError::BreakStretchMean),
+            (|p| p.break_stretch_spread = -0.001, MudParamError::BreakStretchSpread),
+            (|p| p.anisotropy_direction = f32::NAN, MudParamError::AnisotropyDirection),
             (|p| p.anisotropy_ratio = 0.5, MudParamError::AnisotropyRatio),
-            (
-                |p| p.stiffness_anisotropy_ratio = f32::NAN,
-                MudParamError::StiffnessAnisotropyRatio,
-            ),
+            (|p| p.stiffness_anisotropy_ratio = f32::NAN, MudParamError::StiffnessAnisotropyRatio),
             (|p| p.target_shrink = 1.0, MudParamError::TargetShrink),
-            (
-                |p| p.target_crack_density = -1.0,
-                MudParamError::TargetCrackDensity,
-            ),
+            (|p| p.target_crack_density = -1.0, MudParamError::TargetCrackDensity),
         ];
         for (spoil, error) in cases {
             let mut p = base;

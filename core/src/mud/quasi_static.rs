@@ -58,12 +58,7 @@ const QUEUED: u32 = 1;
 const TOUCHED: u32 = 2;
 
 impl<'a, S: Scalar> Relaxation<'a, S> {
-    pub(super) fn new(
-        scalars: &mut &'a mut [S],
-        words: &mut &'a mut [u32],
-        nodes: usize,
-        springs: usize,
-    ) -> Self {
+    pub(super) fn new(scalars: &mut &'a mut [S], words: &mut &'a mut [u32], nodes: usize, springs: usize) -> Self {
         let leaves = springs.next_power_of_two();
         let break_misfit = take(scalars, springs);
         let tree = take(words, 2 * leaves);
@@ -71,17 +66,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         let flags = take(words, nodes);
         let touched = take(words, nodes);
         flags.fill(0);
-        Relaxation {
-            break_misfit,
-            tree,
-            leaves,
-            queue,
-            flags,
-            head: 0,
-            len: 0,
-            touched,
-            touched_len: 0,
-        }
+        Relaxation { break_misfit, tree, leaves, queue, flags, head: 0, len: 0, touched, touched_len: 0 }
     }
 
     /// The better of two tree entries.
@@ -199,22 +184,21 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
-        self.lattice
-            .for_each_spring_at(node, |spring, other, d, sign| {
-                visited += 1;
-                if self.break_time[spring] != INTACT {
-                    return;
-                }
-                let v = self.lattice.direction_vector(d);
-                let (ex, ey) = (S::from_f32(v[0] * sign), S::from_f32(v[1] * sign));
-                let k = self.material.stiffness[d];
-                a00 += k * ex * ex;
-                a01 += k * ex * ey;
-                a11 += k * ey * ey;
-                let pull = k * (S::ONE + ex * self.ux[other] + ey * self.uy[other]);
-                b0 += pull * ex;
-                b1 += pull * ey;
-            });
+        self.lattice.for_each_spring_at(node, |spring, other, d, sign| {
+            visited += 1;
+            if self.break_time[spring] != INTACT {
+                return;
+            }
+            let v = self.lattice.direction_vector(d);
+            let (ex, ey) = (S::from_f32(v[0] * sign), S::from_f32(v[1] * sign));
+            let k = self.material.stiffness[d];
+            a00 += k * ex * ex;
+            a01 += k * ex * ey;
+            a11 += k * ey * ey;
+            let pull = k * (S::ONE + ex * self.ux[other] + ey * self.uy[other]);
+            b0 += pull * ex;
+            b1 += pull * ey;
+        });
         let det = a00 * a11 - a01 * a01;
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
         let omega = S::from_f32(OVER_RELAXATION);
@@ -224,8 +208,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         self.ux[node] = x;
         self.uy[node] = y;
         let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
-        let tolerance =
-            S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
+        let tolerance = S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
         let lattice = self.lattice;
         let misfit = self.misfit;
         lattice.for_each_spring_at(node, |spring, other, _, _| {
@@ -235,10 +218,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             // A spring that is past its limit on the way to equilibrium breaks now.
             if self.break_misfit_of(spring) <= misfit {
                 self.break_spring(spring);
-                let (a, b) = (
-                    self.lattice.spring_origin(spring).0,
-                    self.other[spring] as usize,
-                );
+                let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
                 let r = self.relaxation();
                 r.break_misfit[spring] = S::MAX;
                 r.update(spring);
@@ -284,11 +264,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
         let r = self.relaxation();
         let next = r.tree[1];
-        let at = if next == NONE {
-            S::MAX
-        } else {
-            r.break_misfit[next as usize]
-        };
+        let at = if next == NONE { S::MAX } else { r.break_misfit[next as usize] };
         if at == S::MAX {
             self.finished = true; // nothing left that can break
             return 1;
@@ -303,10 +279,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
         let spring = next as usize;
         self.break_spring(spring);
-        let (a, b) = (
-            self.lattice.spring_origin(spring).0,
-            self.other[spring] as usize,
-        );
+        let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
         let r = self.relaxation();
         r.break_misfit[spring] = S::MAX;
         r.update(spring);

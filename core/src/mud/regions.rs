@@ -53,11 +53,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// Crack density and the cells the drawn crack network encloses; `mask` and `labels` are
     /// scratch of [`Mud::statistics_pixels`] elements each (left holding the mask and each
     /// pixel's cell label). Nothing is written if either is shorter.
-    pub fn statistics(
-        &self,
-        mask: &mut [u8],
-        labels: &mut [u32],
-    ) -> Result<CrackStatistics, MudError> {
+    pub fn statistics(&self, mask: &mut [u8], labels: &mut [u32]) -> Result<CrackStatistics, MudError> {
         let raster = self.cell_raster();
         let pixels = self.statistics_pixels();
         if mask.len() < pixels || labels.len() < pixels {
@@ -69,11 +65,9 @@ impl<S: Scalar> Mud<'_, S> {
         };
         self.render_mask(&raster, mask).map_err(to_mud)?;
         let wrap = self.params.boundary == Boundary::Periodic;
-        let regions = label_regions(raster.width, raster.height, wrap, |i| mask[i] < 128, labels)
-            .map_err(to_mud)?;
+        let regions = label_regions(raster.width, raster.height, wrap, |i| mask[i] < 128, labels).map_err(to_mud)?;
         // Count the regions of at least one element's area.
-        let element_pixels =
-            self.lattice.element_area() * (PIXELS_PER_SPACING * PIXELS_PER_SPACING) as f32;
+        let element_pixels = self.lattice.element_area() * (PIXELS_PER_SPACING * PIXELS_PER_SPACING) as f32;
         let mut cells = 0u32;
         let mut first = 0usize;
         for region in 0..regions {
@@ -81,20 +75,13 @@ impl<S: Scalar> Mud<'_, S> {
             while labels[first] != region {
                 first += 1;
             }
-            let size = labels[first..pixels]
-                .iter()
-                .filter(|&&l| l == region)
-                .count();
+            let size = labels[first..pixels].iter().filter(|&&l| l == region).count();
             if size as f32 >= element_pixels {
                 cells += 1;
             }
         }
         let w = self.params.element_size;
         let area = self.lattice.node_count() as f32 * self.lattice.element_area() * w * w;
-        Ok(CrackStatistics {
-            crack_density: self.crack_density(),
-            cells,
-            mean_cell_area: area / cells.max(1) as f32,
-        })
+        Ok(CrackStatistics { crack_density: self.crack_density(), cells, mean_cell_area: area / cells.max(1) as f32 })
     }
 }

@@ -39,30 +39,23 @@ pub struct MudRender {
 
 impl Default for MudRender {
     fn default() -> Self {
-        MudRender {
-            width: 512,
-            height: 512,
-            width_scale: 1.0,
-            min_width: 1.0,
-            groove_depth: 1.0,
-            offset: [0.0; 2],
-        }
+        MudRender { width: 512, height: 512, width_scale: 1.0, min_width: 1.0, groove_depth: 1.0, offset: [0.0; 2] }
     }
 }
 
 impl MudRender {
     fn validate(&self) -> Result<usize, RasterError> {
         if !(self.width_scale.is_finite() && self.width_scale >= 0.0) {
-            return Err(RasterError::Param("width_scale must be finite and >= 0"));
+            return Err(RasterError::WidthScale);
         }
         if !(self.min_width.is_finite() && self.min_width >= 0.0) {
-            return Err(RasterError::Param("min_width must be finite and >= 0"));
+            return Err(RasterError::MinWidth);
         }
         if !(self.groove_depth.is_finite() && self.groove_depth >= 0.0) {
-            return Err(RasterError::Param("groove_depth must be finite and >= 0"));
+            return Err(RasterError::GrooveDepth);
         }
         if !(self.offset[0].is_finite() && self.offset[1].is_finite()) {
-            return Err(RasterError::Param("offset must be finite"));
+            return Err(RasterError::Offset);
         }
         pixel_count(self.width, self.height)
     }
@@ -85,9 +78,7 @@ impl<S: Scalar> Mud<'_, S> {
     fn draw(&self, render: &MudRender, mut visit: impl FnMut(StrokeHit)) {
         let frame = self.frame(render);
         let pixels_per_unit = 0.5 * (frame.scale[0] + frame.scale[1]);
-        let half = |w: f32| {
-            0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width)
-        };
+        let half = |w: f32| 0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width);
         // On a periodic lattice the view wraps: reduce the offset to one period.
         let [ox, oy] = match frame.period {
             Some([w, h]) => [
@@ -96,7 +87,7 @@ impl<S: Scalar> Mud<'_, S> {
             ],
             None => render.offset,
         };
-        self.trace(|s: CrackSegment| {
+        self.for_each_segment(|s: CrackSegment| {
             let stroke = Stroke {
                 start: [s.start[0] - ox, s.start[1] - oy],
                 end: [s.end[0] - ox, s.end[1] - oy],
@@ -153,10 +144,7 @@ impl<S: Scalar> Mud<'_, S> {
         }
         self.draw(render, |hit| {
             let across = hit.depth.min(1.0);
-            let groove = render.groove_depth
-                * (hit.half_width / widest)
-                * (1.0 - across * across)
-                * hit.coverage;
+            let groove = render.groove_depth * (hit.half_width / widest) * (1.0 - across * across) * hit.coverage;
             out[hit.pixel] = out[hit.pixel].min(1.0 - groove);
         });
         Ok(())

@@ -44,17 +44,8 @@ fn displacements(k: f64, h: f64, rest: f64, n: f64) -> (f64, f64) {
 /// the row never breaks (L/l0 ≤ κ: even an endless row is not stretched enough) or the inputs
 /// are not positive and finite.
 pub fn predict_spacing(k: f32, h: f32, kappa: f32, rest: f32) -> Option<SpacingPrediction> {
-    let (k, h, kappa, rest) = (
-        f64::from(k),
-        f64::from(h),
-        f64::from(kappa),
-        f64::from(rest),
-    );
-    if [k, h, kappa, rest]
-        .iter()
-        .any(|x| !x.is_finite() || *x <= 0.0)
-        || 1.0 / rest <= kappa
-    {
+    let (k, h, kappa, rest) = (f64::from(k), f64::from(h), f64::from(kappa), f64::from(rest));
+    if [k, h, kappa, rest].iter().any(|x| !x.is_finite() || *x <= 0.0) || 1.0 / rest <= kappa {
         return None;
     }
     let centre_stretch = |n: f64| (1.0 - displacements(k, h, rest, n).0) / rest;
@@ -72,19 +63,11 @@ pub fn predict_spacing(k: f32, h: f32, kappa: f32, rest: f32) -> Option<SpacingP
     }
     for _ in 0..100 {
         let mid = 0.5 * (low + high);
-        if centre_stretch(mid) < kappa {
-            low = mid
-        } else {
-            high = mid
-        }
+        if centre_stretch(mid) < kappa { low = mid } else { high = mid }
     }
     let n = 0.5 * (low + high);
     let (_, dn) = displacements(k, h, rest, n);
-    Some(SpacingPrediction {
-        half_springs: n as f32,
-        spacing: (2.0 * n) as f32,
-        opening: (2.0 * dn) as f32,
-    })
+    Some(SpacingPrediction { half_springs: n as f32, spacing: (2.0 * n) as f32, opening: (2.0 * dn) as f32 })
 }
 
 impl MudParams {
@@ -95,18 +78,9 @@ impl MudParams {
         self.validate().ok()?;
         let lattice: Lattice = self.lattice();
         let material = Material::<f32>::new(self, &lattice).ok()?;
-        let p = predict_spacing(
-            material.stiffness[0],
-            material.shear,
-            self.break_stretch_mean,
-            1.0 - shrink,
-        )?;
+        let p = predict_spacing(material.stiffness[0], material.shear, self.break_stretch_mean, 1.0 - shrink)?;
         let w = self.element_size;
-        Some(SpacingPrediction {
-            half_springs: p.half_springs,
-            spacing: p.spacing * w,
-            opening: p.opening * w,
-        })
+        Some(SpacingPrediction { half_springs: p.half_springs, spacing: p.spacing * w, opening: p.opening * w })
     }
 }
 
@@ -134,18 +108,10 @@ mod tests {
             let f_next = f_n - 0.2 * d[m];
             d[m + 1] = d[m] + (1.0 - 0.975) - f_next / 1.0;
         }
-        assert!(
-            (d[n as usize] - dn).abs() < 1e-9,
-            "{} vs {dn}",
-            d[n as usize]
-        );
+        assert!((d[n as usize] - dn).abs() < 1e-9, "{} vs {dn}", d[n as usize]);
         // The free end carries no force: F_{N+1} = F_N − h·d_N = 0.
         let f_last = 1.0 - 0.975 - d[n as usize] + d[n as usize - 1];
-        assert!(
-            (f_last - 0.2 * dn).abs() < 1e-9,
-            "F_(N+1) = {}",
-            f_last - 0.2 * dn
-        );
+        assert!((f_last - 0.2 * dn).abs() < 1e-9, "F_(N+1) = {}", f_last - 0.2 * dn);
     }
 
     #[test]

@@ -36,8 +36,9 @@ struct Cut {
 }
 
 impl<S: Scalar> Mud<'_, S> {
-    /// Calls `emit` with every crack segment, cell by cell in index order.
-    pub(super) fn trace(&self, mut emit: impl FnMut(CrackSegment)) {
+    /// Calls `emit` with every crack segment, cell by cell in index order (what
+    /// [`Mud::segments`] writes, without a buffer).
+    pub fn for_each_segment(&self, mut emit: impl FnMut(CrackSegment)) {
         let lattice = self.lattice;
         let (rest, deep) = self.factors();
         let (rest, deep) = (rest.to_f32(), deep.to_f32());
@@ -54,22 +55,13 @@ impl<S: Scalar> Mud<'_, S> {
             let mut corner = [[0.0f32; 2]; 4];
             for (k, position) in corner.iter_mut().enumerate().take(n) {
                 let (dx, dy) = self.displacement(cell.nodes[k] as usize);
-                *position = [
-                    cell.reference[k][0] * deep + dx.to_f32(),
-                    cell.reference[k][1] * deep + dy.to_f32(),
-                ];
+                *position = [cell.reference[k][0] * deep + dx.to_f32(), cell.reference[k][1] * deep + dy.to_f32()];
             }
             let centroid = {
-                let sum = corner[..n]
-                    .iter()
-                    .fold([0.0f32; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
+                let sum = corner[..n].iter().fold([0.0f32; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
                 [sum[0] / n as f32, sum[1] / n as f32]
             };
-            let mut cuts = [Cut {
-                at: [0.0; 2],
-                width: 0.0,
-                time: 0.0,
-            }; 4];
+            let mut cuts = [Cut { at: [0.0; 2], width: 0.0, time: 0.0 }; 4];
             let mut count = 0;
             for k in 0..n {
                 let Some(time) = self.spring_break_time(cell.sides[k] as usize) else {
@@ -77,11 +69,7 @@ impl<S: Scalar> Mud<'_, S> {
                 };
                 let (p, q) = (corner[k], corner[(k + 1) % n]);
                 let length = libm::hypotf(q[0] - p[0], q[1] - p[1]);
-                cuts[count] = Cut {
-                    at: [(p[0] + q[0]) * 0.5, (p[1] + q[1]) * 0.5],
-                    width: length - rest,
-                    time,
-                };
+                cuts[count] = Cut { at: [(p[0] + q[0]) * 0.5, (p[1] + q[1]) * 0.5], width: length - rest, time };
                 count += 1;
             }
             let segment = |a: Cut, b: Cut| CrackSegment {
@@ -94,13 +82,7 @@ impl<S: Scalar> Mud<'_, S> {
                 emit(segment(cuts[0], cuts[1]));
             } else {
                 for cut in &cuts[..count] {
-                    emit(segment(
-                        *cut,
-                        Cut {
-                            at: centroid,
-                            ..*cut
-                        },
-                    ));
+                    emit(segment(*cut, Cut { at: centroid, ..*cut }));
                 }
             }
         }
@@ -109,7 +91,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// The number of crack segments [`Mud::segments`] writes now.
     pub fn segment_count(&self) -> usize {
         let mut count = 0;
-        self.trace(|_| count += 1);
+        self.for_each_segment(|_| count += 1);
         count
     }
 
@@ -121,7 +103,7 @@ impl<S: Scalar> Mud<'_, S> {
             return Err(MudError::BufferTooSmall { needed });
         }
         let mut written = 0;
-        self.trace(|s| {
+        self.for_each_segment(|s| {
             out[written] = s;
             written += 1;
         });

@@ -20,8 +20,28 @@ pub enum RasterError {
         /// Pixels the buffer must hold.
         needed: usize,
     },
-    /// A drawing parameter is not finite or out of range (the message names it).
-    Param(&'static str),
+    /// `width_scale` is not finite or negative.
+    WidthScale,
+    /// `min_width` is not finite or negative.
+    MinWidth,
+    /// `groove_depth` is not finite or negative.
+    GrooveDepth,
+    /// `offset` is not finite.
+    Offset,
+}
+
+impl RasterError {
+    /// A message naming what is wrong, NUL-terminated for C.
+    pub const fn message(self) -> &'static core::ffi::CStr {
+        match self {
+            RasterError::Size => c"render: width and height must be > 0 and their product must fit in memory",
+            RasterError::BufferTooSmall { .. } => c"render: the pixel buffer is smaller than width x height",
+            RasterError::WidthScale => c"render: width_scale must be finite and >= 0",
+            RasterError::MinWidth => c"render: min_width must be finite and >= 0",
+            RasterError::GrooveDepth => c"render: groove_depth must be finite and >= 0",
+            RasterError::Offset => c"render: offset must be finite",
+        }
+    }
 }
 
 /// The number of pixels of a `width` × `height` raster, checked.
@@ -29,7 +49,5 @@ pub fn pixel_count(width: u32, height: u32) -> Result<usize, RasterError> {
     if width == 0 || height == 0 {
         return Err(RasterError::Size);
     }
-    (width as usize)
-        .checked_mul(height as usize)
-        .ok_or(RasterError::Size)
+    (width as usize).checked_mul(height as usize).ok_or(RasterError::Size)
 }

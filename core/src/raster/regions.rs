@@ -98,17 +98,11 @@ mod tests {
         // 5×5 with a closed cross through the middle row and column.
         let closed = |i: usize| i / 5 == 2 || i % 5 == 2;
         let mut labels = [0u32; 25];
-        assert_eq!(
-            label_regions(5, 5, false, |i| !closed(i), &mut labels),
-            Ok(4)
-        );
+        assert_eq!(label_regions(5, 5, false, |i| !closed(i), &mut labels), Ok(4));
         assert_eq!(labels[0], 0);
         assert_eq!(labels[24], 3);
         assert_eq!(labels[12], u32::MAX);
-        assert_eq!(
-            label_regions(5, 5, true, |i| !closed(i), &mut labels),
-            Ok(1)
-        );
+        assert_eq!(label_regions(5, 5, true, |i| !closed(i), &mut labels), Ok(1));
         assert_eq!(
             label_regions(5, 5, true, |_| true, &mut labels[..24]),
             Err(RasterError::BufferTooSmall { needed: 25 })

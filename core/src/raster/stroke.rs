@@ -47,33 +47,19 @@ pub struct StrokeHit {
 /// (a wrapped stroke near an edge is drawn at each periodic offset that reaches the raster).
 pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(StrokeHit)) {
     let offsets: [[f32; 2]; 9] = match frame.period {
-        Some([pw, ph]) => {
-            core::array::from_fn(|k| [((k % 3) as f32 - 1.0) * pw, ((k / 3) as f32 - 1.0) * ph])
-        }
+        Some([pw, ph]) => core::array::from_fn(|k| [((k % 3) as f32 - 1.0) * pw, ((k / 3) as f32 - 1.0) * ph]),
         None => [[0.0; 2]; 9],
     };
     let copies = if frame.period.is_some() { 9 } else { 1 };
     for offset in &offsets[..copies] {
-        let a = [
-            (stroke.start[0] + offset[0]) * frame.scale[0],
-            (stroke.start[1] + offset[1]) * frame.scale[1],
-        ];
-        let b = [
-            (stroke.end[0] + offset[0]) * frame.scale[0],
-            (stroke.end[1] + offset[1]) * frame.scale[1],
-        ];
+        let a = [(stroke.start[0] + offset[0]) * frame.scale[0], (stroke.start[1] + offset[1]) * frame.scale[1]];
+        let b = [(stroke.end[0] + offset[0]) * frame.scale[0], (stroke.end[1] + offset[1]) * frame.scale[1]];
         draw_capsule(frame, a, b, stroke, &mut visit);
     }
 }
 
 /// Draws one copy of a stroke whose ends are `a` and `b` in pixels.
-fn draw_capsule(
-    frame: &Frame,
-    a: [f32; 2],
-    b: [f32; 2],
-    stroke: &Stroke,
-    visit: &mut impl FnMut(StrokeHit),
-) {
+fn draw_capsule(frame: &Frame, a: [f32; 2], b: [f32; 2], stroke: &Stroke, visit: &mut impl FnMut(StrokeHit)) {
     let reach = stroke.half_width[0].max(stroke.half_width[1]) + 1.0;
     let x0 = libm::floorf(a[0].min(b[0]) - reach).max(0.0);
     let x1 = libm::floorf(a[0].max(b[0]) + reach).min(frame.width as f32 - 1.0);
@@ -87,15 +73,10 @@ fn draw_capsule(
     for y in y0 as u32..=y1 as u32 {
         for x in x0 as u32..=x1 as u32 {
             let p = [x as f32 + 0.5 - a[0], y as f32 + 0.5 - a[1]];
-            let t = if dd > 0.0 {
-                ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
+            let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
             let q = [p[0] - d[0] * t, p[1] - d[1] * t];
             let distance = libm::sqrtf(q[0] * q[0] + q[1] * q[1]);
-            let half_width =
-                stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
+            let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
             let coverage = (half_width - distance + 0.5).min(1.0);
             if coverage <= 0.0 {
                 continue;
@@ -103,11 +84,7 @@ fn draw_capsule(
             visit(StrokeHit {
                 pixel: y as usize * frame.width as usize + x as usize,
                 coverage,
-                depth: if half_width > 0.0 {
-                    distance / half_width
-                } else {
-                    1.0
-                },
+                depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
                 half_width,
                 value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * t,
             });
@@ -120,22 +97,12 @@ mod tests {
     use super::*;
 
     fn frame(period: Option<[f32; 2]>) -> Frame {
-        Frame {
-            width: 16,
-            height: 8,
-            scale: [1.0, 1.0],
-            period,
-        }
+        Frame { width: 16, height: 8, scale: [1.0, 1.0], period }
     }
 
     #[test]
     fn a_horizontal_stroke_covers_its_width_with_soft_edges() {
-        let stroke = Stroke {
-            start: [2.0, 4.0],
-            end: [12.0, 4.0],
-            half_width: [1.0, 1.0],
-            value: [0.0, 10.0],
-        };
+        let stroke = Stroke { start: [2.0, 4.0], end: [12.0, 4.0], half_width: [1.0, 1.0], value: [0.0, 10.0] };
         let mut cover = [0.0f32; 128];
         let mut value = [f32::NAN; 128];
         for_each_hit(&frame(None), &stroke, |h| {
@@ -154,26 +121,13 @@ mod tests {
 
     #[test]
     fn periodic_strokes_wrap_across_the_edges() {
-        let stroke = Stroke {
-            start: [14.0, 4.0],
-            end: [18.0, 4.0],
-            half_width: [1.0, 1.0],
-            value: [0.0; 2],
-        };
+        let stroke = Stroke { start: [14.0, 4.0], end: [18.0, 4.0], half_width: [1.0, 1.0], value: [0.0; 2] };
         let mut cover = [0.0f32; 128];
-        for_each_hit(&frame(Some([16.0, 8.0])), &stroke, |h| {
-            cover[h.pixel] = cover[h.pixel].max(h.coverage)
-        });
+        for_each_hit(&frame(Some([16.0, 8.0])), &stroke, |h| cover[h.pixel] = cover[h.pixel].max(h.coverage));
         assert_eq!(cover[4 * 16 + 15], 1.0);
-        assert_eq!(
-            cover[4 * 16],
-            1.0,
-            "the part past x = 16 reappears at x = 0"
-        );
+        assert_eq!(cover[4 * 16], 1.0, "the part past x = 16 reappears at x = 0");
         let mut open = [0.0f32; 128];
-        for_each_hit(&frame(None), &stroke, |h| {
-            open[h.pixel] = open[h.pixel].max(h.coverage)
-        });
+        for_each_hit(&frame(None), &stroke, |h| open[h.pixel] = open[h.pixel].max(h.coverage));
         assert_eq!(open[4 * 16], 0.0);
     }
 }

@@ -97,13 +97,8 @@ fn reduce_angle(x: i128) -> i128 {
 
 /// atan t for t in [0, 1], 30 fractional bits: Abramowitz & Stegun 4.4.49 (error ≤ 10⁻⁵).
 fn atan_unit(t: i128) -> i128 {
-    const ODD: [i128; 5] = [
-        wide(0.020_835_1),
-        wide(-0.085_133_0),
-        wide(0.180_141_0),
-        wide(-0.330_299_5),
-        wide(0.999_866_0),
-    ];
+    const ODD: [i128; 5] =
+        [wide(0.020_835_1), wide(-0.085_133_0), wide(0.180_141_0), wide(-0.330_299_5), wide(0.999_866_0)];
     mul_wide(t, horner(mul_wide(t, t), &ODD))
 }
 
@@ -117,11 +112,7 @@ impl Scalar for Q16 {
     const RESOLUTION: Self = Q16(I16F16::DELTA);
 
     fn from_f32(x: f32) -> Self {
-        if x.is_nan() {
-            Self::ZERO
-        } else {
-            Q16(I16F16::saturating_from_num(x))
-        }
+        if x.is_nan() { Self::ZERO } else { Q16(I16F16::saturating_from_num(x)) }
     }
     fn to_f32(self) -> f32 {
         self.0.to_num::<f32>()
@@ -144,16 +135,9 @@ impl Scalar for Q16 {
             return Self::ZERO;
         }
         let (ay, ax) = (y.abs(), x.abs());
-        let first_octant = if ay <= ax {
-            atan_unit((ay << WIDE_FRAC) / ax)
-        } else {
-            HALF_PI_WIDE - atan_unit((ax << WIDE_FRAC) / ay)
-        };
-        let half_plane = if x < 0 {
-            PI_WIDE - first_octant
-        } else {
-            first_octant
-        };
+        let first_octant =
+            if ay <= ax { atan_unit((ay << WIDE_FRAC) / ax) } else { HALF_PI_WIDE - atan_unit((ax << WIDE_FRAC) / ay) };
+        let half_plane = if x < 0 { PI_WIDE - first_octant } else { first_octant };
         Q16::from_wide(if y < 0 { -half_plane } else { half_plane })
     }
     fn exp(self) -> Self {
@@ -260,13 +244,7 @@ mod tests {
 
     #[test]
     fn q16_backend_is_within_its_stated_bounds() {
-        check_backend::<Q16>(&Bounds {
-            arith: 2e-5,
-            sqrt: 2e-5,
-            trig: 3e-5,
-            atan2: 3e-5,
-            exp: 3e-5,
-        });
+        check_backend::<Q16>(&Bounds { arith: 2e-5, sqrt: 2e-5, trig: 3e-5, atan2: 3e-5, exp: 3e-5 });
     }
 
     #[test]
@@ -289,14 +267,8 @@ mod tests {
         for x in grid(-32_000.0, 32_000.0, 997) {
             let q = Q16::from_f32(x as f32);
             let exact = f64::from(q.to_f32());
-            assert!(
-                (f64::from(q.sin().to_f32()) - libm::sin(exact)).abs() < 3e-5,
-                "sin {x}"
-            );
-            assert!(
-                (f64::from(q.cos().to_f32()) - libm::cos(exact)).abs() < 3e-5,
-                "cos {x}"
-            );
+            assert!((f64::from(q.sin().to_f32()) - libm::sin(exact)).abs() < 3e-5, "sin {x}");
+            assert!((f64::from(q.cos().to_f32()) - libm::cos(exact)).abs() < 3e-5, "cos {x}");
         }
     }
 }
