@@ -163,3 +163,76 @@ fn golden_segments() {
     assert_eq!(run::<f32>(&p).1, 7847952194047235786, "the f32 scene changed");
     assert_eq!(run::<Q16>(&p).1, 7200401587114049055, "the Q16.16 scene changed");
 }
+
+/// The share of crack length within 30° of `direction`.
+fn share_along(segments: &[hibi_core::mud::CrackSegment], direction: f32) -> f32 {
+    let (mut along, mut total) = (0.0, 0.0);
+    for s in segments {
+        let (dx, dy) = (s.end[0] - s.start[0], s.end[1] - s.start[1]);
+        let length = dx.hypot(dy);
+        let angle = (dy.atan2(dx) - direction).rem_euclid(std::f32::consts::PI);
+        total += length;
+        if !(std::f32::consts::FRAC_PI_6..=5.0 * std::f32::consts::FRAC_PI_6).contains(&angle) {
+            along += length;
+        }
+    }
+    along / total
+}
+
+#[test]
+fn anisotropic_break_stretch_orients_the_cracks() {
+    // Paper Fig. 7: springs across the preferred direction break first, so cracks run along it.
+    let isotropic = share_along(&run::<f32>(&params(64)).2, 0.0);
+    let horizontal = share_along(&run::<f32>(&MudParams { anisotropy_ratio: 4.0, ..params(64) }).2, 0.0);
+    let vertical = MudParams { anisotropy_ratio: 4.0, anisotropy_direction: std::f32::consts::FRAC_PI_2, ..params(64) };
+    let vertical = share_along(&run::<f32>(&vertical).2, std::f32::consts::FRAC_PI_2);
+    println!(
+        "share within 30° of the preferred direction: isotropic {isotropic:.2}, φ = 0: {horizontal:.2}, φ = 90°: {vertical:.2}"
+    );
+    assert!(horizontal > isotropic + 0.15 && vertical > isotropic + 0.15);
+}
+
+#[test]
+fn a_growing_deep_layer_cracks_the_surface_like_shrinking_does() {
+    // Growth (tree bark) is the same misfit seen from the deep layer: similar cells, drawn in
+    // the growing frame.
+    let shrink = run::<f32>(&params(64)).0;
+    let growth = run::<f32>(&MudParams { drive: hibi_core::mud::Drive::Growth, ..params(64) }).0;
+    println!("shrink {shrink:?}\ngrowth {growth:?}");
+    assert!(growth.cells > 1 && within(shrink.crack_density, growth.crack_density, 0.25), "{shrink:?} vs {growth:?}");
+}
+
+#[test]
+fn step_does_bounded_work_and_resumes_to_the_same_result() {
+    for solver in [Solver::QuasiStatic, Solver::Explicit] {
+        let p = MudParams { solver, target_shrink: 0.018, ..params(24) };
+        let memory = p.memory().unwrap();
+        let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+        let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+        // One indivisible piece is at most one pass over the springs.
+        let piece = mud.lattice().spring_count() as u64;
+        let budget = 5_000;
+        let mut before = 0;
+        let mut calls = 0;
+        loop {
+            let progress = mud.step(budget);
+            assert!(
+                progress.work - before <= budget + piece,
+                "{solver:?}: {} > {}",
+                progress.work - before,
+                budget + piece
+            );
+            before = progress.work;
+            calls += 1;
+            if progress.finished {
+                break;
+            }
+        }
+        assert!(calls > 10, "{solver:?} finished in {calls} calls");
+        let mut stepped = vec![Default::default(); mud.segment_count()];
+        mud.segments(&mut stepped).unwrap();
+        // The same run in one call gives the same cracks.
+        let (_, _, whole) = run::<f32>(&p);
+        assert!(stepped == whole, "{solver:?}: stepping changed the result");
+    }
+}

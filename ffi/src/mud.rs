@@ -606,3 +606,122 @@ pub unsafe extern "C" fn hibi_mud_render(
         drawn.map_err(raster_status)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::*;
+    use core::ptr::{null, null_mut};
+
+    fn small() -> hibi_mud_params {
+        let mut p = hibi_mud_params_default();
+        p.columns = 16;
+        p.rows = 16;
+        p
+    }
+
+    #[test]
+    fn every_bad_field_and_enum_is_a_specific_status_and_nothing_is_created() {
+        let cases: [(fn(&mut hibi_mud_params), hibi_status); 8] = [
+            (|p| p.cookie = 0, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED),
+            (|p| p.topology = 2, HIBI_ERROR_MUD_ENUM),
+            (|p| p.solver = 7, HIBI_ERROR_MUD_ENUM),
+            (|p| p.young_modulus = f32::NAN, HIBI_ERROR_MUD_YOUNG_MODULUS),
+            (|p| p.break_stretch_mean = 0.9, HIBI_ERROR_MUD_BREAK_STRETCH_MEAN),
+            (|p| p.shrink_ratio = 1.5, HIBI_ERROR_MUD_SHRINK_RATIO),
+            (|p| p.rows = 15, HIBI_ERROR_MUD_ROWS),
+            (|p| (p.columns, p.rows) = (u32::MAX, u32::MAX - 1), HIBI_ERROR_MUD_SIZE_OVERFLOW),
+        ];
+        for (spoil, expected) in cases {
+            let mut p = small();
+            spoil(&mut p);
+            let mut out = null_mut();
+            let mut size = 12345usize;
+            // SAFETY: valid pointers; failing calls write nothing.
+            unsafe {
+                assert_eq!(hibi_mud_create(&p, &mut out), expected);
+                assert_eq!(hibi_mud_memory_size(&p, &mut size), expected);
+            }
+            assert!(out.is_null());
+            assert_eq!(size, 12345);
+        }
+    }
+
+    #[test]
+    fn caller_memory_is_checked_and_left_untouched_on_failure() {
+        let p = small();
+        let mut size = 0;
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_mud_memory_size(&p, &mut size) }, HIBI_OK);
+        let mut memory = vec![0xA5A5_A5A5_A5A5_A5A5u64; size / 8 + 2];
+        let base = memory.as_mut_ptr().cast::<c_void>();
+        let mut out = null_mut();
+        // SAFETY: `memory` is valid for its length; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_mud_create_in(&p, base, size - 1, &mut out), HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert!(memory.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5), "short");
+            let odd = base.cast::<u8>().add(4).cast::<c_void>();
+            assert_eq!(hibi_mud_create_in(&p, odd, size, &mut out), HIBI_ERROR_MISALIGNED);
+            assert!(memory.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5), "misaligned");
+            let mut bad = p;
+            bad.density = 0.0;
+            assert_eq!(hibi_mud_create_in(&bad, base, size, &mut out), HIBI_ERROR_MUD_DENSITY);
+            assert!(memory.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5));
+            assert_eq!(hibi_mud_create_in(&p, base, size, &mut out), HIBI_OK);
+            assert_eq!(out.cast::<c_void>(), base);
+            let mut progress = hibi_mud_progress::default();
+            while progress.finished == 0 {
+                assert_eq!(hibi_mud_step(out, 10_000, &mut progress), HIBI_OK);
+            }
+            hibi_mud_destroy(out);
+        }
+    }
+
+    #[test]
+    fn outputs_check_their_buffers() {
+        let p = small();
+        let mut mud = null_mut();
+        // SAFETY: valid pointers throughout; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_mud_create(&p, &mut mud), HIBI_OK);
+            assert_eq!(hibi_mud_step(mud, u64::MAX, null_mut()), HIBI_OK);
+            let mut count = 0;
+            assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
+            assert!(count > 0);
+            let mut segments = vec![hibi_mud_segment::default(); count];
+            let mut written = 777;
+            assert_eq!(
+                hibi_mud_segments(mud, segments.as_mut_ptr(), count - 1, &mut written),
+                HIBI_ERROR_BUFFER_TOO_SMALL
+            );
+            assert_eq!(written, 777);
+            assert!(segments.iter().all(|s| *s == hibi_mud_segment::default()));
+            assert_eq!(hibi_mud_segments(mud, segments.as_mut_ptr(), count, &mut written), HIBI_OK);
+            assert_eq!(written, count);
+
+            let mut render = hibi_mud_render_params_default();
+            render.width = 32;
+            render.height = 32;
+            let mut heights = vec![7.0f32; 32 * 32];
+            let h = heights.as_mut_ptr().cast::<c_void>();
+            assert_eq!(hibi_mud_render(mud, &render, 3, h, 1024), HIBI_ERROR_RENDER_LAYER);
+            assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1023), HIBI_ERROR_BUFFER_TOO_SMALL);
+            render.min_width = f32::NAN;
+            assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1024), HIBI_ERROR_RENDER_MIN_WIDTH);
+            render.min_width = 1.0;
+            render.width = 0;
+            assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1024), HIBI_ERROR_RENDER_SIZE);
+            assert!(heights.iter().all(|&v| v == 7.0));
+            render.width = 32;
+            let odd = heights.as_mut_ptr().cast::<u8>().add(1).cast::<c_void>();
+            assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_TIME, odd, 1000), HIBI_ERROR_MISALIGNED);
+            assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1024), HIBI_OK);
+            assert!(heights.iter().any(|&v| v < 1.0) && heights.iter().all(|&v| (0.0..=1.0).contains(&v)));
+            assert_eq!(hibi_mud_render(null(), &render, HIBI_MUD_LAYER_MASK, h, 4096), HIBI_ERROR_NULL_POINTER);
+            let mut stats = hibi_mud_statistics::default();
+            assert_eq!(hibi_mud_measure(mud, &mut stats), HIBI_OK);
+            assert!(stats.crack_density > 0.0);
+            hibi_mud_destroy(mud);
+        }
+    }
+}
