@@ -622,7 +622,8 @@ mod tests {
 
     #[test]
     fn every_bad_field_and_enum_is_a_specific_status_and_nothing_is_created() {
-        let cases: [(fn(&mut hibi_mud_params), hibi_status); 8] = [
+        type Spoil = fn(&mut hibi_mud_params);
+        let cases: [(Spoil, hibi_status); 8] = [
             (|p| p.cookie = 0, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED),
             (|p| p.topology = 2, HIBI_ERROR_MUD_ENUM),
             (|p| p.solver = 7, HIBI_ERROR_MUD_ENUM),
