@@ -161,7 +161,7 @@ fn fixed_point_and_float_agree_on_crack_statistics() {
 fn golden_segments() {
     let p = params(64);
     assert_eq!(run::<f32>(&p).1, 7847952194047235786, "the f32 scene changed");
-    assert_eq!(run::<Q16>(&p).1, 7200401587114049055, "the Q16.16 scene changed");
+    assert_eq!(run::<Q16>(&p).1, 18157804799593492877, "the Q16.16 scene changed");
 }
 
 /// The share of crack length within 30° of `direction`.
@@ -235,4 +235,42 @@ fn step_does_bounded_work_and_resumes_to_the_same_result() {
         let (_, _, whole) = run::<f32>(&p);
         assert!(stepped == whole, "{solver:?}: stepping changed the result");
     }
+}
+
+#[test]
+fn a_run_can_end_at_a_target_crack_density() {
+    let p = MudParams { target_shrink: 0.0, target_crack_density: 0.2, ..params(48) };
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let end = mud.run();
+    assert!(end.finished && end.crack_density >= 0.2 && end.crack_density < 0.25, "{end:?}");
+    assert!(end.shrink < 0.022, "{end:?}");
+}
+
+#[test]
+fn the_time_map_dates_every_crack_pixel_and_only_those() {
+    let p = params(48);
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let end = mud.run();
+    let render = MudRender { width: 192, height: 192, ..MudRender::default() };
+    let (mut mask, mut time, mut height) = (vec![0u8; 192 * 192], vec![0.0f32; 192 * 192], vec![0.0f32; 192 * 192]);
+    mud.render_mask(&render, &mut mask).unwrap();
+    mud.render_time(&render, &mut time).unwrap();
+    mud.render_height(&render, &mut height).unwrap();
+    for i in 0..192 * 192 {
+        if mask[i] >= 128 {
+            assert!(time[i].is_finite() && time[i] > 0.0 && time[i] <= end.time, "pixel {i}: {}", time[i]);
+            assert!(height[i] < 1.0, "pixel {i} is cracked but not grooved");
+        }
+        if mask[i] == 0 {
+            assert!(time[i].is_infinite() && height[i] == 1.0, "pixel {i}");
+        }
+    }
+    // Cracks appear over time: the earliest and latest cracked pixels are far apart in time.
+    let times: Vec<f32> = time.iter().copied().filter(|t| t.is_finite()).collect();
+    let (first, last) = times.iter().fold((f32::MAX, 0.0f32), |(a, b), &t| (a.min(t), b.max(t)));
+    assert!(last - first > 10.0, "{first}..{last}");
 }

@@ -184,6 +184,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
+        // The node's intact springs: (spring, other node, e towards the other node).
+        let mut intact = [(0usize, 0usize, S::ZERO, S::ZERO); 6];
+        let mut count = 0;
         self.lattice.for_each_spring_at(node, |spring, other, d, sign| {
             visited += 1;
             if self.break_time[spring] != INTACT {
@@ -198,6 +201,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
             let pull = k * (S::ONE + ex * self.ux[other] + ey * self.uy[other]);
             b0 += pull * ex;
             b1 += pull * ey;
+            intact[count] = (spring, other, ex, ey);
+            count += 1;
         });
         let det = a00 * a11 - a01 * a01;
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
@@ -209,14 +214,17 @@ impl<'a, S: Scalar> Mud<'a, S> {
         self.uy[node] = y;
         let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
         let tolerance = S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
-        let lattice = self.lattice;
         let misfit = self.misfit;
-        lattice.for_each_spring_at(node, |spring, other, _, _| {
-            if self.break_time[spring] != INTACT {
-                return;
-            }
-            // A spring that is past its limit on the way to equilibrium breaks now.
-            if self.break_misfit_of(spring) <= misfit {
+        for &(spring, other, ex, ey) in &intact[..count] {
+            // A spring that is past its limit on the way to equilibrium breaks now:
+            // s_break ≤ s, i.e. κ − 1 ≤ s·(e·(u_j − u_i) + a + κ·b), without the division.
+            let opening = ex * (self.ux[other] - x) + ey * (self.uy[other] - y);
+            let kappa = self.break_stretch[spring];
+            let denominator = match self.params.drive {
+                Drive::Shrink => opening + kappa,
+                Drive::Growth => opening + S::ONE,
+            };
+            if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
                 self.break_spring(spring);
                 let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
                 let r = self.relaxation();
@@ -227,7 +235,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             } else if moved > tolerance {
                 self.relaxation().push(other);
             }
-        });
+        }
         visited
     }
 
