@@ -133,7 +133,7 @@ impl Scalar for f32 {
     fn floor(self) -> Self {
         libm::floorf(self)
     }
-    /// A bit-level first guess (relative error ≤ 3.5·10⁻³) refined by three Newton steps
+    /// A bit-level first guess (relative error ≤ 3.5·10⁻²) refined by three Newton steps
     /// y ← y·(1.5 − ½x·y²): only integer and IEEE basic operations, so it is the same on every
     /// platform and vectorises (libm's sqrt is a scalar instruction behind inline assembly).
     /// Relative error ≤ 3·10⁻⁷ (tests).
