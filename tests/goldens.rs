@@ -12,12 +12,13 @@ use hibi_tests::fnv1a64;
 const SEED: u64 = 2026;
 
 /// The first four 32-bit outputs of each stream for seed 2026, in `Stream::ALL` order.
-const FIRST_OUTPUTS: [(Stream, [u32; 4]); 8] = [
+const FIRST_OUTPUTS: [(Stream, [u32; 4]); 9] = [
     (Stream::BreakStretch, [1427003102, 2937897310, 2427765056, 1693374040]),
     (Stream::RadialCount, [4086243937, 3633856879, 768297860, 2570844062]),
     (Stream::CrackSpeed, [1383952818, 2442216126, 3090181330, 251949910]),
     (Stream::RingRadius, [3449750040, 3083511762, 616720071, 1265029083]),
     (Stream::RandomForce, [1380643572, 156739567, 4233051604, 1789837582]),
+    (Stream::ImpactRotation, [3269840399, 1070210178, 3338609189, 728232604]),
     (Stream::SiteLayout, [1846600729, 1829838922, 869880936, 2068712773]),
     (Stream::SiteJitter, [260090408, 2914357267, 291705697, 3463590335]),
     (Stream::EdgePerturbation, [2428378447, 991469845, 2887340429, 1140106291]),

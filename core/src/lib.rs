@@ -13,12 +13,14 @@
 //! - [`scalar`]: the number type the models compute in (`f32`, `micromath`, Q16.16).
 //! - [`geom`]: points, segments, intersections, polylines.
 //! - [`mud`]: model A, the drying-mud spring lattice.
+//! - [`glass`]: model B, the crack grower for a glass plate hit by a ball.
 //! - [`raster`]: drawing into caller buffers.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod geom;
+pub mod glass;
 pub mod mud;
 pub mod raster;
 pub mod rng;

@@ -30,6 +30,8 @@ pub enum Stream {
     RingRadius = 18,
     /// Model B: the direction of the random force F3.
     RandomForce = 19,
+    /// Model B: the rotation of the star of radial cracks and of the ring start points.
+    ImpactRotation = 20,
     /// Model C: site positions (uniform random layout).
     SiteLayout = 32,
     /// Model C: site jitter on lattice layouts.
@@ -40,12 +42,13 @@ pub enum Stream {
 
 impl Stream {
     /// Every stream, in discriminant order.
-    pub const ALL: [Stream; 8] = [
+    pub const ALL: [Stream; 9] = [
         Stream::BreakStretch,
         Stream::RadialCount,
         Stream::CrackSpeed,
         Stream::RingRadius,
         Stream::RandomForce,
+        Stream::ImpactRotation,
         Stream::SiteLayout,
         Stream::SiteJitter,
         Stream::EdgePerturbation,
@@ -251,7 +254,7 @@ mod tests {
 
     #[test]
     fn streams_are_distinct_and_repeatable() {
-        let first: [u32; 8] = Stream::ALL.map(|s| Rng::new(7, s).next_u32());
+        let first: [u32; 9] = Stream::ALL.map(|s| Rng::new(7, s).next_u32());
         for (i, a) in first.iter().enumerate() {
             for b in &first[i + 1..] {
                 assert_ne!(a, b);

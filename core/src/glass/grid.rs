@@ -1,0 +1,98 @@
+//! A uniform grid over the plate, so that a tip's neighbourhood (its sector, its next step)
+//! is found without scanning every crack: each cell heads a linked list of items (segment or
+//! tip indices) in caller words.
+
+/// No item / end of a list.
+pub(super) const NONE: u32 = u32::MAX;
+
+/// A grid of `columns × rows` cells of side `cell` over [0, width] × [0, height].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Grid {
+    pub(super) columns: usize,
+    pub(super) rows: usize,
+    pub(super) cell: f32,
+}
+
+impl Grid {
+    /// The grid for a plate, with cells about `cell` wide (at most 256 × 256 cells).
+    pub(super) fn new(width: f32, height: f32, cell: f32) -> Grid {
+        let cell = cell.max(width / 256.0).max(height / 256.0).max(1.0);
+        let columns = (libm::ceilf(width / cell) as usize).max(1);
+        let rows = (libm::ceilf(height / cell) as usize).max(1);
+        Grid { columns, rows, cell }
+    }
+
+    /// Number of cells.
+    pub(super) const fn cells(&self) -> usize {
+        self.columns * self.rows
+    }
+
+    /// The cell range (inclusive) covering [x0, x1] × [y0, y1], clamped to the grid.
+    pub(super) fn span(&self, x0: f32, y0: f32, x1: f32, y1: f32) -> (usize, usize, usize, usize) {
+        let clamp = |v: f32, n: usize| (libm::floorf(v / self.cell).max(0.0) as usize).min(n - 1);
+        (clamp(x0, self.columns), clamp(y0, self.rows), clamp(x1, self.columns), clamp(y1, self.rows))
+    }
+}
+
+/// Items in cells: `heads[cell]` starts a list through `next[entry]`, each entry naming an
+/// item in `item[entry]`.
+pub(super) struct Buckets<'a> {
+    pub(super) heads: &'a mut [u32],
+    pub(super) item: &'a mut [u32],
+    pub(super) next: &'a mut [u32],
+    pub(super) used: usize,
+}
+
+impl Buckets<'_> {
+    /// Empties every cell.
+    pub(super) fn clear(&mut self) {
+        self.heads.fill(NONE);
+        self.used = 0;
+    }
+
+    /// Adds `value` to `cell`; false when the entries are full.
+    pub(super) fn insert(&mut self, cell: usize, value: u32) -> bool {
+        if self.used == self.item.len() {
+            return false;
+        }
+        let entry = self.used;
+        self.item[entry] = value;
+        self.next[entry] = self.heads[cell];
+        self.heads[cell] = entry as u32;
+        self.used += 1;
+        true
+    }
+
+    /// Calls `visit` with every item of `cell`, newest first.
+    pub(super) fn for_each(&self, cell: usize, mut visit: impl FnMut(u32)) {
+        let mut entry = self.heads[cell];
+        while entry != NONE {
+            visit(self.item[entry as usize]);
+            entry = self.next[entry as usize];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn buckets_hold_items_per_cell_until_full() {
+        let g = Grid::new(100.0, 50.0, 25.0);
+        assert_eq!((g.columns, g.rows, g.cells()), (4, 2, 8));
+        assert_eq!(g.span(-5.0, 10.0, 60.0, 80.0), (0, 0, 2, 1));
+        let (mut heads, mut item, mut next) = ([0u32; 8], [0u32; 3], [0u32; 3]);
+        let mut b = Buckets { heads: &mut heads, item: &mut item, next: &mut next, used: 0 };
+        b.clear();
+        assert!(b.insert(5, 10) && b.insert(5, 11) && b.insert(2, 12));
+        assert!(!b.insert(1, 13));
+        let mut seen = [0u32; 2];
+        let mut n = 0;
+        b.for_each(5, |v| {
+            seen[n] = v;
+            n += 1;
+        });
+        assert_eq!(seen, [11, 10]);
+    }
+}

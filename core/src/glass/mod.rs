@@ -1,0 +1,461 @@
+//! Model B: a glass plate hit by a ball (Agui, Moriyama, Nagao, Nakajima, "Representation of
+//! cracks in plate glass by CG"; MODELS.md §B).
+//!
+//! An impact starts M radial cracks at the impact point (N of them large) and R ring start
+//! points, each growing a counter-clockwise and a clockwise crack. Every step each growing
+//! tip turns towards the sum of three forces found in the sector ahead of it: a push away
+//! from other tips (F1), a pull to meet cracks and edges at right angles (F2), and a random
+//! one (F3). A tip that reaches a crack or the edge stops exactly on it. Generation ends when
+//! every large and ring crack has stopped.
+//!
+//! ```
+//! use hibi_core::glass::{Glass, GlassBuffers, GlassParams};
+//!
+//! let params = GlassParams::default();
+//! let m = params.memory().unwrap();
+//! let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
+//! let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
+//! let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+//! let mut glass = Glass::new(&params, buffers).unwrap();
+//! while !glass.step(10_000).finished {}
+//! assert!(glass.crack_count() > 0);
+//! ```
+
+mod grid;
+pub mod params;
+
+pub use params::{GlassParamError, GlassParams};
+
+use grid::{Buckets, Grid, NONE};
+
+use crate::rng::{Rng, Stream};
+
+/// What kind of crack a polyline is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum CrackKind {
+    /// A large radial crack: fast, reaches the edge (speed V1).
+    #[default]
+    Large = 0,
+    /// Another radial crack (speed V2).
+    Radial = 1,
+    /// A ring crack growing counter-clockwise from its start point (speed V3).
+    RingCounterClockwise = 2,
+    /// A ring crack growing clockwise from its start point (speed V3).
+    RingClockwise = 3,
+}
+
+/// Why a crack is no longer growing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum CrackEnd {
+    /// It still grows.
+    #[default]
+    Growing = 0,
+    /// Its tip reached the plate's edge and stops exactly on it.
+    Edge = 1,
+    /// Its tip reached another crack and stops on it, sharing the vertex.
+    Crack = 2,
+    /// Generation of its impact ended (every large and ring crack had stopped), or a later
+    /// impact began.
+    Generation = 3,
+}
+
+/// One crack: its kind, its tip and how it grows.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Crack {
+    /// Large, radial or ring.
+    pub kind: CrackKind,
+    /// Still growing.
+    pub growing: bool,
+    /// Why it stopped.
+    pub end: CrackEnd,
+    /// Which impact started it (0 for the first).
+    pub impact: u32,
+    /// The tip w, a vertex of the crack.
+    pub tip: [f32; 2],
+    /// The direction of growth [radians].
+    pub heading: f32,
+    /// |v|, pixels per step.
+    pub speed: f32,
+    /// Steps grown (t in weight(t)).
+    pub age: u32,
+    /// The step at which the crack starts growing (ring cracks wait for the large ones).
+    pub wake: u32,
+    /// Ring cracks: the impact point and the ring's radius d_i.
+    pub ring: ([f32; 2], f32),
+    /// First and last segment of the crack's chain (NONE before the first step).
+    first_segment: u32,
+    last_segment: u32,
+    /// The crack's start vertex.
+    start_vertex: u32,
+}
+
+/// A crack vertex. Where cracks meet, both share the vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Vertex {
+    /// Position (x, y) in pixels.
+    pub at: [f32; 2],
+}
+
+/// A straight piece of a crack between two vertices, chained in growth order, with the time
+/// (steps since its impact) the crack front passed each end.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Edge {
+    from: u32,
+    to: u32,
+    crack: u32,
+    next: u32,
+    time: [f32; 2],
+}
+
+/// How much caller memory a plate needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GlassMemory {
+    /// [`Crack`] records.
+    pub cracks: usize,
+    /// [`Vertex`] records.
+    pub vertices: usize,
+    /// [`Edge`] records.
+    pub edges: usize,
+    /// `u32` words (spatial grids).
+    pub words: usize,
+}
+
+/// Caller memory for a plate.
+pub struct GlassBuffers<'a> {
+    /// At least [`GlassMemory::cracks`].
+    pub cracks: &'a mut [Crack],
+    /// At least [`GlassMemory::vertices`].
+    pub vertices: &'a mut [Vertex],
+    /// At least [`GlassMemory::edges`].
+    pub edges: &'a mut [Edge],
+    /// At least [`GlassMemory::words`].
+    pub words: &'a mut [u32],
+}
+
+/// Why a plate could not be set up or an output written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GlassError {
+    /// A parameter is out of range.
+    Param(GlassParamError),
+    /// A caller buffer is too small: `needed` elements are required.
+    BufferTooSmall {
+        /// Elements the buffer must hold.
+        needed: usize,
+    },
+    /// An impact point outside the plate.
+    Impact,
+}
+
+impl From<GlassParamError> for GlassError {
+    fn from(e: GlassParamError) -> Self {
+        GlassError::Param(e)
+    }
+}
+
+/// Where generation stands, as [`Glass::step`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GlassProgress {
+    /// Steps taken for the current impact.
+    pub time: u32,
+    /// Cracks on the plate.
+    pub cracks: u32,
+    /// Cracks still growing.
+    pub growing: u32,
+    /// Vertices used.
+    pub vertices: u32,
+    /// Generation of the current impact has ended.
+    pub finished: bool,
+    /// A capacity (`max_cracks`, `max_vertices`, grid entries) ran out: generation stopped
+    /// early, with everything drawn so far consistent.
+    pub capacity_reached: bool,
+}
+
+/// The counts an impact drew (paper Eqs. 3, 5, 6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ImpactCounts {
+    /// M: radial cracks.
+    pub radial: u32,
+    /// N: large cracks among them.
+    pub large: u32,
+    /// R: ring start points (each grows two cracks).
+    pub rings: u32,
+}
+
+/// Grid entries per vertex: a segment is at most one cell long, so it touches at most four
+/// cells; splitting adds a segment per hit.
+const ENTRIES_PER_VERTEX: usize = 5;
+
+impl GlassParams {
+    /// Validates the parameters and returns the memory a plate needs.
+    pub fn memory(&self) -> Result<GlassMemory, GlassParamError> {
+        self.validate()?;
+        let grid = Grid::new(self.width, self.height, self.sector_radius);
+        let (cracks, vertices) = (self.max_cracks as usize, self.max_vertices as usize);
+        // Segment grid: heads, entry item and next; tip grid: heads, entry item and next;
+        // one stamp per edge (to visit each segment once per query).
+        let words = (|| {
+            let segment = grid.cells().checked_add(vertices.checked_mul(2 * ENTRIES_PER_VERTEX)?)?;
+            let tip = grid.cells().checked_add(cracks.checked_mul(2)?)?;
+            segment.checked_add(tip)?.checked_add(vertices)
+        })()
+        .filter(|&w| w <= isize::MAX as usize / 64)
+        .ok_or(GlassParamError::Capacity)?;
+        Ok(GlassMemory { cracks, vertices, edges: vertices, words })
+    }
+}
+
+/// A glass plate and the cracks growing in it, over caller memory.
+pub struct Glass<'a> {
+    params: GlassParams,
+    grid: Grid,
+    cracks: &'a mut [Crack],
+    crack_count: usize,
+    vertices: &'a mut [Vertex],
+    vertex_count: usize,
+    edges: &'a mut [Edge],
+    edge_count: usize,
+    segments: Buckets<'a>,
+    tips: Buckets<'a>,
+    stamps: &'a mut [u32],
+    stamp: u32,
+    impacts: u32,
+    counts: ImpactCounts,
+    time: u32,
+    /// The next crack to advance in the current step.
+    cursor: usize,
+    /// The step count after which generation ends regardless (no crack grows forever).
+    time_limit: u32,
+    finished: bool,
+    capacity_reached: bool,
+    forces: Rng,
+}
+
+/// Cuts the first `n` elements off a buffer.
+fn take<'a, T>(buffer: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+    let (head, tail) = core::mem::take(buffer).split_at_mut(n);
+    *buffer = tail;
+    head
+}
+
+/// `angle` wrapped into (−π, π].
+fn wrap(angle: f32) -> f32 {
+    let tau = 2.0 * core::f32::consts::PI;
+    let mut a = angle - tau * libm::floorf(angle / tau);
+    if a > core::f32::consts::PI {
+        a -= tau;
+    }
+    a
+}
+
+impl<'a> Glass<'a> {
+    /// Sets up the plate and the first impact (at `params.impact`). Nothing is written to the
+    /// buffers on failure.
+    pub fn new(params: &GlassParams, buffers: GlassBuffers<'a>) -> Result<Self, GlassError> {
+        let m = params.memory()?;
+        let short = [
+            (buffers.cracks.len(), m.cracks),
+            (buffers.vertices.len(), m.vertices),
+            (buffers.edges.len(), m.edges),
+            (buffers.words.len(), m.words),
+        ];
+        if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
+            return Err(GlassError::BufferTooSmall { needed });
+        }
+        let grid = Grid::new(params.width, params.height, params.sector_radius);
+        let mut words = buffers.words;
+        let vertices = params.max_vertices as usize;
+        let cracks = params.max_cracks as usize;
+        let mut segments = Buckets {
+            heads: take(&mut words, grid.cells()),
+            item: take(&mut words, vertices * ENTRIES_PER_VERTEX),
+            next: take(&mut words, vertices * ENTRIES_PER_VERTEX),
+            used: 0,
+        };
+        let mut tips = Buckets {
+            heads: take(&mut words, grid.cells()),
+            item: take(&mut words, cracks),
+            next: take(&mut words, cracks),
+            used: 0,
+        };
+        segments.clear();
+        tips.clear();
+        let stamps = take(&mut words, vertices);
+        stamps.fill(0);
+        let mut glass = Glass {
+            params: *params,
+            grid,
+            cracks: &mut buffers.cracks[..cracks],
+            crack_count: 0,
+            vertices: &mut buffers.vertices[..vertices],
+            vertex_count: 0,
+            edges: &mut buffers.edges[..vertices],
+            edge_count: 0,
+            segments,
+            tips,
+            stamps,
+            stamp: 0,
+            impacts: 0,
+            counts: ImpactCounts { radial: 0, large: 0, rings: 0 },
+            time: 0,
+            cursor: 0,
+            time_limit: 0,
+            finished: false,
+            capacity_reached: false,
+            forces: Rng::new(params.seed, Stream::RandomForce),
+        };
+        glass.impact(params.impact)?;
+        Ok(glass)
+    }
+
+    /// Adds an impact at `at`: draws M, N and R and starts its cracks (paper §4.2.1). Cracks
+    /// of earlier impacts stay; new cracks stop where they meet them. Growth of any earlier
+    /// impact still running ends first.
+    pub fn impact(&mut self, at: [f32; 2]) -> Result<ImpactCounts, GlassError> {
+        let p = self.params;
+        if !(at[0] > 0.0 && at[0] < p.width && at[1] > 0.0 && at[1] < p.height) {
+            return Err(GlassError::Impact);
+        }
+        self.finish();
+        let key = |stream: Stream| Rng::from_key(p.seed, stream.key() ^ (u64::from(self.impacts) << 32));
+        let (mut count_rng, mut speed_rng, mut radius_rng, mut turn_rng) =
+            (key(Stream::RadialCount), key(Stream::CrackSpeed), key(Stream::RingRadius), key(Stream::ImpactRotation));
+        // Eq. 5: M = Poisson_Rand(M_ave); Eq. 6: N = ⌊e·M + f⌋; Eq. 3: R = ⌊a·M + b⌋ if M > A.
+        let m = count_rng.poisson(f64::from(p.radial_mean)).unwrap_or(0);
+        let mf = m as f32;
+        let n = (libm::floorf(p.large_slope * mf + p.large_offset) as u32).min(m);
+        let r = if mf > p.ring_threshold { libm::floorf(p.ring_slope * mf + p.ring_offset) as u32 } else { 0 };
+        let counts = ImpactCounts { radial: m, large: n, rings: r };
+        self.counts = counts;
+        let impact = self.impacts;
+        self.impacts += 1;
+        self.time = 0;
+        self.cursor = 0;
+        self.finished = false;
+        // Long enough to cross the plate twice at the slowest speed Rand can draw.
+        let slowest = p.large_speed.min(p.radial_speed).min(p.ring_speed) * (1.0 - p.spread_ratio);
+        self.time_limit = (libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32).saturating_add(16);
+        let tau = 2.0 * core::f32::consts::PI;
+        let rotation = turn_rng.uniform_f32() * tau;
+        let rand = |rng: &mut Rng, x: f32| rng.rand(x, p.spread_ratio, p.spread).unwrap_or(x);
+        let centre = self.add_vertex(at);
+        // Radial cracks at equal angles; the N large ones spread as evenly as possible.
+        for i in 0..m {
+            let large = n > 0 && (i * n) / m != ((i + 1) * n) / m;
+            let (kind, speed) = if large {
+                (CrackKind::Large, rand(&mut speed_rng, p.large_speed))
+            } else {
+                (CrackKind::Radial, rand(&mut speed_rng, p.radial_speed))
+            };
+            let heading = wrap(rotation + tau * i as f32 / mf);
+            self.add_crack(kind, impact, centre, heading, speed, ([0.0; 2], 0.0));
+        }
+        // Ring start points C_i at angles 2π·i/R (their own rotation, so that they do not line
+        // up with the large cracks), radius d_i = Rand(g·M + h) (Eqs. 7, 8), each growing two
+        // cracks with one speed V3_i (Eq. 11). A ring crack wakes once the large cracks have
+        // passed its radius (step ⌈d_i / V1_ave⌉): radial cracks run first and the rings join
+        // them, and large cracks, by definition, reach the edge.
+        let ring_mean = p.ring_radius_slope * mf + p.ring_radius_offset;
+        let ring_rotation = turn_rng.uniform_f32() * tau;
+        for i in 0..r {
+            let angle = ring_rotation + tau * i as f32 / r as f32;
+            let radius = rand(&mut radius_rng, ring_mean);
+            let start = [at[0] + radius * libm::cosf(angle), at[1] + radius * libm::sinf(angle)];
+            if !(start[0] > 0.0 && start[0] < p.width && start[1] > 0.0 && start[1] < p.height) {
+                continue; // off the plate: no ring crack there
+            }
+            let speed = rand(&mut speed_rng, p.ring_speed);
+            let vertex = self.add_vertex(start);
+            let quarter = core::f32::consts::FRAC_PI_2;
+            let wake = libm::ceilf(radius / p.large_speed) as u32;
+            for (kind, heading) in
+                [(CrackKind::RingCounterClockwise, angle + quarter), (CrackKind::RingClockwise, angle - quarter)]
+            {
+                self.add_crack(kind, impact, vertex, wrap(heading), speed, (at, radius));
+                if let Some(c) = self.cracks[..self.crack_count].last_mut() {
+                    c.wake = wake;
+                }
+            }
+        }
+        if self.capacity_reached {
+            self.finish();
+        }
+        Ok(counts)
+    }
+
+    /// Adds a vertex; NONE (and capacity reached) when the pool is full.
+    fn add_vertex(&mut self, at: [f32; 2]) -> u32 {
+        if self.vertex_count == self.vertices.len() {
+            self.capacity_reached = true;
+            return NONE;
+        }
+        self.vertices[self.vertex_count] = Vertex { at };
+        self.vertex_count += 1;
+        (self.vertex_count - 1) as u32
+    }
+
+    fn add_crack(&mut self, kind: CrackKind, impact: u32, start: u32, heading: f32, speed: f32, ring: ([f32; 2], f32)) {
+        if start == NONE || self.crack_count == self.cracks.len() {
+            self.capacity_reached = true;
+            return;
+        }
+        self.cracks[self.crack_count] = Crack {
+            kind,
+            growing: true,
+            end: CrackEnd::Growing,
+            impact,
+            tip: self.vertices[start as usize].at,
+            heading,
+            speed,
+            age: 0,
+            wake: 0,
+            ring,
+            first_segment: NONE,
+            last_segment: NONE,
+            start_vertex: start,
+        };
+        self.crack_count += 1;
+    }
+
+    /// Stops every crack: generation of the current impact has ended.
+    fn finish(&mut self) {
+        for crack in self.cracks[..self.crack_count].iter_mut().filter(|c| c.growing) {
+            crack.growing = false;
+            crack.end = CrackEnd::Generation;
+        }
+        self.finished = true;
+    }
+
+    /// The counts drawn by the latest impact.
+    pub fn impact_counts(&self) -> ImpactCounts {
+        self.counts
+    }
+
+    /// Number of cracks.
+    pub fn crack_count(&self) -> usize {
+        self.crack_count
+    }
+
+    /// Crack `i`.
+    pub fn crack(&self, i: usize) -> Option<&Crack> {
+        self.cracks[..self.crack_count].get(i)
+    }
+
+    /// Where generation stands.
+    pub fn progress(&self) -> GlassProgress {
+        GlassProgress {
+            time: self.time,
+            cracks: self.crack_count as u32,
+            growing: self.cracks[..self.crack_count].iter().filter(|c| c.growing).count() as u32,
+            vertices: self.vertex_count as u32,
+            finished: self.finished,
+            capacity_reached: self.capacity_reached,
+        }
+    }
+}
+
+mod growth;
+mod output;
+
+pub use output::CrackPoint;

@@ -1,0 +1,264 @@
+//! Parameters of the glass-impact crack grower (Agui et al. §4, Table 2), in lattice units
+//! (the paper's pixels), with the paper's defaults and one validation that names the field.
+
+use crate::rng::Spread;
+
+/// The parameters of a glass plate hit by a ball. `Default` gives the paper's values (Table 2,
+/// §4.3) and ours where it gives none (see each field).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GlassParams {
+    /// Plate width [px]. Paper: 640.
+    pub width: f32,
+    /// Plate height [px]. Paper: 640.
+    pub height: f32,
+    /// The impact point L (x, y), inside the plate. Paper: (320, 320).
+    pub impact: [f32; 2],
+    /// Seed of every random draw.
+    pub seed: u64,
+    /// M_ave: mean number of radial cracks, M = Poisson_Rand(M_ave) (Eq. 5). Default 100
+    /// (the paper's figures have M = 89–114).
+    pub radial_mean: f32,
+    /// A: ring cracks appear only when M > A (Eq. 3). Paper: 70.
+    pub ring_threshold: f32,
+    /// e in N = ⌊e·M + f⌋, the number of large cracks (Eq. 6). Paper: 0.0606.
+    pub large_slope: f32,
+    /// f in N = ⌊e·M + f⌋ (Eq. 6). Paper: 3.293.
+    pub large_offset: f32,
+    /// a in R = ⌊a·M + b⌋, the number of ring start points (Eq. 3). Not printed by the paper;
+    /// 0.05 matches every figure caption (M 113 → R 6, 104 → 5, 89 → 4).
+    pub ring_slope: f32,
+    /// b in R = ⌊a·M + b⌋ (Eq. 3). 0.5, as for a.
+    pub ring_offset: f32,
+    /// g in d_ave = g·M + h, the mean ring radius [px] (Eq. 7). Paper: 0.470.
+    pub ring_radius_slope: f32,
+    /// h in d_ave = g·M + h [px] (Eq. 7). Paper: 13.90.
+    pub ring_radius_offset: f32,
+    /// V1_ave: mean speed of the large cracks [px per step] (Eq. 9). Paper: 30–60, ≤ 40
+    /// looks natural; default 40.
+    pub large_speed: f32,
+    /// V2_ave: mean speed of the other radial cracks (Eq. 10). Paper: 5–10; default 10.
+    pub radial_speed: f32,
+    /// V3_ave: mean speed of the ring cracks (Eq. 11). Paper: 10.
+    pub ring_speed: f32,
+    /// z of Rand(x): values within [(1 − z)x, (1 + z)x]. Paper: 0.3.
+    pub spread_ratio: f32,
+    /// Normal or uniform Rand(x). Paper: both (Fig. 15 normal, Fig. 16 uniform).
+    pub spread: Spread,
+    /// θ_th: the largest turn per step [radians] (Eq. 18). Paper: 30°.
+    pub turn_limit: f32,
+    /// T in weight(t) = 1 − exp(−t/T) (Eq. 19) [steps]. Paper: 10.
+    pub turn_delay: f32,
+    /// φ: angle of the sector S ahead of a tip [radians]. Paper: 100°.
+    pub sector_angle: f32,
+    /// B: radius of the sector S [px]. Paper: 50.
+    pub sector_radius: f32,
+    /// k1 in F1 = k1·(w − tip)/|w − tip|³: the push from other tips. The paper gives only the
+    /// 1/r² law; ours: 400 px², so that a tip 20 px away pushes as hard as F3.
+    pub tip_repulsion: f32,
+    /// k2 in F2 = k2·n/d²: the pull towards a crack or edge, n its unit normal towards it.
+    /// The paper gives only the 1/d² law; ours: 400 px².
+    pub crack_attraction: f32,
+    /// Standard deviation of the direction of F3 (a unit force) around the tip's heading
+    /// [radians]. The paper gives none; ours: 15°, which reproduces its measured turns per
+    /// segment (roughly symmetric, −22.5° to 27.5°).
+    pub wander: f32,
+    /// How hard a ring crack keeps to its circle (a unit force along the circle plus this
+    /// times the radial error over B). Ours: 2.
+    pub ring_adherence: f32,
+    /// Most cracks the plate can hold (radial, ring and from every impact).
+    pub max_cracks: u32,
+    /// Most crack vertices the plate can hold.
+    pub max_vertices: u32,
+}
+
+impl Default for GlassParams {
+    fn default() -> Self {
+        GlassParams {
+            width: 640.0,
+            height: 640.0,
+            impact: [320.0, 320.0],
+            seed: 1,
+            radial_mean: 100.0,
+            ring_threshold: 70.0,
+            large_slope: 0.0606,
+            large_offset: 3.293,
+            ring_slope: 0.05,
+            ring_offset: 0.5,
+            ring_radius_slope: 0.470,
+            ring_radius_offset: 13.90,
+            large_speed: 40.0,
+            radial_speed: 10.0,
+            ring_speed: 10.0,
+            spread_ratio: 0.3,
+            spread: Spread::Normal,
+            turn_limit: 30.0 * core::f32::consts::PI / 180.0,
+            turn_delay: 10.0,
+            sector_angle: 100.0 * core::f32::consts::PI / 180.0,
+            sector_radius: 50.0,
+            tip_repulsion: 400.0,
+            crack_attraction: 400.0,
+            wander: 15.0 * core::f32::consts::PI / 180.0,
+            ring_adherence: 2.0,
+            max_cracks: 512,
+            max_vertices: 16_384,
+        }
+    }
+}
+
+/// A parameter out of its range; each names the field and its constraint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum GlassParamError {
+    /// `width` and `height` must be finite and >= 1.
+    Size = 0,
+    /// `impact` must lie inside the plate (strictly).
+    Impact = 1,
+    /// `radial_mean` must be finite and within [0, 10000].
+    RadialMean = 2,
+    /// `ring_threshold` must be finite.
+    RingThreshold = 3,
+    /// `large_slope`, `large_offset`, `ring_slope`, `ring_offset` must be finite and >= 0.
+    CountFormula = 4,
+    /// `ring_radius_slope`, `ring_radius_offset` must be finite and >= 0.
+    RingRadius = 5,
+    /// `large_speed`, `radial_speed`, `ring_speed` must be finite and > 0.
+    Speed = 6,
+    /// `spread_ratio` (z) must be within [0, 1).
+    SpreadRatio = 7,
+    /// `turn_limit` must be within [0, π].
+    TurnLimit = 8,
+    /// `turn_delay` (T) must be finite and > 0.
+    TurnDelay = 9,
+    /// `sector_angle` must be within (0, 2π] and `sector_radius` finite and > 0.
+    Sector = 10,
+    /// `tip_repulsion`, `crack_attraction`, `ring_adherence` must be finite and >= 0, `wander`
+    /// finite and >= 0.
+    Forces = 11,
+    /// `max_cracks` must be >= 1 and `max_vertices` >= 2; their memory must fit.
+    Capacity = 12,
+}
+
+impl GlassParamError {
+    /// The field's name and its constraint, NUL-terminated for C.
+    pub const fn message(self) -> &'static core::ffi::CStr {
+        use GlassParamError::*;
+        match self {
+            Size => c"glass: width and height must be finite and >= 1",
+            Impact => c"glass: impact must lie inside the plate",
+            RadialMean => c"glass: radial_mean must be finite and within [0, 10000]",
+            RingThreshold => c"glass: ring_threshold must be finite",
+            CountFormula => c"glass: large_slope, large_offset, ring_slope, ring_offset must be finite and >= 0",
+            RingRadius => c"glass: ring_radius_slope and ring_radius_offset must be finite and >= 0",
+            Speed => c"glass: large_speed, radial_speed, ring_speed must be finite and > 0",
+            SpreadRatio => c"glass: spread_ratio (z) must be within [0, 1)",
+            TurnLimit => c"glass: turn_limit must be within [0, pi]",
+            TurnDelay => c"glass: turn_delay (T) must be finite and > 0",
+            Sector => c"glass: sector_angle must be within (0, 2 pi] and sector_radius finite and > 0",
+            Forces => c"glass: tip_repulsion, crack_attraction, ring_adherence, wander must be finite and >= 0",
+            Capacity => c"glass: max_cracks must be >= 1 and max_vertices >= 2, within memory",
+        }
+    }
+}
+
+impl core::fmt::Display for GlassParamError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.message().to_str().unwrap_or("glass parameter error"))
+    }
+}
+
+/// Finite and ≥ 0.
+fn non_negative(x: f32) -> bool {
+    x.is_finite() && x >= 0.0
+}
+
+/// Finite and > 0.
+fn positive(x: f32) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+impl GlassParams {
+    /// Checks every field; the first wrong one is named.
+    pub fn validate(&self) -> Result<(), GlassParamError> {
+        use GlassParamError::*;
+        let tau = 2.0 * core::f32::consts::PI;
+        let [x, y] = self.impact;
+        let checks = [
+            (self.width.is_finite() && self.width >= 1.0 && self.height.is_finite() && self.height >= 1.0, Size),
+            (x.is_finite() && y.is_finite() && x > 0.0 && x < self.width && y > 0.0 && y < self.height, Impact),
+            (self.radial_mean.is_finite() && (0.0..=10_000.0).contains(&self.radial_mean), RadialMean),
+            (self.ring_threshold.is_finite(), RingThreshold),
+            (
+                [self.large_slope, self.large_offset, self.ring_slope, self.ring_offset]
+                    .iter()
+                    .all(|&v| non_negative(v)),
+                CountFormula,
+            ),
+            (non_negative(self.ring_radius_slope) && non_negative(self.ring_radius_offset), RingRadius),
+            ([self.large_speed, self.radial_speed, self.ring_speed].iter().all(|&v| positive(v)), Speed),
+            (self.spread_ratio.is_finite() && (0.0..1.0).contains(&self.spread_ratio), SpreadRatio),
+            (self.turn_limit.is_finite() && (0.0..=core::f32::consts::PI).contains(&self.turn_limit), TurnLimit),
+            (positive(self.turn_delay), TurnDelay),
+            (
+                self.sector_angle.is_finite()
+                    && self.sector_angle > 0.0
+                    && self.sector_angle <= tau
+                    && positive(self.sector_radius),
+                Sector,
+            ),
+            (
+                [self.tip_repulsion, self.crack_attraction, self.ring_adherence, self.wander]
+                    .iter()
+                    .all(|&v| non_negative(v)),
+                Forces,
+            ),
+            (self.max_cracks >= 1 && self.max_vertices >= 2, Capacity),
+        ];
+        match checks.iter().find(|(ok, _)| !ok) {
+            Some(&(_, error)) => Err(error),
+            None => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_the_papers_and_valid() {
+        let p = GlassParams::default();
+        assert_eq!(p.validate(), Ok(()));
+        assert_eq!((p.ring_threshold, p.large_slope, p.large_offset), (70.0, 0.0606, 3.293));
+        assert_eq!(
+            (p.ring_radius_slope, p.ring_radius_offset, p.turn_delay, p.spread_ratio),
+            (0.470, 13.90, 10.0, 0.3)
+        );
+        assert_eq!((p.sector_radius, p.width, p.impact), (50.0, 640.0, [320.0, 320.0]));
+    }
+
+    #[test]
+    fn every_bad_field_is_named() {
+        type Spoil = fn(&mut GlassParams);
+        let cases: [(Spoil, GlassParamError); 14] = [
+            (|p| p.width = 0.0, GlassParamError::Size),
+            (|p| p.height = f32::NAN, GlassParamError::Size),
+            (|p| p.impact = [700.0, 10.0], GlassParamError::Impact),
+            (|p| p.impact = [0.0, 10.0], GlassParamError::Impact),
+            (|p| p.radial_mean = -1.0, GlassParamError::RadialMean),
+            (|p| p.large_slope = f32::INFINITY, GlassParamError::CountFormula),
+            (|p| p.ring_radius_offset = -1.0, GlassParamError::RingRadius),
+            (|p| p.large_speed = 0.0, GlassParamError::Speed),
+            (|p| p.spread_ratio = 1.0, GlassParamError::SpreadRatio),
+            (|p| p.turn_limit = -0.1, GlassParamError::TurnLimit),
+            (|p| p.turn_delay = 0.0, GlassParamError::TurnDelay),
+            (|p| p.sector_radius = -5.0, GlassParamError::Sector),
+            (|p| p.wander = f32::NAN, GlassParamError::Forces),
+            (|p| p.max_vertices = 1, GlassParamError::Capacity),
+        ];
+        for (spoil, error) in cases {
+            let mut p = GlassParams::default();
+            spoil(&mut p);
+            assert_eq!(p.validate(), Err(error), "{p:?}");
+        }
+    }
+}
