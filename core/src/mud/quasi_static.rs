@@ -225,13 +225,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 Drive::Growth => opening + S::ONE,
             };
             if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
-                self.break_spring(spring);
-                let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
-                let r = self.relaxation();
-                r.break_misfit[spring] = S::MAX;
-                r.update(spring);
-                r.push(a);
-                r.push(b);
+                self.break_and_relax(spring);
             } else if moved > tolerance {
                 self.relaxation().push(other);
             }
@@ -285,7 +279,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
             }
             self.misfit = at;
         }
-        let spring = next as usize;
+        self.break_and_relax(next as usize);
+        1
+    }
+
+    /// Breaks `spring`, retires it from the tree, and queues its two nodes for relaxation.
+    fn break_and_relax(&mut self, spring: usize) {
         self.break_spring(spring);
         let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
         let r = self.relaxation();
@@ -293,6 +292,5 @@ impl<'a, S: Scalar> Mud<'a, S> {
         r.update(spring);
         r.push(a);
         r.push(b);
-        1
     }
 }
