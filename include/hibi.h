@@ -500,6 +500,11 @@ typedef struct hibi_mud_render_params {
 #define HIBI_ERROR_RENDER_OFFSET 772
 
 /**
+ * Render: `line_width` must be finite and > 0.
+ */
+#define HIBI_ERROR_RENDER_LINE_WIDTH 774
+
+/**
  * Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
  */
 #define HIBI_ERROR_RENDER_LAYER 773

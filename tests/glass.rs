@@ -131,3 +131,34 @@ fn golden_cracks() {
     });
     assert_eq!(hash, 15194608960451595373, "the glass scene changed");
 }
+
+#[test]
+fn rasters_draw_the_network_and_date_its_pixels() {
+    use hibi_core::glass::GlassRender;
+    use hibi_core::raster::RasterError;
+    let p = GlassParams { seed: 3, ..GlassParams::default() };
+    with_plate(&p, |g| {
+        let render = GlassRender { width: 320, height: 320, ..GlassRender::default() };
+        let (mut mask, mut time) = (vec![0u8; 320 * 320], vec![0.0f32; 320 * 320]);
+        g.render_mask(&render, &mut mask).unwrap();
+        g.render_time(&render, &mut time).unwrap();
+        let cracked = mask.iter().filter(|&&v| v >= 128).count();
+        assert!(cracked > 1000, "{cracked} cracked pixels");
+        let last = g.progress().time as f32 + 1.0;
+        for i in 0..mask.len() {
+            if mask[i] >= 160 {
+                assert!(time[i].is_finite() && (0.0..=last).contains(&time[i]), "pixel {i}: {}", time[i]);
+            }
+            if mask[i] == 0 {
+                assert!(time[i].is_infinite(), "pixel {i}");
+            }
+        }
+        // The impact point cracks first, the plate's edge last.
+        assert!(time[160 * 320 + 160] < 1.0);
+        let mut untouched = vec![9u8; 320 * 320 - 1];
+        assert_eq!(g.render_mask(&render, &mut untouched), Err(RasterError::BufferTooSmall { needed: 320 * 320 }));
+        assert!(untouched.iter().all(|&v| v == 9));
+        let thin = GlassRender { line_width: 0.0, ..render };
+        assert_eq!(g.render_mask(&thin, &mut mask), Err(RasterError::LineWidth));
+    });
+}

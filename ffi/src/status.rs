@@ -90,6 +90,8 @@ pub const HIBI_ERROR_RENDER_MIN_WIDTH: hibi_status = 770;
 pub const HIBI_ERROR_RENDER_GROOVE_DEPTH: hibi_status = 771;
 /// Render: `offset` must be finite.
 pub const HIBI_ERROR_RENDER_OFFSET: hibi_status = 772;
+/// Render: `line_width` must be finite and > 0.
+pub const HIBI_ERROR_RENDER_LINE_WIDTH: hibi_status = 774;
 /// Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
 pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
 
@@ -160,6 +162,7 @@ pub(crate) fn raster_status(error: RasterError) -> hibi_status {
         RasterError::MinWidth => HIBI_ERROR_RENDER_MIN_WIDTH,
         RasterError::GrooveDepth => HIBI_ERROR_RENDER_GROOVE_DEPTH,
         RasterError::Offset => HIBI_ERROR_RENDER_OFFSET,
+        RasterError::LineWidth => HIBI_ERROR_RENDER_LINE_WIDTH,
     }
 }
 
@@ -191,6 +194,7 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RENDER_MIN_WIDTH => RasterError::MinWidth.message(),
         HIBI_ERROR_RENDER_GROOVE_DEPTH => RasterError::GrooveDepth.message(),
         HIBI_ERROR_RENDER_OFFSET => RasterError::Offset.message(),
+        HIBI_ERROR_RENDER_LINE_WIDTH => RasterError::LineWidth.message(),
         HIBI_ERROR_RENDER_LAYER => c"render: layer is not one of the HIBI_MUD_LAYER_* constants",
         _ => match mud_param_error(status) {
             Some(error) => error.message(),

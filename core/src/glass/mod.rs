@@ -457,5 +457,7 @@ impl<'a> Glass<'a> {
 
 mod growth;
 mod output;
+pub mod render;
 
 pub use output::CrackPoint;
+pub use render::GlassRender;

@@ -28,6 +28,8 @@ pub enum RasterError {
     GrooveDepth,
     /// `offset` is not finite.
     Offset,
+    /// `line_width` is not finite or not positive.
+    LineWidth,
 }
 
 impl RasterError {
@@ -40,6 +42,7 @@ impl RasterError {
             RasterError::MinWidth => c"render: min_width must be finite and >= 0",
             RasterError::GrooveDepth => c"render: groove_depth must be finite and >= 0",
             RasterError::Offset => c"render: offset must be finite",
+            RasterError::LineWidth => c"render: line_width must be finite and > 0",
         }
     }
 }
