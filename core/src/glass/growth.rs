@@ -75,7 +75,7 @@ impl Glass<'_> {
             return None;
         }
         let cosine = (e[0] * direction[0] + e[1] * direction[1]) / distance;
-        (cosine >= libm::cosf(0.5 * self.params.sector_angle)).then_some((e, distance))
+        (cosine >= self.sector_cosine).then_some((e, distance))
     }
 
     /// Calls `visit` once with every segment filed in the grid cells covering the box
@@ -140,6 +140,14 @@ impl Glass<'_> {
                 return;
             }
             let (a, z) = glass.edge_points(e);
+            // Farther than B in x or y from the segment's box: not in the sector.
+            if w[0] < a[0].min(z[0]) - b
+                || w[0] > a[0].max(z[0]) + b
+                || w[1] < a[1].min(z[1]) - b
+                || w[1] > a[1].max(z[1]) + b
+            {
+                return;
+            }
             let q = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1])).closest_point(Point::new(w[0], w[1]));
             if let Some((v, d)) = glass.in_sector(w, direction, [q.x, q.y]) {
                 let k = p.crack_attraction / (d * d * d);
@@ -248,6 +256,10 @@ impl Glass<'_> {
                 return;
             }
             let (a, z) = glass.edge_points(e);
+            // Boxes apart: no meeting.
+            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
+                return;
+            }
             let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
             let (t, at) = match path.intersect(other) {
                 Intersection::None => return,

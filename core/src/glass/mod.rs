@@ -230,6 +230,9 @@ pub struct Glass<'a> {
     finished: bool,
     capacity_reached: bool,
     forces: Rng,
+    /// cos(φ/2): a point is in a tip's sector when its direction's cosine with the heading
+    /// is at least this.
+    sector_cosine: f32,
 }
 
 /// Cuts the first `n` elements off a buffer.
@@ -304,6 +307,7 @@ impl<'a> Glass<'a> {
             finished: false,
             capacity_reached: false,
             forces: Rng::new(params.seed, Stream::RandomForce),
+            sector_cosine: libm::cosf(0.5 * params.sector_angle),
         };
         glass.impact(params.impact)?;
         Ok(glass)
