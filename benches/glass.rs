@@ -1,0 +1,39 @@
+//! Model B benchmark: the paper's 640×640 plate, M_ave = 100; generation, then the mask and
+//! the time map, averaged over 200 seeds.
+//!
+//!     cargo bench --bench glass
+
+use std::time::{Duration, Instant};
+
+use hibi_core::glass::{Glass, GlassBuffers, GlassParams, GlassRender};
+
+fn main() {
+    let base = GlassParams::default();
+    let m = base.memory().expect("valid parameters");
+    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
+    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
+    let render = GlassRender::default();
+    let (mut mask, mut time) = (vec![0u8; 640 * 640], vec![0.0f32; 640 * 640]);
+    let (mut generation, mut masks, mut times) = (Duration::ZERO, Duration::ZERO, Duration::ZERO);
+    let plates = 200u32;
+    for seed in 0..u64::from(plates) {
+        let params = GlassParams { seed, ..base };
+        let start = Instant::now();
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let mut glass = Glass::new(&params, buffers).expect("memory suffices");
+        while !glass.step(u64::MAX).finished {}
+        generation += start.elapsed();
+        let start = Instant::now();
+        glass.render_mask(&render, &mut mask).expect("buffer suffices");
+        masks += start.elapsed();
+        let start = Instant::now();
+        glass.render_time(&render, &mut time).expect("buffer suffices");
+        times += start.elapsed();
+    }
+    println!("| 640×640, M_ave = 100 (mean of {plates} seeds) | time |");
+    println!("|---|---|");
+    println!("| generation | {:.2} ms |", generation.as_secs_f64() * 1e3 / f64::from(plates));
+    println!("| mask | {:.2} ms |", masks.as_secs_f64() * 1e3 / f64::from(plates));
+    println!("| time map | {:.2} ms |", times.as_secs_f64() * 1e3 / f64::from(plates));
+}
