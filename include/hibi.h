@@ -18,6 +18,17 @@
 #include <stdint.h>
 
 /**
+ * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+ */
+#define HIBI_GLASS_LAYER_MASK 0
+
+/**
+ * Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
+ * no crack is.
+ */
+#define HIBI_GLASS_LAYER_TIME 1
+
+/**
  * Square elements: 4 neighbours, axis-aligned short cracks.
  */
 #define HIBI_MUD_SQUARE 0
@@ -83,6 +94,11 @@
 #define HIBI_SPREAD_NORMAL 1
 
 /**
+ * A glass plate and its cracks. Opaque.
+ */
+typedef struct hibi_glass hibi_glass;
+
+/**
  * A drying-mud run. Opaque.
  */
 typedef struct hibi_mud hibi_mud;
@@ -91,6 +107,207 @@ typedef struct hibi_mud hibi_mud;
  * A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
  */
 typedef struct hibi_rng hibi_rng;
+
+/**
+ * The parameters of a glass plate, in pixels. Get them from `hibi_glass_params_default`
+ * (the paper's values), then change fields; `hibi_glass_create` rejects a struct that did
+ * not come from there.
+ */
+typedef struct hibi_glass_params {
+  /**
+   * Set by `hibi_glass_params_default`; leave it alone.
+   */
+  uint32_t cookie;
+  /**
+   * `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
+   */
+  uint32_t spread;
+  /**
+   * Plate width and height [px] (default 640 × 640).
+   */
+  float size[2];
+  /**
+   * The first impact point (default the centre).
+   */
+  float impact[2];
+  /**
+   * Seed of every random draw.
+   */
+  uint64_t seed;
+  /**
+   * M_ave, mean number of radial cracks (default 100).
+   */
+  float radial_mean;
+  /**
+   * A: rings appear when M > A (paper: 70).
+   */
+  float ring_threshold;
+  /**
+   * e, f in N = floor(e·M + f) (paper: 0.0606, 3.293).
+   */
+  float large_count[2];
+  /**
+   * a, b in R = floor(a·M + b) (0.05, 0.5).
+   */
+  float ring_count[2];
+  /**
+   * g, h in d_ave = g·M + h (paper: 0.470, 13.90).
+   */
+  float ring_radius[2];
+  /**
+   * V1_ave, V2_ave, V3_ave [px per step] (default 40, 10, 10).
+   */
+  float speeds[3];
+  /**
+   * z of Rand(x) (paper: 0.3).
+   */
+  float spread_ratio;
+  /**
+   * θ_th, the largest turn per step [radians] (paper: 30°).
+   */
+  float turn_limit;
+  /**
+   * T in weight(t) = 1 − exp(−t/T) (paper: 10).
+   */
+  float turn_delay;
+  /**
+   * φ, the sector angle [radians] (paper: 100°).
+   */
+  float sector_angle;
+  /**
+   * B, the sector radius [px] (paper: 50).
+   */
+  float sector_radius;
+  /**
+   * k1 of F1, k2 of F2 [px²] (default 400, 400).
+   */
+  float forces[2];
+  /**
+   * Spread of F3's direction [radians] (default 15°).
+   */
+  float wander;
+  /**
+   * How hard ring cracks keep to their circle (default 2).
+   */
+  float ring_adherence;
+  /**
+   * Most cracks and most vertices the plate holds (default 512, 16384).
+   */
+  uint32_t max_cracks;
+  /**
+   * See `max_cracks`.
+   */
+  uint32_t max_vertices;
+} hibi_glass_params;
+
+/**
+ * The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
+ * Codes below 256 are about the call itself (pointers, buffers, enums); codes from 256 up
+ * name the argument or parameter field that is wrong. `hibi_status_string` gives the message.
+ */
+typedef uint32_t hibi_status;
+
+/**
+ * The counts an impact drew: M radial cracks, N of them large, R ring start points.
+ */
+typedef struct hibi_glass_counts {
+  /**
+   * M.
+   */
+  uint32_t radial;
+  /**
+   * N.
+   */
+  uint32_t large;
+  /**
+   * R.
+   */
+  uint32_t rings;
+} hibi_glass_counts;
+
+/**
+ * Where generation stands.
+ */
+typedef struct hibi_glass_progress {
+  /**
+   * Steps taken for the current impact.
+   */
+  uint32_t time;
+  /**
+   * Cracks on the plate.
+   */
+  uint32_t cracks;
+  /**
+   * Cracks still growing.
+   */
+  uint32_t growing;
+  /**
+   * Vertices used.
+   */
+  uint32_t vertices;
+  /**
+   * 1 when generation of the current impact has ended.
+   */
+  uint32_t finished;
+  /**
+   * 1 when a capacity ran out (generation then stopped early, consistently).
+   */
+  uint32_t capacity_reached;
+} hibi_glass_progress;
+
+/**
+ * One crack: `HIBI_GLASS_LARGE`... kind, why it stopped, its impact and its point count.
+ */
+typedef struct hibi_glass_crack {
+  /**
+   * 0 large, 1 radial, 2 ring counter-clockwise, 3 ring clockwise.
+   */
+  uint32_t kind;
+  /**
+   * 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended.
+   */
+  uint32_t end;
+  /**
+   * Which impact started it.
+   */
+  uint32_t impact;
+  /**
+   * Points of its polyline.
+   */
+  uint32_t points;
+} hibi_glass_crack;
+
+/**
+ * A polyline point: position [px] and the step at which the crack front passed it.
+ */
+typedef struct hibi_glass_point {
+  /**
+   * Position (x, y).
+   */
+  float at[2];
+  /**
+   * Time in steps.
+   */
+  float time;
+} hibi_glass_point;
+
+/**
+ * How to draw a raster. Defaults from `hibi_glass_render_params_default`.
+ */
+typedef struct hibi_glass_render_params {
+  /**
+   * Raster width in pixels (default 640); the plate is stretched over it.
+   */
+  uint32_t width;
+  /**
+   * Raster height in pixels (default 640).
+   */
+  uint32_t height;
+  /**
+   * Width of a crack line in pixels (default 1.2).
+   */
+  float line_width;
+} hibi_glass_render_params;
 
 /**
  * The parameters of a drying-mud run, in the paper's units (cm, g, s). Get them from
@@ -199,13 +416,6 @@ typedef struct hibi_mud_params {
    */
   float target_crack_density;
 } hibi_mud_params;
-
-/**
- * The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
- * Codes below 256 are about the call itself (pointers, buffers, enums); codes from 256 up
- * name the argument or parameter field that is wrong. `hibi_status_string` gives the message.
- */
-typedef uint32_t hibi_status;
 
 /**
  * Where a run stands.
@@ -509,6 +719,97 @@ typedef struct hibi_mud_render_params {
  */
 #define HIBI_ERROR_RENDER_LAYER 773
 
+/**
+ * Glass parameters: width and height must be finite and >= 1.
+ */
+#define HIBI_ERROR_GLASS_SIZE 1024
+
+/**
+ * Glass parameters: the first impact must lie inside the plate.
+ */
+#define HIBI_ERROR_GLASS_IMPACT_POINT 1025
+
+/**
+ * Glass parameters: `radial_mean` must be finite and within [0, 10000].
+ */
+#define HIBI_ERROR_GLASS_RADIAL_MEAN 1026
+
+/**
+ * Glass parameters: `ring_threshold` must be finite.
+ */
+#define HIBI_ERROR_GLASS_RING_THRESHOLD 1027
+
+/**
+ * Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_COUNT_FORMULA 1028
+
+/**
+ * Glass parameters: the ring radius coefficients must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_RING_RADIUS 1029
+
+/**
+ * Glass parameters: the speeds must be finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_SPEED 1030
+
+/**
+ * Glass parameters: `spread_ratio` (z) must be within [0, 1).
+ */
+#define HIBI_ERROR_GLASS_SPREAD_RATIO 1031
+
+/**
+ * Glass parameters: `turn_limit` must be within [0, pi].
+ */
+#define HIBI_ERROR_GLASS_TURN_LIMIT 1032
+
+/**
+ * Glass parameters: `turn_delay` (T) must be finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_TURN_DELAY 1033
+
+/**
+ * Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_SECTOR 1034
+
+/**
+ * Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_FORCES 1035
+
+/**
+ * Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+ */
+#define HIBI_ERROR_GLASS_CAPACITY_PARAMS 1036
+
+/**
+ * Glass parameters: the struct did not come from `hibi_glass_params_default`.
+ */
+#define HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED 1087
+
+/**
+ * Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
+ */
+#define HIBI_ERROR_GLASS_ENUM 1088
+
+/**
+ * `hibi_glass_impact`: the point is not inside the plate.
+ */
+#define HIBI_ERROR_GLASS_IMPACT 1089
+
+/**
+ * `hibi_glass_step`: `max_cracks`, `max_vertices` or the grid ran out; generation stopped
+ * early and the plate stays usable as drawn.
+ */
+#define HIBI_ERROR_GLASS_CAPACITY 1090
+
+/**
+ * A crack index is not below `hibi_glass_crack_count`.
+ */
+#define HIBI_ERROR_GLASS_CRACK_INDEX 1091
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -517,6 +818,132 @@ extern "C" {
  * The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.
  */
 const char *hibi_version(void);
+
+/**
+ * The paper's parameters (and ours where it gives none), with the cookie set.
+ */
+struct hibi_glass_params hibi_glass_params_default(void);
+
+/**
+ * Checks `params` and writes the bytes a plate needs in caller memory (for
+ * `hibi_glass_create_in`). Every parameter error is reported here.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `size` NULL or writable.
+ */
+hibi_status hibi_glass_memory_size(const struct hibi_glass_params *params, size_t *size);
+
+/**
+ * Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have.
+ */
+size_t hibi_glass_memory_align(void);
+
+/**
+ * Creates a plate in library memory with its first impact (at `params.impact`). Free it with
+ * `hibi_glass_destroy`. `*out` is written only on success.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `out` NULL or writable.
+ */
+hibi_status hibi_glass_create(const struct hibi_glass_params *params, struct hibi_glass **out);
+
+/**
+ * Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes aligned to
+ * `hibi_glass_memory_align()`. The memory stays the caller's; `hibi_glass_destroy` is
+ * optional. Nothing is written on failure.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+ * `out` NULL or writable.
+ */
+hibi_status hibi_glass_create_in(const struct hibi_glass_params *params,
+                                 void *memory,
+                                 size_t memory_len,
+                                 struct hibi_glass **out);
+
+/**
+ * Destroys a plate; frees its memory if `hibi_glass_create` allocated it. NULL is ignored.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate, not used afterwards.
+ */
+void hibi_glass_destroy(struct hibi_glass *glass);
+
+/**
+ * Adds an impact at (x, y): its cracks grow on the next steps and stop where they meet the
+ * earlier ones. Writes the counts it drew unless `counts` is NULL.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `counts` NULL or writable.
+ */
+hibi_status hibi_glass_impact(struct hibi_glass *glass,
+                              float x,
+                              float y,
+                              struct hibi_glass_counts *counts);
+
+/**
+ * Advances growth by at most `budget` tip steps (at least one); writes where it stands to
+ * `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
+ * once a capacity has run out; the plate then stays as it was drawn, usable.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `progress` NULL or writable.
+ */
+hibi_status hibi_glass_step(struct hibi_glass *glass,
+                            uint64_t budget,
+                            struct hibi_glass_progress *progress);
+
+/**
+ * Writes the number of cracks.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `count` NULL or writable.
+ */
+hibi_status hibi_glass_crack_count(const struct hibi_glass *glass, size_t *count);
+
+/**
+ * Describes crack `index` (below `hibi_glass_crack_count`).
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `crack` NULL or writable.
+ */
+hibi_status hibi_glass_crack_info(const struct hibi_glass *glass,
+                                  size_t index,
+                                  struct hibi_glass_crack *crack);
+
+/**
+ * Writes crack `index`'s polyline into `points[0..len]` and its length into `*written`.
+ * If `len` is too small, nothing is written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `points` NULL (only with `len` 0) or writable for
+ * `len` points; `written` NULL or writable.
+ */
+hibi_status hibi_glass_points(const struct hibi_glass *glass,
+                              size_t index,
+                              struct hibi_glass_point *points,
+                              size_t len,
+                              size_t *written);
+
+/**
+ * Default drawing: 640 × 640, 1.2-pixel lines.
+ */
+struct hibi_glass_render_params hibi_glass_render_params_default(void);
+
+/**
+ * Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
+ * `HIBI_GLASS_LAYER_MASK`, `float` for `HIBI_GLASS_LAYER_TIME`). `pixels_len` counts values.
+ * Nothing is written on failure.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `render` NULL or readable; `pixels` NULL (only with
+ * `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ */
+hibi_status hibi_glass_render(const struct hibi_glass *glass,
+                              const struct hibi_glass_render_params *render,
+                              uint32_t layer,
+                              void *pixels,
+                              size_t pixels_len);
 
 /**
  * The paper's parameters (and ours where it gives none), with the cookie set.

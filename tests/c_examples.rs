@@ -236,3 +236,59 @@ fn mud_example_links_shared_library() {
 fn mud_example_is_clean_under_sanitizers() {
     check_mud(Linkage::Sanitized);
 }
+
+/// The glass example's mask, as Rust draws it for the same parameters.
+fn expected_glass_mask() -> Vec<u8> {
+    use hibi_core::glass::{Glass, GlassBuffers, GlassParams, GlassRender};
+    let params = GlassParams { seed: 7, ..GlassParams::default() };
+    let m = params.memory().unwrap();
+    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
+    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
+    let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+    let mut glass = Glass::new(&params, buffers).unwrap();
+    while !glass.step(100).finished {}
+    let mut mask = vec![0u8; 640 * 640];
+    glass.render_mask(&GlassRender::default(), &mut mask).unwrap();
+    mask.iter().map(|v| 255 - v).collect()
+}
+
+fn check_glass(linkage: Linkage) {
+    let pgm = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("glass_{linkage:?}.pgm"));
+    let output = build_and_run_with(&c_compiler(), "c99", "c_examples/glass.c", linkage, &[pgm.to_str().unwrap()]);
+    assert_eq!(
+        line(&output, "impact outside the plate:"),
+        "impact outside the plate: status 1025, glass: impact must lie inside the plate"
+    );
+    let finished = line(&output, "finished after");
+    let large: Vec<&str> = finished.split(", ").collect();
+    assert!(
+        large[1].ends_with("large")
+            && large[2] == format!("{} of them at the edge", large[1].trim_end_matches(" large")),
+        "{finished}"
+    );
+    assert_eq!(
+        line(&output, "crack index past the end:"),
+        "crack index past the end: status 1091, glass: crack index out of range"
+    );
+    assert!(line(&output, "second impact drew M").starts_with("second impact drew M "), "{output}");
+    assert_eq!(line(&output, "caller memory"), "caller memory, same bytes: yes");
+    let bytes = std::fs::read(&pgm).expect("the example wrote its PGM");
+    let header = b"P5\n640 640\n255\n";
+    assert_eq!(&bytes[..header.len()], header);
+    assert!(bytes[header.len()..] == expected_glass_mask()[..], "the C program's picture differs from Rust's");
+}
+
+#[test]
+fn glass_example_links_static_library() {
+    check_glass(Linkage::Static);
+}
+
+#[test]
+fn glass_example_links_shared_library() {
+    check_glass(Linkage::Shared);
+}
+
+#[test]
+fn glass_example_is_clean_under_sanitizers() {
+    check_glass(Linkage::Sanitized);
+}

@@ -16,12 +16,14 @@
 
 use core::ffi::c_char;
 
+pub mod glass;
 mod guard;
 mod memory;
 pub mod mud;
 pub mod rng;
 pub mod status;
 
+pub use glass::*;
 pub use mud::*;
 pub use rng::*;
 pub use status::*;

@@ -3,6 +3,7 @@
 use core::ffi::{CStr, c_char};
 
 use hibi_core::RngError;
+use hibi_core::glass::GlassParamError;
 use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
 
@@ -119,6 +120,86 @@ const _: () = {
     assert!(HIBI_ERROR_MUD_SCALE == 512 + MudParamError::Scale as u32);
 };
 
+/// Glass parameters: width and height must be finite and >= 1.
+pub const HIBI_ERROR_GLASS_SIZE: hibi_status = 1024;
+/// Glass parameters: the first impact must lie inside the plate.
+pub const HIBI_ERROR_GLASS_IMPACT_POINT: hibi_status = 1025;
+/// Glass parameters: `radial_mean` must be finite and within [0, 10000].
+pub const HIBI_ERROR_GLASS_RADIAL_MEAN: hibi_status = 1026;
+/// Glass parameters: `ring_threshold` must be finite.
+pub const HIBI_ERROR_GLASS_RING_THRESHOLD: hibi_status = 1027;
+/// Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
+pub const HIBI_ERROR_GLASS_COUNT_FORMULA: hibi_status = 1028;
+/// Glass parameters: the ring radius coefficients must be finite and >= 0.
+pub const HIBI_ERROR_GLASS_RING_RADIUS: hibi_status = 1029;
+/// Glass parameters: the speeds must be finite and > 0.
+pub const HIBI_ERROR_GLASS_SPEED: hibi_status = 1030;
+/// Glass parameters: `spread_ratio` (z) must be within [0, 1).
+pub const HIBI_ERROR_GLASS_SPREAD_RATIO: hibi_status = 1031;
+/// Glass parameters: `turn_limit` must be within [0, pi].
+pub const HIBI_ERROR_GLASS_TURN_LIMIT: hibi_status = 1032;
+/// Glass parameters: `turn_delay` (T) must be finite and > 0.
+pub const HIBI_ERROR_GLASS_TURN_DELAY: hibi_status = 1033;
+/// Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
+pub const HIBI_ERROR_GLASS_SECTOR: hibi_status = 1034;
+/// Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
+pub const HIBI_ERROR_GLASS_FORCES: hibi_status = 1035;
+/// Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+pub const HIBI_ERROR_GLASS_CAPACITY_PARAMS: hibi_status = 1036;
+/// Glass parameters: the struct did not come from `hibi_glass_params_default`.
+pub const HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED: hibi_status = 1087;
+/// Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
+pub const HIBI_ERROR_GLASS_ENUM: hibi_status = 1088;
+/// `hibi_glass_impact`: the point is not inside the plate.
+pub const HIBI_ERROR_GLASS_IMPACT: hibi_status = 1089;
+/// `hibi_glass_step`: `max_cracks`, `max_vertices` or the grid ran out; generation stopped
+/// early and the plate stays usable as drawn.
+pub const HIBI_ERROR_GLASS_CAPACITY: hibi_status = 1090;
+/// A crack index is not below `hibi_glass_crack_count`.
+pub const HIBI_ERROR_GLASS_CRACK_INDEX: hibi_status = 1091;
+
+const _: () = {
+    assert!(HIBI_ERROR_GLASS_SIZE == 1024 + GlassParamError::Size as u32);
+    assert!(HIBI_ERROR_GLASS_IMPACT_POINT == 1024 + GlassParamError::Impact as u32);
+    assert!(HIBI_ERROR_GLASS_RADIAL_MEAN == 1024 + GlassParamError::RadialMean as u32);
+    assert!(HIBI_ERROR_GLASS_RING_THRESHOLD == 1024 + GlassParamError::RingThreshold as u32);
+    assert!(HIBI_ERROR_GLASS_COUNT_FORMULA == 1024 + GlassParamError::CountFormula as u32);
+    assert!(HIBI_ERROR_GLASS_RING_RADIUS == 1024 + GlassParamError::RingRadius as u32);
+    assert!(HIBI_ERROR_GLASS_SPEED == 1024 + GlassParamError::Speed as u32);
+    assert!(HIBI_ERROR_GLASS_SPREAD_RATIO == 1024 + GlassParamError::SpreadRatio as u32);
+    assert!(HIBI_ERROR_GLASS_TURN_LIMIT == 1024 + GlassParamError::TurnLimit as u32);
+    assert!(HIBI_ERROR_GLASS_TURN_DELAY == 1024 + GlassParamError::TurnDelay as u32);
+    assert!(HIBI_ERROR_GLASS_SECTOR == 1024 + GlassParamError::Sector as u32);
+    assert!(HIBI_ERROR_GLASS_FORCES == 1024 + GlassParamError::Forces as u32);
+    assert!(HIBI_ERROR_GLASS_CAPACITY_PARAMS == 1024 + GlassParamError::Capacity as u32);
+};
+
+/// The status that reports a glass parameter error.
+pub(crate) fn glass_param_status(error: GlassParamError) -> hibi_status {
+    1024 + error as u32
+}
+
+/// The core error behind a glass parameter status.
+fn glass_param_error(status: hibi_status) -> Option<GlassParamError> {
+    use GlassParamError::*;
+    const ALL: [GlassParamError; 13] = [
+        Size,
+        Impact,
+        RadialMean,
+        RingThreshold,
+        CountFormula,
+        RingRadius,
+        Speed,
+        SpreadRatio,
+        TurnLimit,
+        TurnDelay,
+        Sector,
+        Forces,
+        Capacity,
+    ];
+    ALL.iter().copied().find(|e| glass_param_status(*e) == status)
+}
+
 /// The status that reports a mud parameter error.
 pub(crate) fn mud_param_status(error: MudParamError) -> hibi_status {
     512 + error as u32
@@ -196,9 +277,17 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RENDER_OFFSET => RasterError::Offset.message(),
         HIBI_ERROR_RENDER_LINE_WIDTH => RasterError::LineWidth.message(),
         HIBI_ERROR_RENDER_LAYER => c"render: layer is not one of the HIBI_MUD_LAYER_* constants",
-        _ => match mud_param_error(status) {
-            Some(error) => error.message(),
-            None => c"unknown status code",
+        HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED => {
+            c"glass: the params struct did not come from hibi_glass_params_default"
+        }
+        HIBI_ERROR_GLASS_ENUM => c"glass: spread is not HIBI_SPREAD_UNIFORM or HIBI_SPREAD_NORMAL",
+        HIBI_ERROR_GLASS_IMPACT => c"glass: the impact point is not inside the plate",
+        HIBI_ERROR_GLASS_CAPACITY => c"glass: max_cracks or max_vertices ran out; generation stopped early",
+        HIBI_ERROR_GLASS_CRACK_INDEX => c"glass: crack index out of range",
+        _ => match (mud_param_error(status), glass_param_error(status)) {
+            (Some(error), _) => error.message(),
+            (_, Some(error)) => error.message(),
+            _ => c"unknown status code",
         },
     }
 }

@@ -1,0 +1,636 @@
+//! `hibi_glass`: model B, a glass plate hit by a ball (Agui et al.), from C.
+//!
+//! ```c
+//! hibi_glass_params params = hibi_glass_params_default();
+//! hibi_glass *glass = NULL;
+//! if (hibi_glass_create(&params, &glass) != HIBI_OK) { ... }
+//! hibi_glass_progress progress;
+//! do { hibi_glass_step(glass, 1000, &progress); } while (!progress.finished);
+//! hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, pixels, width * height);
+//! hibi_glass_destroy(glass);
+//! ```
+//!
+//! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
+
+use core::ffi::c_void;
+use core::mem::{align_of, size_of};
+
+use hibi_core::Spread;
+use hibi_core::glass::{Crack, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex};
+
+use crate::guard::{Outcome, buffer, check_pointer, guard, object, write_out};
+use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
+use crate::status::{
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
+    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_RENDER_LAYER,
+    HIBI_ERROR_SIZE_OVERFLOW, glass_param_status, hibi_status, raster_status,
+};
+
+/// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
+/// Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
+/// no crack is.
+pub const HIBI_GLASS_LAYER_TIME: u32 = 1;
+
+/// Marks a params struct that came from `hibi_glass_params_default` ("GLS1").
+const PARAMS_COOKIE: u32 = 0x474C_5331;
+
+/// The parameters of a glass plate, in pixels. Get them from `hibi_glass_params_default`
+/// (the paper's values), then change fields; `hibi_glass_create` rejects a struct that did
+/// not come from there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct hibi_glass_params {
+    /// Set by `hibi_glass_params_default`; leave it alone.
+    pub cookie: u32,
+    /// `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
+    pub spread: u32,
+    /// Plate width and height [px] (default 640 × 640).
+    pub size: [f32; 2],
+    /// The first impact point (default the centre).
+    pub impact: [f32; 2],
+    /// Seed of every random draw.
+    pub seed: u64,
+    /// M_ave, mean number of radial cracks (default 100).
+    pub radial_mean: f32,
+    /// A: rings appear when M > A (paper: 70).
+    pub ring_threshold: f32,
+    /// e, f in N = floor(e·M + f) (paper: 0.0606, 3.293).
+    pub large_count: [f32; 2],
+    /// a, b in R = floor(a·M + b) (0.05, 0.5).
+    pub ring_count: [f32; 2],
+    /// g, h in d_ave = g·M + h (paper: 0.470, 13.90).
+    pub ring_radius: [f32; 2],
+    /// V1_ave, V2_ave, V3_ave [px per step] (default 40, 10, 10).
+    pub speeds: [f32; 3],
+    /// z of Rand(x) (paper: 0.3).
+    pub spread_ratio: f32,
+    /// θ_th, the largest turn per step [radians] (paper: 30°).
+    pub turn_limit: f32,
+    /// T in weight(t) = 1 − exp(−t/T) (paper: 10).
+    pub turn_delay: f32,
+    /// φ, the sector angle [radians] (paper: 100°).
+    pub sector_angle: f32,
+    /// B, the sector radius [px] (paper: 50).
+    pub sector_radius: f32,
+    /// k1 of F1, k2 of F2 [px²] (default 400, 400).
+    pub forces: [f32; 2],
+    /// Spread of F3's direction [radians] (default 15°).
+    pub wander: f32,
+    /// How hard ring cracks keep to their circle (default 2).
+    pub ring_adherence: f32,
+    /// Most cracks and most vertices the plate holds (default 512, 16384).
+    pub max_cracks: u32,
+    /// See `max_cracks`.
+    pub max_vertices: u32,
+}
+
+/// Where generation stands.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct hibi_glass_progress {
+    /// Steps taken for the current impact.
+    pub time: u32,
+    /// Cracks on the plate.
+    pub cracks: u32,
+    /// Cracks still growing.
+    pub growing: u32,
+    /// Vertices used.
+    pub vertices: u32,
+    /// 1 when generation of the current impact has ended.
+    pub finished: u32,
+    /// 1 when a capacity ran out (generation then stopped early, consistently).
+    pub capacity_reached: u32,
+}
+
+/// The counts an impact drew: M radial cracks, N of them large, R ring start points.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct hibi_glass_counts {
+    /// M.
+    pub radial: u32,
+    /// N.
+    pub large: u32,
+    /// R.
+    pub rings: u32,
+}
+
+/// One crack: `HIBI_GLASS_LARGE`... kind, why it stopped, its impact and its point count.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct hibi_glass_crack {
+    /// 0 large, 1 radial, 2 ring counter-clockwise, 3 ring clockwise.
+    pub kind: u32,
+    /// 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended.
+    pub end: u32,
+    /// Which impact started it.
+    pub impact: u32,
+    /// Points of its polyline.
+    pub points: u32,
+}
+
+/// A polyline point: position [px] and the step at which the crack front passed it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_glass_point {
+    /// Position (x, y).
+    pub at: [f32; 2],
+    /// Time in steps.
+    pub time: f32,
+}
+
+/// How to draw a raster. Defaults from `hibi_glass_render_params_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct hibi_glass_render_params {
+    /// Raster width in pixels (default 640); the plate is stretched over it.
+    pub width: u32,
+    /// Raster height in pixels (default 640).
+    pub height: u32,
+    /// Width of a crack line in pixels (default 1.2).
+    pub line_width: f32,
+}
+
+impl Outcome for hibi_glass_params {
+    type C = hibi_glass_params;
+    fn into_c(self) -> Self {
+        self
+    }
+    /// A struct without the cookie, which every function rejects.
+    fn on_panic() -> Self {
+        hibi_glass_params { cookie: 0, ..to_c(&GlassParams::default()) }
+    }
+}
+
+impl Outcome for hibi_glass_render_params {
+    type C = hibi_glass_render_params;
+    fn into_c(self) -> Self {
+        self
+    }
+    /// A zero-sized raster, which rendering rejects.
+    fn on_panic() -> Self {
+        hibi_glass_render_params { width: 0, height: 0, line_width: 0.0 }
+    }
+}
+
+/// A glass plate and its cracks. Opaque.
+pub struct hibi_glass {
+    glass: Glass<'static>,
+    origin: Origin,
+}
+
+/// Alignment of a plate's block.
+const BLOCK_ALIGN: usize = {
+    let mut a = 8;
+    let aligns = [align_of::<hibi_glass>(), align_of::<Crack>(), align_of::<Vertex>(), align_of::<Edge>()];
+    let mut i = 0;
+    while i < aligns.len() {
+        if aligns[i] > a {
+            a = aligns[i];
+        }
+        i += 1;
+    }
+    a
+};
+
+/// The C view of core parameters.
+fn to_c(p: &GlassParams) -> hibi_glass_params {
+    hibi_glass_params {
+        cookie: PARAMS_COOKIE,
+        spread: p.spread as u32,
+        size: [p.width, p.height],
+        impact: p.impact,
+        seed: p.seed,
+        radial_mean: p.radial_mean,
+        ring_threshold: p.ring_threshold,
+        large_count: [p.large_slope, p.large_offset],
+        ring_count: [p.ring_slope, p.ring_offset],
+        ring_radius: [p.ring_radius_slope, p.ring_radius_offset],
+        speeds: [p.large_speed, p.radial_speed, p.ring_speed],
+        spread_ratio: p.spread_ratio,
+        turn_limit: p.turn_limit,
+        turn_delay: p.turn_delay,
+        sector_angle: p.sector_angle,
+        sector_radius: p.sector_radius,
+        forces: [p.tip_repulsion, p.crack_attraction],
+        wander: p.wander,
+        ring_adherence: p.ring_adherence,
+        max_cracks: p.max_cracks,
+        max_vertices: p.max_vertices,
+    }
+}
+
+/// The core parameters of a C params struct: cookie, enum, fields.
+fn from_c(p: &hibi_glass_params) -> Result<GlassParams, hibi_status> {
+    if p.cookie != PARAMS_COOKIE {
+        return Err(HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED);
+    }
+    let spread = match p.spread {
+        0 => Spread::Uniform,
+        1 => Spread::Normal,
+        _ => return Err(HIBI_ERROR_GLASS_ENUM),
+    };
+    Ok(GlassParams {
+        width: p.size[0],
+        height: p.size[1],
+        impact: p.impact,
+        seed: p.seed,
+        radial_mean: p.radial_mean,
+        ring_threshold: p.ring_threshold,
+        large_slope: p.large_count[0],
+        large_offset: p.large_count[1],
+        ring_slope: p.ring_count[0],
+        ring_offset: p.ring_count[1],
+        ring_radius_slope: p.ring_radius[0],
+        ring_radius_offset: p.ring_radius[1],
+        large_speed: p.speeds[0],
+        radial_speed: p.speeds[1],
+        ring_speed: p.speeds[2],
+        spread_ratio: p.spread_ratio,
+        spread,
+        turn_limit: p.turn_limit,
+        turn_delay: p.turn_delay,
+        sector_angle: p.sector_angle,
+        sector_radius: p.sector_radius,
+        tip_repulsion: p.forces[0],
+        crack_attraction: p.forces[1],
+        wander: p.wander,
+        ring_adherence: p.ring_adherence,
+        max_cracks: p.max_cracks,
+        max_vertices: p.max_vertices,
+    })
+}
+
+/// A plate's block: where each array starts, and the total size.
+struct Layout {
+    params: GlassParams,
+    counts: hibi_core::glass::GlassMemory,
+    cracks: usize,
+    vertices: usize,
+    edges: usize,
+    words: usize,
+    bytes: usize,
+}
+
+/// Validates `params` and lays out its block.
+///
+/// # Safety
+/// `params` must be NULL or readable.
+unsafe fn plan(params: *const hibi_glass_params) -> Result<Layout, hibi_status> {
+    check_pointer(params)?;
+    // SAFETY: non-null and aligned (checked); readable by the caller's contract.
+    let params = from_c(unsafe { &*params })?;
+    let counts = params.memory().map_err(glass_param_status)?;
+    let place = |at: usize, align: usize, n: usize, size: usize| -> Option<(usize, usize)> {
+        let start = round_up(at, align);
+        Some((start, start.checked_add(n.checked_mul(size)?)?))
+    };
+    let layout = (|| {
+        let (cracks, end) = place(size_of::<hibi_glass>(), align_of::<Crack>(), counts.cracks, size_of::<Crack>())?;
+        let (vertices, end) = place(end, align_of::<Vertex>(), counts.vertices, size_of::<Vertex>())?;
+        let (edges, end) = place(end, align_of::<Edge>(), counts.edges, size_of::<Edge>())?;
+        let (words, end) = place(end, align_of::<u32>(), counts.words, size_of::<u32>())?;
+        (end <= isize::MAX as usize / 2).then_some(Layout {
+            params,
+            counts,
+            cracks,
+            vertices,
+            edges,
+            words,
+            bytes: end,
+        })
+    })();
+    layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
+}
+
+/// Fills `n` elements of type `T` at `block + offset` with `T::default()` and returns them.
+///
+/// # Safety
+/// The range must lie in the block, aligned for `T`, and outlive every use of the slice.
+unsafe fn array<T: Default>(block: *mut u8, offset: usize, n: usize) -> &'static mut [T] {
+    // SAFETY: the caller's contract; every element is written before the slice is made.
+    unsafe {
+        let start = block.add(offset).cast::<T>();
+        for i in 0..n {
+            start.add(i).write(T::default());
+        }
+        core::slice::from_raw_parts_mut(start, n)
+    }
+}
+
+/// Builds a plate in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).
+///
+/// # Safety
+/// `block` must be valid for writes of `layout.bytes` and outlive the plate.
+unsafe fn build(block: *mut u8, layout: Layout, origin: Origin) -> Result<*mut hibi_glass, hibi_status> {
+    let c = layout.counts;
+    // SAFETY: the layout places each array inside the block, aligned, without overlap.
+    let buffers = unsafe {
+        GlassBuffers {
+            cracks: array(block, layout.cracks, c.cracks),
+            vertices: array(block, layout.vertices, c.vertices),
+            edges: array(block, layout.edges, c.edges),
+            words: array(block, layout.words, c.words),
+        }
+    };
+    let glass = Glass::new(&layout.params, buffers).map_err(glass_status)?;
+    let ptr = block.cast::<hibi_glass>();
+    // SAFETY: the header fits at the block's start, aligned.
+    unsafe { ptr.write(hibi_glass { glass, origin }) };
+    Ok(ptr)
+}
+
+/// The status of a core glass error.
+fn glass_status(error: GlassError) -> hibi_status {
+    match error {
+        GlassError::Param(p) => glass_param_status(p),
+        GlassError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
+        GlassError::Impact => HIBI_ERROR_GLASS_IMPACT,
+    }
+}
+
+/// The paper's parameters (and ours where it gives none), with the cookie set.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_glass_params_default() -> hibi_glass_params {
+    guard(|| to_c(&GlassParams::default()))
+}
+
+/// Checks `params` and writes the bytes a plate needs in caller memory (for
+/// `hibi_glass_create_in`). Every parameter error is reported here.
+///
+/// # Safety
+/// `params` must be NULL or readable; `size` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_memory_size(params: *const hibi_glass_params, size: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(size, layout.bytes) }
+    })
+}
+
+/// Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_glass_memory_align() -> usize {
+    guard(|| BLOCK_ALIGN)
+}
+
+/// Creates a plate in library memory with its first impact (at `params.impact`). Free it with
+/// `hibi_glass_destroy`. `*out` is written only on success.
+///
+/// # Safety
+/// `params` must be NULL or readable; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_create(params: *const hibi_glass_params, out: *mut *mut hibi_glass) -> hibi_status {
+    guard(|| {
+        check_pointer(out)?;
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        let (block, origin) = library_block(layout.bytes, BLOCK_ALIGN)?;
+        // SAFETY: a fresh block of the planned size and alignment.
+        match unsafe { build(block, layout, origin) } {
+            // SAFETY: checked above; the caller's contract.
+            Ok(glass) => unsafe { write_out(out, glass) },
+            Err(status) => {
+                // SAFETY: allocated above, never handed out.
+                unsafe { release_block(block, origin) };
+                Err(status)
+            }
+        }
+    })
+}
+
+/// Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes aligned to
+/// `hibi_glass_memory_align()`. The memory stays the caller's; `hibi_glass_destroy` is
+/// optional. Nothing is written on failure.
+///
+/// # Safety
+/// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+/// `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_create_in(
+    params: *const hibi_glass_params,
+    memory: *mut c_void,
+    memory_len: usize,
+    out: *mut *mut hibi_glass,
+) -> hibi_status {
+    guard(|| {
+        check_pointer(out)?;
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        let block = caller_block(memory, memory_len, layout.bytes, BLOCK_ALIGN)?;
+        // SAFETY: checked to hold the planned size, aligned; the caller's contract.
+        let glass = unsafe { build(block, layout, Origin::Caller) }?;
+        // SAFETY: checked above; the caller's contract.
+        unsafe { write_out(out, glass) }
+    })
+}
+
+/// Destroys a plate; frees its memory if `hibi_glass_create` allocated it. NULL is ignored.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_destroy(glass: *mut hibi_glass) {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        if let Ok(live) = unsafe { object(glass) } {
+            let origin = live.origin;
+            // SAFETY: a live plate made by hibi_glass_create or hibi_glass_create_in.
+            unsafe {
+                glass.drop_in_place();
+                release_block(glass.cast(), origin);
+            }
+        }
+    })
+}
+
+/// Adds an impact at (x, y): its cracks grow on the next steps and stop where they meet the
+/// earlier ones. Writes the counts it drew unless `counts` is NULL.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `counts` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_impact(
+    glass: *mut hibi_glass,
+    x: f32,
+    y: f32,
+    counts: *mut hibi_glass_counts,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass) }?;
+        if !counts.is_null() {
+            check_pointer(counts)?;
+        }
+        let c = glass.glass.impact([x, y]).map_err(glass_status)?;
+        if !counts.is_null() {
+            let value = hibi_glass_counts { radial: c.radial, large: c.large, rings: c.rings };
+            // SAFETY: checked; the caller's contract.
+            unsafe { write_out(counts, value) }?;
+        }
+        Ok(())
+    })
+}
+
+/// The progress of a plate, as C sees it.
+fn progress_of(glass: &Glass) -> hibi_glass_progress {
+    let p = glass.progress();
+    hibi_glass_progress {
+        time: p.time,
+        cracks: p.cracks,
+        growing: p.growing,
+        vertices: p.vertices,
+        finished: u32::from(p.finished),
+        capacity_reached: u32::from(p.capacity_reached),
+    }
+}
+
+/// Advances growth by at most `budget` tip steps (at least one); writes where it stands to
+/// `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
+/// once a capacity has run out; the plate then stays as it was drawn, usable.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `progress` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_step(
+    glass: *mut hibi_glass,
+    budget: u64,
+    progress: *mut hibi_glass_progress,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass) }?;
+        if !progress.is_null() {
+            check_pointer(progress)?;
+        }
+        if glass.glass.step(budget).capacity_reached {
+            return Err(HIBI_ERROR_GLASS_CAPACITY);
+        }
+        if !progress.is_null() {
+            // SAFETY: checked; the caller's contract.
+            unsafe { write_out(progress, progress_of(&glass.glass)) }?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the number of cracks.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `count` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_crack_count(glass: *const hibi_glass, count: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass.cast_mut()) }?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(count, glass.glass.crack_count()) }
+    })
+}
+
+/// Describes crack `index` (below `hibi_glass_crack_count`).
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `crack` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_crack_info(
+    glass: *const hibi_glass,
+    index: usize,
+    crack: *mut hibi_glass_crack,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass.cast_mut()) }?;
+        check_pointer(crack)?;
+        let c = glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
+        let value = hibi_glass_crack {
+            kind: c.kind as u32,
+            end: c.end as u32,
+            impact: c.impact,
+            points: glass.glass.point_count(index) as u32,
+        };
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(crack, value) }
+    })
+}
+
+/// Writes crack `index`'s polyline into `points[0..len]` and its length into `*written`.
+/// If `len` is too small, nothing is written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `points` NULL (only with `len` 0) or writable for
+/// `len` points; `written` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_points(
+    glass: *const hibi_glass,
+    index: usize,
+    points: *mut hibi_glass_point,
+    len: usize,
+    written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass.cast_mut()) }?;
+        check_pointer(written)?;
+        glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
+        // SAFETY: the caller's contract.
+        let out = unsafe { buffer(points, len) }?;
+        if out.len() < glass.glass.point_count(index) {
+            return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
+        }
+        let mut n = 0;
+        glass.glass.for_each_point(index, |p: CrackPoint| {
+            out[n] = hibi_glass_point { at: p.at, time: p.time };
+            n += 1;
+        });
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(written, n) }
+    })
+}
+
+/// Default drawing: 640 × 640, 1.2-pixel lines.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_glass_render_params_default() -> hibi_glass_render_params {
+    guard(|| {
+        let r = GlassRender::default();
+        hibi_glass_render_params { width: r.width, height: r.height, line_width: r.line_width }
+    })
+}
+
+/// Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
+/// `HIBI_GLASS_LAYER_MASK`, `float` for `HIBI_GLASS_LAYER_TIME`). `pixels_len` counts values.
+/// Nothing is written on failure.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `render` NULL or readable; `pixels` NULL (only with
+/// `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_render(
+    glass: *const hibi_glass,
+    render: *const hibi_glass_render_params,
+    layer: u32,
+    pixels: *mut c_void,
+    pixels_len: usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass.cast_mut()) }?;
+        check_pointer(render)?;
+        // SAFETY: non-null, aligned (checked); readable by the caller's contract.
+        let r = unsafe { *render };
+        let render = GlassRender { width: r.width, height: r.height, line_width: r.line_width };
+        let drawn = match layer {
+            // SAFETY (both): the caller's contract on `pixels`.
+            HIBI_GLASS_LAYER_MASK => {
+                glass.glass.render_mask(&render, unsafe { buffer(pixels.cast::<u8>(), pixels_len) }?)
+            }
+            HIBI_GLASS_LAYER_TIME => {
+                glass.glass.render_time(&render, unsafe { buffer(pixels.cast::<f32>(), pixels_len) }?)
+            }
+            _ => return Err(HIBI_ERROR_RENDER_LAYER),
+        };
+        drawn.map_err(raster_status)
+    })
+}
