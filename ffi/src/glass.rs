@@ -634,3 +634,73 @@ pub unsafe extern "C" fn hibi_glass_render(
         drawn.map_err(raster_status)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::*;
+    use core::ptr::null_mut;
+
+    #[test]
+    fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {
+        type Spoil = fn(&mut hibi_glass_params);
+        let cases: [(Spoil, hibi_status); 6] = [
+            (|p| p.cookie = 1, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED),
+            (|p| p.spread = 5, HIBI_ERROR_GLASS_ENUM),
+            (|p| p.size[0] = f32::NAN, HIBI_ERROR_GLASS_SIZE),
+            (|p| p.speeds[2] = 0.0, HIBI_ERROR_GLASS_SPEED),
+            (|p| p.spread_ratio = 1.0, HIBI_ERROR_GLASS_SPREAD_RATIO),
+            (|p| p.max_vertices = 1, HIBI_ERROR_GLASS_CAPACITY_PARAMS),
+        ];
+        for (spoil, expected) in cases {
+            let mut p = hibi_glass_params_default();
+            spoil(&mut p);
+            let mut out = null_mut();
+            let mut size = 99usize;
+            // SAFETY: valid pointers; failing calls write nothing.
+            unsafe {
+                assert_eq!(hibi_glass_create(&p, &mut out), expected);
+                assert_eq!(hibi_glass_memory_size(&p, &mut size), expected);
+            }
+            assert!(out.is_null() && size == 99);
+        }
+    }
+
+    #[test]
+    fn capacity_is_a_status_and_the_plate_stays_usable() {
+        let mut p = hibi_glass_params_default();
+        p.max_vertices = 80;
+        let mut glass = null_mut();
+        // SAFETY: valid pointers throughout.
+        unsafe {
+            assert_eq!(hibi_glass_create(&p, &mut glass), HIBI_OK);
+            let mut progress = hibi_glass_progress::default();
+            let mut status = HIBI_OK;
+            for _ in 0..1000 {
+                status = hibi_glass_step(glass, 1000, &mut progress);
+                if status != HIBI_OK {
+                    break;
+                }
+            }
+            assert_eq!(status, HIBI_ERROR_GLASS_CAPACITY);
+            let mut count = 0;
+            assert_eq!(hibi_glass_crack_count(glass, &mut count), HIBI_OK);
+            let mut crack = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, 0, &mut crack), HIBI_OK);
+            let mut points = vec![hibi_glass_point::default(); crack.points as usize];
+            let mut written = 0;
+            if crack.points > 0 {
+                let short = crack.points as usize - 1;
+                assert_eq!(
+                    hibi_glass_points(glass, 0, points.as_mut_ptr(), short, &mut written),
+                    HIBI_ERROR_BUFFER_TOO_SMALL
+                );
+                assert_eq!(written, 0);
+            }
+            assert_eq!(hibi_glass_points(glass, 0, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            assert_eq!(written, crack.points as usize);
+            assert_eq!(hibi_glass_impact(glass, 1.0, -3.0, null_mut()), HIBI_ERROR_GLASS_IMPACT);
+            hibi_glass_destroy(glass);
+        }
+    }
+}
