@@ -2,7 +2,7 @@
 //! time map (the step at which the crack front passed each pixel, for animating the break).
 
 use super::Glass;
-use crate::raster::{Frame, RasterError, Stroke, StrokeHit, for_each_hit, pixel_count};
+use crate::raster::{Frame, RasterError, Stroke, StrokeHit, draw_mask, draw_time, for_each_hit, pixel_count};
 
 /// How to draw: raster size and line width.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,31 +55,12 @@ impl Glass<'_> {
     /// The crack mask, 0 (none) to 255, row-major `width × height`. Nothing is written on
     /// failure.
     pub fn render_mask(&self, render: &GlassRender, out: &mut [u8]) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        if out.len() < pixels {
-            return Err(RasterError::BufferTooSmall { needed: pixels });
-        }
-        out[..pixels].fill(0);
-        self.draw(render, |hit| {
-            let v = libm::roundf(hit.coverage * 255.0) as u8;
-            out[hit.pixel] = out[hit.pixel].max(v);
-        });
-        Ok(())
+        draw_mask(render.validate()?, out, |visit| self.draw(render, visit))
     }
 
     /// The time map: for each pixel the earliest step at which a crack covering at least half
     /// of it was there; +∞ where none is. Nothing is written on failure.
     pub fn render_time(&self, render: &GlassRender, out: &mut [f32]) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        if out.len() < pixels {
-            return Err(RasterError::BufferTooSmall { needed: pixels });
-        }
-        out[..pixels].fill(f32::INFINITY);
-        self.draw(render, |hit| {
-            if hit.coverage >= 0.5 {
-                out[hit.pixel] = out[hit.pixel].min(hit.value);
-            }
-        });
-        Ok(())
+        draw_time(render.validate()?, out, |visit| self.draw(render, visit))
     }
 }

@@ -4,7 +4,7 @@
 //! rasters: strokes wrap around the domain.
 
 use super::{Mud, trace::CrackSegment};
-use crate::raster::{Frame, RasterError, Stroke, StrokeHit, for_each_hit, pixel_count};
+use crate::raster::{Frame, RasterError, Stroke, StrokeHit, draw_mask, draw_time, for_each_hit, pixel_count};
 use crate::scalar::Scalar;
 
 /// Which raster to draw.
@@ -98,35 +98,16 @@ impl<S: Scalar> Mud<'_, S> {
         });
     }
 
-    /// Draws `layer` into `out` (row-major, `width × height` values; the mask as `u8`,
-    /// height and time as `f32`). Nothing is written on failure.
+    /// The crack mask, 0 (none) to 255, row-major `width × height`. Nothing is written on
+    /// failure.
     pub fn render_mask(&self, render: &MudRender, out: &mut [u8]) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        if out.len() < pixels {
-            return Err(RasterError::BufferTooSmall { needed: pixels });
-        }
-        out[..pixels].fill(0);
-        self.draw(render, |hit| {
-            let v = libm::roundf(hit.coverage * 255.0) as u8;
-            out[hit.pixel] = out[hit.pixel].max(v);
-        });
-        Ok(())
+        draw_mask(render.validate()?, out, |visit| self.draw(render, visit))
     }
 
     /// The break-time map: for each pixel the earliest break time (long steps) of the cracks
     /// covering at least half of it; +∞ where none does. Nothing is written on failure.
     pub fn render_time(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        if out.len() < pixels {
-            return Err(RasterError::BufferTooSmall { needed: pixels });
-        }
-        out[..pixels].fill(f32::INFINITY);
-        self.draw(render, |hit| {
-            if hit.coverage >= 0.5 {
-                out[hit.pixel] = out[hit.pixel].min(hit.value);
-            }
-        });
-        Ok(())
+        draw_time(render.validate()?, out, |visit| self.draw(render, visit))
     }
 
     /// The height map: 1 on the surface; each crack a parabolic groove whose depth is

@@ -4,9 +4,11 @@
 //! Rasters are computed in `f32` whatever backend the model ran on: the inputs are the
 //! models' `f32` outputs, and IEEE `f32` arithmetic gives the same pixels everywhere.
 
+mod layers;
 mod regions;
 mod stroke;
 
+pub use layers::{draw_mask, draw_time};
 pub use regions::label_regions;
 pub use stroke::{Frame, Stroke, StrokeHit, for_each_hit};
 
