@@ -1,7 +1,8 @@
 /*
  * glass.c: model B (a glass plate hit by a ball, Agui et al.) from C99. Grows the cracks of
  * one impact on the paper's 640 x 640 plate, prints what the impact drew, writes the crack
- * mask as a PGM, and grows the same plate in caller memory to show the same bytes come out.
+ * mask as a PGM, takes the fragments as polygons (what a physics engine needs), and grows the
+ * same plate in caller memory to show the same bytes come out.
  *
  *   cc -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/glass.c \
  *      target/release/libhibi.a -lpthread -ldl -lm -o glass && ./glass glass.pgm
@@ -36,6 +37,10 @@ int main(int argc, char **argv) {
     hibi_status status;
     size_t cracks = 0, bytes = 0, i, large_at_edge = 0, large = 0;
     size_t pixels = (size_t)render.width * render.height;
+    size_t ring_count = 0, point_count = 0, holes = 0;
+    hibi_glass_fragment_ring *rings;
+    hibi_vec2 *points;
+    double area = 0.0;
     unsigned char *mask, *again;
     void *memory;
     FILE *file;
@@ -79,6 +84,26 @@ int main(int argc, char **argv) {
     for (i = 0; i < pixels; i++) fputc(255 - mask[i], file);
     fclose(file);
     printf("wrote %s\n", path);
+
+    /* The fragments: ask for the counts, then hand buffers that fit. */
+    status = hibi_glass_fragment_counts(glass, &ring_count, &point_count);
+    if (status != HIBI_OK) return fail("hibi_glass_fragment_counts", status);
+    rings = malloc(ring_count * sizeof *rings);
+    points = malloc(point_count * sizeof *points);
+    if (rings == NULL || points == NULL) return 1;
+    status = hibi_glass_fragments(glass, rings, ring_count, points, point_count - 1, &ring_count, &point_count);
+    printf("fragments into a short buffer: status %u, %s\n", (unsigned)status, hibi_status_string(status));
+    status = hibi_glass_fragments(glass, rings, ring_count, points, point_count, &ring_count, &point_count);
+    if (status != HIBI_OK) return fail("hibi_glass_fragments", status);
+    for (i = 0; i < ring_count; i++) {
+        area += rings[i].area; /* holes count negative */
+        if (rings[i].hole_of != HIBI_GLASS_NOT_A_HOLE) holes++;
+    }
+    printf("fragments: %lu, holes: %lu, points: %lu, covering %.1f of %.1f square pixels\n",
+           (unsigned long)(ring_count - holes), (unsigned long)holes, (unsigned long)point_count, area,
+           (double)params.size[0] * params.size[1]);
+    free(rings);
+    free(points);
 
     /* A second impact: its cracks stop where they meet the first's. */
     status = hibi_glass_impact(glass, 160.0f, 480.0f, &counts);

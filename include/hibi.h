@@ -29,6 +29,11 @@
 #define HIBI_GLASS_LAYER_TIME 1
 
 /**
+ * `hibi_glass_fragment_ring.hole_of` of an outer ring.
+ */
+#define HIBI_GLASS_NOT_A_HOLE UINT32_MAX
+
+/**
  * Square elements: 4 neighbours, axis-aligned short cracks.
  */
 #define HIBI_MUD_SQUARE 0
@@ -264,7 +269,8 @@ typedef struct hibi_glass_crack {
    */
   uint32_t kind;
   /**
-   * 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended.
+   * 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended, 4 enclosed (other
+   * cracks closed a region around it).
    */
   uint32_t end;
   /**
@@ -290,6 +296,44 @@ typedef struct hibi_glass_point {
    */
   float time;
 } hibi_glass_point;
+
+/**
+ * One ring of a fragment's outline: `point_count` points from `first_point` on in the point
+ * buffer, counter-clockwise with y up for a fragment's outer ring (positive `area`), clockwise
+ * for a hole (negative `area`, and `hole_of` names the outer ring it lies in).
+ */
+typedef struct hibi_glass_fragment_ring {
+  /**
+   * Signed area [px²].
+   */
+  double area;
+  /**
+   * Index of the ring's first point.
+   */
+  uint32_t first_point;
+  /**
+   * Number of points (the first is not repeated).
+   */
+  uint32_t point_count;
+  /**
+   * For a hole, the index of the outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` otherwise.
+   */
+  uint32_t hole_of;
+} hibi_glass_fragment_ring;
+
+/**
+ * A point of a fragment's outline [px].
+ */
+typedef struct hibi_vec2 {
+  /**
+   * x.
+   */
+  float x;
+  /**
+   * y.
+   */
+  float y;
+} hibi_vec2;
 
 /**
  * How to draw a raster. Defaults from `hibi_glass_render_params_default`.
@@ -924,6 +968,34 @@ hibi_status hibi_glass_points(const struct hibi_glass *glass,
                               struct hibi_glass_point *points,
                               size_t len,
                               size_t *written);
+
+/**
+ * Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
+ * network as it stands.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `rings` and `points` NULL or writable.
+ */
+hibi_status hibi_glass_fragment_counts(struct hibi_glass *glass, size_t *rings, size_t *points);
+
+/**
+ * Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
+ * record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
+ * the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
+ * do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
+ * written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
+ * writable for their lengths; `rings_written` and `points_written` NULL or writable.
+ */
+hibi_status hibi_glass_fragments(struct hibi_glass *glass,
+                                 struct hibi_glass_fragment_ring *rings,
+                                 size_t rings_len,
+                                 struct hibi_vec2 *points,
+                                 size_t points_len,
+                                 size_t *rings_written,
+                                 size_t *points_written);
 
 /**
  * Default drawing: 640 × 640, 1.2-pixel lines.

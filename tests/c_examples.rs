@@ -237,8 +237,9 @@ fn mud_example_is_clean_under_sanitizers() {
     check_mud(Linkage::Sanitized);
 }
 
-/// The glass example's mask, as Rust draws it for the same parameters.
-fn expected_glass_mask() -> Vec<u8> {
+/// The glass example's mask, as Rust draws it for the same parameters, and its fragment ring
+/// and point counts.
+fn expected_glass() -> (Vec<u8>, (usize, usize)) {
     use hibi_core::glass::{Glass, GlassBuffers, GlassParams, GlassRender};
     let params = GlassParams { seed: 7, ..GlassParams::default() };
     let m = params.memory().unwrap();
@@ -249,7 +250,7 @@ fn expected_glass_mask() -> Vec<u8> {
     while !glass.step(100).finished {}
     let mut mask = vec![0u8; 640 * 640];
     glass.render_mask(&GlassRender::default(), &mut mask).unwrap();
-    mask.iter().map(|v| 255 - v).collect()
+    (mask.iter().map(|v| 255 - v).collect(), glass.fragment_counts())
 }
 
 fn check_glass(linkage: Linkage) {
@@ -270,12 +271,21 @@ fn check_glass(linkage: Linkage) {
         line(&output, "crack index past the end:"),
         "crack index past the end: status 1091, glass: crack index out of range"
     );
+    let (mask, (rings, points)) = expected_glass();
+    assert_eq!(
+        line(&output, "fragments into a short buffer:"),
+        "fragments into a short buffer: status 3, a buffer is smaller than the call needs"
+    );
+    assert_eq!(
+        line(&output, "fragments:"),
+        format!("fragments: {rings}, holes: 0, points: {points}, covering 409600.0 of 409600.0 square pixels")
+    );
     assert!(line(&output, "second impact drew M").starts_with("second impact drew M "), "{output}");
     assert_eq!(line(&output, "caller memory"), "caller memory, same bytes: yes");
     let bytes = std::fs::read(&pgm).expect("the example wrote its PGM");
     let header = b"P5\n640 640\n255\n";
     assert_eq!(&bytes[..header.len()], header);
-    assert!(bytes[header.len()..] == expected_glass_mask()[..], "the C program's picture differs from Rust's");
+    assert!(bytes[header.len()..] == mask[..], "the C program's picture differs from Rust's");
 }
 
 #[test]

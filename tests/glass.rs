@@ -1,6 +1,6 @@
 //! Model B against the paper's facts (Agui et al.) and the acceptance list.
 
-use hibi_core::glass::{CrackEnd, CrackKind, CrackPoint, Glass, GlassBuffers, GlassError, GlassParams};
+use hibi_core::glass::{CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams};
 use hibi_tests::fnv1a64;
 
 /// Runs `params` to the end of generation and hands the plate to `inspect`.
@@ -64,7 +64,8 @@ fn every_crack_ends_exactly_on_the_edge_or_on_another_crack_and_large_ones_reach
                             all.iter().enumerate().any(|(j, other)| j != i && other.iter().any(|q| q.at == last.at));
                         assert!(shared, "seed {seed}: crack {i} ends at {:?}, not on another crack", last.at);
                     }
-                    CrackEnd::Generation => {}
+                    // Checked by `enclosed_cracks_stop_inside_regions_bounded_by_cracks_alone`.
+                    CrackEnd::Generation | CrackEnd::Enclosed => {}
                     CrackEnd::Growing => unreachable!(),
                 }
                 if c.kind == CrackKind::Large {
@@ -129,7 +130,7 @@ fn golden_cracks() {
         }
         fnv1a64(&bytes)
     });
-    assert_eq!(hash, 15194608960451595373, "the glass scene changed");
+    assert_eq!(hash, 1951474625392384226, "the glass scene changed");
 }
 
 #[test]
@@ -161,4 +162,152 @@ fn rasters_draw_the_network_and_date_its_pixels() {
         let thin = GlassRender { line_width: 0.0, ..render };
         assert_eq!(g.render_mask(&thin, &mut mask), Err(RasterError::LineWidth));
     });
+}
+
+/// The fragments of a plate: ring records and each ring's points.
+fn fragments(g: &mut Glass) -> Vec<(FragmentRing, Vec<[f32; 2]>)> {
+    let (rings, points) = g.fragment_counts();
+    let mut out = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
+    assert_eq!(g.fragments(&mut out.0, &mut out.1), Ok((rings, points)));
+    out.0.iter().map(|r| (*r, out.1[r.first_point as usize..][..r.point_count as usize].to_vec())).collect()
+}
+
+/// Whether `p` is inside `ring` (even–odd rule; `p` must not lie on it).
+fn ring_contains(ring: &[[f32; 2]], p: [f64; 2]) -> bool {
+    let mut inside = false;
+    for (a, b) in ring.iter().zip(ring.iter().cycle().skip(1)) {
+        let (ax, ay, bx, by) = (a[0] as f64, a[1] as f64, b[0] as f64, b[1] as f64);
+        if (ay > p[1]) != (by > p[1]) && p[0] < ax + (p[1] - ay) * (bx - ax) / (by - ay) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Checks that the fragments tile the plate: signed areas add up to W·H, and sample points
+/// lie in exactly one fragment (in its outer ring and in none of its holes).
+fn assert_fragments_tile(p: &GlassParams, frags: &[(FragmentRing, Vec<[f32; 2]>)], what: &str) {
+    let plate = f64::from(p.width) * f64::from(p.height);
+    let total: f64 = frags.iter().map(|(r, _)| r.area).sum();
+    assert!((total - plate).abs() < 1e-6 * plate, "{what}: areas add up to {total}, not {plate}");
+    for (i, (r, ring)) in frags.iter().enumerate() {
+        let shoelace: f64 = ring
+            .iter()
+            .zip(ring.iter().cycle().skip(1))
+            .map(|(a, b)| 0.5 * (a[0] as f64 * b[1] as f64 - b[0] as f64 * a[1] as f64))
+            .sum();
+        assert!((shoelace - r.area).abs() < 1e-6 * plate, "{what}: ring {i} area {} vs its points {shoelace}", r.area);
+        assert_eq!(r.hole_of == u32::MAX, r.area > 0.0, "{what}: ring {i} is a hole exactly when it is clockwise");
+        assert!(ring.iter().all(|q| (0.0..=p.width).contains(&q[0]) && (0.0..=p.height).contains(&q[1])));
+    }
+    // A deterministic cloud of sample points (irrational steps, so none lands on a crack).
+    let mut covered_once = 0;
+    for k in 0..4000 {
+        let q = [
+            (k as f64 * 0.618_033_988_75).fract() * f64::from(p.width),
+            (k as f64 * 0.414_213_562_37 + 0.1).fract() * f64::from(p.height),
+        ];
+        let count: i32 = frags
+            .iter()
+            .filter(|(_, ring)| ring_contains(ring, q))
+            .map(|(r, _)| if r.area > 0.0 { 1 } else { -1 })
+            .sum();
+        assert_eq!(count, 1, "{what}: point {q:?} lies in {count} fragments");
+        covered_once += 1;
+    }
+    assert_eq!(covered_once, 4000);
+}
+
+#[test]
+fn fragments_cover_the_plate_exactly_once() {
+    let mut rings = 0;
+    for seed in 0..12 {
+        let p = GlassParams { seed, ..GlassParams::default() };
+        with_plate(&p, |g| {
+            let frags = fragments(g);
+            rings += frags.len();
+            assert!(frags.len() > 20, "seed {seed}: only {} fragments", frags.len());
+            assert_fragments_tile(&p, &frags, &format!("seed {seed}"));
+            // Every large crack reaches the edge, so the fragments around the impact reach it too.
+            assert!(frags.iter().any(|(_, ring)| ring.iter().any(|q| q[0] == 0.0)));
+        });
+    }
+    println!("12 plates: {rings} fragment rings");
+}
+
+#[test]
+fn fragments_of_several_impacts_and_of_a_cut_short_run_still_tile_the_plate() {
+    let p = GlassParams { seed: 5, ..GlassParams::default() };
+    with_plate(&p, |g| {
+        for at in [[150.0, 450.0], [500.0, 120.0]] {
+            g.impact(at).unwrap();
+            while !g.step(100_000).finished {}
+        }
+        assert_fragments_tile(&p, &fragments(g), "three impacts");
+    });
+    // Capacity runs out before the large cracks reach the edge: dead ends are pruned, the
+    // closed loops left are fragments, and whatever they do not cover is the plate's own.
+    let p = GlassParams { seed: 5, max_vertices: 300, ..GlassParams::default() };
+    with_plate(&p, |g| {
+        assert!(g.progress().capacity_reached);
+        let frags = fragments(g);
+        // Here the network around the impact is an island: its outside is a hole in the plate.
+        let holes: Vec<_> = frags.iter().filter(|(r, _)| r.area < 0.0).collect();
+        assert!(!holes.is_empty() && holes.iter().all(|(r, _)| frags[r.hole_of as usize].0.area > 0.0));
+        assert_fragments_tile(&p, &frags, "capacity");
+    });
+    // Part way through growth.
+    let p = GlassParams { seed: 6, ..GlassParams::default() };
+    let m = p.memory().unwrap();
+    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
+    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
+    let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+    let mut g = Glass::new(&p, buffers).unwrap();
+    for _ in 0..4 {
+        g.step(150);
+        assert_fragments_tile(&p, &fragments(&mut g), "mid-growth");
+    }
+}
+
+#[test]
+fn fragments_are_written_only_into_buffers_that_fit() {
+    with_plate(&GlassParams { seed: 2, ..GlassParams::default() }, |g| {
+        let (rings, points) = g.fragment_counts();
+        let mut short = (vec![FragmentRing::default(); rings], vec![[9.0f32; 2]; points - 1]);
+        assert_eq!(g.fragments(&mut short.0, &mut short.1), Err(GlassError::BufferTooSmall { needed: points }));
+        assert!(short.0.iter().all(|r| *r == FragmentRing::default()) && short.1.iter().all(|q| *q == [9.0; 2]));
+        let mut short = (vec![FragmentRing::default(); rings - 1], vec![[9.0f32; 2]; points]);
+        assert_eq!(g.fragments(&mut short.0, &mut short.1), Err(GlassError::BufferTooSmall { needed: rings }));
+        assert!(short.1.iter().all(|q| *q == [9.0; 2]));
+        // Asking twice gives the same answer: the walk leaves no trace in the plate.
+        assert_eq!(fragments(g), fragments(g));
+    });
+}
+
+#[test]
+fn enclosed_cracks_stop_inside_regions_bounded_by_cracks_alone() {
+    let mut enclosed = 0;
+    for seed in 0..12 {
+        let p = GlassParams { seed, ..GlassParams::default() };
+        with_plate(&p, |g| {
+            let frags = fragments(g);
+            for i in 0..g.crack_count() {
+                if g.crack(i).unwrap().end != CrackEnd::Enclosed {
+                    continue;
+                }
+                enclosed += 1;
+                let tip = points(g, i).last().map_or(g.crack(i).unwrap().tip, |q| q.at);
+                let q = [f64::from(tip[0]) + 1e-4, f64::from(tip[1]) + 1e-4];
+                let home: Vec<_> = frags.iter().filter(|(r, ring)| r.area > 0.0 && ring_contains(ring, q)).collect();
+                assert_eq!(home.len(), 1, "seed {seed}: crack {i}'s tip {tip:?}");
+                let on_border = |v: &[f32; 2]| v[0] == 0.0 || v[1] == 0.0 || v[0] == p.width || v[1] == p.height;
+                assert!(
+                    !home[0].1.iter().any(on_border),
+                    "seed {seed}: enclosed crack {i} stopped in a region that reaches the plate's edge"
+                );
+            }
+        });
+    }
+    println!("12 plates: {enclosed} cracks stopped by stop condition 2");
+    assert!(enclosed > 12, "the closed-region rule hardly fired: {enclosed}");
 }

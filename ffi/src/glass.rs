@@ -16,7 +16,9 @@ use core::ffi::c_void;
 use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
-use hibi_core::glass::{Crack, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex};
+use hibi_core::glass::{
+    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex,
+};
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, object, write_out};
 use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
@@ -121,7 +123,8 @@ pub struct hibi_glass_counts {
 pub struct hibi_glass_crack {
     /// 0 large, 1 radial, 2 ring counter-clockwise, 3 ring clockwise.
     pub kind: u32,
-    /// 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended.
+    /// 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended, 4 enclosed (other
+    /// cracks closed a region around it).
     pub end: u32,
     /// Which impact started it.
     pub impact: u32,
@@ -590,6 +593,107 @@ pub unsafe extern "C" fn hibi_glass_points(
     })
 }
 
+/// A point of a fragment's outline [px].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_vec2 {
+    /// x.
+    pub x: f32,
+    /// y.
+    pub y: f32,
+}
+
+/// One ring of a fragment's outline: `point_count` points from `first_point` on in the point
+/// buffer, counter-clockwise with y up for a fragment's outer ring (positive `area`), clockwise
+/// for a hole (negative `area`, and `hole_of` names the outer ring it lies in).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_glass_fragment_ring {
+    /// Signed area [px²].
+    pub area: f64,
+    /// Index of the ring's first point.
+    pub first_point: u32,
+    /// Number of points (the first is not repeated).
+    pub point_count: u32,
+    /// For a hole, the index of the outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` otherwise.
+    pub hole_of: u32,
+}
+
+const _: () = {
+    use core::mem::offset_of;
+    assert!(size_of::<hibi_vec2>() == size_of::<[f32; 2]>() && align_of::<hibi_vec2>() == align_of::<[f32; 2]>());
+    assert!(size_of::<hibi_glass_fragment_ring>() == size_of::<FragmentRing>());
+    assert!(align_of::<hibi_glass_fragment_ring>() == align_of::<FragmentRing>());
+    assert!(offset_of!(hibi_glass_fragment_ring, area) == offset_of!(FragmentRing, area));
+    assert!(offset_of!(hibi_glass_fragment_ring, first_point) == offset_of!(FragmentRing, first_point));
+    assert!(offset_of!(hibi_glass_fragment_ring, point_count) == offset_of!(FragmentRing, point_count));
+    assert!(offset_of!(hibi_glass_fragment_ring, hole_of) == offset_of!(FragmentRing, hole_of));
+};
+
+/// `hibi_glass_fragment_ring.hole_of` of an outer ring.
+pub const HIBI_GLASS_NOT_A_HOLE: u32 = u32::MAX;
+
+/// Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
+/// network as it stands.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `rings` and `points` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_counts(
+    glass: *mut hibi_glass,
+    rings: *mut usize,
+    points: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass) }?;
+        check_pointer(rings)?;
+        check_pointer(points)?;
+        let (r, p) = glass.glass.fragment_counts();
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(rings, r) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points, p) }
+    })
+}
+
+/// Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
+/// record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
+/// the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
+/// do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
+/// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
+/// writable for their lengths; `rings_written` and `points_written` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragments(
+    glass: *mut hibi_glass,
+    rings: *mut hibi_glass_fragment_ring,
+    rings_len: usize,
+    points: *mut hibi_vec2,
+    points_len: usize,
+    rings_written: *mut usize,
+    points_written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object(glass) }?;
+        check_pointer(rings_written)?;
+        check_pointer(points_written)?;
+        // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
+        // and hibi_vec2 as [f32; 2] (asserted below).
+        let ring_out = unsafe { buffer(rings.cast::<FragmentRing>(), rings_len) }?;
+        // SAFETY: as above.
+        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
+        let (r, p) = glass.glass.fragments(ring_out, point_out).map_err(|_| HIBI_ERROR_BUFFER_TOO_SMALL)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(rings_written, r) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points_written, p) }
+    })
+}
+
 /// Default drawing: 640 × 640, 1.2-pixel lines.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_glass_render_params_default() -> hibi_glass_render_params {
@@ -700,6 +804,59 @@ mod tests {
             assert_eq!(hibi_glass_points(glass, 0, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
             assert_eq!(written, crack.points as usize);
             assert_eq!(hibi_glass_impact(glass, 1.0, -3.0, null_mut()), HIBI_ERROR_GLASS_IMPACT);
+            hibi_glass_destroy(glass);
+        }
+    }
+
+    #[test]
+    fn fragments_come_in_counted_buffers_and_short_ones_are_left_alone() {
+        let p = hibi_glass_params_default();
+        let mut glass = null_mut();
+        // SAFETY: valid pointers throughout.
+        unsafe {
+            assert_eq!(hibi_glass_create(&p, &mut glass), HIBI_OK);
+            let mut progress = hibi_glass_progress::default();
+            while progress.finished == 0 {
+                assert_eq!(hibi_glass_step(glass, 10_000, &mut progress), HIBI_OK);
+            }
+            let (mut ring_count, mut point_count) = (0usize, 0usize);
+            assert_eq!(hibi_glass_fragment_counts(glass, &mut ring_count, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(
+                hibi_glass_fragment_counts(null_mut(), &mut ring_count, &mut point_count),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(ring_count, 0);
+            assert_eq!(hibi_glass_fragment_counts(glass, &mut ring_count, &mut point_count), HIBI_OK);
+            assert!(ring_count > 10 && point_count > 3 * ring_count);
+            let mut rings = vec![hibi_glass_fragment_ring::default(); ring_count];
+            let mut points = vec![hibi_vec2 { x: 9.0, y: 9.0 }; point_count];
+            let (mut r, mut n) = (7usize, 7usize);
+            let status = hibi_glass_fragments(
+                glass,
+                rings.as_mut_ptr(),
+                ring_count,
+                points.as_mut_ptr(),
+                point_count - 1,
+                &mut r,
+                &mut n,
+            );
+            assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert!((r, n) == (7, 7) && rings.iter().all(|x| x.point_count == 0) && points.iter().all(|q| q.x == 9.0));
+            let status = hibi_glass_fragments(
+                glass,
+                rings.as_mut_ptr(),
+                ring_count,
+                points.as_mut_ptr(),
+                point_count,
+                &mut r,
+                &mut n,
+            );
+            assert_eq!(status, HIBI_OK);
+            assert_eq!((r, n), (ring_count, point_count));
+            let area: f64 = rings.iter().map(|x| x.area).sum();
+            assert!((area - 640.0 * 640.0).abs() < 1e-3, "{area}");
+            assert!(rings.iter().all(|x| x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0));
+            assert_eq!(rings.iter().map(|x| x.point_count as usize).sum::<usize>(), point_count);
             hibi_glass_destroy(glass);
         }
     }

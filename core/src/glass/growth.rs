@@ -201,21 +201,28 @@ impl Glass<'_> {
         let (end, stop) = match hit {
             Hit::Nothing => (self.add_vertex(next), CrackEnd::Growing),
             Hit::Edge(at) => (self.add_vertex(at), CrackEnd::Edge),
-            Hit::Crack { edge, at, along } => {
-                let v = self.add_vertex(at);
-                if v != NONE {
-                    self.split(edge, v, along);
-                }
-                (v, CrackEnd::Crack)
-            }
+            Hit::Crack { edge, at, along } => (self.meeting_vertex(edge, at, along), CrackEnd::Crack),
         };
         if end == NONE {
             return; // capacity reached; the caller finishes
         }
-        let segment = Edge { from: tip_vertex, to: end, crack: i as u32, next: NONE, time: [time, time + along] };
-        if !self.add_edge(segment) {
+        if end == tip_vertex {
+            // Met a crack exactly at its own tip (a rounding tie): it stops there.
+            let c = &mut self.cracks[i];
+            c.growing = false;
+            c.end = CrackEnd::Crack;
             return;
         }
+        let segment = Edge {
+            from: tip_vertex,
+            to: end,
+            crack: i as u32,
+            next: NONE,
+            time: [time, time + along],
+            links: [NONE; 2],
+        };
+        let Some(e) = self.add_edge(segment) else { return };
+        let closes_cycle = self.join(tip_vertex, end);
         let c = &mut self.cracks[i];
         c.tip = self.vertices[end as usize].at;
         c.heading = heading;
@@ -224,6 +231,26 @@ impl Glass<'_> {
             c.growing = false;
             c.end = stop;
         }
+        if closes_cycle {
+            self.enclose(2 * e);
+        }
+    }
+
+    /// The vertex where a tip meets edge `e` at point `at` (parameter `along` on the edge): one
+    /// of its ends if it meets it there, else a new vertex that splits it. NONE when full.
+    fn meeting_vertex(&mut self, e: u32, at: [f32; 2], along: f32) -> u32 {
+        let edge = self.edges[e as usize];
+        if along <= 0.0 || at == self.vertices[edge.from as usize].at {
+            return edge.from;
+        }
+        if along >= 1.0 || at == self.vertices[edge.to as usize].at {
+            return edge.to;
+        }
+        let v = self.add_vertex(at);
+        if v != NONE && !self.split(e, v, along) {
+            return NONE;
+        }
+        v
     }
 
     /// The first crack or edge the step from `w` to `next` meets, and where along the step
@@ -284,26 +311,53 @@ impl Glass<'_> {
     }
 
     /// Splits edge `e` at vertex `v` (a point on it at parameter `along`), so that the crack
-    /// meeting it there shares the vertex.
-    fn split(&mut self, e: u32, v: u32, along: f32) {
+    /// meeting it there shares the vertex. False when full.
+    fn split(&mut self, e: u32, v: u32, along: f32) -> bool {
         let old = self.edges[e as usize];
         let time = old.time[0] + (old.time[1] - old.time[0]) * along;
-        let tail = Edge { from: v, to: old.to, crack: old.crack, next: old.next, time: [time, old.time[1]] };
-        let Some(t) = self.push_edge(tail) else { return };
+        let tail =
+            Edge { from: v, to: old.to, crack: old.crack, next: old.next, time: [time, old.time[1]], links: [NONE; 2] };
+        let Some(t) = self.push_edge(tail) else { return false };
+        // The head now ends at v: out of the old end's incidence list, into v's.
+        self.unlink(old.to, e);
         let head = &mut self.edges[e as usize];
         head.to = v;
         head.next = t;
         head.time[1] = time;
+        head.links[1] = self.vertices[v as usize].first_edge;
+        self.vertices[v as usize].first_edge = e;
+        self.join(v, old.from);
         let owner = &mut self.cracks[old.crack as usize];
         if owner.last_segment == e {
             owner.last_segment = t;
         }
+        true
     }
 
-    /// Appends a new segment to its crack's chain.
-    fn add_edge(&mut self, edge: Edge) -> bool {
+    /// Removes edge `e` from vertex `v`'s incidence list.
+    fn unlink(&mut self, v: u32, e: u32) {
+        let (previous, after) = {
+            let g = self.crack_graph();
+            let mut previous = NONE;
+            let mut x = self.vertices[v as usize].first_edge;
+            while x != e && x != NONE {
+                previous = x;
+                x = g.next_at(v, x);
+            }
+            (previous, g.next_at(v, e))
+        };
+        if previous == NONE {
+            self.vertices[v as usize].first_edge = after;
+        } else {
+            let p = &mut self.edges[previous as usize];
+            p.links[usize::from(p.from != v)] = after;
+        }
+    }
+
+    /// Appends a new segment to its crack's chain; its index, or None when full.
+    fn add_edge(&mut self, edge: Edge) -> Option<u32> {
         let crack = edge.crack as usize;
-        let Some(e) = self.push_edge(edge) else { return false };
+        let e = self.push_edge(edge)?;
         let c = &mut self.cracks[crack];
         if c.last_segment == NONE {
             c.first_segment = e;
@@ -311,16 +365,20 @@ impl Glass<'_> {
             self.edges[c.last_segment as usize].next = e;
         }
         self.cracks[crack].last_segment = e;
-        true
+        Some(e)
     }
 
-    /// Stores an edge and files it in the grid; None (capacity reached) when full.
-    fn push_edge(&mut self, edge: Edge) -> Option<u32> {
+    /// Stores an edge, links it into its vertices' incidence lists and files it in the grid;
+    /// None (capacity reached) when full.
+    fn push_edge(&mut self, mut edge: Edge) -> Option<u32> {
         if self.edge_count == self.edges.len() {
             self.capacity_reached = true;
             return None;
         }
         let e = self.edge_count as u32;
+        edge.links = [self.vertices[edge.from as usize].first_edge, self.vertices[edge.to as usize].first_edge];
+        self.vertices[edge.from as usize].first_edge = e;
+        self.vertices[edge.to as usize].first_edge = e;
         self.edges[self.edge_count] = edge;
         self.edge_count += 1;
         let (a, z) = self.edge_points(e);

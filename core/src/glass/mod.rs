@@ -59,6 +59,8 @@ pub enum CrackEnd {
     /// Generation of its impact ended (every large and ring crack had stopped), or a later
     /// impact began.
     Generation = 3,
+    /// Other cracks closed a region around its tip (paper §4.2.3, stop condition 2).
+    Enclosed = 4,
 }
 
 /// One crack: its kind, its tip and how it grows.
@@ -96,6 +98,8 @@ pub struct Crack {
 pub struct Vertex {
     /// Position (x, y) in pixels.
     pub at: [f32; 2],
+    /// The first edge of the vertex's incidence list (NONE when it has none).
+    first_edge: u32,
 }
 
 /// A straight piece of a crack between two vertices, chained in growth order, with the time
@@ -107,6 +111,8 @@ pub struct Edge {
     crack: u32,
     next: u32,
     time: [f32; 2],
+    /// The next edge in the incidence lists of `from` and of `to`.
+    links: [u32; 2],
 }
 
 /// How much caller memory a plate needs.
@@ -194,11 +200,15 @@ impl GlassParams {
         let grid = Grid::new(self.width, self.height, self.sector_radius);
         let (cracks, vertices) = (self.max_cracks as usize, self.max_vertices as usize);
         // Segment grid: heads, entry item and next; tip grid: heads, entry item and next;
-        // one stamp per edge (to visit each segment once per query).
+        // one stamp per edge (to visit each segment once per query); per vertex a face mark
+        // and a component root; the fragment scratch.
         let words = (|| {
             let segment = grid.cells().checked_add(vertices.checked_mul(2 * ENTRIES_PER_VERTEX)?)?;
             let tip = grid.cells().checked_add(cracks.checked_mul(2)?)?;
-            segment.checked_add(tip)?.checked_add(vertices)
+            segment
+                .checked_add(tip)?
+                .checked_add(vertices.checked_mul(3)?)?
+                .checked_add(FragmentScratch::words(vertices)?)
         })()
         .filter(|&w| w <= isize::MAX as usize / 64)
         .ok_or(GlassParamError::Capacity)?;
@@ -230,6 +240,12 @@ pub struct Glass<'a> {
     finished: bool,
     capacity_reached: bool,
     forces: Rng,
+    /// Per vertex: the stamp of the latest face walk that passed it.
+    marks: &'a mut [u32],
+    mark: u32,
+    /// Per vertex: its parent in the union–find forest of connected cracks.
+    roots: &'a mut [u32],
+    fragments: FragmentScratch<'a>,
     /// cos(φ/2): a point is in a tip's sector when its direction's cosine with the heading
     /// is at least this.
     sector_cosine: f32,
@@ -286,6 +302,10 @@ impl<'a> Glass<'a> {
         tips.clear();
         let stamps = take(&mut words, vertices);
         stamps.fill(0);
+        let marks = take(&mut words, vertices);
+        marks.fill(0);
+        let roots = take(&mut words, vertices);
+        let fragments = FragmentScratch::new(&mut words, vertices);
         let mut glass = Glass {
             params: *params,
             grid,
@@ -307,6 +327,10 @@ impl<'a> Glass<'a> {
             finished: false,
             capacity_reached: false,
             forces: Rng::new(params.seed, Stream::RandomForce),
+            marks,
+            mark: 0,
+            roots,
+            fragments,
             sector_cosine: libm::cosf(0.5 * params.sector_angle),
         };
         glass.impact(params.impact)?;
@@ -394,7 +418,8 @@ impl<'a> Glass<'a> {
             self.capacity_reached = true;
             return NONE;
         }
-        self.vertices[self.vertex_count] = Vertex { at };
+        self.vertices[self.vertex_count] = Vertex { at, first_edge: NONE };
+        self.roots[self.vertex_count] = self.vertex_count as u32;
         self.vertex_count += 1;
         (self.vertex_count - 1) as u32
     }
@@ -459,9 +484,13 @@ impl<'a> Glass<'a> {
     }
 }
 
+mod faces;
+mod fragments;
 mod growth;
 mod output;
 pub mod render;
 
+pub use fragments::FragmentRing;
+use fragments::FragmentScratch;
 pub use output::CrackPoint;
 pub use render::GlassRender;

@@ -1,0 +1,316 @@
+//! Fragments: the regions the crack network cuts the plate into, as polygons (for a physics
+//! engine, say). The plate's border joins the cracks, dead ends are pruned (a crack that ends
+//! inside a region does not cut it), and every face of what remains is walked.
+//!
+//! A fragment is one outer ring, counter-clockwise with y up (positive shoelace area), and
+//! rarely holes: clockwise rings of a closed piece of network that touches neither the border
+//! nor the cracks around it, each naming the fragment it lies in. A ring can touch itself
+//! where one crack has the same fragment on both sides (a slit between two loops). The rings'
+//! signed areas add up to the plate's area, and each point of the plate lies in exactly one
+//! fragment.
+
+use super::faces::{CrackGraph, HalfEdge, PlaneGraph, crosses_ray, shoelace, walk_face};
+use super::grid::NONE;
+use super::{Glass, GlassError, take};
+
+/// One ring of a fragment's outline, in [`Glass::fragments`]' point buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct FragmentRing {
+    /// Signed area [px²]: positive for an outer ring, negative for a hole.
+    pub area: f64,
+    /// Index of the ring's first point.
+    pub first_point: u32,
+    /// Points in the ring (the first is not repeated at the end).
+    pub point_count: u32,
+    /// For a hole, the index of the ring of the fragment it lies in; `u32::MAX` for an outer
+    /// ring.
+    pub hole_of: u32,
+}
+
+/// Caller words the fragment walk works in, sized for the plate's vertex capacity.
+pub(super) struct FragmentScratch<'a> {
+    /// Per vertex (and the four corners): edges left after pruning, plus 2 on the border.
+    degree: &'a mut [u32],
+    /// First the stack of dead ends to prune, then the border's vertices in perimeter order.
+    border: &'a mut [u32],
+    /// Per vertex: its index in `border`, NONE off the border.
+    border_index: &'a mut [u32],
+    /// One bit per crack edge: not pruned.
+    alive: &'a mut [u32],
+    /// One bit per half-edge: walked.
+    visited: &'a mut [u32],
+}
+
+fn bit(bits: &[u32], i: usize) -> bool {
+    bits[i / 32] & (1 << (i % 32)) != 0
+}
+
+fn set_bit(bits: &mut [u32], i: usize, on: bool) {
+    if on {
+        bits[i / 32] |= 1 << (i % 32);
+    } else {
+        bits[i / 32] &= !(1 << (i % 32));
+    }
+}
+
+impl<'a> FragmentScratch<'a> {
+    /// Words for a plate of `vertices` vertices (as many edges, as many border vertices, and
+    /// four corners).
+    pub(super) fn words(vertices: usize) -> Option<usize> {
+        let nodes = vertices.checked_add(4)?;
+        let half_edges = vertices.checked_add(nodes)?.checked_mul(2)?;
+        nodes.checked_mul(3)?.checked_add(vertices.div_ceil(32))?.checked_add(half_edges.div_ceil(32))
+    }
+
+    /// Cuts the scratch off the front of `words`.
+    pub(super) fn new(words: &mut &'a mut [u32], vertices: usize) -> Self {
+        let nodes = vertices + 4;
+        FragmentScratch {
+            degree: take(words, nodes),
+            border: take(words, nodes),
+            border_index: take(words, nodes),
+            alive: take(words, vertices.div_ceil(32)),
+            visited: take(words, (2 * (vertices + nodes)).div_ceil(32)),
+        }
+    }
+}
+
+/// The pruned cracks plus the plate's border: border edge `k` runs from `border[k]` to
+/// `border[k + 1]` (counter-clockwise), with edge index `edge_count + k`.
+struct PlateGraph<'g> {
+    cracks: CrackGraph<'g>,
+    alive: &'g [u32],
+    border: &'g [u32],
+    border_index: &'g [u32],
+    corners: [[f32; 2]; 4],
+}
+
+impl PlateGraph<'_> {
+    fn edge_count(&self) -> u32 {
+        self.cracks.edges.len() as u32
+    }
+}
+
+impl PlaneGraph for PlateGraph<'_> {
+    fn point(&self, v: u32) -> [f32; 2] {
+        match (v as usize).checked_sub(self.cracks.vertices.len()) {
+            Some(corner) => self.corners[corner],
+            None => self.cracks.point(v),
+        }
+    }
+
+    fn ends(&self, h: HalfEdge) -> (u32, u32) {
+        match (h >> 1).checked_sub(self.edge_count()) {
+            Some(k) => {
+                let n = self.border.len();
+                let (a, b) = (self.border[k as usize], self.border[(k as usize + 1) % n]);
+                if h & 1 == 0 { (a, b) } else { (b, a) }
+            }
+            None => self.cracks.ends(h),
+        }
+    }
+
+    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge)) {
+        if (v as usize) < self.cracks.vertices.len() {
+            self.cracks.for_each_edge_at(v, |e, h| {
+                if bit(self.alive, e as usize) {
+                    visit(h);
+                }
+            });
+        }
+        let k = self.border_index[v as usize];
+        if k != NONE {
+            let n = self.border.len() as u32;
+            visit(2 * (self.edge_count() + k));
+            visit(2 * (self.edge_count() + (k + n - 1) % n) + 1);
+        }
+    }
+
+    fn half_edge_bound(&self) -> usize {
+        2 * (self.cracks.edges.len() + self.border.len())
+    }
+}
+
+/// A ring found by the walk: where it starts, its signed area and its number of points.
+#[derive(Clone, Copy)]
+struct Ring {
+    start: HalfEdge,
+    area: f64,
+    points: usize,
+}
+
+impl Glass<'_> {
+    /// Prunes dead ends and lays out the border; returns the number of border vertices.
+    fn prepare_fragments(&mut self) -> usize {
+        let (vertices, edges) = (self.vertex_count, self.edge_count);
+        let (w, h) = (self.params.width, self.params.height);
+        let corners = [[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]];
+        let on_border = |p: [f32; 2]| p[0] == 0.0 || p[1] == 0.0 || p[0] == w || p[1] == h;
+        let s = &mut self.fragments;
+        s.degree[..vertices + 4].fill(0);
+        s.alive.fill(0);
+        for (e, edge) in self.edges[..edges].iter().enumerate() {
+            set_bit(s.alive, e, true);
+            s.degree[edge.from as usize] += 1;
+            s.degree[edge.to as usize] += 1;
+        }
+        // Prune: a vertex left with one edge is a dead end; remove that edge, and repeat.
+        let mut stack = 0;
+        for v in 0..vertices {
+            if s.degree[v] == 1 && !on_border(self.vertices[v].at) {
+                s.border[stack] = v as u32;
+                stack += 1;
+            }
+        }
+        let graph = CrackGraph { vertices: &self.vertices[..vertices], edges: &self.edges[..edges] };
+        while stack > 0 {
+            stack -= 1;
+            let v = s.border[stack];
+            let mut last = None;
+            graph.for_each_edge_at(v, |e, half| {
+                if bit(s.alive, e as usize) {
+                    last = Some((e, half));
+                }
+            });
+            let Some((e, half)) = last else { continue };
+            set_bit(s.alive, e as usize, false);
+            s.degree[v as usize] -= 1;
+            let other = graph.ends(half).1;
+            s.degree[other as usize] -= 1;
+            if s.degree[other as usize] == 1 && !on_border(graph.point(other)) {
+                s.border[stack] = other;
+                stack += 1;
+            }
+        }
+        // The border: cracks' ends on it, and the corners no crack ends at, in perimeter order.
+        let mut n = 0;
+        for v in 0..vertices {
+            if s.degree[v] > 0 && on_border(self.vertices[v].at) {
+                s.border[n] = v as u32;
+                n += 1;
+            }
+        }
+        for (k, corner) in corners.iter().enumerate() {
+            if !s.border[..n].iter().any(|&v| self.vertices[v as usize].at == *corner) {
+                s.border[n] = (vertices + k) as u32;
+                n += 1;
+            }
+        }
+        let point = |v: u32| {
+            if (v as usize) < vertices { self.vertices[v as usize].at } else { corners[v as usize - vertices] }
+        };
+        // Position along the perimeter, counter-clockwise from (0, 0) with y up.
+        let perimeter = |p: [f32; 2]| {
+            let (x, y) = (f64::from(p[0]), f64::from(p[1]));
+            let (w, h) = (f64::from(w), f64::from(h));
+            if p[1] == 0.0 {
+                x
+            } else if p[0] == self.params.width {
+                w + y
+            } else if p[1] == self.params.height {
+                2.0 * w + h - x
+            } else {
+                2.0 * (w + h) - y
+            }
+        };
+        s.border[..n].sort_unstable_by(|&a, &b| perimeter(point(a)).total_cmp(&perimeter(point(b))).then(a.cmp(&b)));
+        s.border_index[..vertices + 4].fill(NONE);
+        for k in 0..n {
+            s.border_index[s.border[k] as usize] = k as u32;
+        }
+        n
+    }
+
+    /// Walks every face of the plate once; calls `visit` with each fragment ring (not the
+    /// outside of the plate) in a fixed order.
+    fn for_each_ring(&mut self, mut visit: impl FnMut(&PlateGraph, Ring)) {
+        let n = self.prepare_fragments();
+        let (w, h) = (self.params.width, self.params.height);
+        let FragmentScratch { alive, border, border_index, visited, .. } = &mut self.fragments;
+        let g = PlateGraph {
+            cracks: CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] },
+            alive,
+            border: &border[..n],
+            border_index,
+            corners: [[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]],
+        };
+        let half_edges = 2 * (self.edge_count + n);
+        visited[..half_edges.div_ceil(32)].fill(0);
+        // The outside of the plate: the border walked clockwise.
+        walk_face(&g, 2 * g.edge_count() + 1, |h| set_bit(visited, h as usize, true));
+        for start in 0..half_edges as u32 {
+            let edge = (start >> 1) as usize;
+            if bit(visited, start as usize) || (edge < self.edge_count && !bit(g.alive, edge)) {
+                continue;
+            }
+            let mut ring = Ring { start, area: 0.0, points: 0 };
+            walk_face(&g, start, |h| {
+                set_bit(visited, h as usize, true);
+                let (u, w) = g.ends(h);
+                ring.area += 0.5 * shoelace(g.point(u), g.point(w));
+                ring.points += 1;
+            });
+            if ring.area != 0.0 {
+                visit(&g, ring);
+            }
+        }
+    }
+
+    /// The number of fragment rings and of their points: the buffer lengths
+    /// [`Glass::fragments`] needs.
+    pub fn fragment_counts(&mut self) -> (usize, usize) {
+        let (mut rings, mut points) = (0, 0);
+        self.for_each_ring(|_, ring| {
+            rings += 1;
+            points += ring.points;
+        });
+        (rings, points)
+    }
+
+    /// Writes the fragments of the network as it stands: each ring's record into `rings` and
+    /// its points into `points`, and returns how many of each. Nothing is written if either
+    /// buffer is shorter than [`Glass::fragment_counts`] says.
+    pub fn fragments(
+        &mut self,
+        rings: &mut [FragmentRing],
+        points: &mut [[f32; 2]],
+    ) -> Result<(usize, usize), GlassError> {
+        let (ring_count, point_count) = self.fragment_counts();
+        for (have, needed) in [(rings.len(), ring_count), (points.len(), point_count)] {
+            if have < needed {
+                return Err(GlassError::BufferTooSmall { needed });
+            }
+        }
+        let (mut r, mut p) = (0, 0);
+        self.for_each_ring(|g, ring| {
+            rings[r] =
+                FragmentRing { area: ring.area, first_point: p as u32, point_count: ring.points as u32, hole_of: NONE };
+            walk_face(g, ring.start, |h| {
+                points[p] = g.point(g.ends(h).0);
+                p += 1;
+            });
+            r += 1;
+        });
+        let (rings, points) = (&mut rings[..r], &points[..p]);
+        let outline = |ring: &FragmentRing| &points[ring.first_point as usize..][..ring.point_count as usize];
+        // A hole lies in the smallest outer ring around its first point that it does not touch.
+        for i in 0..r {
+            if rings[i].area > 0.0 {
+                continue;
+            }
+            let q = outline(&rings[i])[0];
+            let mut parent = (NONE, f64::INFINITY);
+            for (j, candidate) in rings.iter().enumerate() {
+                let ring = outline(candidate);
+                let around =
+                    ring.iter().zip(ring.iter().cycle().skip(1)).filter(|(a, b)| crosses_ray(**a, **b, q)).count();
+                if candidate.area > 0.0 && candidate.area < parent.1 && around % 2 == 1 && !ring.contains(&q) {
+                    parent = (j as u32, candidate.area);
+                }
+            }
+            rings[i].hole_of = parent.0;
+        }
+        Ok((r, p))
+    }
+}
