@@ -11,6 +11,19 @@
 use super::grid::NONE;
 use super::{CrackEnd, Edge, Glass, Vertex};
 
+impl Edge {
+    /// A segment of crack `crack` from vertex `from` to `to`, not yet chained or linked.
+    pub(super) fn new(from: u32, to: u32, crack: u32, time: [f32; 2]) -> Edge {
+        Edge { from, to, crack, next: NONE, time, links: [NONE; 2], angles: [0.0; 2] }
+    }
+
+    /// Sets the pseudo-angles of the edge's two directions from its ends' positions.
+    pub(super) fn orient(&mut self, from: [f32; 2], to: [f32; 2]) {
+        let d = [to[0] - from[0], to[1] - from[1]];
+        self.angles = [pseudo_angle(d), pseudo_angle([-d[0], -d[1]])];
+    }
+}
+
 /// One direction along an edge.
 pub(super) type HalfEdge = u32;
 
@@ -22,6 +35,8 @@ pub(super) trait PlaneGraph {
     fn ends(&self, h: HalfEdge) -> (u32, u32);
     /// Calls `visit` with every half-edge leaving vertex `v`.
     fn for_each_out(&self, v: u32, visit: impl FnMut(HalfEdge));
+    /// The pseudo-angle of half-edge `h`'s direction.
+    fn angle(&self, h: HalfEdge) -> f32;
     /// An upper bound on the number of half-edges (a walk longer than this is broken).
     fn half_edge_bound(&self) -> usize;
 }
@@ -42,18 +57,13 @@ pub(super) fn pseudo_angle(d: [f32; 2]) -> f32 {
 /// The half-edge after `h` around the face on its left: at the vertex `h` reaches, the first
 /// edge clockwise from the way back.
 pub(super) fn next_around_face<G: PlaneGraph>(g: &G, h: HalfEdge) -> HalfEdge {
-    let (u, w) = g.ends(h);
-    let at = g.point(w);
-    let angle = |v: u32| {
-        let p = g.point(v);
-        pseudo_angle([p[0] - at[0], p[1] - at[1]])
-    };
-    let back = (angle(u), h ^ 1);
+    let w = g.ends(h).1;
+    let back = (g.angle(h ^ 1), h ^ 1);
     let before = |a: (f32, u32), b: (f32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
     // The predecessor of `back` in (angle, half-edge) order, cyclically.
     let (mut below, mut last) = (None::<(f32, u32)>, None::<(f32, u32)>);
     g.for_each_out(w, |o| {
-        let key = (angle(g.ends(o).1), o);
+        let key = (g.angle(o), o);
         if before(key, back) && below.is_none_or(|b| before(b, key)) {
             below = Some(key);
         }
@@ -162,6 +172,10 @@ impl PlaneGraph for CrackGraph<'_> {
 
     fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge)) {
         self.for_each_edge_at(v, |_, h| visit(h));
+    }
+
+    fn angle(&self, h: HalfEdge) -> f32 {
+        self.edges[(h >> 1) as usize].angles[(h & 1) as usize]
     }
 
     fn half_edge_bound(&self) -> usize {

@@ -9,7 +9,7 @@
 //! signed areas add up to the plate's area, and each point of the plate lies in exactly one
 //! fragment.
 
-use super::faces::{CrackGraph, HalfEdge, PlaneGraph, crosses_ray, shoelace, walk_face};
+use super::faces::{CrackGraph, HalfEdge, PlaneGraph, crosses_ray, pseudo_angle, shoelace, walk_face};
 use super::grid::NONE;
 use super::{Glass, GlassError, take};
 
@@ -125,6 +125,15 @@ impl PlaneGraph for PlateGraph<'_> {
             visit(2 * (self.edge_count() + k));
             visit(2 * (self.edge_count() + (k + n - 1) % n) + 1);
         }
+    }
+
+    fn angle(&self, h: HalfEdge) -> f32 {
+        if h >> 1 < self.edge_count() {
+            return self.cracks.angle(h);
+        }
+        let (u, w) = self.ends(h);
+        let (a, b) = (self.point(u), self.point(w));
+        pseudo_angle([b[0] - a[0], b[1] - a[1]])
     }
 
     fn half_edge_bound(&self) -> usize {

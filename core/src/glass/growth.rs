@@ -78,6 +78,28 @@ impl Glass<'_> {
         (cosine >= self.sector_cosine).then_some((e, distance))
     }
 
+    /// The bounding box (x0, y0, x1, y1) of the sector S ahead of a tip at `w` heading
+    /// `direction`: its apex, the ends of its arc, and the arc's extremes along the axes that
+    /// fall inside it.
+    fn sector_box(&self, w: [f32; 2], direction: [f32; 2]) -> [f32; 4] {
+        let b = self.params.sector_radius;
+        let (c, s) = (self.sector_cosine, self.sector_sine);
+        let mut bounds = [w[0], w[1], w[0], w[1]];
+        let mut include = |d: [f32; 2]| {
+            let q = [w[0] + b * d[0], w[1] + b * d[1]];
+            bounds = [bounds[0].min(q[0]), bounds[1].min(q[1]), bounds[2].max(q[0]), bounds[3].max(q[1])];
+        };
+        let [dx, dy] = direction;
+        include([dx * c - dy * s, dx * s + dy * c]);
+        include([dx * c + dy * s, -dx * s + dy * c]);
+        for axis in [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]] {
+            if axis[0] * dx + axis[1] * dy >= c {
+                include(axis);
+            }
+        }
+        bounds
+    }
+
     /// Calls `visit` once with every segment filed in the grid cells covering the box
     /// [x0, x1] × [y0, y1] (a segment in several cells is visited once, by its stamp).
     fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, mut visit: impl FnMut(&Self, u32)) {
@@ -115,9 +137,9 @@ impl Glass<'_> {
         let w = c.tip;
         let direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
         let mut f = [0.0f32; 2];
-        let b = p.sector_radius;
+        let [x0, y0, x1, y1] = self.sector_box(w, direction);
         // F1: away from every other tip in S, ∝ 1/r².
-        let (cx0, cy0, cx1, cy1) = self.grid.span(w[0] - b, w[1] - b, w[0] + b, w[1] + b);
+        let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 self.tips.for_each(cy * self.grid.columns + cx, |j| {
@@ -135,17 +157,13 @@ impl Glass<'_> {
         // F2: towards every crack in S, along its normal (to meet it at a right angle), ∝ 1/d².
         let crack = i as u32;
         let mut pull = [0.0f32; 2];
-        self.segments_near(w[0] - b, w[1] - b, w[0] + b, w[1] + b, |glass, e| {
+        self.segments_near(x0, y0, x1, y1, |glass, e| {
             if glass.edges[e as usize].crack == crack {
                 return;
             }
             let (a, z) = glass.edge_points(e);
-            // Farther than B in x or y from the segment's box: not in the sector.
-            if w[0] < a[0].min(z[0]) - b
-                || w[0] > a[0].max(z[0]) + b
-                || w[1] < a[1].min(z[1]) - b
-                || w[1] > a[1].max(z[1]) + b
-            {
+            // Outside the sector's box: no point of it is in the sector.
+            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
                 return;
             }
             let q = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1])).closest_point(Point::new(w[0], w[1]));
@@ -176,7 +194,7 @@ impl Glass<'_> {
             let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-6);
             let out = [rel[0] / r, rel[1] / r];
             let along = if c.kind == CrackKind::RingCounterClockwise { [-out[1], out[0]] } else { [out[1], -out[0]] };
-            let back = (radius - r) / b;
+            let back = (radius - r) / p.sector_radius;
             f[0] += p.ring_adherence * (along[0] + back * out[0]);
             f[1] += p.ring_adherence * (along[1] + back * out[1]);
         }
@@ -213,14 +231,7 @@ impl Glass<'_> {
             c.end = CrackEnd::Crack;
             return;
         }
-        let segment = Edge {
-            from: tip_vertex,
-            to: end,
-            crack: i as u32,
-            next: NONE,
-            time: [time, time + along],
-            links: [NONE; 2],
-        };
+        let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along]);
         let Some(e) = self.add_edge(segment) else { return };
         let closes_cycle = self.join(tip_vertex, end);
         let c = &mut self.cracks[i];
@@ -315,8 +326,7 @@ impl Glass<'_> {
     fn split(&mut self, e: u32, v: u32, along: f32) -> bool {
         let old = self.edges[e as usize];
         let time = old.time[0] + (old.time[1] - old.time[0]) * along;
-        let tail =
-            Edge { from: v, to: old.to, crack: old.crack, next: old.next, time: [time, old.time[1]], links: [NONE; 2] };
+        let tail = Edge { next: old.next, ..Edge::new(v, old.to, old.crack, [time, old.time[1]]) };
         let Some(t) = self.push_edge(tail) else { return false };
         // The head now ends at v: out of the old end's incidence list, into v's.
         self.unlink(old.to, e);
@@ -325,6 +335,7 @@ impl Glass<'_> {
         head.next = t;
         head.time[1] = time;
         head.links[1] = self.vertices[v as usize].first_edge;
+        head.orient(self.vertices[old.from as usize].at, self.vertices[v as usize].at);
         self.vertices[v as usize].first_edge = e;
         self.join(v, old.from);
         let owner = &mut self.cracks[old.crack as usize];
@@ -377,6 +388,7 @@ impl Glass<'_> {
         }
         let e = self.edge_count as u32;
         edge.links = [self.vertices[edge.from as usize].first_edge, self.vertices[edge.to as usize].first_edge];
+        edge.orient(self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at);
         self.vertices[edge.from as usize].first_edge = e;
         self.vertices[edge.to as usize].first_edge = e;
         self.edges[self.edge_count] = edge;

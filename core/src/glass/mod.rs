@@ -6,7 +6,9 @@
 //! tip turns towards the sum of three forces found in the sector ahead of it: a push away
 //! from other tips (F1), a pull to meet cracks and edges at right angles (F2), and a random
 //! one (F3). A tip that reaches a crack or the edge stops exactly on it. Generation ends when
-//! every large and ring crack has stopped.
+//! every large and ring crack has stopped. A stop that closes a region bounded by cracks alone
+//! stops every crack growing inside it. [`Glass::fragments`] gives the regions the network
+//! cuts the plate into, as polygons.
 //!
 //! ```
 //! use hibi_core::glass::{Glass, GlassBuffers, GlassParams};
@@ -113,6 +115,9 @@ pub struct Edge {
     time: [f32; 2],
     /// The next edge in the incidence lists of `from` and of `to`.
     links: [u32; 2],
+    /// The pseudo-angle of the edge's direction leaving `from` and leaving `to`, for ordering
+    /// edges around a vertex.
+    angles: [f32; 2],
 }
 
 /// How much caller memory a plate needs.
@@ -249,6 +254,8 @@ pub struct Glass<'a> {
     /// cos(φ/2): a point is in a tip's sector when its direction's cosine with the heading
     /// is at least this.
     sector_cosine: f32,
+    /// sin(φ/2).
+    sector_sine: f32,
 }
 
 /// Cuts the first `n` elements off a buffer.
@@ -332,6 +339,7 @@ impl<'a> Glass<'a> {
             roots,
             fragments,
             sector_cosine: libm::cosf(0.5 * params.sector_angle),
+            sector_sine: libm::sinf(0.5 * params.sector_angle),
         };
         glass.impact(params.impact)?;
         Ok(glass)
