@@ -344,6 +344,19 @@ impl<'a, S: Scalar> Polyline<'a, S> {
     }
 }
 
+/// A monotone stand-in for the angle of direction `d` ≠ 0, in [0, 4): exact arithmetic and no
+/// trigonometry, so that every platform orders directions alike.
+pub fn pseudo_angle(d: [f32; 2]) -> f32 {
+    let [x, y] = d;
+    if y >= 0.0 {
+        if x >= 0.0 { y / (x + y) } else { 1.0 - x / (y - x) }
+    } else if x < 0.0 {
+        2.0 - y / (-x - y)
+    } else {
+        3.0 + x / (x - y)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,6 +14,7 @@
 //! - [`geom`]: points, segments, intersections, polylines.
 //! - [`mud`]: model A, the drying-mud spring lattice.
 //! - [`glass`]: model B, the crack grower for a glass plate hit by a ball.
+//! - [`skin`]: model C, hierarchical Voronoi skin cells.
 //! - [`raster`]: drawing into caller buffers.
 #![no_std]
 #![forbid(unsafe_code)]
@@ -25,6 +26,7 @@ pub mod mud;
 pub mod raster;
 pub mod rng;
 pub mod scalar;
+pub mod skin;
 
 pub use geom::{Intersection, Point, Polyline, Segment};
 pub use rng::{Rng, RngError, Spread, Stream};

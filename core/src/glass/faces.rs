@@ -10,6 +10,7 @@
 
 use super::grid::NONE;
 use super::{CrackEnd, Edge, Glass, Vertex};
+use crate::geom::pseudo_angle;
 
 impl Edge {
     /// A segment of crack `crack` from vertex `from` to `to`, not yet chained or linked.
@@ -39,19 +40,6 @@ pub(super) trait PlaneGraph {
     fn angle(&self, h: HalfEdge) -> f32;
     /// An upper bound on the number of half-edges (a walk longer than this is broken).
     fn half_edge_bound(&self) -> usize;
-}
-
-/// A monotone stand-in for the angle of direction `d` ≠ 0, in [0, 4): exact arithmetic and
-/// no trigonometry, so that every platform orders edges around a vertex alike.
-pub(super) fn pseudo_angle(d: [f32; 2]) -> f32 {
-    let [x, y] = d;
-    if y >= 0.0 {
-        if x >= 0.0 { y / (x + y) } else { 1.0 - x / (y - x) }
-    } else if x < 0.0 {
-        2.0 - y / (-x - y)
-    } else {
-        3.0 + x / (x - y)
-    }
 }
 
 /// The half-edge after `h` around the face on its left: at the vertex `h` reaches, the first

@@ -1,0 +1,424 @@
+//! One cell's outline (Ishii et al. §3.1, §4.1): the Voronoi region of its centre point among
+//! its neighbours, clipped to its parent polygon, with its edges perturbed by midpoint
+//! displacement (parameter 2) and stretched (parameter 3).
+//!
+//! The region is found by clipping the parent outline with the bisector of each neighbour,
+//! nearest first, until no farther neighbour can reach the outline. Clipping only decides
+//! which lines bound the region; each corner is then recomputed from those lines in a frame
+//! and an order that depend on the sites' ids alone (the circumcentre of three sites, or a
+//! bisector meeting a parent edge), and perturbation points are drawn from the edge's own
+//! random stream in one direction. So both cells sharing an edge get it bit for bit, and
+//! after rounding to fixed point they share its vertices.
+//!
+//! Fixed point: level l rounds its own points to 1/2^(8 + 12·l) px, and puts a corner on its
+//! parent's edge at a parameter rounded to 1/2^12 of that edge, which is exactly
+//! representable one level finer. So a child's corner lies exactly on the parent's edge,
+//! children of neighbouring parents meet along the very same line, and no pixel falls in a
+//! gap or an overlap between them. Everything is stored at the finest level's resolution.
+
+use super::params::LevelParams;
+use super::sites::Site;
+use crate::rng::{Rng, Stream};
+
+/// Most vertices one cell outline can have.
+pub const MAX_OUTLINE: usize = 2048;
+
+/// A clip label: the outline edge runs along the parent's edge `k` (bit 31 set) or along the
+/// bisector with neighbour `k`.
+const PARENT_EDGE: u32 = 1 << 31;
+
+/// A vertex of the outline being clipped: approximate position in the level's frame, and the
+/// label of the edge that starts at it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ClipVertex {
+    at: [f64; 2],
+    label: u32,
+}
+
+/// The level a cell is built in: frame (the plane before the level's stretch) and periods.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Frame {
+    pub(super) level: u32,
+    pub(super) seed: u64,
+    pub(super) stretch: [f64; 2],
+    /// The surface's period in the frame.
+    pub(super) period: [f64; 2],
+    /// The surface's period in fixed point.
+    pub(super) world_period: [i64; 2],
+    /// Fractional bits of the stored fixed point (the finest level's).
+    pub(super) shift: u32,
+    /// Fractional bits this level rounds its own points to.
+    pub(super) bits: u32,
+    pub(super) perturbation: f64,
+    pub(super) decay: f64,
+    pub(super) depth: u32,
+}
+
+impl Frame {
+    pub(super) fn new(level: usize, l: &LevelParams, seed: u64, size: [u32; 2], levels: u32) -> Frame {
+        let stretch = [f64::from(l.stretch[0]), f64::from(l.stretch[1])];
+        let shift = fixed_point_bits(levels);
+        Frame {
+            level: level as u32,
+            seed,
+            stretch,
+            period: [f64::from(size[0]) / stretch[0], f64::from(size[1]) / stretch[1]],
+            world_period: [i64::from(size[0]) << shift, i64::from(size[1]) << shift],
+            shift,
+            bits: BASE_BITS + EDGE_BITS * level as u32,
+            perturbation: f64::from(l.perturbation),
+            decay: f64::from(l.perturbation_decay),
+            depth: l.perturbation_depth,
+        }
+    }
+
+    /// A site's position relative to the image of `reference` (the frame every shared
+    /// computation is done in).
+    fn relative(&self, site: &Site, reference: &Site) -> [f64; 2] {
+        let d = [site.image[0] - reference.image[0], site.image[1] - reference.image[1]];
+        [site.base[0] + f64::from(d[0]) * self.period[0], site.base[1] + f64::from(d[1]) * self.period[1]]
+    }
+
+    /// A frame position relative to `reference`'s image, in fixed point (rounded to this
+    /// level's resolution).
+    fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
+        let q = |k: usize| {
+            let world = at[k] * self.stretch[k] * libm::exp2(f64::from(self.bits));
+            ((libm::round(world) as i64) << (self.shift - self.bits))
+                + i64::from(reference.image[k]) * self.world_period[k]
+        };
+        [q(0), q(1)]
+    }
+
+    /// A fixed-point point in the frame, relative to `reference`'s image.
+    fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
+        let u = |k: usize| {
+            let local = p[k] - i64::from(reference.image[k]) * self.world_period[k];
+            local as f64 / libm::exp2(f64::from(self.shift)) / self.stretch[k]
+        };
+        [u(0), u(1)]
+    }
+
+    /// The site's position in fixed point.
+    pub(super) fn site_fixed(&self, site: &Site) -> [i64; 2] {
+        self.fixed(site.base, site)
+    }
+
+    /// A fixed-point point in this frame, absolute.
+    pub(super) fn to_frame(&self, p: [i64; 2]) -> [f64; 2] {
+        let unit = libm::exp2(f64::from(self.shift));
+        [p[0] as f64 / unit / self.stretch[0], p[1] as f64 / unit / self.stretch[1]]
+    }
+}
+
+/// Fractional bits of level 0's own points.
+const BASE_BITS: u32 = 8;
+/// Bits of the parameter a corner on a parent's edge is rounded to.
+const EDGE_BITS: u32 = 12;
+
+/// Fractional bits of the fixed point a skin of `levels` levels is stored in.
+pub(super) const fn fixed_point_bits(levels: u32) -> u32 {
+    BASE_BITS + EDGE_BITS * (levels - 1)
+}
+
+/// A corner computed the same way by every cell that has it: its frame position relative to
+/// the image of `reference`, and its fixed-point position.
+#[derive(Clone, Copy, Debug, Default)]
+struct Corner {
+    at: [f64; 2],
+    reference: Site,
+    fixed: [i64; 2],
+}
+
+/// The two sites ordered by (id, image): the first is the one whose frame and direction an
+/// edge between them is computed in.
+fn sorted2<'s>(a: &'s Site, b: &'s Site) -> (&'s Site, &'s Site) {
+    if (a.id, a.image) <= (b.id, b.image) { (a, b) } else { (b, a) }
+}
+
+/// The circumcentre of three sites (a Voronoi vertex), in the frame of the lowest id.
+fn circumcentre(f: &Frame, a: &Site, b: &Site, c: &Site) -> Corner {
+    let mut s = [a, b, c];
+    s.sort_unstable_by_key(|x| x.id);
+    let r = s[0];
+    let (p, q) = (f.relative(s[1], r), f.relative(s[2], r));
+    let o = r.base;
+    let (bx, by, cx, cy) = (p[0] - o[0], p[1] - o[1], q[0] - o[0], q[1] - o[1]);
+    let d = 2.0 * (bx * cy - by * cx);
+    let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
+    let at = [o[0] + (cy * b2 - by * c2) / d, o[1] + (bx * c2 - cx * b2) / d];
+    Corner { at, reference: *r, fixed: f.fixed(at, r) }
+}
+
+/// Where the bisector of `a` and `b` meets the parent's edge from `p` to `q`: at a parameter
+/// rounded to 1/2^12 of the edge, so that the corner lies exactly on it.
+fn bisector_meets_edge(f: &Frame, a: &Site, b: &Site, p: [i64; 2], q: [i64; 2]) -> Corner {
+    let (lo, hi) = sorted2(a, b);
+    let (x, y) = (lo.base, f.relative(hi, lo));
+    let (pf, qf) = (f.unfixed(p, lo), f.unfixed(q, lo));
+    let d = [y[0] - x[0], y[1] - x[1]];
+    let m = [0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1])];
+    let e = [qf[0] - pf[0], qf[1] - pf[1]];
+    let t = ((m[0] - pf[0]) * d[0] + (m[1] - pf[1]) * d[1]) / (e[0] * d[0] + e[1] * d[1]);
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let fixed = if f.level == 0 {
+        // The parent is the surface (or a box around a periodic centre): axis-aligned edges,
+        // so the corner is on the edge when its constant coordinate is copied.
+        let mut x = f.fixed([pf[0] + t * e[0], pf[1] + t * e[1]], lo);
+        for k in 0..2 {
+            if p[k] == q[k] {
+                x[k] = p[k];
+            }
+        }
+        x
+    } else {
+        // The parent's points are multiples of 2^(shift − bits + EDGE_BITS): exact division.
+        let steps = 1i64 << EDGE_BITS;
+        let k = (libm::round(t * steps as f64) as i64).clamp(0, steps);
+        [p[0] + k * ((q[0] - p[0]) >> EDGE_BITS), p[1] + k * ((q[1] - p[1]) >> EDGE_BITS)]
+    };
+    Corner { at: f.unfixed(fixed, lo), reference: *lo, fixed }
+}
+
+/// Why an outline could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct OutlineFull;
+
+/// Scratch and output for building outlines.
+pub(super) struct Builder<'s> {
+    pub(super) clip: &'s mut [ClipVertex],
+    pub(super) spare: &'s mut [ClipVertex],
+    pub(super) order: &'s mut [u32],
+}
+
+impl Builder<'_> {
+    /// Builds the outline of `site`'s cell among `neighbours` (which may include `site`
+    /// itself, skipped by id and image) inside `parent` (fixed point, counter-clockwise), into
+    /// `out`; returns its length (0 if the cell misses the parent).
+    pub(super) fn outline(
+        &mut self,
+        f: &Frame,
+        site: &Site,
+        neighbours: &[Site],
+        parent: &[[i64; 2]],
+        out: &mut [[i64; 2]],
+    ) -> Result<usize, OutlineFull> {
+        let n0 = parent.len();
+        if n0 > self.clip.len() {
+            return Err(OutlineFull);
+        }
+        for (k, p) in parent.iter().enumerate() {
+            self.clip[k] = ClipVertex { at: f.to_frame(*p), label: PARENT_EDGE | k as u32 };
+        }
+        let mut n = n0;
+        // Neighbours nearest first (ties by id, so the order is fixed).
+        let distance = |s: &Site| {
+            let d = [s.at[0] - site.at[0], s.at[1] - site.at[1]];
+            d[0] * d[0] + d[1] * d[1]
+        };
+        let m = neighbours.len();
+        for (k, o) in self.order[..m].iter_mut().enumerate() {
+            *o = k as u32;
+        }
+        self.order[..m].sort_unstable_by(|&i, &j| {
+            let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
+            distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
+        });
+        for k in 0..m {
+            let j = self.order[k] as usize;
+            let b = &neighbours[j];
+            if b.id == site.id && b.image == site.image {
+                continue;
+            }
+            // No part of the outline is farther than half this neighbour's distance: it and
+            // every farther one leave the outline alone.
+            let reach = self.clip[..n]
+                .iter()
+                .map(|v| {
+                    let d = [v.at[0] - site.at[0], v.at[1] - site.at[1]];
+                    d[0] * d[0] + d[1] * d[1]
+                })
+                .fold(0.0f64, f64::max);
+            if distance(b) > 4.0 * reach {
+                break;
+            }
+            n = self.clip_by_bisector(n, site, b, j as u32)?;
+            if n == 0 {
+                return Ok(0);
+            }
+        }
+        self.finish(f, site, neighbours, parent, n, out)
+    }
+
+    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count.
+    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<usize, OutlineFull> {
+        let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
+        let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
+        let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
+        let mut out = 0;
+        for k in 0..n {
+            let (cur, next) = (self.clip[k], self.clip[(k + 1) % n]);
+            let (sc, sn) = (side(cur.at), side(next.at));
+            let (cin, nin) = (sc <= 0.0, sn <= 0.0);
+            let extra = usize::from(cin) + usize::from(cin != nin);
+            if out + extra > self.spare.len() {
+                return Err(OutlineFull);
+            }
+            if cin {
+                self.spare[out] = cur;
+                out += 1;
+            }
+            if cin != nin {
+                let t = sc / (sc - sn);
+                let at = [cur.at[0] + t * (next.at[0] - cur.at[0]), cur.at[1] + t * (next.at[1] - cur.at[1])];
+                let label = if cin { j } else { cur.label };
+                self.spare[out] = ClipVertex { at, label };
+                out += 1;
+            }
+        }
+        core::mem::swap(&mut self.clip, &mut self.spare);
+        Ok(out)
+    }
+
+    /// The corner between an edge labelled `into` and one labelled `from` (starting at clip
+    /// vertex `k`).
+    fn corner(
+        &self,
+        f: &Frame,
+        a: &Site,
+        neighbours: &[Site],
+        parent: &[[i64; 2]],
+        into: u32,
+        from: u32,
+        k: usize,
+    ) -> Corner {
+        let edge = |label: u32| {
+            let i = (label & !PARENT_EDGE) as usize;
+            (parent[i], parent[(i + 1) % parent.len()])
+        };
+        match (into & PARENT_EDGE != 0, from & PARENT_EDGE != 0) {
+            (true, true) => {
+                let p = edge(from).0;
+                Corner { at: f.unfixed(p, a), reference: *a, fixed: p }
+            }
+            (false, false) if into != from => {
+                circumcentre(f, a, &neighbours[into as usize], &neighbours[from as usize])
+            }
+            (false, true) => {
+                let (p, q) = edge(from);
+                bisector_meets_edge(f, a, &neighbours[into as usize], p, q)
+            }
+            (true, false) => {
+                let (p, q) = edge(into);
+                bisector_meets_edge(f, a, &neighbours[from as usize], p, q)
+            }
+            // A degenerate corner (the same bisector on both sides): where clipping put it.
+            (false, false) => {
+                let at = [self.clip[k].at[0] - a.at[0] + a.base[0], self.clip[k].at[1] - a.at[1] + a.base[1]];
+                Corner { at, reference: *a, fixed: f.fixed(at, a) }
+            }
+        }
+    }
+
+    /// Recomputes the corners, perturbs the bisector edges and writes the fixed-point outline.
+    fn finish(
+        &mut self,
+        f: &Frame,
+        a: &Site,
+        neighbours: &[Site],
+        parent: &[[i64; 2]],
+        n: usize,
+        out: &mut [[i64; 2]],
+    ) -> Result<usize, OutlineFull> {
+        let mut written = 0;
+        let mut push = |p: [i64; 2], written: &mut usize| -> Result<(), OutlineFull> {
+            if *written > 0 && out[*written - 1] == p {
+                return Ok(());
+            }
+            *out.get_mut(*written).ok_or(OutlineFull)? = p;
+            *written += 1;
+            Ok(())
+        };
+        let corner_at = |k: usize| {
+            let into = self.clip[(k + n - 1) % n].label;
+            self.corner(f, a, neighbours, parent, into, self.clip[k].label, k)
+        };
+        let mut start = corner_at(0);
+        let first = start;
+        for k in 0..n {
+            let end = if k + 1 == n { first } else { corner_at(k + 1) };
+            push(start.fixed, &mut written)?;
+            let label = self.clip[k].label;
+            if label & PARENT_EDGE == 0 && f.perturbation > 0.0 && f.depth > 0 {
+                let b = &neighbours[label as usize];
+                let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+                let count = perturb(f, a, b, &start, &end, &mut points);
+                for p in &points[1..count] {
+                    push(*p, &mut written)?;
+                }
+            }
+            start = end;
+        }
+        if written > 1 && out[written - 1] == out[0] {
+            written -= 1;
+        }
+        Ok(written)
+    }
+}
+
+/// The inner points of the edge between `a`'s and `b`'s cells from corner `start` to `end`
+/// (as `a` runs it), by midpoint displacement V = A·2^(−n·h)·Rnd·L (paper §4.2 (2)), written
+/// from `points[1]` on; returns 2^depth. Drawn from the edge's own stream in the direction
+/// the lower id runs it, so both cells get the same points.
+fn perturb(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner, points: &mut [[i64; 2]]) -> usize {
+    let (lo, hi) = sorted2(a, b);
+    let forward = (a.id, a.image) == (lo.id, lo.image);
+    let (from, to) = if forward { (start, end) } else { (end, start) };
+    // Both ends in `lo`'s frame.
+    let place = |c: &Corner| {
+        let d = [c.reference.image[0] - lo.image[0], c.reference.image[1] - lo.image[1]];
+        [c.at[0] + f64::from(d[0]) * f.period[0], c.at[1] + f64::from(d[1]) * f.period[1]]
+    };
+    let (p0, p1) = (place(from), place(to));
+    let length = libm::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
+    let pieces = 1usize << f.depth;
+    let mut line = [[0.0f64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+    line[0] = p0;
+    line[pieces] = p1;
+    if length > 0.0 {
+        let normal = [-(p1[1] - p0[1]) / length, (p1[0] - p0[0]) / length];
+        let offset = [hi.image[0] - lo.image[0], hi.image[1] - lo.image[1]];
+        let key = Stream::EdgePerturbation.key()
+            ^ (u64::from(f.level) << 58)
+            ^ (u64::from(lo.id) << 29)
+            ^ u64::from(hi.id)
+            ^ ((offset[0] as u64 & 0xF) << 50)
+            ^ ((offset[1] as u64 & 0xF) << 54);
+        let mut rng = Rng::from_key(f.seed, key);
+        let mut step = pieces;
+        for level in 1..=f.depth {
+            let amplitude = f.perturbation * libm::exp2(-f64::from(level) * f.decay) * length;
+            let half = step / 2;
+            let mut i = 0;
+            while i < pieces {
+                // Rnd: standard normal, redrawn beyond ±3 so that no wiggle runs away.
+                let rnd = loop {
+                    let v = rng.normal();
+                    if v.abs() <= 3.0 {
+                        break v;
+                    }
+                };
+                let v = amplitude * rnd;
+                let (x, y) = (line[i], line[i + step]);
+                line[i + half] = [0.5 * (x[0] + y[0]) + v * normal[0], 0.5 * (x[1] + y[1]) + v * normal[1]];
+                i += step;
+            }
+            step = half;
+        }
+    }
+    for k in 1..pieces {
+        let index = if forward { k } else { pieces - k };
+        points[index] = f.fixed(line[k], lo);
+    }
+    pieces
+}

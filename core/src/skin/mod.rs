@@ -1,0 +1,417 @@
+//! Model C: skin surface texture from hierarchical Voronoi cells (Ishii, Yasuda, Yokoi,
+//! Toriwaki, "Human skin rendering based on the surface microstructures"; MODELS.md §C).
+//!
+//! Furrows form a net; the ridges they enclose rise from their base polygon's edges towards
+//! its centre point. The base polygons are Voronoi cells of jittered lattice points, their
+//! edges perturbed by midpoint displacement and stretched along a direction; inside each
+//! polygon the division repeats for the next level. A ridge's cross-section is a Bézier
+//! profile along the ray from its centre point to its edge; heights add up over the levels
+//! and normals come from the profiles' slopes.
+//!
+//! [`Skin::new`] builds every cell outline into caller memory (fixed point, 1/256 px, shared
+//! edges bit for bit); [`Skin::render`] evaluates height, normal and cell maps into caller
+//! buffers; [`shade`] lights a normal map for a preview.
+//!
+//! ```
+//! use hibi_core::skin::{Skin, SkinBuffers, SkinLayers, SkinParams};
+//!
+//! let params = SkinParams { width: 64, height: 64, ..SkinParams::default() };
+//! let m = params.memory().unwrap();
+//! let mut cells = vec![Default::default(); m.cells];
+//! let mut vertices = vec![[0i32; 2]; m.vertices];
+//! let (mut sites, mut clip, mut words) = (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
+//! let buffers = SkinBuffers { cells: &mut cells, vertices: &mut vertices, sites: &mut sites, clip: &mut clip, words: &mut words };
+//! let skin = Skin::new(&params, buffers).unwrap();
+//! let mut height = vec![0.0f32; 64 * 64];
+//! skin.render::<f32>(SkinLayers { height: Some(&mut height), ..SkinLayers::default() }).unwrap();
+//! assert!(height.iter().any(|&h| h > 2.0));
+//! ```
+
+mod cell;
+pub mod params;
+mod profile;
+mod scan;
+mod shade;
+mod sites;
+mod surface;
+
+pub use cell::{ClipVertex, MAX_OUTLINE};
+pub use params::{
+    LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, Profile, SiteLayout, SkinParamError, SkinParams,
+};
+pub use shade::{ShadeParams, shade};
+pub use sites::Site;
+pub use surface::SkinLayers;
+
+use cell::{Builder, Frame};
+use profile::ProfileTable;
+use sites::Lattice;
+
+/// Neighbours on each side a level-1 centre is clipped against (jitter is at most half a
+/// spacing per axis, so a cell never reaches past them).
+const WINDOW: i64 = 4;
+/// Most centre points one parent can hold, or one level-1 window.
+pub const MAX_CHILDREN: usize = 4096;
+/// No cell (a parent of a level-1 cell).
+pub const NO_CELL: u32 = u32::MAX;
+
+/// One cell: its level, its parent (index in [`Skin::cells`]), its centre point and its
+/// outline (counter-clockwise in fixed point of [`Skin::fixed_point_bits`] fractional bits, in
+/// [`Skin::vertices`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
+pub struct SkinCell {
+    /// Hierarchy level, 0 for the coarsest.
+    pub level: u32,
+    /// Index of the parent cell, [`NO_CELL`] at level 0.
+    pub parent: u32,
+    /// The centre point's id, unique within the level.
+    pub site: u32,
+    /// Index of the outline's first vertex.
+    pub first_vertex: u32,
+    /// Vertices in the outline.
+    pub vertex_count: u32,
+    /// The centre point in fixed point.
+    pub centre: [i64; 2],
+}
+
+/// How much caller memory a skin needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkinMemory {
+    /// [`SkinCell`] records.
+    pub cells: usize,
+    /// Outline vertices (`[i64; 2]`).
+    pub vertices: usize,
+    /// [`Site`] records.
+    pub sites: usize,
+    /// [`ClipVertex`] records.
+    pub clip: usize,
+    /// `u32` words.
+    pub words: usize,
+}
+
+/// Caller memory for a skin.
+pub struct SkinBuffers<'a> {
+    /// At least [`SkinMemory::cells`].
+    pub cells: &'a mut [SkinCell],
+    /// At least [`SkinMemory::vertices`].
+    pub vertices: &'a mut [[i64; 2]],
+    /// At least [`SkinMemory::sites`].
+    pub sites: &'a mut [Site],
+    /// At least [`SkinMemory::clip`].
+    pub clip: &'a mut [ClipVertex],
+    /// At least [`SkinMemory::words`].
+    pub words: &'a mut [u32],
+}
+
+/// Why a skin could not be built or rendered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SkinError {
+    /// A parameter is out of range.
+    Param(SkinParamError),
+    /// A caller buffer is too small: `needed` elements are required.
+    BufferTooSmall {
+        /// Elements the buffer must hold.
+        needed: usize,
+    },
+    /// A cell outline or a parent's centre points outgrew their fixed capacity
+    /// ([`MAX_OUTLINE`], [`MAX_CHILDREN`]): lower the perturbation depth or the spacing ratio.
+    Capacity,
+    /// The requested cell-map level is not below `levels`.
+    Level,
+    /// The shading light direction is zero or not finite.
+    Shade,
+}
+
+impl From<SkinParamError> for SkinError {
+    fn from(e: SkinParamError) -> Self {
+        SkinError::Param(e)
+    }
+}
+
+impl SkinParams {
+    /// The lattice index range of level 0 (inclusive) that can reach the surface.
+    fn level0_indices(&self, lattice: &Lattice) -> [i64; 4] {
+        if self.periodic {
+            [0, 0, lattice.count[0] - 1, lattice.count[1] - 1]
+        } else {
+            let r = lattice.indices_over([0.0, 0.0], lattice.period);
+            [r[0] - 1, r[1] - 1, r[2] + 1, r[3] + 1]
+        }
+    }
+
+    /// Validates the parameters and returns the memory a skin needs.
+    pub fn memory(&self) -> Result<SkinMemory, SkinParamError> {
+        self.validate()?;
+        let levels = self.levels as usize;
+        let (mut cells, mut vertices, mut previous) = (0usize, 0usize, 0usize);
+        for l in 0..levels {
+            let lattice = Lattice::new(self, l);
+            // Every lattice point that can lie on the surface (or its margin), plus one
+            // stand-in child for each parent that holds no point.
+            let sites = if l == 0 {
+                let r = self.level0_indices(&lattice);
+                ((r[2] - r[0] + 1) * (r[3] - r[1] + 1)) as usize
+            } else {
+                let margin = 2 * (WINDOW + 4);
+                ((lattice.count[0] + margin) * (lattice.count[1] + margin)) as usize + previous
+            };
+            // Euler: the Voronoi edges of n points number at most 3n; each is in two cells,
+            // perturbed into 2^depth pieces, plus corners on the parent's outline, which every
+            // child inherits from its parent.
+            let pieces = 1usize << self.level[l].perturbation_depth;
+            let own = sites.checked_mul(6 * pieces + 16).ok_or(SkinParamError::Capacity)?;
+            let level_vertices = own.checked_add(if l == 0 { 0 } else { vertices }).ok_or(SkinParamError::Capacity)?;
+            vertices = vertices.checked_add(level_vertices).ok_or(SkinParamError::Capacity)?;
+            cells = cells.checked_add(sites).ok_or(SkinParamError::Capacity)?;
+            previous = sites;
+        }
+        if vertices > i32::MAX as usize || cells > i32::MAX as usize {
+            return Err(SkinParamError::Capacity);
+        }
+        Ok(SkinMemory {
+            cells,
+            vertices,
+            sites: MAX_CHILDREN * levels,
+            clip: 2 * MAX_OUTLINE,
+            words: MAX_CHILDREN + MAX_OUTLINE,
+        })
+    }
+}
+
+/// A skin surface: every cell outline of every level, over caller memory.
+pub struct Skin<'a> {
+    params: SkinParams,
+    cells: &'a [SkinCell],
+    vertices: &'a [[i64; 2]],
+    tables: [ProfileTable; MAX_LEVELS],
+}
+
+/// The state of a build: the buffers and how far they are filled.
+struct Build<'b> {
+    params: SkinParams,
+    frames: [Frame; MAX_LEVELS],
+    lattices: [Lattice; MAX_LEVELS],
+    cells: &'b mut [SkinCell],
+    cell_count: usize,
+    vertices: &'b mut [[i64; 2]],
+    vertex_count: usize,
+    sites: &'b mut [Site],
+    builder: Builder<'b>,
+}
+
+impl Build<'_> {
+    /// Builds `site`'s outline in level `level` among `neighbours` (sites[range]) inside the
+    /// outline `parent` (vertices[parent range] or the given one), stores the cell and its
+    /// descendants.
+    fn cell(
+        &mut self,
+        level: usize,
+        site: Site,
+        neighbours: (usize, usize),
+        parent: ParentOutline,
+        parent_index: u32,
+    ) -> Result<(), SkinError> {
+        let f = self.frames[level];
+        let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
+        let outline: &[[i64; 2]] = match parent {
+            ParentOutline::Stored(first, count) => &head[first..first + count],
+            ParentOutline::Box(ref b) => b,
+        };
+        let n = self
+            .builder
+            .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
+                let room = tail.len().min(MAX_OUTLINE);
+                &mut tail[..room]
+            })
+            .map_err(|_| SkinError::Capacity)?;
+        if n < 3 {
+            return Ok(());
+        }
+        let index = self.cell_count;
+        if index == self.cells.len() {
+            return Err(SkinError::Capacity);
+        }
+        self.cells[index] = SkinCell {
+            level: level as u32,
+            parent: parent_index,
+            site: site.id,
+            first_vertex: self.vertex_count as u32,
+            vertex_count: n as u32,
+            centre: f.site_fixed(&site),
+        };
+        self.cell_count += 1;
+        let first = self.vertex_count;
+        self.vertex_count += n;
+        if level + 1 < self.params.levels as usize {
+            self.children(level + 1, index as u32, first, n)?;
+        }
+        Ok(())
+    }
+
+    /// Divides cell `parent` (outline vertices[first..first + n]) into the cells of `level`.
+    fn children(&mut self, level: usize, parent: u32, first: usize, n: usize) -> Result<(), SkinError> {
+        let (f, lattice) = (self.frames[level], self.lattices[level]);
+        let outline = &self.vertices[first..first + n];
+        let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
+        for v in outline {
+            lo = [lo[0].min(v[0]), lo[1].min(v[1])];
+            hi = [hi[0].max(v[0]), hi[1].max(v[1])];
+        }
+        let r = lattice.indices_over(f.to_frame(lo), f.to_frame(hi));
+        let base = level * MAX_CHILDREN;
+        let mut count = 0;
+        for j in r[1]..=r[3] {
+            for i in r[0]..=r[2] {
+                let s = lattice.site(i, j);
+                let p = f.site_fixed(&s);
+                if scan::contains(outline, p) {
+                    if count == MAX_CHILDREN {
+                        return Err(SkinError::Capacity);
+                    }
+                    self.sites[base + count] = s;
+                    count += 1;
+                }
+            }
+        }
+        if count == 0 {
+            // No centre point fell inside: the parent is one cell of this level, centred where
+            // the parent is.
+            let c = self.cells[parent as usize].centre;
+            let at = f.to_frame(c);
+            self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
+            count = 1;
+        }
+        for k in 0..count {
+            let s = self.sites[base + k];
+            self.cell(level, s, (base, count), ParentOutline::Stored(first, n), parent)?;
+        }
+        Ok(())
+    }
+}
+
+/// The outline a cell is clipped to.
+enum ParentOutline {
+    /// Stored vertices (first, count).
+    Stored(usize, usize),
+    /// A rectangle (the surface, or a box around a periodic centre).
+    Box([[i64; 2]; 4]),
+}
+
+impl<'a> Skin<'a> {
+    /// Builds every cell of every level into the caller's buffers.
+    pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
+        let m = params.memory()?;
+        let short = [
+            (buffers.cells.len(), m.cells),
+            (buffers.vertices.len(), m.vertices),
+            (buffers.sites.len(), m.sites),
+            (buffers.clip.len(), m.clip),
+            (buffers.words.len(), m.words),
+        ];
+        if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
+            return Err(SkinError::BufferTooSmall { needed });
+        }
+        let size = [params.width, params.height];
+        let frames = core::array::from_fn(|l| {
+            Frame::new(l, &params.level[l.min(params.levels as usize - 1)], params.seed, size, params.levels)
+        });
+        let shift = frames[0].shift;
+        let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
+        let (clip, spare) = buffers.clip.split_at_mut(MAX_OUTLINE);
+        let mut build = Build {
+            params: *params,
+            frames,
+            lattices,
+            cells: buffers.cells,
+            cell_count: 0,
+            vertices: buffers.vertices,
+            vertex_count: 0,
+            sites: buffers.sites,
+            builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
+        };
+        let lattice = lattices[0];
+        let f = frames[0];
+        let r = params.level0_indices(&lattice);
+        let (w, h) = (i64::from(size[0]) << shift, i64::from(size[1]) << shift);
+        let surface = [[0, 0], [w, 0], [w, h], [0, h]];
+        for j in r[1]..=r[3] {
+            for i in r[0]..=r[2] {
+                let site = lattice.site(i, j);
+                // Its neighbours: the window around it (level 0 keeps them in the first block).
+                let mut n = 0;
+                for dj in -WINDOW..=WINDOW {
+                    for di in -WINDOW..=WINDOW {
+                        build.sites[n] = lattice.site(i + di, j + dj);
+                        n += 1;
+                    }
+                }
+                let parent = if params.periodic {
+                    let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
+                    let corner = |dx: f64, dy: f64| {
+                        let q = |k: usize, d: f64| {
+                            (libm::round((site.at[k] + d) * f.stretch[k] * 256.0) as i64) << (shift - 8)
+                        };
+                        [q(0, dx), q(1, dy)]
+                    };
+                    ParentOutline::Box([
+                        corner(-reach[0], -reach[1]),
+                        corner(reach[0], -reach[1]),
+                        corner(reach[0], reach[1]),
+                        corner(-reach[0], reach[1]),
+                    ])
+                } else {
+                    ParentOutline::Box(surface)
+                };
+                build.cell(0, site, (0, n), parent, NO_CELL)?;
+            }
+        }
+        let (cell_count, vertex_count) = (build.cell_count, build.vertex_count);
+        let (cells, vertices) = (build.cells, build.vertices);
+        let tables =
+            core::array::from_fn(|l| ProfileTable::new(&params.level[l.min(params.levels as usize - 1)].profile));
+        Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &SkinParams {
+        &self.params
+    }
+
+    /// Every cell, level by level inside each level-0 cell (a parent comes before its
+    /// children).
+    pub fn cells(&self) -> &[SkinCell] {
+        self.cells
+    }
+
+    /// Every outline vertex in fixed point.
+    pub fn vertices(&self) -> &[[i64; 2]] {
+        self.vertices
+    }
+
+    /// Fractional bits of the fixed point outlines are in: 8 + 12·(levels − 1) (a pixel is
+    /// `1 << bits` units).
+    pub fn fixed_point_bits(&self) -> u32 {
+        cell::fixed_point_bits(self.params.levels)
+    }
+
+    /// The outline of `cell`.
+    pub fn outline(&self, cell: &SkinCell) -> &[[i64; 2]] {
+        &self.vertices[cell.first_vertex as usize..][..cell.vertex_count as usize]
+    }
+
+    /// Calls `visit(column, row)` for every pixel whose centre lies in `cell` (wrapped onto
+    /// the surface when periodic). Across the cells of one level every pixel is visited
+    /// exactly once.
+    pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
+        let mut crossings = [0i64; MAX_OUTLINE];
+        let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
+        let periodic = self.params.periodic;
+        scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), &mut crossings, |x, y| {
+            let (x, y) = if periodic { (x.rem_euclid(w), y.rem_euclid(h)) } else { (x, y) };
+            if (0..w).contains(&x) && (0..h).contains(&y) {
+                visit(x as u32, y as u32);
+            }
+        });
+    }
+}

@@ -1,0 +1,79 @@
+//! A shaded preview: bump mapping (Blinn) of the normal map under one light, the paper's way
+//! of showing its surfaces (§5), with a skin palette of our own (colour is the paper's open
+//! problem): furrows darker and redder than ridge tops.
+
+use super::SkinError;
+
+/// Light and palette for [`shade`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadeParams {
+    /// Direction towards the light (x right, y up, z out of the surface); need not be unit.
+    pub light: [f32; 3],
+    /// Ridge-top colour, linear RGB in [0, 1].
+    pub ridge: [f32; 3],
+    /// Furrow colour, linear RGB in [0, 1].
+    pub furrow: [f32; 3],
+    /// Light that reaches every pixel, in [0, 1].
+    pub ambient: f32,
+    /// Strength of the highlight (Blinn–Phong, shininess 24), ≥ 0.
+    pub specular: f32,
+}
+
+impl Default for ShadeParams {
+    /// Light from the upper left, a light skin tone.
+    fn default() -> Self {
+        ShadeParams {
+            light: [-0.5, 0.6, 0.62],
+            ridge: [0.90, 0.68, 0.56],
+            furrow: [0.55, 0.33, 0.28],
+            ambient: 0.35,
+            specular: 0.12,
+        }
+    }
+}
+
+/// Lights `normal` (and darkens towards the furrows by `height`, scaled to its own range) into
+/// 8-bit RGB (sRGB-encoded) in `out`. All three buffers must hold as many pixels as `normal`;
+/// nothing is written otherwise.
+pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mut [[u8; 3]]) -> Result<(), SkinError> {
+    let pixels = normal.len();
+    if height.len() < pixels || out.len() < pixels {
+        return Err(SkinError::BufferTooSmall { needed: pixels });
+    }
+    let l = params.light;
+    let length = libm::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    if !(length.is_finite() && length > 0.0) {
+        return Err(SkinError::Shade);
+    }
+    let light = [l[0] / length, l[1] / length, l[2] / length];
+    // Blinn's half vector between the light and a viewer straight above.
+    let h = [light[0], light[1], light[2] + 1.0];
+    let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    let half = [h[0] / hl, h[1] / hl, h[2] / hl];
+    let (mut low, mut high) = (f32::INFINITY, f32::NEG_INFINITY);
+    for &z in &height[..pixels] {
+        low = low.min(z);
+        high = high.max(z);
+    }
+    let span = if high > low { high - low } else { 1.0 };
+    for i in 0..pixels {
+        let n = normal[i];
+        let t = ((height[i] - low) / span).clamp(0.0, 1.0);
+        let t = libm::sqrtf(t);
+        let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
+        let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
+        let lit = params.ambient + (1.0 - params.ambient) * diffuse;
+        for k in 0..3 {
+            let albedo = params.furrow[k] + (params.ridge[k] - params.furrow[k]) * t;
+            let linear = (albedo * lit + params.specular * gloss).clamp(0.0, 1.0);
+            out[i][k] = encode_srgb(linear);
+        }
+    }
+    Ok(())
+}
+
+/// Linear [0, 1] to an 8-bit sRGB code.
+fn encode_srgb(v: f32) -> u8 {
+    let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * libm::powf(v, 1.0 / 2.4) - 0.055 };
+    libm::roundf(s * 255.0) as u8
+}

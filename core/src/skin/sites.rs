@@ -1,0 +1,123 @@
+//! Centre points (paper parameter 1): a triangular or square lattice with uniform or normal
+//! jitter, or a uniform random layout, per hierarchy level, in the level's own frame (the
+//! plane before the level's stretch).
+
+use super::params::{SiteLayout, SkinParams};
+use crate::rng::{Rng, Spread, Stream};
+
+/// Lattice indices reach this far outside the surface (non-periodic ids stay unique).
+pub(super) const MARGIN: i64 = 64;
+
+/// A centre point (opaque; caller memory for [`super::SkinBuffers`]): its position in the level's frame, its id (unique in the level, the same
+/// for every periodic image) and which periodic image it is.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Site {
+    /// Position of this image: `base + image · period`.
+    pub(super) at: [f64; 2],
+    /// Position of image (0, 0).
+    pub(super) base: [f64; 2],
+    pub(super) id: u32,
+    pub(super) image: [i32; 2],
+}
+
+/// The centre-point lattice of one level.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Lattice {
+    level: u32,
+    seed: u64,
+    layout: SiteLayout,
+    spread: Spread,
+    /// Largest jitter per axis as a fraction of the spacing.
+    jitter: f64,
+    /// Column and row spacing in the frame.
+    pub(super) step: [f64; 2],
+    /// Columns and rows over the surface (the period when periodic).
+    pub(super) count: [i64; 2],
+    /// The surface in the frame: (width / Sx, height / Sy).
+    pub(super) period: [f64; 2],
+    periodic: bool,
+}
+
+impl Lattice {
+    /// The lattice of level `level` (validated parameters).
+    pub(super) fn new(p: &SkinParams, level: usize) -> Lattice {
+        let l = &p.level[level];
+        let period = [f64::from(p.width) / f64::from(l.stretch[0]), f64::from(p.height) / f64::from(l.stretch[1])];
+        let s = f64::from(l.spacing);
+        let row = if p.layout == SiteLayout::Triangular { s * libm::sqrt(3.0) / 2.0 } else { s };
+        let mut count = [libm::round(period[0] / s).max(1.0) as i64, libm::round(period[1] / row).max(1.0) as i64];
+        let mut step = [s, row];
+        if p.periodic {
+            if p.layout == SiteLayout::Triangular && count[1] % 2 == 1 {
+                count[1] += 1; // shifted rows alternate: an even number of rows tiles
+            }
+            step = [period[0] / count[0] as f64, period[1] / count[1] as f64];
+        } else {
+            count = [libm::ceil(period[0] / step[0]) as i64 + 1, libm::ceil(period[1] / step[1]) as i64 + 1];
+        }
+        let (spread, jitter) = match p.layout {
+            SiteLayout::Random => (Spread::Uniform, 1.0),
+            _ => (p.jitter, f64::from(p.jitter_ratio)),
+        };
+        Lattice {
+            level: level as u32,
+            seed: p.seed,
+            layout: p.layout,
+            spread,
+            jitter,
+            step,
+            count,
+            period,
+            periodic: p.periodic,
+        }
+    }
+
+    /// The site at lattice index (i, j), which may lie outside the surface (a periodic image,
+    /// or beyond the edge of a non-periodic surface).
+    pub(super) fn site(&self, i: i64, j: i64) -> Site {
+        let (wi, wj, image) = if self.periodic {
+            let (wi, wj) = (i.rem_euclid(self.count[0]), j.rem_euclid(self.count[1]));
+            (wi, wj, [i.div_euclid(self.count[0]) as i32, j.div_euclid(self.count[1]) as i32])
+        } else {
+            (i, j, [0, 0])
+        };
+        let shift = if self.layout == SiteLayout::Triangular && wj.rem_euclid(2) == 1 { 0.5 } else { 0.0 };
+        let columns = self.count[0] + 2 * MARGIN;
+        let id = if self.periodic { wj * self.count[0] + wi } else { (wj + MARGIN) * columns + (wi + MARGIN) };
+        let key = Stream::SiteJitter.key() ^ (u64::from(self.level) << 56) ^ (id as u64);
+        let mut rng = Rng::from_key(self.seed, key);
+        let mut jitter = || -> f64 {
+            let half = 0.5 * self.jitter;
+            match self.spread {
+                Spread::Uniform => (2.0 * f64::from(rng.uniform_f32()) - 1.0) * half,
+                // Normal with σ = half/3, redrawn until within ±half (as Rand does).
+                Spread::Normal => loop {
+                    let v = rng.normal() * half / 3.0;
+                    if v.abs() <= half {
+                        break v;
+                    }
+                },
+            }
+        };
+        let (dx, dy) = (jitter(), jitter());
+        let base = [(wi as f64 + 0.5 + shift + dx) * self.step[0], (wj as f64 + 0.5 + dy) * self.step[1]];
+        let at = [base[0] + f64::from(image[0]) * self.period[0], base[1] + f64::from(image[1]) * self.period[1]];
+        Site { at, base, id: id as u32, image }
+    }
+
+    /// The lattice indices (i0, j0, i1, j1) of every site that can lie in the frame box
+    /// [min, max] (jitter included).
+    pub(super) fn indices_over(&self, min: [f64; 2], max: [f64; 2]) -> [i64; 4] {
+        let lo = |v: f64, step: f64| libm::floor(v / step - 2.0) as i64;
+        let hi = |v: f64, step: f64| libm::ceil(v / step + 1.0) as i64;
+        let mut r =
+            [lo(min[0], self.step[0]), lo(min[1], self.step[1]), hi(max[0], self.step[0]), hi(max[1], self.step[1])];
+        if !self.periodic {
+            r[0] = r[0].max(-MARGIN);
+            r[1] = r[1].max(-MARGIN);
+            r[2] = r[2].min(self.count[0] + MARGIN - 1);
+            r[3] = r[3].min(self.count[1] + MARGIN - 1);
+        }
+        r
+    }
+}

@@ -1,0 +1,194 @@
+//! Height, normal and cell maps (Ishii et al. §3.2.1–3.2.2, Fig. 5–7 and 10), written once over
+//! the [`Scalar`] trait.
+//!
+//! For a pixel p in a cell with centre p0, x' runs from p0 through p to the outline: the
+//! fraction u = |p − p0| / |b − p0| of the way to the boundary point b. Inside the fan
+//! triangle (p0, v_i, v_i+1) that is u = (p − p0)·g_i, with g_i the edge's normal divided by
+//! its distance from p0. The height is the profile z'(x'_end·u'), where the roundness ratio
+//! ρ bends u into u' = u·(1 + ρ·k·(1 − u)), k = |b − p0| / apothem − 1: contours round off
+//! towards circles of the apothem's radius near the centre while the outline stays at x'_end
+//! (our reading of Fig. 12, which moves the control points along an arc). The level's normal
+//! is the profile's normal in the x'z' plane, turned to the ray's direction, with z = 1; the
+//! surface's normal sums the levels' x and y (Fig. 10).
+
+use super::cell::MAX_OUTLINE;
+use super::{Skin, SkinCell, SkinError};
+use crate::geom::pseudo_angle;
+use crate::scalar::Scalar;
+
+/// The maps to write; each is optional and `width × height` long, row-major.
+#[derive(Default)]
+pub struct SkinLayers<'o> {
+    /// Height, the sum over levels of the profile heights (profile units).
+    pub height: Option<&'o mut [f32]>,
+    /// Unit tangent-space normal (x right, y up, z out of the surface), as in OpenGL normal
+    /// maps.
+    pub normal: Option<&'o mut [[f32; 3]]>,
+    /// For each pixel, the index in [`Skin::cells`] of its cell at `cell_level`.
+    pub cell: Option<&'o mut [u32]>,
+    /// The level `cell` is taken from.
+    pub cell_level: u32,
+}
+
+/// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), the apothem, and
+/// the pseudo-angle of the edge's first vertex seen from the centre.
+#[derive(Clone, Copy, Default)]
+struct Wedge {
+    g: [f32; 2],
+    apothem: f32,
+    angle: f32,
+}
+
+/// Whether angle `a` lies in the wedge from `from` to `to` (counter-clockwise).
+fn in_wedge(a: f32, from: f32, to: f32) -> bool {
+    if from <= to { from <= a && a < to } else { a >= from || a < to }
+}
+
+impl Skin<'_> {
+    /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
+    /// cell level is not below `levels`, nothing is written.
+    pub fn render<S: Scalar>(&self, layers: SkinLayers) -> Result<(), SkinError> {
+        let pixels = self.params.width as usize * self.params.height as usize;
+        let SkinLayers { mut height, mut normal, mut cell, cell_level } = layers;
+        let lengths =
+            [height.as_ref().map(|b| b.len()), normal.as_ref().map(|b| b.len()), cell.as_ref().map(|b| b.len())];
+        if lengths.iter().flatten().any(|&n| n < pixels) {
+            return Err(SkinError::BufferTooSmall { needed: pixels });
+        }
+        if cell.is_some() && cell_level >= self.params.levels {
+            return Err(SkinError::Level);
+        }
+        let width = self.params.width as usize;
+        if let Some(h) = height.as_deref_mut() {
+            h[..pixels].fill(0.0);
+        }
+        if let Some(n) = normal.as_deref_mut() {
+            n[..pixels].fill([0.0; 3]);
+        }
+        if let Some(c) = cell.as_deref_mut() {
+            c[..pixels].fill(u32::MAX);
+        }
+        let mut wedges = [Wedge::default(); MAX_OUTLINE];
+        for (index, c) in self.cells.iter().enumerate() {
+            let level = c.level as usize;
+            let table = &self.tables[level];
+            let roundness = S::from_f32(self.params.level[level].roundness);
+            let end = S::from_f32(table.end);
+            let n = self.prepare(c, &mut wedges);
+            let unit = libm::exp2(f64::from(self.fixed_point_bits()));
+            let centre = [(c.centre[0] as f64 / unit) as f32, (c.centre[1] as f64 / unit) as f32];
+            let mut current = 0usize;
+            let writes_cell = c.level == cell_level;
+            self.for_each_pixel_unwrapped(c, |x, y, wx, wy| {
+                let i = wy as usize * width + wx as usize;
+                if writes_cell && let Some(map) = cell.as_deref_mut() {
+                    map[i] = index as u32;
+                }
+                if height.is_none() && normal.is_none() {
+                    return;
+                }
+                let d = [(x as f32 + 0.5) - centre[0], (y as f32 + 0.5) - centre[1]];
+                let (z, slope_xy) = if d == [0.0, 0.0] {
+                    (table.at(0.0).0, [0.0, 0.0])
+                } else {
+                    // The fan triangle the ray from the centre through p leaves by.
+                    let a = pseudo_angle(d);
+                    for _ in 0..n {
+                        if in_wedge(a, wedges[current].angle, wedges[(current + 1) % n].angle) {
+                            break;
+                        }
+                        current = (current + 1) % n;
+                    }
+                    let w = wedges[current];
+                    evaluate::<S>(table, end, roundness, d, w)
+                };
+                if let Some(h) = height.as_deref_mut() {
+                    h[i] += z;
+                }
+                if let Some(nm) = normal.as_deref_mut() {
+                    nm[i][0] += slope_xy[0];
+                    nm[i][1] += slope_xy[1];
+                }
+            });
+        }
+        if let Some(nm) = normal.as_deref_mut() {
+            for v in &mut nm[..pixels] {
+                // Fig. 10: each level's normal has z = 1; x and y add up. Rows run down the
+                // raster, so y flips for a y-up normal map.
+                let (x, y) = (v[0], -v[1]);
+                let length = libm::sqrtf(x * x + y * y + 1.0);
+                *v = [x / length, y / length, 1.0 / length];
+            }
+        }
+        Ok(())
+    }
+
+    /// Fills `wedges` for `cell`'s outline; returns the outline length.
+    fn prepare(&self, cell: &SkinCell, wedges: &mut [Wedge]) -> usize {
+        let outline = self.outline(cell);
+        let n = outline.len();
+        let unit = libm::exp2(f64::from(self.fixed_point_bits()));
+        let c = cell.centre;
+        for i in 0..n {
+            let (a, b) = (outline[i], outline[(i + 1) % n]);
+            let va = [((a[0] - c[0]) as f64 / unit) as f32, ((a[1] - c[1]) as f64 / unit) as f32];
+            let e = [((b[0] - a[0]) as f64 / unit) as f32, ((b[1] - a[1]) as f64 / unit) as f32];
+            // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
+            let outward = [e[1], -e[0]];
+            let reach = va[0] * outward[0] + va[1] * outward[1];
+            let length = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
+            wedges[i] = if reach > 0.0 && length > 0.0 {
+                Wedge { g: [outward[0] / reach, outward[1] / reach], apothem: reach / length, angle: pseudo_angle(va) }
+            } else {
+                // The centre on or beyond this edge's line (a fold): this wedge reads as edge.
+                Wedge { g: [0.0, 0.0], apothem: 1.0, angle: pseudo_angle(va) }
+            };
+        }
+        n
+    }
+
+    /// Like [`Skin::for_each_pixel`], also passing the unwrapped column and row.
+    fn for_each_pixel_unwrapped(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, u32, u32)) {
+        let mut crossings = [0i64; MAX_OUTLINE];
+        let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
+        let periodic = self.params.periodic;
+        super::scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), &mut crossings, |x, y| {
+            let (wx, wy) = if periodic { (x.rem_euclid(w), y.rem_euclid(h)) } else { (x, y) };
+            if (0..w).contains(&wx) && (0..h).contains(&wy) {
+                visit(x, y, wx as u32, wy as u32);
+            }
+        });
+    }
+}
+
+/// One level's height and normal x/y (z = 1) at offset `d` from the centre, in wedge `w`.
+fn evaluate<S: Scalar>(
+    table: &super::profile::ProfileTable,
+    end: S,
+    roundness: S,
+    d: [f32; 2],
+    w: Wedge,
+) -> (f32, [f32; 2]) {
+    // Offsets in apothems keep every quantity small (Q16.16 has range ±32768).
+    let apothem = S::from_f32(w.apothem);
+    let q = [S::from_f32(d[0]) / apothem, S::from_f32(d[1]) / apothem];
+    let u = (S::from_f32(d[0] * w.g[0] + d[1] * w.g[1])).clamp(S::ZERO, S::ONE);
+    let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
+    // k = |b − p0| / apothem − 1, with |b − p0| = |p − p0| / u.
+    let k = if u > S::RESOLUTION { (r / u - S::ONE).max(S::ZERO) } else { S::ZERO };
+    let bend = roundness * k;
+    let mut bent = u * (S::ONE + bend * (S::ONE - u));
+    let mut rate = S::ONE + bend * (S::ONE - S::TWO * u);
+    if bent >= S::ONE {
+        bent = S::ONE;
+        rate = S::ZERO;
+    }
+    let (z, dz) = table.at((end * bent).to_f32());
+    let slope = S::from_f32(dz) * rate;
+    if r <= S::ZERO {
+        return (z, [0.0, 0.0]);
+    }
+    // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray's direction.
+    let (cos, sin) = (q[0] / r, q[1] / r);
+    (z, [(S::ZERO - slope * cos).to_f32(), (S::ZERO - slope * sin).to_f32()])
+}
