@@ -105,7 +105,7 @@ impl Frame {
     }
 
     /// A fixed-point point in this frame, absolute.
-    pub(super) fn to_frame(&self, p: [i64; 2]) -> [f64; 2] {
+    pub(super) fn in_frame(&self, p: [i64; 2]) -> [f64; 2] {
         let unit = libm::exp2(f64::from(self.shift));
         [p[0] as f64 / unit / self.stretch[0], p[1] as f64 / unit / self.stretch[1]]
     }
@@ -208,7 +208,7 @@ impl Builder<'_> {
             return Err(OutlineFull);
         }
         for (k, p) in parent.iter().enumerate() {
-            self.clip[k] = ClipVertex { at: f.to_frame(*p), label: PARENT_EDGE | k as u32 };
+            self.clip[k] = ClipVertex { at: f.in_frame(*p), label: PARENT_EDGE | k as u32 };
         }
         let mut n = n0;
         // Neighbours nearest first (ties by id, so the order is fixed).
@@ -288,8 +288,7 @@ impl Builder<'_> {
         a: &Site,
         neighbours: &[Site],
         parent: &[[i64; 2]],
-        into: u32,
-        from: u32,
+        (into, from): (u32, u32),
         k: usize,
     ) -> Corner {
         let edge = |label: u32| {
@@ -341,7 +340,7 @@ impl Builder<'_> {
         };
         let corner_at = |k: usize| {
             let into = self.clip[(k + n - 1) % n].label;
-            self.corner(f, a, neighbours, parent, into, self.clip[k].label, k)
+            self.corner(f, a, neighbours, parent, (into, self.clip[k].label), k)
         };
         let mut start = corner_at(0);
         let first = start;
@@ -416,9 +415,9 @@ fn perturb(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner, points: 
             step = half;
         }
     }
-    for k in 1..pieces {
+    for (k, at) in line.iter().enumerate().take(pieces).skip(1) {
         let index = if forward { k } else { pieces - k };
-        points[index] = f.fixed(line[k], lo);
+        points[index] = f.fixed(*at, lo);
     }
     pieces
 }

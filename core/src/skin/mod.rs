@@ -18,7 +18,7 @@
 //! let params = SkinParams { width: 64, height: 64, ..SkinParams::default() };
 //! let m = params.memory().unwrap();
 //! let mut cells = vec![Default::default(); m.cells];
-//! let mut vertices = vec![[0i32; 2]; m.vertices];
+//! let mut vertices = vec![[0i64; 2]; m.vertices];
 //! let (mut sites, mut clip, mut words) = (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
 //! let buffers = SkinBuffers { cells: &mut cells, vertices: &mut vertices, sites: &mut sites, clip: &mut clip, words: &mut words };
 //! let skin = Skin::new(&params, buffers).unwrap();
@@ -29,6 +29,7 @@
 
 mod cell;
 pub mod params;
+mod presets;
 mod profile;
 mod scan;
 mod shade;
@@ -39,6 +40,7 @@ pub use cell::{ClipVertex, MAX_OUTLINE};
 pub use params::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, Profile, SiteLayout, SkinParamError, SkinParams,
 };
+pub use presets::{PRESETS, preset};
 pub use shade::{ShadeParams, shade};
 pub use sites::Site;
 pub use surface::SkinLayers;
@@ -258,7 +260,7 @@ impl Build<'_> {
             lo = [lo[0].min(v[0]), lo[1].min(v[1])];
             hi = [hi[0].max(v[0]), hi[1].max(v[1])];
         }
-        let r = lattice.indices_over(f.to_frame(lo), f.to_frame(hi));
+        let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         let base = level * MAX_CHILDREN;
         let mut count = 0;
         for j in r[1]..=r[3] {
@@ -278,7 +280,7 @@ impl Build<'_> {
             // No centre point fell inside: the parent is one cell of this level, centred where
             // the parent is.
             let c = self.cells[parent as usize].centre;
-            let at = f.to_frame(c);
+            let at = f.in_frame(c);
             self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
             count = 1;
         }

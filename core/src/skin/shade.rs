@@ -63,11 +63,10 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
         let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
         let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
         let lit = params.ambient + (1.0 - params.ambient) * diffuse;
-        for k in 0..3 {
+        out[i] = core::array::from_fn(|k| {
             let albedo = params.furrow[k] + (params.ridge[k] - params.furrow[k]) * t;
-            let linear = (albedo * lit + params.specular * gloss).clamp(0.0, 1.0);
-            out[i][k] = encode_srgb(linear);
-        }
+            encode_srgb((albedo * lit + params.specular * gloss).clamp(0.0, 1.0))
+        });
     }
     Ok(())
 }

@@ -5,9 +5,10 @@
 //! fraction u = |p − p0| / |b − p0| of the way to the boundary point b. Inside the fan
 //! triangle (p0, v_i, v_i+1) that is u = (p − p0)·g_i, with g_i the edge's normal divided by
 //! its distance from p0. The height is the profile z'(x'_end·u'), where the roundness ratio
-//! ρ bends u into u' = u·(1 + ρ·k·(1 − u)), k = |b − p0| / apothem − 1: contours round off
-//! towards circles of the apothem's radius near the centre while the outline stays at x'_end
-//! (our reading of Fig. 12, which moves the control points along an arc). The level's normal
+//! ρ blends u with the circular u_c = min(1, |p − p0| / apothem): u' = (1 − ρ)·u + ρ·u_c. At
+//! ρ = 0 the contours are scaled copies of the polygon, at ρ = 1 circles inscribed in each
+//! edge (our reading of Fig. 12, which moves the control points along an arc towards the
+//! middle of each edge; the paper gives no formula). The level's normal
 //! is the profile's normal in the x'z' plane, turned to the ray's direction, with z = 1; the
 //! surface's normal sums the levels' x and y (Fig. 10).
 
@@ -111,7 +112,7 @@ impl Skin<'_> {
                 }
             });
         }
-        if let Some(nm) = normal.as_deref_mut() {
+        if let Some(nm) = normal {
             for v in &mut nm[..pixels] {
                 // Fig. 10: each level's normal has z = 1; x and y add up. Rows run down the
                 // raster, so y flips for a y-up normal map.
@@ -176,13 +177,13 @@ fn evaluate<S: Scalar>(
     let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
     // k = |b − p0| / apothem − 1, with |b − p0| = |p − p0| / u.
     let k = if u > S::RESOLUTION { (r / u - S::ONE).max(S::ZERO) } else { S::ZERO };
-    let bend = roundness * k;
-    let mut bent = u * (S::ONE + bend * (S::ONE - u));
-    let mut rate = S::ONE + bend * (S::ONE - S::TWO * u);
-    if bent >= S::ONE {
-        bent = S::ONE;
-        rate = S::ZERO;
-    }
+    // Polygonal x' (u) blended with circular x' (|p − p0| / apothem = u·(1 + k), capped at the
+    // edge): ρ = 1 gives circles inscribed in each edge, the corners beyond them at the foot.
+    let circular = u * (S::ONE + k);
+    let (round, round_rate) = if circular < S::ONE { (circular, S::ONE + k) } else { (S::ONE, S::ZERO) };
+    let flat = S::ONE - roundness;
+    let bent = flat * u + roundness * round;
+    let rate = flat + roundness * round_rate;
     let (z, dz) = table.at((end * bent).to_f32());
     let slope = S::from_f32(dz) * rate;
     if r <= S::ZERO {
