@@ -350,8 +350,12 @@ impl Builder<'_> {
             let label = self.clip[k].label;
             if label & PARENT_EDGE == 0 && f.perturbation > 0.0 && f.depth > 0 {
                 let b = &neighbours[label as usize];
+                // The parent edges this edge ends on (the same pair seen from either side).
+                let into = self.clip[(k + n - 1) % n].label;
+                let after = self.clip[(k + 1) % n].label;
+                let on_parent = [into, after].map(|l| (l & PARENT_EDGE != 0).then_some((l & !PARENT_EDGE) as usize));
                 let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
-                let count = perturb(f, a, b, &start, &end, &mut points);
+                let count = perturb(f, a, b, (&start, &end), (parent, on_parent), &mut points);
                 for p in &points[1..count] {
                     push(*p, &mut written)?;
                 }
@@ -365,11 +369,39 @@ impl Builder<'_> {
     }
 }
 
+/// Orientation of the triangle (a, b, c): positive counter-clockwise.
+fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Whether `p` lies in the triangle (a, b, c), boundary included.
+fn in_triangle(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    let (x, y, z) = (orient(a, b, p), orient(b, c, p), orient(c, a, p));
+    (x >= 0.0 && y >= 0.0 && z >= 0.0) || (x <= 0.0 && y <= 0.0 && z <= 0.0)
+}
+
+/// Whether the open segments p–q and r–s cross.
+fn cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let (d1, d2) = (orient(p, q, r), orient(p, q, s));
+    let (d3, d4) = (orient(r, s, p), orient(r, s, q));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
+}
+
 /// The inner points of the edge between `a`'s and `b`'s cells from corner `start` to `end`
 /// (as `a` runs it), by midpoint displacement V = A·2^(−n·h)·Rnd·L (paper §4.2 (2)), written
-/// from `points[1]` on; returns 2^depth. Drawn from the edge's own stream in the direction
-/// the lower id runs it, so both cells get the same points.
-fn perturb(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner, points: &mut [[i64; 2]]) -> usize {
+/// from `points[1]` on; returns 2^depth, or 1 (no inner points) where the wiggle would leave
+/// the edge's diamond (the triangles it forms with the two centre points, which no other
+/// edge enters) or cross the parent's outline near the parent edges it ends on. Drawn from
+/// the edge's own stream in the direction the lower id runs it, and judged on data both
+/// cells share, so both cells get the same points.
+fn perturb(
+    f: &Frame,
+    a: &Site,
+    b: &Site,
+    (start, end): (&Corner, &Corner),
+    (parent, on_parent): (&[[i64; 2]], [Option<usize>; 2]),
+    points: &mut [[i64; 2]],
+) -> usize {
     let (lo, hi) = sorted2(a, b);
     let forward = (a.id, a.image) == (lo.id, lo.image);
     let (from, to) = if forward { (start, end) } else { (end, start) };
@@ -414,6 +446,30 @@ fn perturb(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner, points: 
             }
             step = half;
         }
+    }
+    let line = &line[..=pieces];
+    let (x, y) = (lo.base, f.relative(hi, lo));
+    let inside = line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1));
+    // The diamond's outline, and the parent's edges within reach of the ends on it.
+    let mut blocked = false;
+    let diamond = [x, p0, y, p1];
+    for w in line.windows(2) {
+        for k in 0..4 {
+            let (r, s) = (diamond[k], diamond[(k + 1) % 4]);
+            blocked |= cross(w[0], w[1], r, s);
+        }
+    }
+    let reach = 2 * pieces + 4;
+    let m = parent.len();
+    for i in on_parent.into_iter().flatten() {
+        for d in 0..=2 * reach {
+            let e = (i + m + d).wrapping_sub(reach) % m;
+            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[(e + 1) % m], lo));
+            blocked |= line.windows(2).any(|w| cross(w[0], w[1], r, s));
+        }
+    }
+    if !inside || blocked {
+        return 1;
     }
     for (k, at) in line.iter().enumerate().take(pieces).skip(1) {
         let index = if forward { k } else { pieces - k };
