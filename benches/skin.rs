@@ -1,0 +1,185 @@
+//! Model C benchmark: the Fig. 19a preset (400×400, three levels, perturbation 0.1), height
+//! and normal maps, against FastNoiseLite's cellular noise (Distance2Sub, Euclidean, cell size
+//! 40 px like our level 1) on the same grid. Every figure is the median of several runs, after
+//! one untimed warm-up run.
+//!
+//!     cargo bench --bench skin
+//!
+//! FastNoiseLite's normal is taken two ways: by central differences on its value grid
+//! (402×402 evaluations, the usual way to get a normal map from noise), and pointwise, with
+//! four extra evaluations per pixel (x ± 1, y ± 1). A last row sums three octaves a third apart
+//! (FBm, lacunarity 3), as our three levels are, normal again from its grid.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use fastnoise_lite::{CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType};
+use hibi_core::skin::{Skin, SkinBuffers, SkinLayers, preset};
+
+/// Timed runs per measurement.
+const RUNS: usize = 10;
+/// Our level-1 spacing in pixels; FastNoiseLite's cells are 1/frequency pixels wide.
+const SPACING: f32 = 40.0;
+
+fn median(mut times: Vec<Duration>) -> Duration {
+    times.sort();
+    let n = times.len();
+    if n % 2 == 1 { times[n / 2] } else { (times[n / 2 - 1] + times[n / 2]) / 2 }
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// How long `f` takes.
+fn timed(f: impl FnOnce()) -> Duration {
+    let start = Instant::now();
+    f();
+    start.elapsed()
+}
+
+/// The unit normal (x right, y up, z out) of a height field with these central differences
+/// (per pixel, image rows going down).
+fn normal(dx: f32, dy_down: f32) -> [f32; 3] {
+    let (nx, ny) = (-dx, dy_down);
+    let r = 1.0 / (nx * nx + ny * ny + 1.0).sqrt();
+    [nx * r, ny * r, r]
+}
+
+/// FastNoiseLite's cellular noise, Distance2Sub with Euclidean distances, cells `SPACING` wide.
+fn cellular() -> FastNoiseLite {
+    let mut noise = FastNoiseLite::with_seed(1);
+    noise.set_noise_type(Some(NoiseType::Cellular));
+    noise.set_cellular_distance_function(Some(CellularDistanceFunction::Euclidean));
+    noise.set_cellular_return_type(Some(CellularReturnType::Distance2Sub));
+    noise.set_frequency(Some(1.0 / SPACING));
+    noise
+}
+
+/// Value and normal of `noise` for a `w`×`h` image, by central differences on `grid`, a value
+/// grid one pixel wider on every side.
+fn on_grid(noise: &FastNoiseLite, w: usize, h: usize, grid: &mut [f32], height: &mut [f32], normals: &mut [[f32; 3]]) {
+    let gw = w + 2;
+    for (gy, row) in grid.chunks_exact_mut(gw).enumerate() {
+        for (gx, v) in row.iter_mut().enumerate() {
+            *v = noise.get_noise_2d(gx as f32 - 1.0, gy as f32 - 1.0);
+        }
+    }
+    for y in 0..h {
+        for x in 0..w {
+            let g = |dx: usize, dy: usize| grid[(y + dy) * gw + x + dx];
+            height[y * w + x] = g(1, 1);
+            normals[y * w + x] = normal(0.5 * (g(2, 1) - g(0, 1)), 0.5 * (g(1, 2) - g(1, 0)));
+        }
+    }
+    black_box((height, normals));
+}
+
+fn main() {
+    let params = preset("fig19a").expect("preset exists");
+    let (w, h) = (params.width as usize, params.height as usize);
+    let pixels = w * h;
+    let m = params.memory().expect("valid parameters");
+    let mut cells = vec![Default::default(); m.cells];
+    let mut vertices = vec![[0i64; 2]; m.vertices];
+    let mut sites = vec![Default::default(); m.sites];
+    let mut clip = vec![Default::default(); m.clip];
+    let mut words = vec![0u32; m.words];
+    let (mut height, mut normals) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels]);
+
+    let noise = black_box(cellular());
+    let mut octaves = cellular();
+    octaves.set_fractal_type(Some(FractalType::FBm));
+    octaves.set_fractal_octaves(Some(3));
+    octaves.set_fractal_lacunarity(Some(3.0));
+    let octaves = black_box(octaves);
+    let (gw, gh) = (w + 2, h + 2);
+    let mut grid = vec![0.0f32; gw * gh];
+
+    // Every measurement once per round, so that a slow spell of the machine hits them alike;
+    // round 0 warms up and is not counted.
+    let mut times = [(); 7].map(|()| Vec::with_capacity(RUNS));
+    let mut cell_count = 0;
+    for round in 0..=RUNS {
+        // Ours: build, then render, into the same buffers each round.
+        let start = Instant::now();
+        let buffers = SkinBuffers {
+            cells: &mut cells,
+            vertices: &mut vertices,
+            sites: &mut sites,
+            clip: &mut clip,
+            words: &mut words,
+        };
+        let skin = Skin::new(black_box(&params), buffers).expect("memory suffices");
+        let built = start.elapsed();
+        let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normals), ..SkinLayers::default() };
+        skin.render::<f32>(layers).expect("buffers suffice");
+        let total = start.elapsed();
+        cell_count = skin.cells().len();
+        black_box((&height, &normals));
+
+        // FastNoiseLite: the value alone, one evaluation per pixel.
+        let value = timed(|| {
+            for (y, row) in height.chunks_exact_mut(w).enumerate() {
+                for (x, v) in row.iter_mut().enumerate() {
+                    *v = noise.get_noise_2d(x as f32, y as f32);
+                }
+            }
+            black_box(&height);
+        });
+        // Value and normal by central differences on a grid one pixel wider on every side.
+        let gridded = timed(|| on_grid(&noise, w, h, &mut grid, &mut height, &mut normals));
+        // Value and normal pointwise: four more evaluations per pixel.
+        let pointwise = timed(|| {
+            for y in 0..h {
+                for x in 0..w {
+                    let (fx, fy) = (x as f32, y as f32);
+                    height[y * w + x] = noise.get_noise_2d(fx, fy);
+                    let dx = 0.5 * (noise.get_noise_2d(fx + 1.0, fy) - noise.get_noise_2d(fx - 1.0, fy));
+                    let dy = 0.5 * (noise.get_noise_2d(fx, fy + 1.0) - noise.get_noise_2d(fx, fy - 1.0));
+                    normals[y * w + x] = normal(dx, dy);
+                }
+            }
+            black_box((&height, &normals));
+        });
+        // Three octaves a third apart, as our three levels are; normal from the grid.
+        let gridded3 = timed(|| on_grid(&octaves, w, h, &mut grid, &mut height, &mut normals));
+
+        if round > 0 {
+            for (list, t) in times.iter_mut().zip([built, total - built, total, value, gridded, pointwise, gridded3]) {
+                list.push(t);
+            }
+        }
+    }
+    let [build, render, total, value, gridded, pointwise, gridded3] = times.map(median);
+
+    let ratio = |d: Duration| total.as_secs_f64() / d.as_secs_f64();
+    println!(
+        "| {w}×{h}, fig19a ({} levels, {cell_count} cells), height + normal; median of {RUNS} runs | time | ours (total) ÷ it |",
+        params.levels
+    );
+    println!("|---|---|---|");
+    println!("| hibi Model C: build (`Skin::new`) | {:.2} ms | |", ms(build));
+    println!("| hibi Model C: render height + normal | {:.2} ms | |", ms(render));
+    println!("| hibi Model C: total | {:.2} ms | |", ms(total));
+    println!(
+        "| FastNoiseLite Distance2Sub, 1/{SPACING} px⁻¹: value per pixel | {:.2} ms | {:.2}× |",
+        ms(value),
+        ratio(value)
+    );
+    println!(
+        "| FastNoiseLite: value + normal by central differences on its {gw}×{gh} value grid | {:.2} ms | {:.2}× |",
+        ms(gridded),
+        ratio(gridded)
+    );
+    println!(
+        "| FastNoiseLite: value + normal pointwise (4 extra evaluations per pixel) | {:.2} ms | {:.2}× |",
+        ms(pointwise),
+        ratio(pointwise)
+    );
+    println!(
+        "| FastNoiseLite, 3 octaves (FBm, lacunarity 3): value + normal by central differences on its grid | {:.2} ms | {:.2}× |",
+        ms(gridded3),
+        ratio(gridded3)
+    );
+}
