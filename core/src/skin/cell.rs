@@ -49,6 +49,9 @@ pub(super) struct Frame {
     pub(super) shift: u32,
     /// Fractional bits this level rounds its own points to.
     pub(super) bits: u32,
+    /// 2^bits and 2^shift.
+    own_unit: f64,
+    unit: f64,
     pub(super) perturbation: f64,
     pub(super) decay: f64,
     pub(super) depth: u32,
@@ -66,6 +69,8 @@ impl Frame {
             world_period: [i64::from(size[0]) << shift, i64::from(size[1]) << shift],
             shift,
             bits: BASE_BITS + EDGE_BITS * level as u32,
+            own_unit: (1u64 << (BASE_BITS + EDGE_BITS * level as u32)) as f64,
+            unit: (1u64 << shift) as f64,
             perturbation: f64::from(l.perturbation),
             decay: f64::from(l.perturbation_decay),
             depth: l.perturbation_depth,
@@ -83,7 +88,7 @@ impl Frame {
     /// level's resolution).
     fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
         let q = |k: usize| {
-            let world = at[k] * self.stretch[k] * libm::exp2(f64::from(self.bits));
+            let world = at[k] * self.stretch[k] * self.own_unit;
             ((libm::round(world) as i64) << (self.shift - self.bits))
                 + i64::from(reference.image[k]) * self.world_period[k]
         };
@@ -94,7 +99,7 @@ impl Frame {
     fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
         let u = |k: usize| {
             let local = p[k] - i64::from(reference.image[k]) * self.world_period[k];
-            local as f64 / libm::exp2(f64::from(self.shift)) / self.stretch[k]
+            local as f64 / self.unit / self.stretch[k]
         };
         [u(0), u(1)]
     }
@@ -106,8 +111,7 @@ impl Frame {
 
     /// A fixed-point point in this frame, absolute.
     pub(super) fn in_frame(&self, p: [i64; 2]) -> [f64; 2] {
-        let unit = libm::exp2(f64::from(self.shift));
-        [p[0] as f64 / unit / self.stretch[0], p[1] as f64 / unit / self.stretch[1]]
+        [p[0] as f64 / self.unit / self.stretch[0], p[1] as f64 / self.unit / self.stretch[1]]
     }
 }
 
@@ -224,6 +228,15 @@ impl Builder<'_> {
             let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
             distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
         });
+        let reach = |clip: &[ClipVertex]| {
+            clip.iter()
+                .map(|v| {
+                    let d = [v.at[0] - site.at[0], v.at[1] - site.at[1]];
+                    d[0] * d[0] + d[1] * d[1]
+                })
+                .fold(0.0f64, f64::max)
+        };
+        let mut farthest = reach(&self.clip[..n]);
         for k in 0..m {
             let j = self.order[k] as usize;
             let b = &neighbours[j];
@@ -232,29 +245,30 @@ impl Builder<'_> {
             }
             // No part of the outline is farther than half this neighbour's distance: it and
             // every farther one leave the outline alone.
-            let reach = self.clip[..n]
-                .iter()
-                .map(|v| {
-                    let d = [v.at[0] - site.at[0], v.at[1] - site.at[1]];
-                    d[0] * d[0] + d[1] * d[1]
-                })
-                .fold(0.0f64, f64::max);
-            if distance(b) > 4.0 * reach {
+            if distance(b) > 4.0 * farthest {
                 break;
             }
-            n = self.clip_by_bisector(n, site, b, j as u32)?;
-            if n == 0 {
-                return Ok(0);
+            let clipped = self.clip_by_bisector(n, site, b, j as u32)?;
+            if let Some(count) = clipped {
+                n = count;
+                if n == 0 {
+                    return Ok(0);
+                }
+                farthest = reach(&self.clip[..n]);
             }
         }
         self.finish(f, site, neighbours, parent, n, out)
     }
 
-    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count.
-    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<usize, OutlineFull> {
+    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count, or
+    /// None if the whole outline is already nearer `a`.
+    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<Option<usize>, OutlineFull> {
         let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
         let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
         let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
+        if self.clip[..n].iter().all(|v| side(v.at) <= 0.0) {
+            return Ok(None);
+        }
         let mut out = 0;
         for k in 0..n {
             let (cur, next) = (self.clip[k], self.clip[(k + 1) % n]);
@@ -277,7 +291,7 @@ impl Builder<'_> {
             }
         }
         core::mem::swap(&mut self.clip, &mut self.spare);
-        Ok(out)
+        Ok(Some(out))
     }
 
     /// The corner between an edge labelled `into` and one labelled `from` (starting at clip
@@ -461,10 +475,23 @@ fn perturb(
     }
     let reach = 2 * pieces + 4;
     let m = parent.len();
+    // The wiggle's box in fixed point, to pass over parent edges far from it.
+    let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for q in line {
+        low = [low[0].min(q[0]), low[1].min(q[1])];
+        high = [high[0].max(q[0]), high[1].max(q[1])];
+    }
+    let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
+    let slack = 1i64 << (f.shift - BASE_BITS);
     for i in on_parent.into_iter().flatten() {
         for d in 0..=2 * reach {
             let e = (i + m + d).wrapping_sub(reach) % m;
-            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[(e + 1) % m], lo));
+            let (pr, ps) = (parent[e], parent[(e + 1) % m]);
+            let apart = (0..2).any(|k| pr[k].max(ps[k]) < low[k] - slack || pr[k].min(ps[k]) > high[k] + slack);
+            if apart {
+                continue;
+            }
+            let (r, s) = (f.unfixed(pr, lo), f.unfixed(ps, lo));
             blocked |= line.windows(2).any(|w| cross(w[0], w[1], r, s));
         }
     }

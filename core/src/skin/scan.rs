@@ -29,55 +29,68 @@ pub(super) fn contains(outline: &[[i64; 2]], p: [i64; 2]) -> bool {
 
 /// Calls `visit(column, row)` for every pixel whose centre `outline` (fixed point of `shift`
 /// fractional bits) contains, in row order (columns and rows may lie outside the raster; the
-/// caller wraps or clips them). `crossings` is scratch for one row's edge crossings (at least
-/// the outline's length).
-pub(super) fn for_each_pixel(outline: &[[i64; 2]], shift: u32, crossings: &mut [i64], mut visit: impl FnMut(i64, i64)) {
+/// caller wraps or clips them). `crossings` is scratch for edge crossings (at least the
+/// outline's length): the outline is walked edge by edge over bands of rows that fit in it.
+pub(super) fn for_each_pixel(outline: &[[i64; 2]], shift: u32, crossings: &mut [u64], mut visit: impl FnMut(i64, i64)) {
     let n = outline.len();
-    if n < 3 {
+    if n < 3 || crossings.len() < n {
         return;
     }
     let unit = 1i64 << shift;
-    let (mut y0, mut y1) = (i64::MAX, i64::MIN);
+    let half = unit / 2;
+    let (mut y0, mut y1, mut x0) = (i64::MAX, i64::MIN, i64::MAX);
     for v in outline {
         y0 = y0.min(v[1]);
         y1 = y1.max(v[1]);
+        x0 = x0.min(v[0]);
     }
-    // Rows whose centre lies in [y0, y1].
-    let first = (y0 - unit / 2).div_euclid(unit);
-    let last = (y1 - unit / 2).div_euclid(unit) + 1;
-    for row in first..=last {
-        let yc = pixel_centre(row, shift);
+    // Rows whose centre lies in [y0, y1]; columns counted from `base`.
+    let first = (y0 - half).div_euclid(unit);
+    let last = (y1 - half).div_euclid(unit) + 1;
+    let base = x0.div_euclid(unit) - 2;
+    let band = (crossings.len() / n).max(1) as i64;
+    let mut top = first;
+    while top <= last {
+        let bottom = (top + band - 1).min(last);
         let mut m = 0;
         for i in 0..n {
             let (a, b) = (outline[i], outline[(i + 1) % n]);
-            let (ay, by) = (a[1], b[1]);
-            if (ay > yc) == (by > yc) {
+            let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
+            if low == high {
                 continue;
             }
-            // The first pixel column whose centre is not left of the crossing: find it near
-            // the rounded crossing, then settle it with the exact test.
-            let (ax, bx) = (a[0], b[0]);
-            let x = ax as f64 + (yc - ay) as f64 * (bx - ax) as f64 / (by - ay) as f64;
-            let mut column = libm::floor((x - (unit / 2) as f64) / unit as f64) as i64;
-            while crosses(a, b, [pixel_centre(column, shift), yc]) {
-                column += 1;
+            // Rows whose centre yc has low <= yc < high (exactly one end above it).
+            let from = (low - half + unit - 1).div_euclid(unit).max(top);
+            let to = ((high - half + unit - 1).div_euclid(unit) - 1).min(bottom);
+            let (ax, ay, bx, by) = (a[0] as f64, a[1] as f64, b[0] as f64, b[1] as f64);
+            for row in from..=to {
+                let yc = pixel_centre(row, shift);
+                // The first pixel column whose centre is not left of the crossing: found near
+                // the rounded crossing, then settled with the exact test.
+                let x = ax + (yc as f64 - ay) * (bx - ax) / (by - ay);
+                let mut column = libm::floor((x - half as f64) / unit as f64) as i64;
+                while crosses(a, b, [pixel_centre(column, shift), yc]) {
+                    column += 1;
+                }
+                while !crosses(a, b, [pixel_centre(column - 1, shift), yc]) {
+                    column -= 1;
+                }
+                crossings[m] = (((row - top) as u64) << 40) | (column - base) as u64;
+                m += 1;
             }
-            while !crosses(a, b, [pixel_centre(column - 1, shift), yc]) {
-                column -= 1;
-            }
-            // Now: centres at `column` and beyond are not left of the crossing.
-            crossings[m] = column;
-            m += 1;
         }
-        let row_crossings = &mut crossings[..m];
-        row_crossings.sort_unstable();
-        // A centre is inside when an odd number of crossings lie strictly to its right: the
-        // columns in [c1, c2), [c3, c4), ...
-        for pair in row_crossings.chunks_exact(2) {
-            for column in pair[0]..pair[1] {
+        let found = &mut crossings[..m];
+        found.sort_unstable();
+        // A centre is inside when an odd number of crossings lie strictly to its right: in each
+        // row, the columns in [c1, c2), [c3, c4), ...
+        for pair in found.chunks_exact(2) {
+            let row = top + (pair[0] >> 40) as i64;
+            let (c1, c2) = ((pair[0] & ((1 << 40) - 1)) as i64 + base, (pair[1] & ((1 << 40) - 1)) as i64 + base);
+            for column in c1..c2 {
                 visit(column, row);
             }
         }
+        top = bottom + 1;
     }
 }
 
@@ -90,7 +103,7 @@ mod tests {
         let u = 256;
         // A square split along a slanted diagonal, with vertices off the pixel grid.
         let (a, b, c, d) = ([3 * u / 2 + 7, 5], [20 * u + 3, 11], [20 * u + 9, 17 * u + 1], [13, 17 * u - 5]);
-        let (mut count, mut scratch) = ([[0u8; 24]; 24], [0i64; 8]);
+        let (mut count, mut scratch) = ([[0u8; 24]; 24], [0u64; 8]);
         for tri in [[a, b, c], [a, c, d]] {
             for_each_pixel(&tri, 8, &mut scratch, |x, y| count[y as usize][x as usize] += 1);
         }

@@ -70,17 +70,18 @@ impl Skin<'_> {
             c[..pixels].fill(u32::MAX);
         }
         let mut wedges = [Wedge::default(); MAX_OUTLINE];
+        let mut crossings = [0u64; 4 * MAX_OUTLINE];
         for (index, c) in self.cells.iter().enumerate() {
             let level = c.level as usize;
             let table = &self.tables[level];
             let roundness = S::from_f32(self.params.level[level].roundness);
             let end = S::from_f32(table.end);
             let n = self.prepare(c, &mut wedges);
-            let unit = libm::exp2(f64::from(self.fixed_point_bits()));
+            let unit = (1u64 << self.fixed_point_bits()) as f64;
             let centre = [(c.centre[0] as f64 / unit) as f32, (c.centre[1] as f64 / unit) as f32];
             let mut current = 0usize;
             let writes_cell = c.level == cell_level;
-            self.for_each_pixel_unwrapped(c, |x, y, wx, wy| {
+            self.for_each_pixel_unwrapped(c, &mut crossings, |x, y, wx, wy| {
                 let i = wy as usize * width + wx as usize;
                 if writes_cell && let Some(map) = cell.as_deref_mut() {
                     map[i] = index as u32;
@@ -128,7 +129,7 @@ impl Skin<'_> {
     fn prepare(&self, cell: &SkinCell, wedges: &mut [Wedge]) -> usize {
         let outline = self.outline(cell);
         let n = outline.len();
-        let unit = libm::exp2(f64::from(self.fixed_point_bits()));
+        let unit = (1u64 << self.fixed_point_bits()) as f64;
         let c = cell.centre;
         for i in 0..n {
             let (a, b) = (outline[i], outline[(i + 1) % n]);
@@ -149,11 +150,15 @@ impl Skin<'_> {
     }
 
     /// Like [`Skin::for_each_pixel`], also passing the unwrapped column and row.
-    fn for_each_pixel_unwrapped(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, u32, u32)) {
-        let mut crossings = [0i64; MAX_OUTLINE];
+    fn for_each_pixel_unwrapped(
+        &self,
+        cell: &SkinCell,
+        crossings: &mut [u64],
+        mut visit: impl FnMut(i64, i64, u32, u32),
+    ) {
         let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
         let periodic = self.params.periodic;
-        super::scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), &mut crossings, |x, y| {
+        super::scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), crossings, |x, y| {
             let (wx, wy) = if periodic { (x.rem_euclid(w), y.rem_euclid(h)) } else { (x, y) };
             if (0..w).contains(&wx) && (0..h).contains(&wy) {
                 visit(x, y, wx as u32, wy as u32);
