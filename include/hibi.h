@@ -99,6 +99,46 @@
 #define HIBI_SPREAD_NORMAL 1
 
 /**
+ * Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
+ */
+#define HIBI_SKIN_MAX_LEVELS 4
+
+/**
+ * Most cubic Bézier segments in one level's cross-section.
+ */
+#define HIBI_SKIN_MAX_SEGMENTS 4
+
+/**
+ * Control points a profile holds: 3 · `HIBI_SKIN_MAX_SEGMENTS` + 1.
+ */
+#define HIBI_SKIN_PROFILE_POINTS 13
+
+/**
+ * Most midpoint-displacement subdivisions of an edge.
+ */
+#define HIBI_SKIN_MAX_PERTURBATION_DEPTH 5
+
+/**
+ * Centre points on a triangular lattice (the default).
+ */
+#define HIBI_SKIN_LAYOUT_TRIANGULAR 0
+
+/**
+ * Centre points on a square lattice.
+ */
+#define HIBI_SKIN_LAYOUT_SQUARE 1
+
+/**
+ * Centre points uniformly random, one per lattice square (the jitter fields are ignored).
+ */
+#define HIBI_SKIN_LAYOUT_RANDOM 2
+
+/**
+ * `hibi_skin_cell.parent` of a level-0 cell, and the cell map's value where no cell is.
+ */
+#define HIBI_SKIN_NO_CELL UINT32_MAX
+
+/**
  * A glass plate and its cracks. Opaque.
  */
 typedef struct hibi_glass hibi_glass;
@@ -112,6 +152,11 @@ typedef struct hibi_mud hibi_mud;
  * A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
  */
 typedef struct hibi_rng hibi_rng;
+
+/**
+ * A skin surface: every cell outline of every level. Opaque.
+ */
+typedef struct hibi_skin hibi_skin;
 
 /**
  * The parameters of a glass plate, in pixels. Get them from `hibi_glass_params_default`
@@ -564,6 +609,162 @@ typedef struct hibi_mud_render_params {
 } hibi_mud_render_params;
 
 /**
+ * Parameter 5, a ridge's cross-section: cubic Bézier segments in the body plane (x' from the
+ * centre point at 0 to the polygon's edge at the last point's x', z' the height). Segment k
+ * has control points `points[3k]` to `points[3k + 3]`; consecutive segments share an end
+ * point.
+ */
+typedef struct hibi_skin_profile {
+  /**
+   * Number of segments, 1..=`HIBI_SKIN_MAX_SEGMENTS`.
+   */
+  uint32_t segments;
+  /**
+   * Control points (x', z'); the first 3 · `segments` + 1 are used.
+   */
+  float points[HIBI_SKIN_PROFILE_POINTS][2];
+} hibi_skin_profile;
+
+/**
+ * One hierarchy level: its polygons and its cross-section.
+ */
+typedef struct hibi_skin_level {
+  /**
+   * Lattice spacing of the centre points [px, before stretch] (default 40, then a third of
+   * it at each finer level).
+   */
+  float spacing;
+  /**
+   * Parameter 2, the perturbation ratio A in V = A·2^(−n·h)·Rnd·L (default 0: straight edges).
+   */
+  float perturbation;
+  /**
+   * h in V = A·2^(−n·h)·Rnd·L, the decay per subdivision (default 1).
+   */
+  float perturbation_decay;
+  /**
+   * Subdivisions of every edge, 0..=`HIBI_SKIN_MAX_PERTURBATION_DEPTH` (default 3).
+   */
+  uint32_t perturbation_depth;
+  /**
+   * Parameter 3, the stretch (Sx, Sy) of this level's polygons (default 1, 1).
+   */
+  float stretch[2];
+  /**
+   * Parameter 5, the cross-section (default the paper's Fig. 13 b).
+   */
+  struct hibi_skin_profile profile;
+  /**
+   * Parameter 6, the roundness ratio in [0, 1]: 0 polygonal height contours, 1 nearly
+   * circular (default 0.2).
+   */
+  float roundness;
+} hibi_skin_level;
+
+/**
+ * The parameters of a skin surface, in pixels. Get them from `hibi_skin_params_default` or
+ * `hibi_skin_params_preset`, then change fields; `hibi_skin_create` rejects a struct that
+ * did not come from there.
+ */
+typedef struct hibi_skin_params {
+  /**
+   * Set by `hibi_skin_params_default` and `hibi_skin_params_preset`; leave it alone.
+   */
+  uint32_t cookie;
+  /**
+   * Parameter 1: `HIBI_SKIN_LAYOUT_TRIANGULAR` (default), `_SQUARE` or `_RANDOM`.
+   */
+  uint32_t layout;
+  /**
+   * Parameter 1: the jitter of lattice centres, `HIBI_SPREAD_UNIFORM` (default) or
+   * `HIBI_SPREAD_NORMAL`.
+   */
+  uint32_t jitter;
+  /**
+   * 1: the surface repeats with period (width, height), a tileable texture; 0: it does not
+   * (default).
+   */
+  uint32_t periodic;
+  /**
+   * Width of the surface and of its rasters [px], 1..=32768 (default 400).
+   */
+  uint32_t width;
+  /**
+   * Height [px] (default 400).
+   */
+  uint32_t height;
+  /**
+   * Seed of every random draw (default 1).
+   */
+  uint64_t seed;
+  /**
+   * Parameter 1: largest jitter per axis / lattice spacing, in [0, 1] (default 0.5).
+   */
+  float jitter_ratio;
+  /**
+   * Parameter 4: number of hierarchy levels, 1..=`HIBI_SKIN_MAX_LEVELS` (default 1).
+   */
+  uint32_t levels;
+  /**
+   * The levels, coarsest first; the first `levels` are used.
+   */
+  struct hibi_skin_level level[HIBI_SKIN_MAX_LEVELS];
+} hibi_skin_params;
+
+/**
+ * Light and palette for `hibi_skin_shade`. Defaults from `hibi_skin_shade_params_default`.
+ */
+typedef struct hibi_skin_shade_params {
+  /**
+   * Direction towards the light (x right, y up, z out of the surface); need not be unit
+   * (default from the upper left).
+   */
+  float light[3];
+  /**
+   * Ridge-top colour, linear RGB in [0, 1].
+   */
+  float ridge[3];
+  /**
+   * Furrow colour, linear RGB in [0, 1].
+   */
+  float furrow[3];
+  /**
+   * Light that reaches every pixel, in [0, 1] (default 0.35).
+   */
+  float ambient;
+  /**
+   * Strength of the highlight (Blinn–Phong), >= 0 (default 0.12).
+   */
+  float specular;
+} hibi_skin_shade_params;
+
+/**
+ * One cell of the hierarchy.
+ */
+typedef struct hibi_skin_cell {
+  /**
+   * Hierarchy level, 0 for the coarsest.
+   */
+  uint32_t level;
+  /**
+   * Index of the parent cell; `HIBI_SKIN_NO_CELL` at level 0.
+   */
+  uint32_t parent;
+  /**
+   * The centre point's id, unique within the level.
+   */
+  uint32_t site;
+  /**
+   * Vertices in the outline (`hibi_skin_outline` writes twice as many doubles).
+   */
+  uint32_t vertex_count;
+  /**
+   * The centre point [px].
+   */
+  double centre[2];
+} hibi_skin_cell;
+
+/**
  * Success.
  */
 #define HIBI_OK 0
@@ -853,6 +1054,100 @@ typedef struct hibi_mud_render_params {
  * A crack index is not below `hibi_glass_crack_count`.
  */
 #define HIBI_ERROR_GLASS_CRACK_INDEX 1091
+
+/**
+ * Skin parameters: `width` and `height` must be in 1..=32768.
+ */
+#define HIBI_ERROR_SKIN_SIZE 1280
+
+/**
+ * Skin parameters: `jitter_ratio` must be in [0, 1].
+ */
+#define HIBI_ERROR_SKIN_JITTER_RATIO 1281
+
+/**
+ * Skin parameters: `levels` must be in 1..=4.
+ */
+#define HIBI_ERROR_SKIN_LEVELS 1282
+
+/**
+ * Skin parameters: a used level's `spacing` must be finite and >= 1 px.
+ */
+#define HIBI_ERROR_SKIN_SPACING 1283
+
+/**
+ * Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
+ */
+#define HIBI_ERROR_SKIN_PERTURBATION 1284
+
+/**
+ * Skin parameters: a used level's `perturbation_depth` must be <= 5.
+ */
+#define HIBI_ERROR_SKIN_PERTURBATION_DEPTH 1285
+
+/**
+ * Skin parameters: a used level's `stretch` must be finite and > 0.
+ */
+#define HIBI_ERROR_SKIN_STRETCH 1286
+
+/**
+ * Skin parameters: a used level's `profile.segments` must be in 1..=4.
+ */
+#define HIBI_ERROR_SKIN_PROFILE_SEGMENTS 1287
+
+/**
+ * Skin parameters: a used level's profile points must be finite, start at x' = 0, never
+ * decrease in x' and end at x' > 0.
+ */
+#define HIBI_ERROR_SKIN_PROFILE_POINTS 1288
+
+/**
+ * Skin parameters: a used level's `roundness` must be in [0, 1].
+ */
+#define HIBI_ERROR_SKIN_ROUNDNESS 1289
+
+/**
+ * Skin parameters: the surface needs more memory than the address space allows.
+ */
+#define HIBI_ERROR_SKIN_CAPACITY_PARAMS 1290
+
+/**
+ * Skin parameters: the struct did not come from `hibi_skin_params_default` or
+ * `hibi_skin_params_preset`.
+ */
+#define HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED 1343
+
+/**
+ * Skin parameters: `layout` is not a `HIBI_SKIN_LAYOUT_*` constant, `jitter` not
+ * `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`, or `periodic` not 0 or 1.
+ */
+#define HIBI_ERROR_SKIN_ENUM 1344
+
+/**
+ * `hibi_skin_create`: a cell outline or one parent's centre points outgrew their fixed
+ * capacity; lower the perturbation depth or the ratio of a level's spacing to the next's.
+ */
+#define HIBI_ERROR_SKIN_CAPACITY 1345
+
+/**
+ * `hibi_skin_render`: `cell_level` is not below the skin's `levels`.
+ */
+#define HIBI_ERROR_SKIN_LEVEL 1346
+
+/**
+ * `hibi_skin_shade`: the light direction is zero or not finite.
+ */
+#define HIBI_ERROR_SKIN_SHADE 1347
+
+/**
+ * `hibi_skin_params_preset`: no preset has that name.
+ */
+#define HIBI_ERROR_SKIN_UNKNOWN_PRESET 1348
+
+/**
+ * A cell index is not below `hibi_skin_cell_count`.
+ */
+#define HIBI_ERROR_SKIN_CELL_INDEX 1349
 
 #ifdef __cplusplus
 extern "C" {
@@ -1212,6 +1507,152 @@ hibi_status hibi_rng_poisson(struct hibi_rng *rng, double mean, uint32_t *out);
  * `rng` must be NULL or a live stream; `out` NULL or valid for a write.
  */
 hibi_status hibi_rng_rand(struct hibi_rng *rng, float x, float z, uint32_t spread, float *out);
+
+/**
+ * The default parameters (400 × 400 px, one level of 40-pixel cells on a jittered triangular
+ * lattice, the paper's Fig. 13 b profile), with the cookie set.
+ */
+struct hibi_skin_params hibi_skin_params_default(void);
+
+/**
+ * Writes the parameters of the paper's Table 1 setting `name` ("fig13a" … "fig19f", the
+ * figure it makes, at 400 × 400 px) to `*out`, with the cookie set; change fields afterwards
+ * as with the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
+ * nothing.
+ *
+ * # Safety
+ * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+ */
+hibi_status hibi_skin_params_preset(const char *name, struct hibi_skin_params *out);
+
+/**
+ * Checks `params` and writes the bytes a skin needs in caller memory (for
+ * `hibi_skin_create_in`). Every parameter error is reported here.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `size` NULL or writable.
+ */
+hibi_status hibi_skin_memory_size(const struct hibi_skin_params *params, size_t *size);
+
+/**
+ * Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have.
+ */
+size_t hibi_skin_memory_align(void);
+
+/**
+ * Creates a skin in library memory, building every cell outline of every level. Free it
+ * with `hibi_skin_destroy`. `*out` is written only on success.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `out` NULL or writable.
+ */
+hibi_status hibi_skin_create(const struct hibi_skin_params *params, struct hibi_skin **out);
+
+/**
+ * Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes aligned to
+ * `hibi_skin_memory_align()`. The memory stays the caller's (keep it untouched while the
+ * skin lives); `hibi_skin_destroy` is optional. Nothing is written to `*out` on failure.
+ *
+ * # Safety
+ * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+ * `out` NULL or writable.
+ */
+hibi_status hibi_skin_create_in(const struct hibi_skin_params *params,
+                                void *memory,
+                                size_t memory_len,
+                                struct hibi_skin **out);
+
+/**
+ * Destroys a skin; frees its memory if `hibi_skin_create` allocated it. NULL is ignored.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin, not used afterwards.
+ */
+void hibi_skin_destroy(struct hibi_skin *skin);
+
+/**
+ * Draws the surface's maps, each row-major over `width × height` pixels of the params:
+ * `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
+ * (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
+ * OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
+ * cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
+ * without it). Pass NULL and length 0 for a map you do not want. If any map is short or
+ * misaligned, or `cell_level` is not below `levels`, nothing is written.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for
+ * its length, and the maps must not overlap.
+ */
+hibi_status hibi_skin_render(const struct hibi_skin *skin,
+                             float *height,
+                             size_t height_len,
+                             float *normal,
+                             size_t normal_len,
+                             uint32_t *cells,
+                             size_t cells_len,
+                             uint32_t cell_level);
+
+/**
+ * The default light (from the upper left) and palette (a light skin tone).
+ */
+struct hibi_skin_shade_params hibi_skin_shade_params_default(void);
+
+/**
+ * A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
+ * it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
+ * per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
+ * `height` and `rgb` must hold as many pixels as `normal`; if not, or if the light is zero
+ * or not finite, nothing is written.
+ *
+ * # Safety
+ * `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL
+ * or readable; `rgb` NULL (only with length 0) or writable for `rgb_len` bytes, overlapping
+ * neither input.
+ */
+hibi_status hibi_skin_shade(const float *height,
+                            size_t height_len,
+                            const float *normal,
+                            size_t normal_len,
+                            const struct hibi_skin_shade_params *params,
+                            uint8_t *rgb,
+                            size_t rgb_len);
+
+/**
+ * Writes the number of cells over all levels.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `count` NULL or writable.
+ */
+hibi_status hibi_skin_cell_count(const struct hibi_skin *skin, size_t *count);
+
+/**
+ * Describes cell `index` (below `hibi_skin_cell_count`). Cells come level by level inside
+ * each level-0 cell: a parent before its children.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `cell` NULL or writable.
+ */
+hibi_status hibi_skin_cell_info(const struct hibi_skin *skin,
+                                size_t index,
+                                struct hibi_skin_cell *cell);
+
+/**
+ * Writes cell `index`'s outline into `xy[0..len]` as x, y pairs in the raster's pixels (x
+ * right, y down the rows, pixel (i, j) covering [i, i + 1] × [j, j + 1]), in the order that
+ * gives a positive signed area (counter-clockwise were y up), and the number of doubles
+ * written (2 · `vertex_count`) into `*written`. On a periodic surface an outline may reach
+ * past the edges; wrap it modulo (width, height). If `len` is too small, nothing is written
+ * and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `xy` NULL (only with `len` 0) or writable for `len`
+ * doubles; `written` NULL or writable.
+ */
+hibi_status hibi_skin_outline(const struct hibi_skin *skin,
+                              size_t index,
+                              double *xy,
+                              size_t len,
+                              size_t *written);
 
 /**
  * A static, NUL-terminated English message for `status`; never NULL (unknown codes give

@@ -302,3 +302,101 @@ fn glass_example_links_shared_library() {
 fn glass_example_is_clean_under_sanitizers() {
     check_glass(Linkage::Sanitized);
 }
+
+/// What the skin example computes, as Rust computes it for the same parameters: the shaded
+/// preview, the cell count per level, and the cell (and its parent) that pixel (100, 100)
+/// lies in at level 2.
+fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
+    use hibi_core::skin::{ShadeParams, Skin, SkinBuffers, SkinLayers, SkinParams, preset, shade};
+    let params = SkinParams { width: 200, height: 200, ..preset("fig19a").unwrap() };
+    let m = params.memory().unwrap();
+    let (mut cells, mut vertices) = (vec![Default::default(); m.cells], vec![[0i64; 2]; m.vertices]);
+    let (mut sites, mut clip, mut words) =
+        (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
+    let buffers = SkinBuffers {
+        cells: &mut cells,
+        vertices: &mut vertices,
+        sites: &mut sites,
+        clip: &mut clip,
+        words: &mut words,
+    };
+    let skin = Skin::new(&params, buffers).unwrap();
+    let pixels = 200 * 200;
+    let (mut height, mut normal, mut map) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels], vec![0u32; pixels]);
+    let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
+    skin.render::<f32>(layers).unwrap();
+    let mut rgb = vec![[0u8; 3]; pixels];
+    shade(&height, &normal, &ShadeParams::default(), &mut rgb).unwrap();
+    skin.render::<f32>(SkinLayers { cell: Some(&mut map), cell_level: 2, ..SkinLayers::default() }).unwrap();
+    let mut per_level = [0; 3];
+    for c in skin.cells() {
+        per_level[c.level as usize] += 1;
+    }
+    let at = map[100 * 200 + 100];
+    (rgb.concat(), per_level, (at, skin.cells()[at as usize].parent))
+}
+
+fn check_skin(linkage: Linkage) {
+    let ppm = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("skin_{linkage:?}.ppm"));
+    let output = build_and_run_with(&c_compiler(), "c99", "c_examples/skin.c", linkage, &[ppm.to_str().unwrap()]);
+    assert_eq!(
+        line(&output, "unknown preset fig99:"),
+        "unknown preset fig99: status 1348, skin: no preset has that name"
+    );
+    assert_eq!(
+        line(&output, "roundness 1.5 at level 1:"),
+        "roundness 1.5 at level 1: status 1289, skin: a level's roundness must be in [0, 1]"
+    );
+    assert!(line(&output, "layout 7:").starts_with("layout 7: status 1344, skin: layout, jitter or periodic"));
+    assert!(line(&output, "params not from the default:").starts_with("params not from the default: status 1343, "));
+    let (rgb, per_level, (cell, parent)) = expected_skin();
+    let total: usize = per_level.iter().sum();
+    assert_eq!(
+        line(&output, "cells:"),
+        format!("cells: {total} (level 0: {}, level 1: {}, level 2: {})", per_level[0], per_level[1], per_level[2])
+    );
+    for level in 0..3 {
+        let prefix = format!("level {level} outlines");
+        assert_eq!(line(&output, &prefix), format!("{prefix} cover 40000.0 of 40000 square pixels"));
+    }
+    assert_eq!(
+        line(&output, "cell index past the end:"),
+        "cell index past the end: status 1349, skin: cell index out of range"
+    );
+    assert_eq!(
+        line(&output, "outline into a short buffer:"),
+        "outline into a short buffer: status 3, a buffer is smaller than the call needs"
+    );
+    assert_eq!(
+        line(&output, "short normal buffer:"),
+        "short normal buffer: status 3, a buffer is smaller than the call needs"
+    );
+    assert_eq!(
+        line(&output, "cell map of level 3:"),
+        "cell map of level 3: status 1346, skin: cell_level must be below levels"
+    );
+    assert_eq!(
+        line(&output, "pixel (100, 100)"),
+        format!("pixel (100, 100) lies in cell {cell} of level 2, its parent is cell {parent}")
+    );
+    assert_eq!(line(&output, "caller memory"), "caller memory, same bytes: yes");
+    let bytes = std::fs::read(&ppm).expect("the example wrote its PPM");
+    let header = b"P6\n200 200\n255\n";
+    assert_eq!(&bytes[..header.len()], header);
+    assert!(bytes[header.len()..] == rgb[..], "the C program's picture differs from Rust's");
+}
+
+#[test]
+fn skin_example_links_static_library() {
+    check_skin(Linkage::Static);
+}
+
+#[test]
+fn skin_example_links_shared_library() {
+    check_skin(Linkage::Shared);
+}
+
+#[test]
+fn skin_example_is_clean_under_sanitizers() {
+    check_skin(Linkage::Sanitized);
+}

@@ -100,6 +100,16 @@ pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) -> Result<(), hibi_stat
     Ok(())
 }
 
+/// Checks a caller buffer of `len` elements of `T` at a non-empty `ptr`: non-null, aligned,
+/// and its size in bytes fits `isize`.
+fn check_buffer<T>(ptr: *const T, len: usize) -> Result<(), hibi_status> {
+    check_pointer(ptr)?;
+    if len.checked_mul(size_of::<T>()).is_none_or(|bytes| bytes > isize::MAX as usize) {
+        return Err(HIBI_ERROR_SIZE_OVERFLOW);
+    }
+    Ok(())
+}
+
 /// The caller buffer `ptr[0..len]`; NULL is accepted for an empty buffer.
 ///
 /// # Safety
@@ -109,12 +119,23 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize) -> Result<&'a mut [T
     if len == 0 {
         return Ok(&mut []);
     }
-    check_pointer(ptr)?;
-    if len.checked_mul(size_of::<T>()).is_none_or(|bytes| bytes > isize::MAX as usize) {
-        return Err(HIBI_ERROR_SIZE_OVERFLOW);
-    }
+    check_buffer(ptr, len)?;
     // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
     Ok(unsafe { core::slice::from_raw_parts_mut(ptr, len) })
+}
+
+/// The read-only caller buffer `ptr[0..len]`; NULL is accepted for an empty buffer.
+///
+/// # Safety
+/// A non-null, aligned `ptr` must be valid for reads of `len` elements of `T`, not written
+/// during the call.
+pub(crate) unsafe fn input<'a, T>(ptr: *const T, len: usize) -> Result<&'a [T], hibi_status> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    check_buffer(ptr, len)?;
+    // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
+    Ok(unsafe { core::slice::from_raw_parts(ptr, len) })
 }
 
 #[cfg(test)]
@@ -144,5 +165,12 @@ mod tests {
         assert_eq!(unsafe { buffer(base, usize::MAX / 2) }.err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
         // SAFETY: `words` is valid for 4 u32.
         assert_eq!(unsafe { buffer(base, 4) }.map(|b| b.len()), Ok(4));
+        // SAFETY: as above, read only; the failing checks happen before any access.
+        unsafe {
+            assert_eq!(input(core::ptr::null::<u32>(), 0).map(<[u32]>::len), Ok(0));
+            assert_eq!(input(core::ptr::null::<u32>(), 1).err(), Some(HIBI_ERROR_NULL_POINTER));
+            assert_eq!(input(base.cast_const(), usize::MAX / 2).err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
+            assert_eq!(input(base.cast_const(), 4).map(<[u32]>::len), Ok(4));
+        }
     }
 }

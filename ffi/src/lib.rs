@@ -21,11 +21,13 @@ mod guard;
 mod memory;
 pub mod mud;
 pub mod rng;
+pub mod skin;
 pub mod status;
 
 pub use glass::*;
 pub use mud::*;
 pub use rng::*;
+pub use skin::*;
 pub use status::*;
 
 /// The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.

@@ -6,6 +6,7 @@ use hibi_core::RngError;
 use hibi_core::glass::GlassParamError;
 use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
+use hibi_core::skin::SkinParamError;
 
 use crate::guard::guard;
 
@@ -174,6 +175,61 @@ const _: () = {
     assert!(HIBI_ERROR_GLASS_CAPACITY_PARAMS == 1024 + GlassParamError::Capacity as u32);
 };
 
+/// Skin parameters: `width` and `height` must be in 1..=32768.
+pub const HIBI_ERROR_SKIN_SIZE: hibi_status = 1280;
+/// Skin parameters: `jitter_ratio` must be in [0, 1].
+pub const HIBI_ERROR_SKIN_JITTER_RATIO: hibi_status = 1281;
+/// Skin parameters: `levels` must be in 1..=4.
+pub const HIBI_ERROR_SKIN_LEVELS: hibi_status = 1282;
+/// Skin parameters: a used level's `spacing` must be finite and >= 1 px.
+pub const HIBI_ERROR_SKIN_SPACING: hibi_status = 1283;
+/// Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
+pub const HIBI_ERROR_SKIN_PERTURBATION: hibi_status = 1284;
+/// Skin parameters: a used level's `perturbation_depth` must be <= 5.
+pub const HIBI_ERROR_SKIN_PERTURBATION_DEPTH: hibi_status = 1285;
+/// Skin parameters: a used level's `stretch` must be finite and > 0.
+pub const HIBI_ERROR_SKIN_STRETCH: hibi_status = 1286;
+/// Skin parameters: a used level's `profile.segments` must be in 1..=4.
+pub const HIBI_ERROR_SKIN_PROFILE_SEGMENTS: hibi_status = 1287;
+/// Skin parameters: a used level's profile points must be finite, start at x' = 0, never
+/// decrease in x' and end at x' > 0.
+pub const HIBI_ERROR_SKIN_PROFILE_POINTS: hibi_status = 1288;
+/// Skin parameters: a used level's `roundness` must be in [0, 1].
+pub const HIBI_ERROR_SKIN_ROUNDNESS: hibi_status = 1289;
+/// Skin parameters: the surface needs more memory than the address space allows.
+pub const HIBI_ERROR_SKIN_CAPACITY_PARAMS: hibi_status = 1290;
+/// Skin parameters: the struct did not come from `hibi_skin_params_default` or
+/// `hibi_skin_params_preset`.
+pub const HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED: hibi_status = 1343;
+/// Skin parameters: `layout` is not a `HIBI_SKIN_LAYOUT_*` constant, `jitter` not
+/// `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`, or `periodic` not 0 or 1.
+pub const HIBI_ERROR_SKIN_ENUM: hibi_status = 1344;
+/// `hibi_skin_create`: a cell outline or one parent's centre points outgrew their fixed
+/// capacity; lower the perturbation depth or the ratio of a level's spacing to the next's.
+pub const HIBI_ERROR_SKIN_CAPACITY: hibi_status = 1345;
+/// `hibi_skin_render`: `cell_level` is not below the skin's `levels`.
+pub const HIBI_ERROR_SKIN_LEVEL: hibi_status = 1346;
+/// `hibi_skin_shade`: the light direction is zero or not finite.
+pub const HIBI_ERROR_SKIN_SHADE: hibi_status = 1347;
+/// `hibi_skin_params_preset`: no preset has that name.
+pub const HIBI_ERROR_SKIN_UNKNOWN_PRESET: hibi_status = 1348;
+/// A cell index is not below `hibi_skin_cell_count`.
+pub const HIBI_ERROR_SKIN_CELL_INDEX: hibi_status = 1349;
+
+const _: () = {
+    assert!(HIBI_ERROR_SKIN_SIZE == 1280 + SkinParamError::Size as u32);
+    assert!(HIBI_ERROR_SKIN_JITTER_RATIO == 1280 + SkinParamError::JitterRatio as u32);
+    assert!(HIBI_ERROR_SKIN_LEVELS == 1280 + SkinParamError::Levels as u32);
+    assert!(HIBI_ERROR_SKIN_SPACING == 1280 + SkinParamError::Spacing as u32);
+    assert!(HIBI_ERROR_SKIN_PERTURBATION == 1280 + SkinParamError::Perturbation as u32);
+    assert!(HIBI_ERROR_SKIN_PERTURBATION_DEPTH == 1280 + SkinParamError::PerturbationDepth as u32);
+    assert!(HIBI_ERROR_SKIN_STRETCH == 1280 + SkinParamError::Stretch as u32);
+    assert!(HIBI_ERROR_SKIN_PROFILE_SEGMENTS == 1280 + SkinParamError::ProfileSegments as u32);
+    assert!(HIBI_ERROR_SKIN_PROFILE_POINTS == 1280 + SkinParamError::ProfilePoints as u32);
+    assert!(HIBI_ERROR_SKIN_ROUNDNESS == 1280 + SkinParamError::Roundness as u32);
+    assert!(HIBI_ERROR_SKIN_CAPACITY_PARAMS == 1280 + SkinParamError::Capacity as u32);
+};
+
 /// The status that reports a glass parameter error.
 pub(crate) fn glass_param_status(error: GlassParamError) -> hibi_status {
     1024 + error as u32
@@ -198,6 +254,30 @@ fn glass_param_error(status: hibi_status) -> Option<GlassParamError> {
         Capacity,
     ];
     ALL.iter().copied().find(|e| glass_param_status(*e) == status)
+}
+
+/// The status that reports a skin parameter error.
+pub(crate) fn skin_param_status(error: SkinParamError) -> hibi_status {
+    1280 + error as u32
+}
+
+/// The core error behind a skin parameter status.
+fn skin_param_error(status: hibi_status) -> Option<SkinParamError> {
+    use SkinParamError::*;
+    const ALL: [SkinParamError; 11] = [
+        Size,
+        JitterRatio,
+        Levels,
+        Spacing,
+        Perturbation,
+        PerturbationDepth,
+        Stretch,
+        ProfileSegments,
+        ProfilePoints,
+        Roundness,
+        Capacity,
+    ];
+    ALL.iter().copied().find(|e| skin_param_status(*e) == status)
 }
 
 /// The status that reports a mud parameter error.
@@ -284,9 +364,23 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_GLASS_IMPACT => c"glass: the impact point is not inside the plate",
         HIBI_ERROR_GLASS_CAPACITY => c"glass: max_cracks or max_vertices ran out; generation stopped early",
         HIBI_ERROR_GLASS_CRACK_INDEX => c"glass: crack index out of range",
-        _ => match (mud_param_error(status), glass_param_error(status)) {
-            (Some(error), _) => error.message(),
-            (_, Some(error)) => error.message(),
+        HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED => {
+            c"skin: the params struct did not come from hibi_skin_params_default or hibi_skin_params_preset"
+        }
+        HIBI_ERROR_SKIN_ENUM => {
+            c"skin: layout, jitter or periodic is not one of its constants (HIBI_SKIN_LAYOUT_*, HIBI_SPREAD_*, 0 or 1)"
+        }
+        HIBI_ERROR_SKIN_CAPACITY => {
+            c"skin: an outline or a parent's centre points outgrew their capacity (lower depth or spacing ratio)"
+        }
+        HIBI_ERROR_SKIN_LEVEL => c"skin: cell_level must be below levels",
+        HIBI_ERROR_SKIN_SHADE => c"skin: the light direction must be finite and non-zero",
+        HIBI_ERROR_SKIN_UNKNOWN_PRESET => c"skin: no preset has that name",
+        HIBI_ERROR_SKIN_CELL_INDEX => c"skin: cell index out of range",
+        _ => match (mud_param_error(status), glass_param_error(status), skin_param_error(status)) {
+            (Some(error), _, _) => error.message(),
+            (_, Some(error), _) => error.message(),
+            (_, _, Some(error)) => error.message(),
             _ => c"unknown status code",
         },
     }

@@ -1,0 +1,940 @@
+//! `hibi_skin`: model C, skin from hierarchical Voronoi cells (Ishii et al.), from C.
+//!
+//! ```c
+//! hibi_skin_params params;
+//! if (hibi_skin_params_preset("fig19a", &params) != HIBI_OK) { ... }
+//! params.width = params.height = 256;
+//! hibi_skin *skin = NULL;
+//! if (hibi_skin_create(&params, &skin) != HIBI_OK) { ... }
+//! hibi_skin_render(skin, height, w * h, normal, 3 * w * h, NULL, 0, 0);
+//! hibi_skin_shade_params light = hibi_skin_shade_params_default();
+//! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
+//! hibi_skin_destroy(skin);
+//! ```
+//!
+//! Every cell outline is built by `hibi_skin_create`; rendering only reads them. An object is
+//! one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
+
+use core::ffi::{CStr, c_char, c_void};
+use core::mem::{align_of, size_of};
+
+use hibi_core::Spread;
+use hibi_core::skin::{
+    ClipVertex, LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeParams, Site,
+    SiteLayout, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinMemory, SkinParams, preset, shade,
+};
+
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, write_out};
+use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
+use crate::status::{
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
+    HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
+    HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
+};
+
+/// Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
+pub const HIBI_SKIN_MAX_LEVELS: usize = 4;
+/// Most cubic Bézier segments in one level's cross-section.
+pub const HIBI_SKIN_MAX_SEGMENTS: u32 = 4;
+/// Control points a profile holds: 3 · `HIBI_SKIN_MAX_SEGMENTS` + 1.
+pub const HIBI_SKIN_PROFILE_POINTS: usize = 13;
+/// Most midpoint-displacement subdivisions of an edge.
+pub const HIBI_SKIN_MAX_PERTURBATION_DEPTH: u32 = 5;
+/// Centre points on a triangular lattice (the default).
+pub const HIBI_SKIN_LAYOUT_TRIANGULAR: u32 = 0;
+/// Centre points on a square lattice.
+pub const HIBI_SKIN_LAYOUT_SQUARE: u32 = 1;
+/// Centre points uniformly random, one per lattice square (the jitter fields are ignored).
+pub const HIBI_SKIN_LAYOUT_RANDOM: u32 = 2;
+/// `hibi_skin_cell.parent` of a level-0 cell, and the cell map's value where no cell is.
+pub const HIBI_SKIN_NO_CELL: u32 = u32::MAX;
+
+const _: () = {
+    assert!(HIBI_SKIN_MAX_LEVELS == MAX_LEVELS);
+    assert!(HIBI_SKIN_MAX_SEGMENTS as usize == MAX_SEGMENTS);
+    assert!(HIBI_SKIN_PROFILE_POINTS == 3 * MAX_SEGMENTS + 1);
+    assert!(HIBI_SKIN_MAX_PERTURBATION_DEPTH == MAX_PERTURBATION_DEPTH);
+    assert!(HIBI_SKIN_LAYOUT_TRIANGULAR == SiteLayout::Triangular as u32);
+    assert!(HIBI_SKIN_LAYOUT_SQUARE == SiteLayout::Square as u32);
+    assert!(HIBI_SKIN_LAYOUT_RANDOM == SiteLayout::Random as u32);
+    assert!(HIBI_SKIN_NO_CELL == NO_CELL);
+    // No padding: C code may compare or hash params structs byte by byte.
+    assert!(size_of::<hibi_skin_level>() == 7 * 4 + size_of::<hibi_skin_profile>());
+    assert!(size_of::<hibi_skin_params>() == 40 + HIBI_SKIN_MAX_LEVELS * size_of::<hibi_skin_level>());
+};
+
+/// Marks a params struct that came from `hibi_skin_params_default` or
+/// `hibi_skin_params_preset` ("SKN1").
+const PARAMS_COOKIE: u32 = 0x534B_4E31;
+
+/// Parameter 5, a ridge's cross-section: cubic Bézier segments in the body plane (x' from the
+/// centre point at 0 to the polygon's edge at the last point's x', z' the height). Segment k
+/// has control points `points[3k]` to `points[3k + 3]`; consecutive segments share an end
+/// point.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct hibi_skin_profile {
+    /// Number of segments, 1..=`HIBI_SKIN_MAX_SEGMENTS`.
+    pub segments: u32,
+    /// Control points (x', z'); the first 3 · `segments` + 1 are used.
+    pub points: [[f32; 2]; HIBI_SKIN_PROFILE_POINTS],
+}
+
+/// One hierarchy level: its polygons and its cross-section.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct hibi_skin_level {
+    /// Lattice spacing of the centre points [px, before stretch] (default 40, then a third of
+    /// it at each finer level).
+    pub spacing: f32,
+    /// Parameter 2, the perturbation ratio A in V = A·2^(−n·h)·Rnd·L (default 0: straight edges).
+    pub perturbation: f32,
+    /// h in V = A·2^(−n·h)·Rnd·L, the decay per subdivision (default 1).
+    pub perturbation_decay: f32,
+    /// Subdivisions of every edge, 0..=`HIBI_SKIN_MAX_PERTURBATION_DEPTH` (default 3).
+    pub perturbation_depth: u32,
+    /// Parameter 3, the stretch (Sx, Sy) of this level's polygons (default 1, 1).
+    pub stretch: [f32; 2],
+    /// Parameter 5, the cross-section (default the paper's Fig. 13 b).
+    pub profile: hibi_skin_profile,
+    /// Parameter 6, the roundness ratio in [0, 1]: 0 polygonal height contours, 1 nearly
+    /// circular (default 0.2).
+    pub roundness: f32,
+}
+
+/// The parameters of a skin surface, in pixels. Get them from `hibi_skin_params_default` or
+/// `hibi_skin_params_preset`, then change fields; `hibi_skin_create` rejects a struct that
+/// did not come from there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct hibi_skin_params {
+    /// Set by `hibi_skin_params_default` and `hibi_skin_params_preset`; leave it alone.
+    pub cookie: u32,
+    /// Parameter 1: `HIBI_SKIN_LAYOUT_TRIANGULAR` (default), `_SQUARE` or `_RANDOM`.
+    pub layout: u32,
+    /// Parameter 1: the jitter of lattice centres, `HIBI_SPREAD_UNIFORM` (default) or
+    /// `HIBI_SPREAD_NORMAL`.
+    pub jitter: u32,
+    /// 1: the surface repeats with period (width, height), a tileable texture; 0: it does not
+    /// (default).
+    pub periodic: u32,
+    /// Width of the surface and of its rasters [px], 1..=32768 (default 400).
+    pub width: u32,
+    /// Height [px] (default 400).
+    pub height: u32,
+    /// Seed of every random draw (default 1).
+    pub seed: u64,
+    /// Parameter 1: largest jitter per axis / lattice spacing, in [0, 1] (default 0.5).
+    pub jitter_ratio: f32,
+    /// Parameter 4: number of hierarchy levels, 1..=`HIBI_SKIN_MAX_LEVELS` (default 1).
+    pub levels: u32,
+    /// The levels, coarsest first; the first `levels` are used.
+    pub level: [hibi_skin_level; HIBI_SKIN_MAX_LEVELS],
+}
+
+/// Light and palette for `hibi_skin_shade`. Defaults from `hibi_skin_shade_params_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct hibi_skin_shade_params {
+    /// Direction towards the light (x right, y up, z out of the surface); need not be unit
+    /// (default from the upper left).
+    pub light: [f32; 3],
+    /// Ridge-top colour, linear RGB in [0, 1].
+    pub ridge: [f32; 3],
+    /// Furrow colour, linear RGB in [0, 1].
+    pub furrow: [f32; 3],
+    /// Light that reaches every pixel, in [0, 1] (default 0.35).
+    pub ambient: f32,
+    /// Strength of the highlight (Blinn–Phong), >= 0 (default 0.12).
+    pub specular: f32,
+}
+
+/// One cell of the hierarchy.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_skin_cell {
+    /// Hierarchy level, 0 for the coarsest.
+    pub level: u32,
+    /// Index of the parent cell; `HIBI_SKIN_NO_CELL` at level 0.
+    pub parent: u32,
+    /// The centre point's id, unique within the level.
+    pub site: u32,
+    /// Vertices in the outline (`hibi_skin_outline` writes twice as many doubles).
+    pub vertex_count: u32,
+    /// The centre point [px].
+    pub centre: [f64; 2],
+}
+
+impl Outcome for hibi_skin_params {
+    type C = hibi_skin_params;
+    fn into_c(self) -> Self {
+        self
+    }
+    /// A struct without the cookie, which every function rejects.
+    fn on_panic() -> Self {
+        hibi_skin_params { cookie: 0, ..to_c(&SkinParams::default()) }
+    }
+}
+
+impl Outcome for hibi_skin_shade_params {
+    type C = hibi_skin_shade_params;
+    fn into_c(self) -> Self {
+        self
+    }
+    /// No light, which shading rejects.
+    fn on_panic() -> Self {
+        hibi_skin_shade_params { light: [0.0; 3], ..shade_to_c(&ShadeParams::default()) }
+    }
+}
+
+/// A skin surface: every cell outline of every level. Opaque.
+pub struct hibi_skin {
+    skin: Skin<'static>,
+    origin: Origin,
+}
+
+/// Alignment of a skin's block.
+const BLOCK_ALIGN: usize = {
+    let mut a = 8;
+    let aligns = [
+        align_of::<hibi_skin>(),
+        align_of::<SkinCell>(),
+        align_of::<[i64; 2]>(),
+        align_of::<Site>(),
+        align_of::<ClipVertex>(),
+    ];
+    let mut i = 0;
+    while i < aligns.len() {
+        if aligns[i] > a {
+            a = aligns[i];
+        }
+        i += 1;
+    }
+    a
+};
+
+/// The C view of a core level.
+fn level_to_c(l: &LevelParams) -> hibi_skin_level {
+    hibi_skin_level {
+        spacing: l.spacing,
+        perturbation: l.perturbation,
+        perturbation_decay: l.perturbation_decay,
+        perturbation_depth: l.perturbation_depth,
+        stretch: l.stretch,
+        profile: hibi_skin_profile { segments: l.profile.segments, points: l.profile.points },
+        roundness: l.roundness,
+    }
+}
+
+/// The C view of core parameters.
+fn to_c(p: &SkinParams) -> hibi_skin_params {
+    hibi_skin_params {
+        cookie: PARAMS_COOKIE,
+        layout: p.layout as u32,
+        jitter: p.jitter as u32,
+        periodic: u32::from(p.periodic),
+        width: p.width,
+        height: p.height,
+        seed: p.seed,
+        jitter_ratio: p.jitter_ratio,
+        levels: p.levels,
+        level: p.level.map(|l| level_to_c(&l)),
+    }
+}
+
+/// The core parameters of a C params struct: cookie, enumerations, fields (the fields are
+/// validated by the core).
+fn from_c(p: &hibi_skin_params) -> Result<SkinParams, hibi_status> {
+    if p.cookie != PARAMS_COOKIE {
+        return Err(HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED);
+    }
+    let layout = match p.layout {
+        HIBI_SKIN_LAYOUT_TRIANGULAR => SiteLayout::Triangular,
+        HIBI_SKIN_LAYOUT_SQUARE => SiteLayout::Square,
+        HIBI_SKIN_LAYOUT_RANDOM => SiteLayout::Random,
+        _ => return Err(HIBI_ERROR_SKIN_ENUM),
+    };
+    let jitter = match p.jitter {
+        crate::rng::HIBI_SPREAD_UNIFORM => Spread::Uniform,
+        crate::rng::HIBI_SPREAD_NORMAL => Spread::Normal,
+        _ => return Err(HIBI_ERROR_SKIN_ENUM),
+    };
+    let periodic = match p.periodic {
+        0 => false,
+        1 => true,
+        _ => return Err(HIBI_ERROR_SKIN_ENUM),
+    };
+    Ok(SkinParams {
+        width: p.width,
+        height: p.height,
+        seed: p.seed,
+        layout,
+        jitter,
+        jitter_ratio: p.jitter_ratio,
+        periodic,
+        levels: p.levels,
+        level: p.level.map(|l| LevelParams {
+            spacing: l.spacing,
+            perturbation: l.perturbation,
+            perturbation_decay: l.perturbation_decay,
+            perturbation_depth: l.perturbation_depth,
+            stretch: l.stretch,
+            profile: Profile { segments: l.profile.segments, points: l.profile.points },
+            roundness: l.roundness,
+        }),
+    })
+}
+
+/// The C view of core shading parameters.
+fn shade_to_c(s: &ShadeParams) -> hibi_skin_shade_params {
+    hibi_skin_shade_params {
+        light: s.light,
+        ridge: s.ridge,
+        furrow: s.furrow,
+        ambient: s.ambient,
+        specular: s.specular,
+    }
+}
+
+/// A skin's block: where each array starts, and the total size.
+struct Layout {
+    params: SkinParams,
+    counts: SkinMemory,
+    cells: usize,
+    vertices: usize,
+    sites: usize,
+    clip: usize,
+    words: usize,
+    bytes: usize,
+}
+
+/// Validates `params` and lays out its block.
+///
+/// # Safety
+/// `params` must be NULL or readable.
+unsafe fn plan(params: *const hibi_skin_params) -> Result<Layout, hibi_status> {
+    check_pointer(params)?;
+    // SAFETY: non-null and aligned (checked); readable by the caller's contract.
+    let params = from_c(unsafe { &*params })?;
+    let counts = params.memory().map_err(skin_param_status)?;
+    let place = |at: usize, align: usize, n: usize, size: usize| -> Option<(usize, usize)> {
+        let start = round_up(at, align);
+        Some((start, start.checked_add(n.checked_mul(size)?)?))
+    };
+    let layout = (|| {
+        let (cells, end) = place(size_of::<hibi_skin>(), align_of::<SkinCell>(), counts.cells, size_of::<SkinCell>())?;
+        let (vertices, end) = place(end, align_of::<[i64; 2]>(), counts.vertices, size_of::<[i64; 2]>())?;
+        let (sites, end) = place(end, align_of::<Site>(), counts.sites, size_of::<Site>())?;
+        let (clip, end) = place(end, align_of::<ClipVertex>(), counts.clip, size_of::<ClipVertex>())?;
+        let (words, end) = place(end, align_of::<u32>(), counts.words, size_of::<u32>())?;
+        (end <= isize::MAX as usize / 2).then_some(Layout {
+            params,
+            counts,
+            cells,
+            vertices,
+            sites,
+            clip,
+            words,
+            bytes: end,
+        })
+    })();
+    layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
+}
+
+/// Fills `n` elements of type `T` at `block + offset` with `T::default()` and returns them.
+///
+/// # Safety
+/// The range must lie in the block, aligned for `T`, and outlive every use of the slice.
+unsafe fn array<T: Default>(block: *mut u8, offset: usize, n: usize) -> &'static mut [T] {
+    // SAFETY: the caller's contract; every element is written before the slice is made.
+    unsafe {
+        let start = block.add(offset).cast::<T>();
+        for i in 0..n {
+            start.add(i).write(T::default());
+        }
+        core::slice::from_raw_parts_mut(start, n)
+    }
+}
+
+/// Builds a skin in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).
+///
+/// # Safety
+/// `block` must be valid for writes of `layout.bytes` and outlive the skin.
+unsafe fn build(block: *mut u8, layout: Layout, origin: Origin) -> Result<*mut hibi_skin, hibi_status> {
+    let c = layout.counts;
+    // SAFETY: the layout places each array inside the block, aligned, without overlap.
+    let buffers = unsafe {
+        SkinBuffers {
+            cells: array(block, layout.cells, c.cells),
+            vertices: array(block, layout.vertices, c.vertices),
+            sites: array(block, layout.sites, c.sites),
+            clip: array(block, layout.clip, c.clip),
+            words: array(block, layout.words, c.words),
+        }
+    };
+    let skin = Skin::new(&layout.params, buffers).map_err(skin_status)?;
+    let ptr = block.cast::<hibi_skin>();
+    // SAFETY: the header fits at the block's start, aligned.
+    unsafe { ptr.write(hibi_skin { skin, origin }) };
+    Ok(ptr)
+}
+
+/// The status of a core skin error.
+fn skin_status(error: SkinError) -> hibi_status {
+    match error {
+        SkinError::Param(p) => skin_param_status(p),
+        SkinError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
+        SkinError::Capacity => HIBI_ERROR_SKIN_CAPACITY,
+        SkinError::Level => HIBI_ERROR_SKIN_LEVEL,
+        SkinError::Shade => HIBI_ERROR_SKIN_SHADE,
+    }
+}
+
+/// Pixels per fixed-point unit of `skin`'s outlines.
+fn pixels_per_unit(skin: &Skin) -> f64 {
+    1.0 / (1u64 << skin.fixed_point_bits()) as f64
+}
+
+/// The default parameters (400 × 400 px, one level of 40-pixel cells on a jittered triangular
+/// lattice, the paper's Fig. 13 b profile), with the cookie set.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_skin_params_default() -> hibi_skin_params {
+    guard(|| to_c(&SkinParams::default()))
+}
+
+/// Writes the parameters of the paper's Table 1 setting `name` ("fig13a" … "fig19f", the
+/// figure it makes, at 400 × 400 px) to `*out`, with the cookie set; change fields afterwards
+/// as with the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
+/// nothing.
+///
+/// # Safety
+/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_params_preset(name: *const c_char, out: *mut hibi_skin_params) -> hibi_status {
+    guard(|| {
+        check_pointer(name)?;
+        check_pointer(out)?;
+        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
+        let name = unsafe { CStr::from_ptr(name) };
+        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_SKIN_UNKNOWN_PRESET)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(out, to_c(&params)) }
+    })
+}
+
+/// Checks `params` and writes the bytes a skin needs in caller memory (for
+/// `hibi_skin_create_in`). Every parameter error is reported here.
+///
+/// # Safety
+/// `params` must be NULL or readable; `size` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_memory_size(params: *const hibi_skin_params, size: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(size, layout.bytes) }
+    })
+}
+
+/// Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_skin_memory_align() -> usize {
+    guard(|| BLOCK_ALIGN)
+}
+
+/// Creates a skin in library memory, building every cell outline of every level. Free it
+/// with `hibi_skin_destroy`. `*out` is written only on success.
+///
+/// # Safety
+/// `params` must be NULL or readable; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_create(params: *const hibi_skin_params, out: *mut *mut hibi_skin) -> hibi_status {
+    guard(|| {
+        check_pointer(out)?;
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        let (block, origin) = library_block(layout.bytes, BLOCK_ALIGN)?;
+        // SAFETY: a fresh block of the planned size and alignment.
+        match unsafe { build(block, layout, origin) } {
+            // SAFETY: checked above; the caller's contract.
+            Ok(skin) => unsafe { write_out(out, skin) },
+            Err(status) => {
+                // SAFETY: allocated above, never handed out.
+                unsafe { release_block(block, origin) };
+                Err(status)
+            }
+        }
+    })
+}
+
+/// Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes aligned to
+/// `hibi_skin_memory_align()`. The memory stays the caller's (keep it untouched while the
+/// skin lives); `hibi_skin_destroy` is optional. Nothing is written to `*out` on failure.
+///
+/// # Safety
+/// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+/// `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_create_in(
+    params: *const hibi_skin_params,
+    memory: *mut c_void,
+    memory_len: usize,
+    out: *mut *mut hibi_skin,
+) -> hibi_status {
+    guard(|| {
+        check_pointer(out)?;
+        // SAFETY: the caller's contract.
+        let layout = unsafe { plan(params) }?;
+        let block = caller_block(memory, memory_len, layout.bytes, BLOCK_ALIGN)?;
+        // SAFETY: checked to hold the planned size, aligned; the caller's contract.
+        let skin = unsafe { build(block, layout, Origin::Caller) }?;
+        // SAFETY: checked above; the caller's contract.
+        unsafe { write_out(out, skin) }
+    })
+}
+
+/// Destroys a skin; frees its memory if `hibi_skin_create` allocated it. NULL is ignored.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_destroy(skin: *mut hibi_skin) {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        if let Ok(live) = unsafe { object(skin) } {
+            let origin = live.origin;
+            // SAFETY: a live skin made by hibi_skin_create or hibi_skin_create_in.
+            unsafe {
+                skin.drop_in_place();
+                release_block(skin.cast(), origin);
+            }
+        }
+    })
+}
+
+/// An optional output layer: NULL with length 0 is "not wanted"; anything else is checked.
+///
+/// # Safety
+/// As [`buffer`].
+unsafe fn layer<'a, T>(ptr: *mut T, len: usize) -> Result<Option<&'a mut [T]>, hibi_status> {
+    if ptr.is_null() && len == 0 {
+        return Ok(None);
+    }
+    // SAFETY: the caller's contract.
+    unsafe { buffer(ptr, len) }.map(Some)
+}
+
+/// Draws the surface's maps, each row-major over `width × height` pixels of the params:
+/// `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
+/// (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
+/// OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
+/// cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
+/// without it). Pass NULL and length 0 for a map you do not want. If any map is short or
+/// misaligned, or `cell_level` is not below `levels`, nothing is written.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for
+/// its length, and the maps must not overlap.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn hibi_skin_render(
+    skin: *const hibi_skin,
+    height: *mut f32,
+    height_len: usize,
+    normal: *mut f32,
+    normal_len: usize,
+    cells: *mut u32,
+    cells_len: usize,
+    cell_level: u32,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object(skin.cast_mut()) }?;
+        // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
+        // and a trailing partial pixel of `normal` is not used.
+        let layers = unsafe {
+            SkinLayers {
+                height: layer(height, height_len)?,
+                normal: layer(normal.cast::<[f32; 3]>(), normal_len / 3)?,
+                cell: layer(cells, cells_len)?,
+                cell_level,
+            }
+        };
+        skin.skin.render::<f32>(layers).map_err(skin_status)
+    })
+}
+
+/// The default light (from the upper left) and palette (a light skin tone).
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_skin_shade_params_default() -> hibi_skin_shade_params {
+    guard(|| shade_to_c(&ShadeParams::default()))
+}
+
+/// A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
+/// it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
+/// per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
+/// `height` and `rgb` must hold as many pixels as `normal`; if not, or if the light is zero
+/// or not finite, nothing is written.
+///
+/// # Safety
+/// `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL
+/// or readable; `rgb` NULL (only with length 0) or writable for `rgb_len` bytes, overlapping
+/// neither input.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_shade(
+    height: *const f32,
+    height_len: usize,
+    normal: *const f32,
+    normal_len: usize,
+    params: *const hibi_skin_shade_params,
+    rgb: *mut u8,
+    rgb_len: usize,
+) -> hibi_status {
+    guard(|| {
+        check_pointer(params)?;
+        // SAFETY: non-null, aligned (checked); readable by the caller's contract.
+        let p = unsafe { *params };
+        let params =
+            ShadeParams { light: p.light, ridge: p.ridge, furrow: p.furrow, ambient: p.ambient, specular: p.specular };
+        // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`.
+        let (height, normal, rgb) = unsafe {
+            (
+                input(height, height_len)?,
+                input(normal.cast::<[f32; 3]>(), normal_len / 3)?,
+                buffer(rgb.cast::<[u8; 3]>(), rgb_len / 3)?,
+            )
+        };
+        shade(height, normal, &params, rgb).map_err(skin_status)
+    })
+}
+
+/// Writes the number of cells over all levels.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; `count` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_cell_count(skin: *const hibi_skin, count: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object(skin.cast_mut()) }?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(count, skin.skin.cells().len()) }
+    })
+}
+
+/// Describes cell `index` (below `hibi_skin_cell_count`). Cells come level by level inside
+/// each level-0 cell: a parent before its children.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; `cell` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_cell_info(
+    skin: *const hibi_skin,
+    index: usize,
+    cell: *mut hibi_skin_cell,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object(skin.cast_mut()) }?;
+        check_pointer(cell)?;
+        let c = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
+        let unit = pixels_per_unit(&skin.skin);
+        let value = hibi_skin_cell {
+            level: c.level,
+            parent: c.parent,
+            site: c.site,
+            vertex_count: c.vertex_count,
+            centre: [c.centre[0] as f64 * unit, c.centre[1] as f64 * unit],
+        };
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(cell, value) }
+    })
+}
+
+/// Writes cell `index`'s outline into `xy[0..len]` as x, y pairs in the raster's pixels (x
+/// right, y down the rows, pixel (i, j) covering [i, i + 1] × [j, j + 1]), in the order that
+/// gives a positive signed area (counter-clockwise were y up), and the number of doubles
+/// written (2 · `vertex_count`) into `*written`. On a periodic surface an outline may reach
+/// past the edges; wrap it modulo (width, height). If `len` is too small, nothing is written
+/// and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; `xy` NULL (only with `len` 0) or writable for `len`
+/// doubles; `written` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_outline(
+    skin: *const hibi_skin,
+    index: usize,
+    xy: *mut f64,
+    len: usize,
+    written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object(skin.cast_mut()) }?;
+        check_pointer(written)?;
+        let cell = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
+        // SAFETY: the caller's contract.
+        let out = unsafe { buffer(xy, len) }?;
+        let outline = skin.skin.outline(cell);
+        let needed = 2 * outline.len();
+        if out.len() < needed {
+            return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
+        }
+        let unit = pixels_per_unit(&skin.skin);
+        for (pair, v) in out.chunks_exact_mut(2).zip(outline) {
+            pair[0] = v[0] as f64 * unit;
+            pair[1] = v[1] as f64 * unit;
+        }
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(written, needed) }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::*;
+    use core::ptr::{null, null_mut};
+
+    /// A small two-level skin.
+    fn small() -> hibi_skin_params {
+        let mut p = hibi_skin_params_default();
+        (p.width, p.height, p.levels) = (64, 48, 2);
+        p
+    }
+
+    #[test]
+    fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {
+        type Spoil = fn(&mut hibi_skin_params);
+        let cases: [(Spoil, hibi_status); 17] = [
+            (|p| p.cookie = 0, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED),
+            (|p| p.layout = 3, HIBI_ERROR_SKIN_ENUM),
+            (|p| p.jitter = 2, HIBI_ERROR_SKIN_ENUM),
+            (|p| p.periodic = 2, HIBI_ERROR_SKIN_ENUM),
+            (|p| p.width = 0, HIBI_ERROR_SKIN_SIZE),
+            (|p| p.height = 40_000, HIBI_ERROR_SKIN_SIZE),
+            (|p| p.jitter_ratio = f32::NAN, HIBI_ERROR_SKIN_JITTER_RATIO),
+            (|p| p.levels = 5, HIBI_ERROR_SKIN_LEVELS),
+            (|p| p.level[1].spacing = 0.5, HIBI_ERROR_SKIN_SPACING),
+            (|p| p.level[0].perturbation_decay = -1.0, HIBI_ERROR_SKIN_PERTURBATION),
+            (|p| p.level[0].perturbation_depth = 6, HIBI_ERROR_SKIN_PERTURBATION_DEPTH),
+            (|p| p.level[1].stretch[0] = 0.0, HIBI_ERROR_SKIN_STRETCH),
+            (|p| p.level[0].profile.segments = 0, HIBI_ERROR_SKIN_PROFILE_SEGMENTS),
+            (|p| p.level[0].profile.points[1][0] = f32::INFINITY, HIBI_ERROR_SKIN_PROFILE_POINTS),
+            (|p| p.level[1].roundness = 1.5, HIBI_ERROR_SKIN_ROUNDNESS),
+            (|p| (p.width, p.height, p.levels) = (32_768, 32_768, 4), HIBI_ERROR_SKIN_CAPACITY_PARAMS),
+            (
+                |p| {
+                    // A parent holding more centre points than the core can sort.
+                    (p.width, p.height, p.level[0].spacing, p.level[1].spacing) = (128, 128, 128.0, 1.5);
+                    (p.level[0].perturbation_depth, p.level[1].perturbation_depth) = (0, 0);
+                },
+                HIBI_ERROR_SKIN_CAPACITY,
+            ),
+        ];
+        for (k, (spoil, expected)) in cases.into_iter().enumerate() {
+            let mut p = small();
+            spoil(&mut p);
+            let mut out = null_mut();
+            let mut size = 99usize;
+            // SAFETY: valid pointers; failing calls write nothing.
+            unsafe {
+                assert_eq!(hibi_skin_create(&p, &mut out), expected, "case {k}");
+                if expected != HIBI_ERROR_SKIN_CAPACITY {
+                    assert_eq!(hibi_skin_memory_size(&p, &mut size), expected, "case {k}");
+                }
+            }
+            assert!(out.is_null() && size == 99, "case {k}");
+            let message = message(expected).to_str().unwrap();
+            assert!(message.starts_with("skin: "), "{message}");
+        }
+    }
+
+    #[test]
+    fn every_skin_status_has_its_own_message() {
+        let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1349).collect();
+        // SAFETY: hibi_status_string returns static NUL-terminated strings.
+        let text = |code| unsafe { CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
+        for (i, a) in codes.iter().enumerate() {
+            assert!(text(*a).starts_with("skin: "), "{a}: {}", text(*a));
+            for b in &codes[i + 1..] {
+                assert_ne!(text(*a), text(*b));
+            }
+        }
+        assert_eq!(text(1291), "unknown status code");
+        assert_eq!(text(1350), "unknown status code");
+    }
+
+    #[test]
+    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
+        let mut p = small();
+        // SAFETY: valid pointers and NUL-terminated names; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_skin_params_preset(c"fig20".as_ptr(), &mut p), HIBI_ERROR_SKIN_UNKNOWN_PRESET);
+            assert_eq!(p, small());
+            assert_eq!(hibi_skin_params_preset(c"fig19a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_params_preset(null(), &mut p), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_params_preset(c"\xff".as_ptr(), &mut p), HIBI_ERROR_SKIN_UNKNOWN_PRESET);
+            assert_eq!(p, small());
+            for name in hibi_core::skin::PRESETS {
+                let name = std::ffi::CString::new(name).unwrap();
+                assert_eq!(hibi_skin_params_preset(name.as_ptr(), &mut p), HIBI_OK);
+                assert_eq!(from_c(&p), Ok(preset(name.to_str().unwrap()).unwrap()));
+            }
+        }
+        assert_eq!(from_c(&hibi_skin_params_default()), Ok(SkinParams::default()));
+    }
+
+    #[test]
+    fn caller_memory_is_checked_and_left_untouched_on_failure() {
+        let p = small();
+        let mut size = 0;
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_skin_memory_size(&p, &mut size) }, HIBI_OK);
+        assert_eq!(hibi_skin_memory_align() % 8, 0);
+        let mut memory = vec![0xA5A5_A5A5_A5A5_A5A5u64; size / 8 + 2];
+        let base = memory.as_mut_ptr().cast::<c_void>();
+        let untouched = |m: &[u64]| m.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5);
+        let mut out = null_mut();
+        // SAFETY: `memory` is valid for its length; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_skin_create_in(&p, base, size - 1, &mut out), HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert!(untouched(&memory), "short");
+            let odd = base.cast::<u8>().add(4).cast::<c_void>();
+            assert_eq!(hibi_skin_create_in(&p, odd, size, &mut out), HIBI_ERROR_MISALIGNED);
+            assert!(untouched(&memory), "misaligned");
+            assert_eq!(hibi_skin_create_in(&p, null_mut(), size, &mut out), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_create_in(&p, base, size, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert!(untouched(&memory) && out.is_null());
+            assert_eq!(hibi_skin_create_in(&p, base, size, &mut out), HIBI_OK);
+            assert_eq!(out.cast::<c_void>(), base);
+            let mut count = 0;
+            assert_eq!(hibi_skin_cell_count(out, &mut count), HIBI_OK);
+            assert!(count > 2);
+            hibi_skin_destroy(out);
+            hibi_skin_destroy(null_mut());
+        }
+    }
+
+    #[test]
+    fn render_takes_optional_layers_and_leaves_short_ones_untouched() {
+        let p = small();
+        let pixels = (p.width * p.height) as usize;
+        let mut skin = null_mut();
+        // SAFETY: valid pointers throughout; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+            let mut height = vec![7.0f32; pixels];
+            let mut normal = vec![7.0f32; 3 * pixels];
+            let mut cells = vec![7u32; pixels];
+            let (h, n, c) = (height.as_mut_ptr(), normal.as_mut_ptr(), cells.as_mut_ptr());
+            let untouched = |h: &[f32], n: &[f32], c: &[u32]| {
+                h.iter().all(|&v| v == 7.0) && n.iter().all(|&v| v == 7.0) && c.iter().all(|&v| v == 7)
+            };
+            let short = [
+                (pixels - 1, 3 * pixels, pixels),
+                (pixels, 3 * pixels - 1, pixels),
+                (pixels, 3 * pixels, pixels - 1),
+                (pixels, 0, pixels),
+            ];
+            for (hl, nl, cl) in short {
+                assert_eq!(hibi_skin_render(skin, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
+            }
+            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
+            assert_eq!(
+                hibi_skin_render(skin, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
+                HIBI_ERROR_NULL_POINTER
+            );
+            let odd = n.cast::<u8>().add(1).cast::<f32>();
+            assert_eq!(hibi_skin_render(skin, h, pixels, odd, 3 * pixels - 3, c, pixels, 0), HIBI_ERROR_MISALIGNED);
+            assert_eq!(hibi_skin_render(null(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
+            assert!(untouched(&height, &normal, &cells));
+
+            // Only the cell map; the level is checked only when the map is wanted.
+            assert_eq!(hibi_skin_render(skin, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
+            assert!(untouched(&height, &normal, &[]));
+            let mut count = 0;
+            assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
+            let mut info = hibi_skin_cell::default();
+            for &index in &cells {
+                assert_eq!(hibi_skin_cell_info(skin, index as usize, &mut info), HIBI_OK);
+                assert_eq!(info.level, 1);
+            }
+            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
+            assert!(height.iter().all(|&v| v >= 0.0) && height.iter().any(|&v| v > 2.0));
+            assert!(normal.chunks(3).all(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-4));
+
+            let light = hibi_skin_shade_params_default();
+            let mut rgb = vec![1u8; 3 * pixels];
+            let (hc, nc) = (height.as_ptr(), normal.as_ptr());
+            let r = rgb.as_mut_ptr();
+            assert_eq!(
+                hibi_skin_shade(hc, pixels - 1, nc, 3 * pixels, &light, r, 3 * pixels),
+                HIBI_ERROR_BUFFER_TOO_SMALL
+            );
+            assert_eq!(
+                hibi_skin_shade(hc, pixels, nc, 3 * pixels, &light, r, 3 * pixels - 1),
+                HIBI_ERROR_BUFFER_TOO_SMALL
+            );
+            let dark = hibi_skin_shade_params { light: [0.0, 0.0, f32::NAN], ..light };
+            assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, &dark, r, 3 * pixels), HIBI_ERROR_SKIN_SHADE);
+            assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, null(), r, 3 * pixels), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_shade(null(), pixels, nc, 3 * pixels, &light, r, 3 * pixels), HIBI_ERROR_NULL_POINTER);
+            assert!(rgb.iter().all(|&v| v == 1));
+            assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, &light, r, 3 * pixels), HIBI_OK);
+            assert!(rgb.iter().any(|&v| v != 1));
+            hibi_skin_destroy(skin);
+        }
+    }
+
+    #[test]
+    fn cells_and_outlines_come_in_pixels_and_tile_each_level() {
+        let p = small();
+        let mut skin = null_mut();
+        // SAFETY: valid pointers throughout; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+            let mut count = 0;
+            assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
+            let mut info = hibi_skin_cell { level: 9, ..Default::default() };
+            assert_eq!(hibi_skin_cell_info(skin, count, &mut info), HIBI_ERROR_SKIN_CELL_INDEX);
+            assert_eq!(hibi_skin_cell_info(skin, 0, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(info.level, 9);
+            let mut area = [0.0f64; 2];
+            let mut xy = Vec::new();
+            for index in 0..count {
+                assert_eq!(hibi_skin_cell_info(skin, index, &mut info), HIBI_OK);
+                assert_eq!(info.parent == HIBI_SKIN_NO_CELL, info.level == 0);
+                let n = 2 * info.vertex_count as usize;
+                xy.clear();
+                xy.resize(n, -1.0);
+                let mut written = 5;
+                let short = hibi_skin_outline(skin, index, xy.as_mut_ptr(), n - 1, &mut written);
+                assert_eq!(short, HIBI_ERROR_BUFFER_TOO_SMALL);
+                assert!(written == 5 && xy.iter().all(|&v| v == -1.0));
+                assert_eq!(hibi_skin_outline(skin, index, xy.as_mut_ptr(), n, null_mut()), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_skin_outline(skin, index, xy.as_mut_ptr(), n, &mut written), HIBI_OK);
+                assert_eq!(written, n);
+                let m = n / 2;
+                let twice: f64 = (0..m)
+                    .map(|i| {
+                        let j = (i + 1) % m;
+                        xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1]
+                    })
+                    .sum();
+                area[info.level as usize] += twice / 2.0;
+            }
+            let mut xy = [0.0f64; 2];
+            let mut written = 5;
+            assert_eq!(hibi_skin_outline(skin, count, xy.as_mut_ptr(), 2, &mut written), HIBI_ERROR_SKIN_CELL_INDEX);
+            assert_eq!(written, 5);
+            let surface = f64::from(p.width * p.height);
+            for a in area {
+                assert!((a - surface).abs() < 1e-6, "{a} of {surface}");
+            }
+            hibi_skin_destroy(skin);
+        }
+    }
+}
