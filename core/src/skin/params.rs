@@ -125,12 +125,17 @@ impl Default for LevelParams {
 }
 
 impl Default for SkinParams {
-    /// 400 × 400 px (the paper's images), one level, triangular lattice, uniform jitter 0.5.
+    /// 400 × 400 px (the paper's images), one level, triangular lattice, uniform jitter 0.5;
+    /// finer levels (when `levels` is raised) at a third of the spacing each, with one
+    /// perturbation subdivision fewer.
     fn default() -> Self {
         let level = LevelParams::default();
         let mut levels = [level; MAX_LEVELS];
+        // Each finer level: a third of the spacing, and one subdivision fewer, so that the
+        // perturbation's pieces stay about 2 px long at every level.
         for (k, l) in levels.iter_mut().enumerate().skip(1) {
             l.spacing = level.spacing / libm::powf(3.0, k as f32);
+            l.perturbation_depth = level.perturbation_depth.saturating_sub(k as u32).max(1);
         }
         SkinParams {
             width: 400,

@@ -40,10 +40,6 @@ struct Wedge {
     angle: f32,
 }
 
-/// Whether angle `a` lies in the wedge from `from` to `to` (counter-clockwise).
-fn in_wedge(a: f32, from: f32, to: f32) -> bool {
-    if from <= to { from <= a && a < to } else { a >= from || a < to }
-}
 
 impl Skin<'_> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
@@ -79,7 +75,6 @@ impl Skin<'_> {
             let n = self.prepare(c, &mut wedges);
             let unit = (1u64 << self.fixed_point_bits()) as f64;
             let centre = [(c.centre[0] as f64 / unit) as f32, (c.centre[1] as f64 / unit) as f32];
-            let mut current = 0usize;
             let writes_cell = c.level == cell_level;
             self.for_each_pixel_unwrapped(c, &mut crossings, |x, y, wx, wy| {
                 let i = wy as usize * width + wx as usize;
@@ -93,14 +88,11 @@ impl Skin<'_> {
                 let (z, slope_xy) = if d == [0.0, 0.0] {
                     (table.at(0.0).0, [0.0, 0.0])
                 } else {
-                    // The fan triangle the ray from the centre through p leaves by.
+                    // The fan triangle the ray from the centre through p leaves by: wedges
+                    // are sorted by the angle of their first corner.
                     let a = pseudo_angle(d);
-                    for _ in 0..n {
-                        if in_wedge(a, wedges[current].angle, wedges[(current + 1) % n].angle) {
-                            break;
-                        }
-                        current = (current + 1) % n;
-                    }
+                    let k = wedges[..n].partition_point(|w| w.angle <= a);
+                    let current = if k == 0 { n - 1 } else { k - 1 };
                     let w = wedges[current];
                     evaluate::<S>(table, end, roundness, d, w)
                 };
@@ -139,6 +131,9 @@ impl Skin<'_> {
             let outward = [e[1], -e[0]];
             let reach = va[0] * outward[0] + va[1] * outward[1];
             let length = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
+            // Stored from the corner of smallest angle on, so that (for a cell star-shaped
+            // around its centre, as Voronoi cells and their perturbations are) the angles
+            // ascend and a binary search finds a pixel's wedge.
             wedges[i] = if reach > 0.0 && length > 0.0 {
                 Wedge { g: [outward[0] / reach, outward[1] / reach], apothem: reach / length, angle: pseudo_angle(va) }
             } else {
@@ -146,6 +141,8 @@ impl Skin<'_> {
                 Wedge { g: [0.0, 0.0], apothem: 1.0, angle: pseudo_angle(va) }
             };
         }
+        let start = (0..n).fold(0, |best, i| if wedges[i].angle < wedges[best].angle { i } else { best });
+        wedges[..n].rotate_left(start);
         n
     }
 
