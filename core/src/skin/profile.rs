@@ -11,6 +11,8 @@ pub(super) const SAMPLES: usize = 256;
 pub(super) struct ProfileTable {
     /// x' at the polygon's edge (the last control point's x').
     pub(super) end: f32,
+    /// SAMPLES / end.
+    scale: f32,
     pub(super) height: [f32; SAMPLES + 1],
     pub(super) slope: [f32; SAMPLES + 1],
 }
@@ -32,7 +34,8 @@ impl ProfileTable {
     pub(super) fn new(profile: &Profile) -> ProfileTable {
         let points = profile.used();
         let end = points[points.len() - 1][0];
-        let mut table = ProfileTable { end, height: [0.0; SAMPLES + 1], slope: [0.0; SAMPLES + 1] };
+        let mut table =
+            ProfileTable { end, scale: SAMPLES as f32 / end, height: [0.0; SAMPLES + 1], slope: [0.0; SAMPLES + 1] };
         for k in 0..=SAMPLES {
             let x = f64::from(end) * k as f64 / SAMPLES as f64;
             // The segment whose x' range holds x (the last one that starts at or before it).
@@ -75,8 +78,9 @@ impl ProfileTable {
     }
 
     /// Height and slope at `x` ∈ [0, end], linearly interpolated.
+    #[inline]
     pub(super) fn at(&self, x: f32) -> (f32, f32) {
-        let f = (x / self.end * SAMPLES as f32).clamp(0.0, SAMPLES as f32);
+        let f = (x * self.scale).clamp(0.0, SAMPLES as f32);
         let k = (f as usize).min(SAMPLES - 1);
         let w = f - k as f32;
         let lerp = |v: &[f32; SAMPLES + 1]| v[k] + (v[k + 1] - v[k]) * w;
