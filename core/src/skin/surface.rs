@@ -40,7 +40,6 @@ struct Wedge {
     angle: f32,
 }
 
-
 impl Skin<'_> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
     /// cell level is not below `levels`, nothing is written.
