@@ -406,7 +406,7 @@ impl<'a> Skin<'a> {
     /// the surface when periodic). Across the cells of one level every pixel is visited
     /// exactly once.
     pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
-        let mut crossings = [0u64; 4 * MAX_OUTLINE];
+        let mut crossings = [0u64; MAX_OUTLINE];
         let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
         let periodic = self.params.periodic;
         scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), &mut crossings, |x, y| {

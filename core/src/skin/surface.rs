@@ -42,7 +42,8 @@ struct Wedge {
 
 impl Skin<'_> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written.
+    /// cell level is not below `levels`, nothing is written. Uses about 48 KiB of stack for
+    /// one outline's wedges and crossings.
     pub fn render<S: Scalar>(&self, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { mut height, mut normal, mut cell, cell_level } = layers;
@@ -65,7 +66,7 @@ impl Skin<'_> {
             c[..pixels].fill(u32::MAX);
         }
         let mut wedges = [Wedge::default(); MAX_OUTLINE];
-        let mut crossings = [0u64; 4 * MAX_OUTLINE];
+        let mut crossings = [0u64; MAX_OUTLINE];
         for (index, c) in self.cells.iter().enumerate() {
             let level = c.level as usize;
             let table = &self.tables[level];
