@@ -364,12 +364,8 @@ impl Builder<'_> {
             let label = self.clip[k].label;
             if label & PARENT_EDGE == 0 && f.perturbation > 0.0 && f.depth > 0 {
                 let b = &neighbours[label as usize];
-                // The parent edges this edge ends on (the same pair seen from either side).
-                let into = self.clip[(k + n - 1) % n].label;
-                let after = self.clip[(k + 1) % n].label;
-                let on_parent = [into, after].map(|l| (l & PARENT_EDGE != 0).then_some((l & !PARENT_EDGE) as usize));
                 let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
-                let count = perturb(f, a, b, (&start, &end), (parent, on_parent), &mut points);
+                let count = perturb(f, a, b, (&start, &end), parent, &mut points);
                 for p in &points[1..count] {
                     push(*p, &mut written)?;
                 }
@@ -405,7 +401,7 @@ fn cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
 /// (as `a` runs it), by midpoint displacement V = A·2^(−n·h)·Rnd·L (paper §4.2 (2)), written
 /// from `points[1]` on; returns 2^depth, or 1 (no inner points) where the wiggle would leave
 /// the edge's diamond (the triangles it forms with the two centre points, which no other
-/// edge enters) or cross the parent's outline near the parent edges it ends on. Drawn from
+/// edge enters) or its parent cell. Drawn from
 /// the edge's own stream in the direction the lower id runs it, and judged on data both
 /// cells share, so both cells get the same points.
 fn perturb(
@@ -413,7 +409,7 @@ fn perturb(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    (parent, on_parent): (&[[i64; 2]], [Option<usize>; 2]),
+    parent: &[[i64; 2]],
     points: &mut [[i64; 2]],
 ) -> usize {
     let (lo, hi) = sorted2(a, b);
@@ -464,7 +460,7 @@ fn perturb(
     let line = &line[..=pieces];
     let (x, y) = (lo.base, f.relative(hi, lo));
     let inside = line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1));
-    // The diamond's outline, and the parent's edges within reach of the ends on it.
+    // The diamond's outline.
     let mut blocked = false;
     let diamond = [x, p0, y, p1];
     for w in line.windows(2) {
@@ -473,26 +469,34 @@ fn perturb(
             blocked |= cross(w[0], w[1], r, s);
         }
     }
-    let reach = 2 * pieces + 4;
-    let m = parent.len();
-    // The wiggle's box in fixed point, to pass over parent edges far from it.
-    let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for q in line {
-        low = [low[0].min(q[0]), low[1].min(q[1])];
-        high = [high[0].max(q[0]), high[1].max(q[1])];
-    }
-    let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
-    let slack = 1i64 << (f.shift - BASE_BITS);
-    for i in on_parent.into_iter().flatten() {
-        for d in 0..=2 * reach {
-            let e = (i + m + d).wrapping_sub(reach) % m;
+    // A child's edge must stay inside its parent: not cross the parent's outline anywhere,
+    // and (near it) keep every point inside. The parent is the same for both cells that
+    // share the edge, so they judge alike. (Level 0's "parent" is the surface or a box of
+    // the cell's own; its edges may leave it.)
+    if f.level > 0 && !blocked && inside {
+        let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for q in line {
+            low = [low[0].min(q[0]), low[1].min(q[1])];
+            high = [high[0].max(q[0]), high[1].max(q[1])];
+        }
+        let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
+        let slack = 1i64 << (f.shift - BASE_BITS);
+        let m = parent.len();
+        let mut near = false;
+        for e in 0..m {
             let (pr, ps) = (parent[e], parent[(e + 1) % m]);
-            let apart = (0..2).any(|k| pr[k].max(ps[k]) < low[k] - slack || pr[k].min(ps[k]) > high[k] + slack);
-            if apart {
+            if (0..2).any(|k| pr[k].max(ps[k]) < low[k] - slack || pr[k].min(ps[k]) > high[k] + slack) {
                 continue;
             }
+            near = true;
             let (r, s) = (f.unfixed(pr, lo), f.unfixed(ps, lo));
-            blocked |= line.windows(2).any(|w| cross(w[0], w[1], r, s));
+            if line.windows(2).any(|w| cross(w[0], w[1], r, s)) {
+                blocked = true;
+                break;
+            }
+        }
+        if near && !blocked {
+            blocked = line[1..pieces].iter().any(|q| !super::scan::contains(parent, f.fixed(*q, lo)));
         }
     }
     if !inside || blocked {
