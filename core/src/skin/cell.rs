@@ -360,14 +360,26 @@ impl Builder<'_> {
         let first = start;
         for k in 0..n {
             let end = if k + 1 == n { first } else { corner_at(k + 1) };
-            push(start.fixed, &mut written)?;
             let label = self.clip[k].label;
-            if label & PARENT_EDGE == 0 && f.perturbation > 0.0 && f.depth > 0 {
-                let b = &neighbours[label as usize];
-                let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
-                let count = perturb(f, a, b, (&start, &end), parent, &mut points);
-                for p in &points[1..count] {
-                    push(*p, &mut written)?;
+            if label & PARENT_EDGE != 0 {
+                push(start.fixed, &mut written)?;
+                start = end;
+                continue;
+            }
+            // A bisector edge, split where the parent's outline crosses it (clipping a
+            // non-convex parent bridges such crossings; the sibling has the pieces).
+            let b = &neighbours[label as usize];
+            let mut pieces = [start; MAX_CROSSINGS + 2];
+            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), parent, &mut pieces) } else { 0 };
+            pieces[count + 1] = end;
+            for w in pieces[..count + 2].windows(2) {
+                push(w[0].fixed, &mut written)?;
+                if f.perturbation > 0.0 && f.depth > 0 {
+                    let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+                    let inner = perturb(f, a, b, (&w[0], &w[1]), parent, &mut points);
+                    for p in &points[1..inner] {
+                        push(*p, &mut written)?;
+                    }
                 }
             }
             start = end;
@@ -377,6 +389,59 @@ impl Builder<'_> {
         }
         Ok(written)
     }
+}
+
+/// Most parent-outline crossings one bisector edge is split at.
+const MAX_CROSSINGS: usize = 16;
+
+/// Exact orientation of the fixed-point triangle (a, b, c).
+fn orient_fixed(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i128 {
+    i128::from(b[0] - a[0]) * i128::from(c[1] - a[1]) - i128::from(b[1] - a[1]) * i128::from(c[0] - a[0])
+}
+
+/// The corners where the parent's outline properly crosses the bisector edge of `a` and `b`
+/// from `start` to `end`, in order from `start`, written from `out[1]` on; returns how many.
+/// Each is computed as the sibling computes the same corner (the bisector meeting that
+/// parent edge), so both cells get the same pieces.
+fn crossings(
+    f: &Frame,
+    a: &Site,
+    b: &Site,
+    (start, end): (&Corner, &Corner),
+    parent: &[[i64; 2]],
+    out: &mut [Corner],
+) -> usize {
+    let (x, y) = (start.fixed, end.fixed);
+    let (low, high) = ([x[0].min(y[0]), x[1].min(y[1])], [x[0].max(y[0]), x[1].max(y[1])]);
+    let m = parent.len();
+    let mut found = 0;
+    let mut along = [0i128; MAX_CROSSINGS + 2];
+    for e in 0..m {
+        let (p, q) = (parent[e], parent[(e + 1) % m]);
+        if (0..2).any(|k| p[k].max(q[k]) < low[k] || p[k].min(q[k]) > high[k]) {
+            continue;
+        }
+        let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
+        let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
+        let proper = ((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0));
+        if !proper || found == MAX_CROSSINGS {
+            continue;
+        }
+        let c = bisector_meets_edge(f, a, b, p, q);
+        // Order by position along start → end.
+        let t = i128::from(c.fixed[0] - x[0]) * i128::from(y[0] - x[0])
+            + i128::from(c.fixed[1] - x[1]) * i128::from(y[1] - x[1]);
+        let mut i = found + 1;
+        while i > 1 && along[i - 1] > t {
+            out[i] = out[i - 1];
+            along[i] = along[i - 1];
+            i -= 1;
+        }
+        out[i] = c;
+        along[i] = t;
+        found += 1;
+    }
+    found
 }
 
 /// Orientation of the triangle (a, b, c): positive counter-clockwise.
@@ -435,7 +500,14 @@ fn perturb(
             ^ u64::from(hi.id)
             ^ ((offset[0] as u64 & 0xF) << 50)
             ^ ((offset[1] as u64 & 0xF) << 54);
-        let mut rng = Rng::from_key(f.seed, key);
+        // The piece's own ends (an edge split at its parent's outline has several pieces).
+        // (relative to `lo`'s image, the same for every periodic copy).
+        let local = |p: [i64; 2]| [0, 1].map(|k| p[k] - i64::from(lo.image[k]) * f.world_period[k]);
+        let ends = [local(from.fixed), local(to.fixed)]
+            .as_flattened()
+            .iter()
+            .fold(0u64, |h, &v| (h ^ v as u64).wrapping_mul(0x0000_0100_0000_01B3).rotate_left(29));
+        let mut rng = Rng::from_key(f.seed, key ^ ends);
         let mut step = pieces;
         for level in 1..=f.depth {
             let amplitude = f.perturbation * libm::exp2(-f64::from(level) * f.decay) * length;
