@@ -567,8 +567,10 @@ fn perturb(
                 break;
             }
         }
+        // With no crossing, only a first or last piece leaving from an end on the outline
+        // can lie outside: its inner end tells.
         if near && !blocked {
-            blocked = line[1..pieces].iter().any(|q| !super::scan::contains(parent, f.fixed(*q, lo)));
+            blocked = [line[1], line[pieces - 1]].iter().any(|q| !super::scan::contains(parent, f.fixed(*q, lo)));
         }
     }
     if !inside || blocked {

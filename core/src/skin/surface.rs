@@ -31,12 +31,12 @@ pub struct SkinLayers<'o> {
     pub cell_level: u32,
 }
 
-/// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), the apothem, and
+/// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), 1 / apothem, and
 /// the pseudo-angle of the edge's first vertex seen from the centre.
 #[derive(Clone, Copy, Default)]
 struct Wedge {
     g: [f32; 2],
-    apothem: f32,
+    inverse_apothem: f32,
     angle: f32,
 }
 
@@ -135,10 +135,14 @@ impl Skin<'_> {
             // around its centre, as Voronoi cells and their perturbations are) the angles
             // ascend and a binary search finds a pixel's wedge.
             wedges[i] = if reach > 0.0 && length > 0.0 {
-                Wedge { g: [outward[0] / reach, outward[1] / reach], apothem: reach / length, angle: pseudo_angle(va) }
+                Wedge {
+                    g: [outward[0] / reach, outward[1] / reach],
+                    inverse_apothem: length / reach,
+                    angle: pseudo_angle(va),
+                }
             } else {
                 // The centre on or beyond this edge's line (a fold): this wedge reads as edge.
-                Wedge { g: [0.0, 0.0], apothem: 1.0, angle: pseudo_angle(va) }
+                Wedge { g: [0.0, 0.0], inverse_apothem: 1.0, angle: pseudo_angle(va) }
             };
         }
         let start = (0..n).fold(0, |best, i| if wedges[i].angle < wedges[best].angle { i } else { best });
@@ -165,6 +169,7 @@ impl Skin<'_> {
 }
 
 /// One level's height and normal x/y (z = 1) at offset `d` from the centre, in wedge `w`.
+#[inline]
 fn evaluate<S: Scalar>(
     table: &super::profile::ProfileTable,
     end: S,
@@ -173,8 +178,8 @@ fn evaluate<S: Scalar>(
     w: Wedge,
 ) -> (f32, [f32; 2]) {
     // Offsets in apothems keep every quantity small (Q16.16 has range ±32768).
-    let apothem = S::from_f32(w.apothem);
-    let q = [S::from_f32(d[0]) / apothem, S::from_f32(d[1]) / apothem];
+    let scale = S::from_f32(w.inverse_apothem);
+    let q = [S::from_f32(d[0]) * scale, S::from_f32(d[1]) * scale];
     let u = (S::from_f32(d[0] * w.g[0] + d[1] * w.g[1])).clamp(S::ZERO, S::ONE);
     let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
     // k = |b − p0| / apothem − 1, with |b − p0| = |p − p0| / u.
@@ -187,11 +192,10 @@ fn evaluate<S: Scalar>(
     let bent = flat * u + roundness * round;
     let rate = flat + roundness * round_rate;
     let (z, dz) = table.at((end * bent).to_f32());
-    let slope = S::from_f32(dz) * rate;
     if r <= S::ZERO {
         return (z, [0.0, 0.0]);
     }
     // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray's direction.
-    let (cos, sin) = (q[0] / r, q[1] / r);
-    (z, [(S::ZERO - slope * cos).to_f32(), (S::ZERO - slope * sin).to_f32()])
+    let lean = (S::ZERO - S::from_f32(dz) * rate) / r;
+    (z, [(lean * q[0]).to_f32(), (lean * q[1]).to_f32()])
 }
