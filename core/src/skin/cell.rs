@@ -49,9 +49,9 @@ pub(super) struct Frame {
     pub(super) shift: u32,
     /// Fractional bits this level rounds its own points to.
     pub(super) bits: u32,
-    /// 2^bits and 2^shift.
+    /// 2^bits, and 1 / (2^shift · stretch) per axis.
     own_unit: f64,
-    unit: f64,
+    to_frame: [f64; 2],
     pub(super) perturbation: f64,
     pub(super) decay: f64,
     pub(super) depth: u32,
@@ -70,7 +70,7 @@ impl Frame {
             shift,
             bits: BASE_BITS + EDGE_BITS * level as u32,
             own_unit: (1u64 << (BASE_BITS + EDGE_BITS * level as u32)) as f64,
-            unit: (1u64 << shift) as f64,
+            to_frame: [1.0 / ((1u64 << shift) as f64 * stretch[0]), 1.0 / ((1u64 << shift) as f64 * stretch[1])],
             perturbation: f64::from(l.perturbation),
             decay: f64::from(l.perturbation_decay),
             depth: l.perturbation_depth,
@@ -99,7 +99,7 @@ impl Frame {
     fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
         let u = |k: usize| {
             let local = p[k] - i64::from(reference.image[k]) * self.world_period[k];
-            local as f64 / self.unit / self.stretch[k]
+            local as f64 * self.to_frame[k]
         };
         [u(0), u(1)]
     }
@@ -111,7 +111,7 @@ impl Frame {
 
     /// A fixed-point point in this frame, absolute.
     pub(super) fn in_frame(&self, p: [i64; 2]) -> [f64; 2] {
-        [p[0] as f64 / self.unit / self.stretch[0], p[1] as f64 / self.unit / self.stretch[1]]
+        [p[0] as f64 * self.to_frame[0], p[1] as f64 * self.to_frame[1]]
     }
 }
 
@@ -188,11 +188,58 @@ fn bisector_meets_edge(f: &Frame, a: &Site, b: &Site, p: [i64; 2], q: [i64; 2]) 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct OutlineFull;
 
+/// Edges of a parent outline per chunk (for its bounding boxes).
+pub(super) const CHUNK: usize = 8;
+
 /// Scratch and output for building outlines.
 pub(super) struct Builder<'s> {
     pub(super) clip: &'s mut [ClipVertex],
     pub(super) spare: &'s mut [ClipVertex],
     pub(super) order: &'s mut [u32],
+    /// Bounding boxes (x0, y0, x1, y1) of the parent outline's edges, `CHUNK` at a time.
+    pub(super) chunks: [[i64; 4]; MAX_OUTLINE / CHUNK + 1],
+}
+
+/// Fills `chunks` with the boxes of `outline`'s edges taken `CHUNK` at a time; returns how
+/// many.
+pub(super) fn chunk_boxes(outline: &[[i64; 2]], chunks: &mut [[i64; 4]]) -> usize {
+    let m = outline.len();
+    let count = m.div_ceil(CHUNK);
+    for (c, b) in chunks[..count].iter_mut().enumerate() {
+        let mut bounds = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
+        for i in c * CHUNK..=((c + 1) * CHUNK).min(m) {
+            let p = outline[i % m];
+            bounds = [bounds[0].min(p[0]), bounds[1].min(p[1]), bounds[2].max(p[0]), bounds[3].max(p[1])];
+        }
+        *b = bounds;
+    }
+    count
+}
+
+/// Calls `visit` with each edge of `outline` whose box meets [low, high] (widened by
+/// `slack`), chunk by chunk, until it returns true.
+fn edges_near(
+    outline: &[[i64; 2]],
+    chunks: &[[i64; 4]],
+    (low, high): ([i64; 2], [i64; 2]),
+    slack: i64,
+    mut visit: impl FnMut(usize) -> bool,
+) {
+    let m = outline.len();
+    for (c, b) in chunks.iter().enumerate() {
+        if b[2] < low[0] - slack || b[0] > high[0] + slack || b[3] < low[1] - slack || b[1] > high[1] + slack {
+            continue;
+        }
+        for e in c * CHUNK..((c + 1) * CHUNK).min(m) {
+            let (p, q) = (outline[e], outline[(e + 1) % m]);
+            if (0..2).any(|k| p[k].max(q[k]) < low[k] - slack || p[k].min(q[k]) > high[k] + slack) {
+                continue;
+            }
+            if visit(e) {
+                return;
+            }
+        }
+    }
 }
 
 impl Builder<'_> {
@@ -211,6 +258,7 @@ impl Builder<'_> {
         if n0 > self.clip.len() {
             return Err(OutlineFull);
         }
+        let chunk_count = chunk_boxes(parent, &mut self.chunks);
         for (k, p) in parent.iter().enumerate() {
             self.clip[k] = ClipVertex { at: f.in_frame(*p), label: PARENT_EDGE | k as u32 };
         }
@@ -257,7 +305,7 @@ impl Builder<'_> {
                 farthest = reach(&self.clip[..n]);
             }
         }
-        self.finish(f, site, neighbours, parent, n, out)
+        self.finish(f, site, neighbours, (parent, chunk_count), n, out)
     }
 
     /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count, or
@@ -339,7 +387,7 @@ impl Builder<'_> {
         f: &Frame,
         a: &Site,
         neighbours: &[Site],
-        parent: &[[i64; 2]],
+        (parent, chunk_count): (&[[i64; 2]], usize),
         n: usize,
         out: &mut [[i64; 2]],
     ) -> Result<usize, OutlineFull> {
@@ -370,13 +418,14 @@ impl Builder<'_> {
             // non-convex parent bridges such crossings; the sibling has the pieces).
             let b = &neighbours[label as usize];
             let mut pieces = [start; MAX_CROSSINGS + 2];
-            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), parent, &mut pieces) } else { 0 };
+            let near = (parent, &self.chunks[..chunk_count]);
+            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, &mut pieces) } else { 0 };
             pieces[count + 1] = end;
             for w in pieces[..count + 2].windows(2) {
                 push(w[0].fixed, &mut written)?;
                 if f.perturbation > 0.0 && f.depth > 0 {
                     let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
-                    let inner = perturb(f, a, b, (&w[0], &w[1]), parent, &mut points);
+                    let inner = perturb(f, a, b, (&w[0], &w[1]), near, &mut points);
                     for p in &points[1..inner] {
                         push(*p, &mut written)?;
                     }
@@ -408,7 +457,7 @@ fn crossings(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    parent: &[[i64; 2]],
+    (parent, chunks): (&[[i64; 2]], &[[i64; 4]]),
     out: &mut [Corner],
 ) -> usize {
     let (x, y) = (start.fixed, end.fixed);
@@ -416,16 +465,13 @@ fn crossings(
     let m = parent.len();
     let mut found = 0;
     let mut along = [0i128; MAX_CROSSINGS + 2];
-    for e in 0..m {
+    edges_near(parent, chunks, (low, high), 0, |e| {
         let (p, q) = (parent[e], parent[(e + 1) % m]);
-        if (0..2).any(|k| p[k].max(q[k]) < low[k] || p[k].min(q[k]) > high[k]) {
-            continue;
-        }
         let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
         let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
         let proper = ((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0));
         if !proper || found == MAX_CROSSINGS {
-            continue;
+            return false;
         }
         let c = bisector_meets_edge(f, a, b, p, q);
         // Order by position along start → end.
@@ -440,7 +486,8 @@ fn crossings(
         out[i] = c;
         along[i] = t;
         found += 1;
-    }
+        false
+    });
     found
 }
 
@@ -474,7 +521,7 @@ fn perturb(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    parent: &[[i64; 2]],
+    (parent, chunks): (&[[i64; 2]], &[[i64; 4]]),
     points: &mut [[i64; 2]],
 ) -> usize {
     let (lo, hi) = sorted2(a, b);
@@ -555,22 +602,18 @@ fn perturb(
         let slack = 1i64 << (f.shift - BASE_BITS);
         let m = parent.len();
         let mut near = false;
-        for e in 0..m {
-            let (pr, ps) = (parent[e], parent[(e + 1) % m]);
-            if (0..2).any(|k| pr[k].max(ps[k]) < low[k] - slack || pr[k].min(ps[k]) > high[k] + slack) {
-                continue;
-            }
+        edges_near(parent, chunks, (low, high), slack, |e| {
             near = true;
-            let (r, s) = (f.unfixed(pr, lo), f.unfixed(ps, lo));
-            if line.windows(2).any(|w| cross(w[0], w[1], r, s)) {
-                blocked = true;
-                break;
-            }
-        }
+            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[(e + 1) % m], lo));
+            blocked = line.windows(2).any(|w| cross(w[0], w[1], r, s));
+            blocked
+        });
         // With no crossing, only a first or last piece leaving from an end on the outline
         // can lie outside: its inner end tells.
         if near && !blocked {
-            blocked = [line[1], line[pieces - 1]].iter().any(|q| !super::scan::contains(parent, f.fixed(*q, lo)));
+            blocked = [line[1], line[pieces - 1]]
+                .iter()
+                .any(|q| !super::scan::contains_chunked(parent, chunks, CHUNK, f.fixed(*q, lo)));
         }
     }
     if !inside || blocked {

@@ -261,13 +261,15 @@ impl Build<'_> {
             hi = [hi[0].max(v[0]), hi[1].max(v[1])];
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
+        let mut boxes = [[0i64; 4]; MAX_OUTLINE / cell::CHUNK + 1];
+        let chunks = cell::chunk_boxes(outline, &mut boxes);
         let base = level * MAX_CHILDREN;
         let mut count = 0;
         for j in r[1]..=r[3] {
             for i in r[0]..=r[2] {
                 let s = lattice.site(i, j);
                 let p = f.site_fixed(&s);
-                if scan::contains(outline, p) {
+                if scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
                     if count == MAX_CHILDREN {
                         return Err(SkinError::Capacity);
                     }
@@ -330,7 +332,12 @@ impl<'a> Skin<'a> {
             vertices: buffers.vertices,
             vertex_count: 0,
             sites: buffers.sites,
-            builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
+            builder: Builder {
+                clip,
+                spare,
+                order: &mut buffers.words[..MAX_CHILDREN],
+                chunks: [[0; 4]; MAX_OUTLINE / 8 + 1],
+            },
         };
         let lattice = lattices[0];
         let f = frames[0];

@@ -22,9 +22,26 @@ fn crosses(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
 }
 
 /// Whether `outline` contains `p` (even–odd rule, fixed point).
-pub(super) fn contains(outline: &[[i64; 2]], p: [i64; 2]) -> bool {
+#[cfg(test)]
+fn contains(outline: &[[i64; 2]], p: [i64; 2]) -> bool {
     let n = outline.len();
     (0..n).filter(|&i| crosses(outline[i], outline[(i + 1) % n], p)).count() % 2 == 1
+}
+
+/// [`contains`], passing over runs of `chunk` edges whose boxes (x0, y0, x1, y1) in `boxes`
+/// the ray from `p` towards +x cannot meet.
+pub(super) fn contains_chunked(outline: &[[i64; 2]], boxes: &[[i64; 4]], chunk: usize, p: [i64; 2]) -> bool {
+    let n = outline.len();
+    let mut inside = false;
+    for (c, b) in boxes.iter().enumerate() {
+        if b[1] > p[1] || b[3] < p[1] || b[2] < p[0] {
+            continue;
+        }
+        for i in c * chunk..((c + 1) * chunk).min(n) {
+            inside ^= crosses(outline[i], outline[(i + 1) % n], p);
+        }
+    }
+    inside
 }
 
 /// Calls `visit(column, row)` for every pixel whose centre `outline` (fixed point of `shift`
