@@ -25,8 +25,10 @@
 
 mod grid;
 pub mod params;
+pub mod presets;
 
 pub use params::{GlassParamError, GlassParams};
+pub use presets::{PRESETS, preset};
 
 use grid::{Buckets, Grid, NONE};
 

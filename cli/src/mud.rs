@@ -1,0 +1,261 @@
+//! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
+
+use hibi_core::mud::regions::CELL_STROKE_WIDTH;
+use hibi_core::mud::{Boundary, CrackStatistics, Drive, Mud, MudParamError, MudParams, MudRender, Solver, Topology};
+
+use crate::Failure;
+use crate::args::{BoundaryArg, DriveArg, MudOptions, SolverArg, TopologyArg};
+use crate::image::{CrackMaps, Look};
+use crate::progress::Progress;
+
+/// The parameters: the preset's (or the defaults), then every option given.
+pub fn params(preset: Option<&str>, seed: Option<u64>, o: &MudOptions) -> MudParams {
+    let mut p = preset.and_then(hibi_core::mud::preset).unwrap_or_default();
+    if let Some(v) = o.topology {
+        p.topology = match v {
+            TopologyArg::Hex => Topology::Hexagonal,
+            TopologyArg::Square => Topology::Square,
+        };
+    }
+    if let Some(v) = o.boundary {
+        p.boundary = match v {
+            BoundaryArg::Open => Boundary::Open,
+            BoundaryArg::Periodic => Boundary::Periodic,
+        };
+    }
+    if let Some(v) = o.solver {
+        p.solver = match v {
+            SolverArg::QuasiStatic => Solver::QuasiStatic,
+            SolverArg::Explicit => Solver::Explicit,
+        };
+    }
+    if let Some(v) = o.drive {
+        p.drive = match v {
+            DriveArg::Shrink => Drive::Shrink,
+            DriveArg::Growth => Drive::Growth,
+        };
+    }
+    let set = |field: &mut f32, value: Option<f32>| {
+        if let Some(v) = value {
+            *field = v;
+        }
+    };
+    p.seed = seed.unwrap_or(p.seed);
+    p.columns = o.columns.unwrap_or(p.columns);
+    p.rows = o.rows.unwrap_or(p.rows);
+    set(&mut p.layer_thickness, o.layer_thickness);
+    set(&mut p.element_size, o.element_size);
+    set(&mut p.long_step, o.long_step);
+    set(&mut p.short_step, o.short_step);
+    set(&mut p.shrink_ratio, o.shrink_ratio);
+    set(&mut p.displacement_tolerance, o.displacement_tolerance);
+    set(&mut p.damping_factor, o.damping_factor);
+    set(&mut p.density, o.density);
+    set(&mut p.young_modulus, o.young_modulus);
+    set(&mut p.shear_modulus, o.shear_modulus);
+    set(&mut p.break_stretch_mean, o.break_stretch_mean);
+    set(&mut p.break_stretch_spread, o.break_stretch_spread);
+    set(&mut p.anisotropy_direction, o.anisotropy_direction.map(f32::to_radians));
+    set(&mut p.anisotropy_ratio, o.anisotropy_ratio);
+    set(&mut p.stiffness_anisotropy_ratio, o.stiffness_anisotropy_ratio);
+    set(&mut p.target_shrink, o.target_shrink);
+    set(&mut p.target_crack_density, o.target_crack_density);
+    p
+}
+
+/// The raster: `size`, or 4 pixels per lattice spacing (256 to 2048 wide) at the domain's
+/// aspect; stroke options as given.
+pub fn view(params: &MudParams, size: Option<[u32; 2]>, o: &MudOptions) -> MudRender {
+    let [width, height] = size.unwrap_or_else(|| default_size(params, (params.columns * 4).clamp(256, 2048)));
+    let d = MudRender::default();
+    MudRender {
+        width,
+        height,
+        width_scale: o.width_scale.unwrap_or(d.width_scale),
+        min_width: o.min_width.unwrap_or_else(|| drawn_width(params, width)),
+        groove_depth: o.groove_depth.unwrap_or(d.groove_depth),
+        offset: o.offset.unwrap_or(d.offset),
+    }
+}
+
+/// The narrowest stroke by default: the width the core measures cells on
+/// ([`CELL_STROKE_WIDTH`] spacings, enough to join the dashes a straight crack breaks into),
+/// at least one pixel, for a raster `width` pixels wide.
+pub fn drawn_width(params: &MudParams, width: u32) -> f32 {
+    let pixels_per_spacing = width as f32 / params.lattice().extent()[0];
+    (CELL_STROKE_WIDTH * pixels_per_spacing).max(1.0)
+}
+
+/// A raster `width` pixels wide at the aspect of the lattice's domain.
+pub fn default_size(params: &MudParams, width: u32) -> [u32; 2] {
+    let [w, h] = params.lattice().extent();
+    [width, ((width as f32 * h / w).round() as u32).max(1)]
+}
+
+/// The option a parameter error is about.
+fn option(e: MudParamError) -> &'static str {
+    use MudParamError::*;
+    match e {
+        Columns => "--columns",
+        Rows => "--rows",
+        LayerThickness => "--layer-thickness",
+        ElementSize => "--element-size",
+        LongStep => "--long-step",
+        ShortStep => "--short-step",
+        ShrinkRatio => "--shrink-ratio",
+        DisplacementTolerance => "--displacement-tolerance",
+        DampingFactor => "--damping-factor",
+        Density => "--density",
+        YoungModulus => "--young-modulus",
+        ShearModulus => "--shear-modulus",
+        BreakStretchMean => "--break-stretch-mean",
+        BreakStretchSpread => "--break-stretch-spread",
+        AnisotropyDirection => "--anisotropy-direction",
+        AnisotropyRatio => "--anisotropy-ratio",
+        StiffnessAnisotropyRatio => "--stiffness-anisotropy-ratio",
+        TargetShrink => "--target-shrink",
+        TargetCrackDensity => "--target-crack-density",
+        SizeOverflow => "--columns/--rows",
+        Scale => "--young-modulus/--shear-modulus/--element-size/--layer-thickness/--density/--long-step",
+    }
+}
+
+/// Checks the parameters and the raster; a usage error names the option.
+pub fn check(params: &MudParams, render: &MudRender) -> Result<(), Failure> {
+    params.memory().map_err(|e| Failure::invalid("mud", option(e), e.to_string()))?;
+    let raster = [
+        (render.width_scale.is_finite() && render.width_scale >= 0.0, "--width-scale", "finite and >= 0"),
+        (render.min_width.is_finite() && render.min_width >= 0.0, "--min-width", "finite and >= 0"),
+        (render.groove_depth.is_finite() && render.groove_depth >= 0.0, "--groove-depth", "finite and >= 0"),
+        (render.offset.iter().all(|v| v.is_finite()), "--offset", "finite"),
+    ];
+    match raster.iter().find(|(ok, _, _)| !ok) {
+        Some(&(_, name, why)) => Err(Failure::invalid("mud", name, format!("must be {why}"))),
+        None => Ok(()),
+    }
+}
+
+/// A finished run's maps and what to say about it.
+pub struct MudRun {
+    /// The rasters, one set per view asked for.
+    pub maps: Vec<CrackMaps>,
+    /// Crack statistics of the run.
+    pub statistics: CrackStatistics,
+    /// The misfit the run ended at.
+    pub shrink: f32,
+}
+
+impl MudRun {
+    /// One line about the run.
+    pub fn summary(&self) -> String {
+        let s = &self.statistics;
+        let cells = match s.cells {
+            0 | 1 => "no closed cells".to_string(),
+            n => format!("{n} cells of {:.0} cm² on average", s.mean_cell_area),
+        };
+        format!("shrink {:.2} %, crack density {:.3}/cm, {cells}", 100.0 * self.shrink, s.crack_density)
+    }
+}
+
+/// How far a run is, 0 to 1, if its end is known.
+fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
+    let by_shrink = if params.target_shrink > 0.0 { shrink / params.target_shrink } else { 0.0 };
+    let by_density = if params.target_crack_density > 0.0 { density / params.target_crack_density } else { 0.0 };
+    by_shrink.max(by_density).clamp(0.0, 1.0)
+}
+
+/// Runs `params` to its end, reporting to `progress`, and draws the maps of every view. The
+/// parameters and views must have passed [`check`].
+pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> MudRun {
+    let memory = params.memory().expect("checked parameters");
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory of the size asked for");
+    loop {
+        let p = mud.step(2_000_000);
+        progress.set_fraction(fraction(params, p.shrink, p.crack_density));
+        if p.finished {
+            break;
+        }
+    }
+    let maps = views
+        .iter()
+        .map(|view| {
+            let pixels = view.width as usize * view.height as usize;
+            let mut maps = CrackMaps {
+                width: view.width,
+                height: view.height,
+                mask: vec![0; pixels],
+                heights: vec![0.0; pixels],
+                time: vec![0.0; pixels],
+                periodic: params.boundary == Boundary::Periodic,
+                look: Look::Mud,
+            };
+            let drawn = "the view was checked";
+            mud.render_mask(view, &mut maps.mask).expect(drawn);
+            mud.render_height(view, &mut maps.heights).expect(drawn);
+            mud.render_time(view, &mut maps.time).expect(drawn);
+            maps
+        })
+        .collect();
+    let cells = mud.statistics_pixels();
+    let (mut mask, mut labels) = (vec![0u8; cells], vec![0u32; cells]);
+    let statistics = mud.statistics(&mut mask, &mut labels).expect("scratch of the size asked for");
+    MudRun { maps, statistics, shrink: mud.progress().shrink }
+}
+
+/// Every parameter as (option, value), in the order of `--help`.
+pub fn options(p: &MudParams, r: &MudRender) -> Vec<(&'static str, String)> {
+    let topology = match p.topology {
+        Topology::Hexagonal => "hex",
+        Topology::Square => "square",
+    };
+    let boundary = match p.boundary {
+        Boundary::Open => "open",
+        Boundary::Periodic => "periodic",
+    };
+    let solver = match p.solver {
+        Solver::QuasiStatic => "quasi-static",
+        Solver::Explicit => "explicit",
+    };
+    let drive = match p.drive {
+        Drive::Shrink => "shrink",
+        Drive::Growth => "growth",
+    };
+    vec![
+        ("--seed", p.seed.to_string()),
+        ("--size", format!("{}x{}", r.width, r.height)),
+        ("--topology", topology.into()),
+        ("--boundary", boundary.into()),
+        ("--solver", solver.into()),
+        ("--drive", drive.into()),
+        ("--columns", p.columns.to_string()),
+        ("--rows", p.rows.to_string()),
+        ("--layer-thickness", p.layer_thickness.to_string()),
+        ("--element-size", p.element_size.to_string()),
+        ("--long-step", p.long_step.to_string()),
+        ("--short-step", p.short_step.to_string()),
+        ("--shrink-ratio", p.shrink_ratio.to_string()),
+        ("--displacement-tolerance", p.displacement_tolerance.to_string()),
+        ("--damping-factor", p.damping_factor.to_string()),
+        ("--density", p.density.to_string()),
+        ("--young-modulus", p.young_modulus.to_string()),
+        ("--shear-modulus", p.shear_modulus.to_string()),
+        ("--break-stretch-mean", p.break_stretch_mean.to_string()),
+        ("--break-stretch-spread", p.break_stretch_spread.to_string()),
+        ("--anisotropy-direction", degrees(p.anisotropy_direction)),
+        ("--anisotropy-ratio", p.anisotropy_ratio.to_string()),
+        ("--stiffness-anisotropy-ratio", p.stiffness_anisotropy_ratio.to_string()),
+        ("--target-shrink", p.target_shrink.to_string()),
+        ("--target-crack-density", p.target_crack_density.to_string()),
+        ("--width-scale", r.width_scale.to_string()),
+        ("--min-width", r.min_width.to_string()),
+        ("--groove-depth", r.groove_depth.to_string()),
+        ("--offset", format!("{},{}", r.offset[0], r.offset[1])),
+    ]
+}
+
+/// Radians as degrees, rounded to what the command line would have been given.
+pub fn degrees(radians: f32) -> String {
+    let d = f64::from(radians).to_degrees();
+    format!("{}", (d * 1e4).round() / 1e4)
+}

@@ -1,0 +1,297 @@
+//! `hibi skin`: Model C, skin from hierarchical Voronoi cells, through `hibi_core::skin`'s
+//! public API.
+
+use hibi_core::Spread;
+use hibi_core::skin::{
+    MAX_SEGMENTS, Profile, ShadeParams, SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinParamError,
+    SkinParams, shade,
+};
+
+use crate::Failure;
+use crate::args::{Layer, LayoutArg, PerLevel, SkinOptions, SpreadArg};
+use crate::image::{Image, Pixels, encode_normal};
+
+/// The paper's image size; the presets' spacings are meant for it.
+pub const PAPER_SIZE: u32 = 400;
+
+/// The parameters (the preset's or the defaults, then every option given) and the light.
+pub fn params(
+    preset: Option<&str>,
+    seed: Option<u64>,
+    size: Option<[u32; 2]>,
+    o: &SkinOptions,
+) -> Result<(SkinParams, ShadeParams), Failure> {
+    let mut p = preset.and_then(hibi_core::skin::preset).unwrap_or_default();
+    p.seed = seed.unwrap_or(p.seed);
+    if let Some([w, h]) = size {
+        (p.width, p.height) = (w, h);
+    }
+    if let Some(layout) = o.layout {
+        p.layout = match layout {
+            LayoutArg::Triangular => SiteLayout::Triangular,
+            LayoutArg::Square => SiteLayout::Square,
+            LayoutArg::Random => SiteLayout::Random,
+        };
+    }
+    if let Some(jitter) = o.jitter {
+        p.jitter = match jitter {
+            SpreadArg::Uniform => Spread::Uniform,
+            SpreadArg::Normal => Spread::Normal,
+        };
+    }
+    p.jitter_ratio = o.jitter_ratio.unwrap_or(p.jitter_ratio);
+    p.periodic = o.periodic.unwrap_or(p.periodic);
+    p.levels = o.levels.unwrap_or(p.levels);
+    // Per-level values, each for a level the skin has.
+    let levels = p.levels as usize;
+    let beyond = |name: &str, level: usize| {
+        Failure::invalid("skin", name, format!("level {} is beyond the skin's {levels} level(s) (--levels)", level + 1))
+    };
+    fn each<T: Clone>(
+        values: &[PerLevel<T>],
+        name: &'static str,
+        levels: usize,
+        beyond: &dyn Fn(&str, usize) -> Failure,
+        mut apply: impl FnMut(usize, T),
+    ) -> Result<(), Failure> {
+        for v in values {
+            if v.level >= levels {
+                return Err(beyond(name, v.level));
+            }
+            apply(v.level, v.value.clone());
+        }
+        Ok(())
+    }
+    let level = &mut p.level;
+    each(&o.spacing, "--spacing", levels, &beyond, |l, v| level[l].spacing = v)?;
+    each(&o.perturbation, "--perturbation", levels, &beyond, |l, v| level[l].perturbation = v)?;
+    each(&o.perturbation_decay, "--perturbation-decay", levels, &beyond, |l, v| level[l].perturbation_decay = v)?;
+    each(&o.perturbation_depth, "--perturbation-depth", levels, &beyond, |l, v| level[l].perturbation_depth = v)?;
+    each(&o.stretch, "--stretch", levels, &beyond, |l, v| level[l].stretch = v)?;
+    each(&o.roundness, "--roundness", levels, &beyond, |l, v| level[l].roundness = v)?;
+    each(&o.profile, "--profile", levels, &beyond, |l, points| level[l].profile = profile(&points))?;
+    let d = ShadeParams::default();
+    let light = ShadeParams {
+        light: o.light.unwrap_or(d.light),
+        ridge: o.ridge.unwrap_or(d.ridge),
+        furrow: o.furrow.unwrap_or(d.furrow),
+        ambient: o.ambient.unwrap_or(d.ambient),
+        specular: o.specular.unwrap_or(d.specular),
+    };
+    Ok((p, light))
+}
+
+/// A profile from 3k + 1 points (checked by the parser).
+fn profile(points: &[[f32; 2]]) -> Profile {
+    let mut out = Profile::cubic([points[0], points[1], points[2], points[3]]);
+    out.segments = ((points.len() - 1) / 3).min(MAX_SEGMENTS) as u32;
+    out.points[..points.len()].copy_from_slice(points);
+    out
+}
+
+/// A preset at `size`: its spacings scaled from the paper's 400 px, so that the picture shows
+/// the paper's field (the finest level no finer than 1 px).
+pub fn scaled_preset(name: &str, size: u32) -> SkinParams {
+    let mut p = hibi_core::skin::preset(name).expect("a listed preset");
+    let scale = size as f32 / PAPER_SIZE as f32;
+    (p.width, p.height) = (size, size);
+    for l in &mut p.level {
+        l.spacing = (l.spacing * scale).max(1.0);
+    }
+    p
+}
+
+/// The option a parameter error is about.
+fn option(e: SkinParamError) -> &'static str {
+    use SkinParamError::*;
+    match e {
+        Size => "--size",
+        JitterRatio => "--jitter-ratio",
+        Levels => "--levels",
+        Spacing => "--spacing",
+        Perturbation => "--perturbation/--perturbation-decay",
+        PerturbationDepth => "--perturbation-depth",
+        Stretch => "--stretch",
+        ProfileSegments | ProfilePoints => "--profile",
+        Roundness => "--roundness",
+        Capacity => "--size/--spacing",
+    }
+}
+
+/// The core's message for a parameter error.
+fn message(e: SkinParamError) -> String {
+    e.message().to_string_lossy().into_owned()
+}
+
+/// Checks the parameters, the light and the layer; a usage error names the option.
+pub fn check(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<(), Failure> {
+    params.memory().map_err(|e| Failure::invalid("skin", option(e), message(e)))?;
+    let unit = |c: [f32; 3]| c.iter().all(|v| (0.0..=1.0).contains(v));
+    let length = light.light.iter().map(|v| v * v).sum::<f32>();
+    let checks = [
+        (length.is_finite() && length > 0.0, "--light", "must be a finite, non-zero direction"),
+        (unit(light.ridge), "--ridge", "must be three numbers in [0, 1]"),
+        (unit(light.furrow), "--furrow", "must be three numbers in [0, 1]"),
+        ((0.0..=1.0).contains(&light.ambient), "--ambient", "must be in [0, 1]"),
+        (light.specular.is_finite() && light.specular >= 0.0, "--specular", "must be finite and >= 0"),
+        (layer != Layer::Time, "--layer", "skin does not grow, so it has no time layer (mask, height, normal, shaded)"),
+    ];
+    match checks.iter().find(|(ok, _, _)| !ok) {
+        Some(&(_, name, why)) => Err(Failure::invalid("skin", name, why.into())),
+        None => Ok(()),
+    }
+}
+
+/// A built skin's picture and what to say about it.
+pub struct SkinRun {
+    /// The layer asked for.
+    pub image: Image,
+    /// Cells per level.
+    pub cells: Vec<usize>,
+}
+
+impl SkinRun {
+    /// One line about the skin.
+    pub fn summary(&self) -> String {
+        let cells: Vec<String> = self.cells.iter().map(usize::to_string).collect();
+        format!("{} cells per level", cells.join(" / "))
+    }
+}
+
+/// Builds the skin and renders `layer`. The parameters must have passed [`check`].
+pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<SkinRun, Failure> {
+    let m = params.memory().expect("checked parameters");
+    let mut cells = vec![Default::default(); m.cells];
+    let mut vertices = vec![[0i64; 2]; m.vertices];
+    let (mut sites, mut clip, mut words) =
+        (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
+    let buffers = SkinBuffers {
+        cells: &mut cells,
+        vertices: &mut vertices,
+        sites: &mut sites,
+        clip: &mut clip,
+        words: &mut words,
+    };
+    let skin = Skin::new(params, buffers).map_err(failure)?;
+    let (width, height) = (params.width, params.height);
+    let pixels = width as usize * height as usize;
+    let mut counts = vec![0usize; params.levels as usize];
+    for c in skin.cells() {
+        counts[c.level as usize] += 1;
+    }
+    let image = match layer {
+        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&skin)?) },
+        Layer::Height | Layer::Normal | Layer::Shaded => {
+            let mut h = vec![0.0f32; pixels];
+            let mut n = vec![[0.0f32; 3]; pixels];
+            skin.render::<f32>(SkinLayers { height: Some(&mut h), normal: Some(&mut n), ..SkinLayers::default() })
+                .map_err(failure)?;
+            let pixels = match layer {
+                Layer::Height => {
+                    let top = h.iter().copied().fold(0.0f32, f32::max);
+                    let top = if top > 0.0 { top } else { 1.0 };
+                    Pixels::Gray16(h.iter().map(|&v| (v / top * 65535.0).round().clamp(0.0, 65535.0) as u16).collect())
+                }
+                Layer::Normal => Pixels::Rgb8(n.iter().flat_map(|&v| encode_normal(v)).collect()),
+                _ => {
+                    let mut rgb = vec![[0u8; 3]; pixels];
+                    shade(&h, &n, light, &mut rgb).map_err(failure)?;
+                    Pixels::Rgb8(rgb.into_iter().flatten().collect())
+                }
+            };
+            Image { width, height, pixels }
+        }
+        Layer::Time => unreachable!("refused by check"),
+    };
+    Ok(SkinRun { image, cells: counts })
+}
+
+/// The furrow net: 255 on the outline of every level-1 cell, fainter for finer levels (a
+/// pixel is on an outline when its right or lower neighbour lies in another cell).
+fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
+    let p = skin.params();
+    let (w, h) = (p.width as usize, p.height as usize);
+    let mut mask = vec![0u8; w * h];
+    let mut cell = vec![0u32; w * h];
+    for level in 0..p.levels {
+        skin.render::<f32>(SkinLayers { cell: Some(&mut cell), cell_level: level, ..SkinLayers::default() })
+            .map_err(failure)?;
+        let value = [255, 160, 100, 64][level as usize];
+        for y in 0..h {
+            for x in 0..w {
+                let here = cell[y * w + x];
+                let right = if x + 1 < w { Some(y * w + x + 1) } else { p.periodic.then_some(y * w) };
+                let below = if y + 1 < h { Some((y + 1) * w + x) } else { p.periodic.then_some(x) };
+                if [right, below].into_iter().flatten().any(|j| cell[j] != here) {
+                    let m = &mut mask[y * w + x];
+                    *m = (*m).max(value);
+                }
+            }
+        }
+    }
+    Ok(mask)
+}
+
+/// A build or render failure.
+fn failure(e: SkinError) -> Failure {
+    match e {
+        SkinError::Param(p) => Failure::invalid("skin", option(p), message(p)),
+        SkinError::Capacity => Failure::Runtime(
+            "skin: a cell outline or a cell's centre points outgrew their fixed capacity: lower \
+             --perturbation-depth, or make finer levels less fine (--spacing)"
+                .into(),
+        ),
+        SkinError::Shade => Failure::invalid("skin", "--light", "must be a finite, non-zero direction".into()),
+        other => Failure::Runtime(format!("skin: internal error: {other:?}")),
+    }
+}
+
+/// A profile as its points, `x,z x,z ...`.
+fn points(profile: &Profile) -> String {
+    let points: Vec<String> = profile.used().iter().map(|p| format!("{},{}", p[0], p[1])).collect();
+    points.join(" ")
+}
+
+/// Every parameter as (option, value), in the order of `--help`; per-level options once per
+/// level the skin has.
+pub fn options(p: &SkinParams, light: &ShadeParams) -> Vec<(&'static str, String)> {
+    let layout = match p.layout {
+        SiteLayout::Triangular => "triangular",
+        SiteLayout::Square => "square",
+        SiteLayout::Random => "random",
+    };
+    let jitter = match p.jitter {
+        Spread::Uniform => "uniform",
+        Spread::Normal => "normal",
+    };
+    let mut out = vec![
+        ("--seed", p.seed.to_string()),
+        ("--size", format!("{}x{}", p.width, p.height)),
+        ("--layout", layout.into()),
+        ("--jitter", jitter.into()),
+        ("--jitter-ratio", p.jitter_ratio.to_string()),
+        ("--periodic", p.periodic.to_string()),
+        ("--levels", p.levels.to_string()),
+    ];
+    for (k, l) in p.level.iter().enumerate().take(p.levels as usize) {
+        let at = |v: String| if k == 0 { v } else { format!("{}={v}", k + 1) };
+        out.extend([
+            ("--spacing", at(format!("{}", (l.spacing * 1e4).round() / 1e4))),
+            ("--perturbation", at(l.perturbation.to_string())),
+            ("--perturbation-decay", at(l.perturbation_decay.to_string())),
+            ("--perturbation-depth", at(l.perturbation_depth.to_string())),
+            ("--stretch", at(format!("{},{}", l.stretch[0], l.stretch[1]))),
+            ("--profile", at(points(&l.profile))),
+            ("--roundness", at(l.roundness.to_string())),
+        ]);
+    }
+    let triple = |v: [f32; 3]| format!("{},{},{}", v[0], v[1], v[2]);
+    out.extend([
+        ("--light", triple(light.light)),
+        ("--ridge", triple(light.ridge)),
+        ("--furrow", triple(light.furrow)),
+        ("--ambient", light.ambient.to_string()),
+        ("--specular", light.specular.to_string()),
+    ]);
+    out
+}
