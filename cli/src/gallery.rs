@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 use std::fs;
-use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use hibi_core::glass::GlassParams;
@@ -143,182 +143,189 @@ fn describe(
     (command, table)
 }
 
-/// The gallery's writer: the directory, the files written so far, the page's cards.
-struct Gallery {
-    dir: PathBuf,
+/// What every figure is rendered with.
+#[derive(Clone, Copy)]
+struct Settings {
+    /// Width of every picture.
     size: u32,
+    /// Frames of the growth animations.
     frames: u32,
-    files: usize,
-    cards: Vec<(&'static str, Card)>,
-    extras: Vec<Card>,
 }
 
-impl Gallery {
-    /// Writes `image` as `name` in the gallery.
-    fn write(&mut self, name: &str, image: &Image) -> Result<(), Failure> {
-        self.write_bytes(name, output::encode_png(image))
-    }
+/// One figure, rendered: its files (name, PNG bytes) and its card. fig6a and fig6b also
+/// give their picture to the square-vs-hex comparison, fig9b the card of the tiled texture.
+struct Piece {
+    model: &'static str,
+    files: Vec<(String, Vec<u8>)>,
+    card: Card,
+    comparison: Option<Image>,
+    extra_card: Option<Card>,
+}
 
-    fn write_bytes(&mut self, name: &str, bytes: Vec<u8>) -> Result<(), Failure> {
-        output::write_file(&self.dir.join(name), bytes)?;
-        self.files += 1;
-        Ok(())
-    }
+/// The mud view for a preset: `width` pixels wide at the domain's aspect, drawn as the
+/// command line draws by default.
+fn mud_view(params: &MudParams, width: u32) -> MudRender {
+    mud::view(params, Some(mud::default_size(params, width)), &MudOptions::default())
+}
 
-    /// The mud view for a preset: `width` pixels wide at the domain's aspect, drawn as the
-    /// command line draws by default.
-    fn mud_view(&self, params: &MudParams, width: u32) -> MudRender {
-        mud::view(params, Some(mud::default_size(params, width)), &MudOptions::default())
-    }
-
-    /// Every mud figure, the square-vs-hex comparison and the tiled texture.
-    fn mud(&mut self, progress: &Progress) -> Result<(), Failure> {
-        let mut square_and_hex: Vec<Image> = Vec::new();
-        for (preset, caption) in MUD {
-            progress.start(&format!("mud {preset}"));
-            let params = hibi_core::mud::preset(preset).expect("a listed preset");
-            let view = self.mud_view(&params, self.size);
-            // fig9b, a 64 cm periodic plate, is also drawn at half size to be laid 2×2.
-            let views = if preset == "fig9b" { vec![view, self.mud_view(&params, self.size / 2)] } else { vec![view] };
-            let run = mud::simulate(&params, &views, &Progress::hidden());
-            let maps = &run.maps[0];
-            let file = format!("mud-{preset}.png");
-            let mut extra = Vec::new();
-            let mut extra_command = String::new();
-            if preset == "fig10" {
-                for (k, frame) in maps.growth(GROWTH_STILLS).iter().enumerate() {
-                    let name = format!("mud-{preset}-{}.png", k + 1);
-                    self.write(&name, &frame.layer(Layer::Shaded, 2.0))?;
-                    extra.push(name);
-                }
-                let frames: Vec<Image> = maps.growth(self.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
-                self.write_bytes(&file, output::encode_apng(&frames, 80))?;
-                extra_command = format!(" --frames {}", self.frames);
-            } else {
-                self.write(&file, &maps.layer(Layer::Shaded, 2.0))?;
-            }
-            if preset == "fig6a" || preset == "fig6b" {
-                square_and_hex.push(maps.layer(Layer::Shaded, 2.0));
-            }
-            if preset == "fig9b" {
-                let half = &run.maps[1];
-                self.write("mud-tile-2x2.png", &half.layer(Layer::Shaded, 2.0).tiled(2, 2))?;
-                self.extras.push(Card {
-                    title: "A tileable texture".into(),
-                    caption: format!(
-                        "fig9b, a 64 cm plate on a periodic lattice, rendered at {}x{} and laid 2×2: the \
-                         copies meet without seams.",
-                        half.width, half.height
-                    ),
-                    file: "mud-tile-2x2.png".into(),
-                    extra: Vec::new(),
-                    summary: run.summary(),
-                    command: format!("hibi mud --preset fig9b --size {}x{}", half.width, half.height),
-                    parameters: Vec::new(),
-                });
-            }
-            let options = mud::options(&params, &view);
-            let defaults = mud::options(&MudParams::default(), &self.mud_view(&MudParams::default(), self.size));
-            let of_preset = options.clone();
-            let (command, parameters) = describe("mud", preset, &options, &of_preset, &defaults, &extra_command);
-            let card = Card {
-                title: figure(preset),
-                caption: caption.into(),
-                file,
-                extra,
-                summary: run.summary(),
-                command,
-                parameters,
-            };
-            self.cards.push(("mud", card));
-            progress.done();
+/// A mud figure. fig10 is the growth: six stills and the animation.
+fn mud_piece(s: Settings, preset: &'static str, caption: &str) -> Piece {
+    let params = hibi_core::mud::preset(preset).expect("a listed preset");
+    let view = mud_view(&params, s.size);
+    // fig9b, a 64 cm periodic plate, is also drawn at half size to be laid 2×2.
+    let views = if preset == "fig9b" { vec![view, mud_view(&params, s.size / 2)] } else { vec![view] };
+    let run = mud::simulate(&params, &views, &Progress::hidden());
+    let maps = &run.maps[0];
+    let file = format!("mud-{preset}.png");
+    let mut files = Vec::new();
+    let mut extra = Vec::new();
+    let mut extra_command = String::new();
+    if preset == "fig10" {
+        for (k, frame) in maps.growth(GROWTH_STILLS).iter().enumerate() {
+            let name = format!("mud-{preset}-{}.png", k + 1);
+            files.push((name.clone(), output::encode_png(&frame.layer(Layer::Shaded, 2.0))));
+            extra.push(name);
         }
-        // fig6b (square) then fig6a (hexagonal).
-        square_and_hex.reverse();
-        self.write("mud-square-vs-hex.png", &Image::row(&square_and_hex, 8, [255, 255, 255]))?;
-        self.extras.insert(
-            0,
-            Card {
-                title: "Square vs hexagonal elements".into(),
-                caption: "fig6b (left, square: axis-aligned, short cracks) and fig6a (right, hexagonal: \
-                          isotropic closed cells), the same material."
-                    .into(),
-                file: "mud-square-vs-hex.png".into(),
-                extra: Vec::new(),
-                summary: String::new(),
-                command: "hibi mud --preset fig6b; hibi mud --preset fig6a".into(),
-                parameters: Vec::new(),
-            },
-        );
-        Ok(())
+        let frames: Vec<Image> = maps.growth(s.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
+        files.push((file.clone(), output::encode_apng(&frames, 80)));
+        extra_command = format!(" --frames {}", s.frames);
+    } else {
+        files.push((file.clone(), output::encode_png(&maps.layer(Layer::Shaded, 2.0))));
     }
+    let comparison = matches!(preset, "fig6a" | "fig6b").then(|| maps.layer(Layer::Shaded, 2.0));
+    let extra_card = (preset == "fig9b").then(|| {
+        let half = &run.maps[1];
+        files.push(("mud-tile-2x2.png".into(), output::encode_png(&half.layer(Layer::Shaded, 2.0).tiled(2, 2))));
+        Card {
+            title: "A tileable texture".into(),
+            caption: format!(
+                "fig9b, a 64 cm plate on a periodic lattice, rendered at {}x{} and laid 2×2: the copies meet \
+                 without seams.",
+                half.width, half.height
+            ),
+            file: "mud-tile-2x2.png".into(),
+            extra: Vec::new(),
+            summary: run.summary(),
+            command: format!("hibi mud --preset fig9b --size {}x{}", half.width, half.height),
+            parameters: Vec::new(),
+        }
+    });
+    let options = mud::options(&params, &view);
+    let defaults = mud::options(&MudParams::default(), &mud_view(&MudParams::default(), s.size));
+    let (command, parameters) = describe("mud", preset, &options, &options, &defaults, &extra_command);
+    let card = Card {
+        title: figure(preset),
+        caption: caption.into(),
+        file,
+        extra,
+        summary: run.summary(),
+        command,
+        parameters,
+    };
+    Piece { model: "mud", files, card, comparison, extra_card }
+}
 
-    /// Every glass figure, and the growth of fig15a as an animation.
-    fn glass(&mut self, progress: &Progress) -> Result<(), Failure> {
-        let none = GlassOptions::default();
-        let default_params = GlassParams::default();
-        let default_view = glass::view(&default_params, Some([self.size, self.size]), &none);
-        let defaults = glass::options(&default_params, &[default_params.impact], &default_view);
-        for (preset, caption) in GLASS {
-            progress.start(&format!("glass {preset}"));
-            let (params, impacts) = glass::params(Some(preset), None, &none);
-            let view = glass::view(&params, Some([self.size, self.size]), &none);
-            let run = glass::simulate(&params, &impacts, &view, &Progress::hidden())?;
-            let file = format!("glass-{preset}.png");
-            self.write(&file, &run.maps.layer(Layer::Shaded, 2.0))?;
-            let mut extra = Vec::new();
-            if preset == "fig15a" {
-                let frames: Vec<Image> =
-                    run.maps.growth(self.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
-                let name = format!("glass-{preset}-growth.png");
-                self.write_bytes(&name, output::encode_apng(&frames, 80))?;
-                extra.push(name);
+/// A glass figure; fig15a also grows as an animation.
+fn glass_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece, Failure> {
+    let none = GlassOptions::default();
+    let (params, impacts) = glass::params(Some(preset), None, &none);
+    let view = glass::view(&params, Some([s.size, s.size]), &none);
+    let run = glass::simulate(&params, &impacts, &view, &Progress::hidden())?;
+    let file = format!("glass-{preset}.png");
+    let mut files = vec![(file.clone(), output::encode_png(&run.maps.layer(Layer::Shaded, 2.0)))];
+    let mut extra = Vec::new();
+    if preset == "fig15a" {
+        let frames: Vec<Image> = run.maps.growth(s.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
+        let name = format!("glass-{preset}-growth.png");
+        files.push((name.clone(), output::encode_apng(&frames, 80)));
+        extra.push(name);
+    }
+    let default_params = GlassParams::default();
+    let default_view = glass::view(&default_params, Some([s.size, s.size]), &none);
+    let defaults = glass::options(&default_params, &[default_params.impact], &default_view);
+    let options = glass::options(&params, &impacts, &view);
+    let (command, parameters) = describe("glass", preset, &options, &options, &defaults, "");
+    let card = Card {
+        title: figure(preset),
+        caption: caption.into(),
+        file,
+        extra,
+        summary: run.summary(),
+        command,
+        parameters,
+    };
+    Ok(Piece { model: "glass", files, card, comparison: None, extra_card: None })
+}
+
+/// A skin figure (Table 1), its spacings scaled to the gallery's size.
+fn skin_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece, Failure> {
+    let light = ShadeParams::default();
+    let params = skin::scaled_preset(preset, s.size);
+    let run = skin::render(&params, &light, Layer::Shaded)?;
+    let file = format!("skin-{preset}.png");
+    let files = vec![(file.clone(), output::encode_png(&run.image))];
+    let defaults = skin::options(&hibi_core::skin::SkinParams::default(), &light);
+    let options = skin::options(&params, &light);
+    let of_preset = skin::options(&hibi_core::skin::preset(preset).expect("a listed preset"), &light);
+    let (command, parameters) = describe("skin", preset, &options, &of_preset, &defaults, "");
+    let card = Card {
+        title: figure(preset),
+        caption: caption.into(),
+        file,
+        extra: Vec::new(),
+        summary: run.summary(),
+        command,
+        parameters,
+    };
+    Ok(Piece { model: "skin", files, card, comparison: None, extra_card: None })
+}
+
+/// Renders every figure, on as many threads as there are cores, in figure order.
+fn render_all(s: Settings, progress: &Progress) -> Result<Vec<Piece>, Failure> {
+    let jobs: Vec<(&'static str, &'static str, &'static str)> = MUD
+        .iter()
+        .map(|&(p, c)| ("mud", p, c))
+        .chain(GLASS.iter().map(|&(p, c)| ("glass", p, c)))
+        .chain(SKIN.iter().map(|&(p, c)| ("skin", p, c)))
+        .collect();
+    let next = AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(jobs.len());
+    let mut pieces: Vec<Option<Result<Piece, Failure>>> = (0..jobs.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    while let Some(&(model, preset, caption)) = jobs.get(next.fetch_add(1, Ordering::Relaxed)) {
+                        progress.start(&format!("{model} {preset}"));
+                        let piece = match model {
+                            "mud" => Ok(mud_piece(s, preset, caption)),
+                            "glass" => glass_piece(s, preset, caption),
+                            _ => skin_piece(s, preset, caption),
+                        };
+                        progress.done();
+                        done.push(((model, preset), piece));
+                    }
+                    done
+                })
+            })
+            .collect();
+        for handle in handles {
+            for (job, piece) in handle.join().expect("a gallery worker panicked") {
+                let at = jobs.iter().position(|&(m, p, _)| (m, p) == job).expect("a listed job");
+                pieces[at] = Some(piece);
             }
-            let options = glass::options(&params, &impacts, &view);
-            let of_preset = options.clone();
-            let (command, parameters) = describe("glass", preset, &options, &of_preset, &defaults, "");
-            let card = Card {
-                title: figure(preset),
-                caption: caption.into(),
-                file,
-                extra,
-                summary: run.summary(),
-                command,
-                parameters,
-            };
-            self.cards.push(("glass", card));
-            progress.done();
         }
-        Ok(())
-    }
+    });
+    pieces.into_iter().map(|p| p.expect("every job ran")).collect()
+}
 
-    /// Every skin figure (Table 1), its spacings scaled to the gallery's size.
-    fn skin(&mut self, progress: &Progress) -> Result<(), Failure> {
-        let light = ShadeParams::default();
-        let defaults = skin::options(&hibi_core::skin::SkinParams::default(), &light);
-        for (preset, caption) in SKIN {
-            progress.start(&format!("skin {preset}"));
-            let params = skin::scaled_preset(preset, self.size);
-            let run = skin::render(&params, &light, Layer::Shaded)?;
-            let file = format!("skin-{preset}.png");
-            self.write(&file, &run.image)?;
-            let options = skin::options(&params, &light);
-            let of_preset = skin::options(&hibi_core::skin::preset(preset).expect("a listed preset"), &light);
-            let (command, parameters) = describe("skin", preset, &options, &of_preset, &defaults, "");
-            let card = Card {
-                title: figure(preset),
-                caption: caption.into(),
-                file,
-                extra: Vec::new(),
-                summary: run.summary(),
-                command,
-                parameters,
-            };
-            self.cards.push(("skin", card));
-            progress.done();
-        }
-        Ok(())
-    }
+/// The gallery's pages: the figures' cards by model, and the extra pictures.
+struct Gallery {
+    size: u32,
+    frames: u32,
+    cards: Vec<(&'static str, Card)>,
+    extras: Vec<Card>,
 }
 
 /// `hibi gallery DIR`.
@@ -333,18 +340,45 @@ pub fn run(a: &GalleryArgs) -> Result<(), Failure> {
     fs::create_dir_all(&a.dir)
         .map_err(|e| Failure::Runtime(format!("cannot create the directory {}: {e}", shown(&a.dir))))?;
     output::check_writable(&a.dir.join("index.html"))?;
-    let mut gallery =
-        Gallery { dir: a.dir.clone(), size: a.size, frames: a.frames, files: 0, cards: Vec::new(), extras: Vec::new() };
+    let settings = Settings { size: a.size, frames: a.frames };
     let progress = Progress::items((MUD.len() + GLASS.len() + SKIN.len()) as u64, a.quiet);
-    let result = gallery.mud(&progress).and_then(|()| gallery.glass(&progress)).and_then(|()| gallery.skin(&progress));
+    let pieces = render_all(settings, &progress);
     progress.finish();
-    result?;
-    let page = index(&gallery, a);
-    gallery.write_bytes("index.html", page.into_bytes())?;
+    let mut gallery = Gallery { size: a.size, frames: a.frames, cards: Vec::new(), extras: Vec::new() };
+    let mut files = 0;
+    let mut comparison = Vec::new();
+    for piece in pieces? {
+        for (name, bytes) in piece.files {
+            output::write_file(&a.dir.join(name), bytes)?;
+            files += 1;
+        }
+        comparison.extend(piece.comparison);
+        gallery.extras.extend(piece.extra_card);
+        gallery.cards.push((piece.model, piece.card));
+    }
+    // fig6a came first: show fig6b (square) on the left.
+    comparison.reverse();
+    let name = "mud-square-vs-hex.png";
+    output::write_file(&a.dir.join(name), output::encode_png(&Image::row(&comparison, 8, [255, 255, 255])))?;
+    gallery.extras.insert(
+        0,
+        Card {
+            title: "Square vs hexagonal elements".into(),
+            caption: "fig6b (left, square: axis-aligned, short cracks) and fig6a (right, hexagonal: isotropic \
+                      closed cells), the same material."
+                .into(),
+            file: name.into(),
+            extra: Vec::new(),
+            summary: String::new(),
+            command: "hibi mud --preset fig6b; hibi mud --preset fig6a".into(),
+            parameters: Vec::new(),
+        },
+    );
+    output::write_file(&a.dir.join("index.html"), index(&gallery, a).into_bytes())?;
+    files += 2;
     if !a.quiet {
         eprintln!(
-            "hibi: wrote {} files to {} in {:.1} s; open {}",
-            gallery.files,
+            "hibi: wrote {files} files to {} in {:.1} s; open {}",
             shown(&a.dir),
             start.elapsed().as_secs_f64(),
             shown(&a.dir.join("index.html"))

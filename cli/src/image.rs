@@ -186,9 +186,9 @@ impl CrackMaps {
         out
     }
 
-    /// The maps as they stood at time `t`: only cracks broken by then.
-    pub fn at_time(&self, t: f32) -> CrackMaps {
-        let times = self.rim_times();
+    /// The maps as they stood at time `t`: only cracks broken by then (`times` from
+    /// [`CrackMaps::rim_times`]).
+    fn at_time(&self, times: &[f32], t: f32) -> CrackMaps {
         let mut frame = self.clone();
         for (i, &broke) in times.iter().enumerate() {
             // +∞ (never broke) is never shown.
@@ -206,7 +206,8 @@ impl CrackMaps {
         let Some((first, last)) = self.time_range() else {
             return vec![self.clone(); count as usize];
         };
-        (1..=count).map(|k| self.at_time(first + (last - first) * k as f32 / count as f32)).collect()
+        let times = self.rim_times();
+        (1..=count).map(|k| self.at_time(&times, first + (last - first) * k as f32 / count as f32)).collect()
     }
 
     /// The layer as a picture; `bump` is the depth of the deepest crack in pixels.
@@ -285,7 +286,7 @@ mod tests {
     fn frames_show_only_what_broke_by_then_rims_included() {
         let m = maps();
         assert_eq!(m.time_range(), Some((2.0, 5.0)));
-        let early = m.at_time(3.0);
+        let early = m.at_time(&m.rim_times(), 3.0);
         assert_eq!(early.mask, vec![0, 255, 100, 0]);
         assert_eq!(early.heights, vec![1.0, 0.0, 0.6, 1.0]);
         let frames = m.growth(2);

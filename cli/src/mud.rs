@@ -80,10 +80,10 @@ pub fn view(params: &MudParams, size: Option<[u32; 2]>, o: &MudOptions) -> MudRe
 
 /// The narrowest stroke by default: the width the core measures cells on
 /// ([`CELL_STROKE_WIDTH`] spacings, enough to join the dashes a straight crack breaks into),
-/// at least one pixel, for a raster `width` pixels wide.
+/// at least one pixel, for a raster `width` pixels wide; rounded to 1/100 px.
 pub fn drawn_width(params: &MudParams, width: u32) -> f32 {
     let pixels_per_spacing = width as f32 / params.lattice().extent()[0];
-    (CELL_STROKE_WIDTH * pixels_per_spacing).max(1.0)
+    ((CELL_STROKE_WIDTH * pixels_per_spacing).max(1.0) * 100.0).round() / 100.0
 }
 
 /// A raster `width` pixels wide at the aspect of the lattice's domain.

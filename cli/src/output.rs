@@ -26,7 +26,7 @@ fn encoder<'w>(image: &Image, out: &'w mut Vec<u8>) -> png::Encoder<'w, &'w mut 
     let mut e = png::Encoder::new(out, image.width, image.height);
     e.set_color(colour);
     e.set_depth(depth);
-    e.set_compression(png::Compression::High);
+    e.set_compression(png::Compression::Balanced);
     if colour == png::ColorType::Rgb {
         e.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
     }
