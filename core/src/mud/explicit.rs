@@ -6,26 +6,39 @@
 //! positions of the previous move (Eq. 5, "go to 2"), then adds its force (Eq. 2).
 //!
 //! The pass runs direction by direction and row by row: a row's springs in one direction
-//! join two contiguous runs of nodes, so the inner loop has no branches and no indirection
-//! and vectorises. Breaks are found in that loop and applied in a scalar pass over the row.
-//! The order of every sum is fixed, so the result is the same bit for bit on every build.
+//! join two contiguous runs of nodes, so the inner loops have no branches and no indirection
+//! and vectorise. A row goes through short loops, chunk by chunk (difference vectors, 1/l,
+//! forces) rather than one long loop: a spring's chain of dependent operations is long, and
+//! in one loop the processor runs out of registers before it overlaps enough springs. The
+//! springs past the run's last whole vector share one more vector with the spring that wraps
+//! around the row's end. Each intact spring keeps its squared break length (κ·l0)², set once
+//! per long step, so the break test needs neither κ nor a square root.
+//!
+//! The sums keep the paper's order: every node starts from its shear spring, then takes the
+//! springs of direction 0 (its own, then its left neighbour's, then the wrapping one at the
+//! row's ends), computed and summed in one loop; then each direction that joins a row to the
+//! next adds, row by row, each spring's force to both its nodes as it is found (a node takes
+//! one term per row processed, so the order of its terms is the rows' order). A spring past
+//! its break stretch adds +0 (or, wrapping, nothing), as the paper's loop skips it; the breaks
+//! are recorded afterwards in a scalar pass over the row. So every value is the same bit for
+//! bit on every build, and the same as with one pass per direction and a row of scratch.
 
 use super::lattice::Lattice;
 use super::material::Material;
 use super::{ABSENT, Boundary, Mud, SolverState, take};
 use crate::scalar::Scalar;
 
-/// Velocities, forces, spring liveness and the constants of the damped step.
+/// Velocities, forces, spring limits and the constants of the damped step.
 pub(super) struct Dynamics<'a, S> {
     vx: &'a mut [S],
     vy: &'a mut [S],
     fx: &'a mut [S],
     fy: &'a mut [S],
-    /// Per spring: 1 while intact, 0 once broken or absent (it multiplies the force).
-    alive: &'a mut [S],
-    /// One row's spring force vectors.
-    gx: &'a mut [S],
-    gy: &'a mut [S],
+    /// Per spring: (κ·l0)², the squared length past which it breaks, while intact; −1 once
+    /// broken or absent.
+    limit: &'a mut [S],
+    /// The rest length `limit` was computed for (it changes with each long step).
+    limit_rest: Option<S>,
     /// exp(−c·τ/m) − 1.
     decay: S,
     /// −(m/c)·(exp(−c·τ/m) − 1).
@@ -36,16 +49,23 @@ pub(super) struct Dynamics<'a, S> {
     step_over_damping: S,
 }
 
+/// The `limit` of a broken or absent spring.
+fn broken<S: Scalar>() -> S {
+    -S::ONE
+}
+
 impl<'a, S: Scalar> Dynamics<'a, S> {
     pub(super) fn new(scalars: &mut &'a mut [S], lattice: &Lattice, other: &[u32], material: &Material<S>) -> Self {
         let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
-        let alive = take(scalars, lattice.spring_count());
-        let [gx, gy] = [(); 2].map(|_| take(scalars, lattice.columns as usize));
+        let limit = take(scalars, lattice.spring_count());
+        // `memory_for` still counts a row of force vectors (x, y) after `limit`; the force
+        // pass no longer needs it.
         vx.fill(S::ZERO);
         vy.fill(S::ZERO);
-        for (a, &o) in alive.iter_mut().zip(other.iter()) {
-            *a = if o == ABSENT { S::ZERO } else { S::ONE };
+        // Intact springs get their limits at the first step.
+        for (l, &o) in limit.iter_mut().zip(other.iter()) {
+            *l = if o == ABSENT { broken() } else { S::ZERO };
         }
         let (m, c, tau) = (material.mass, material.damping, material.short_step);
         let decay = (-(c * tau / m)).exp() - S::ONE;
@@ -54,14 +74,25 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             vy,
             fx,
             fy,
-            alive,
-            gx,
-            gy,
+            limit,
+            limit_rest: None,
             decay,
             drift: -(m / c) * decay,
             inverse_damping: S::ONE / c,
             step_over_damping: tau / c,
         }
+    }
+
+    /// Sets every intact spring's limit (κ·l0)² for rest length `rest`, unless already set.
+    fn set_limits(&mut self, rest: S, break_stretch: &[S]) {
+        if self.limit_rest == Some(rest) {
+            return;
+        }
+        for (l, &kappa) in self.limit.iter_mut().zip(break_stretch.iter()) {
+            let limit = kappa * rest;
+            *l = if *l < S::ZERO { *l } else { limit * limit };
+        }
+        self.limit_rest = Some(rest);
     }
 }
 
@@ -78,8 +109,8 @@ fn below<S: Scalar>(fx: S, fy: S, tolerance: S) -> bool {
     rx * rx + ry * ry < S::ONE
 }
 
-/// One spring's state for the force pass: the rest length, the deep-layer vector e·deep and
-/// the stiffness of its direction.
+/// A direction's springs for the force pass: the rest length, the deep-layer vector e·deep
+/// and the stiffness.
 #[derive(Clone, Copy)]
 struct SpringLaw<S> {
     rest: S,
@@ -89,111 +120,404 @@ struct SpringLaw<S> {
 }
 
 impl<S: Scalar> SpringLaw<S> {
-    /// The force vector a spring from (ax, ay) to (bx, by) (displacements) exerts on its first
-    /// node (Eq. 2), times `alive`, and whether it is stretched past `kappa` (Eq. 5).
-    ///
-    /// k·(l − l0)·d/l is computed as k·(1 − l0/l)·d with 1/l from `inverse_sqrt`, and the
-    /// break test l > κ·l0 as l² > (κ·l0)²: no square root and no division, so that the row
-    /// loop vectorises.
+    /// The difference vector d = e·deep + b − a of a spring from (ax, ay) to (bx, by)
+    /// (displacements) and its squared length.
     #[inline(always)]
-    fn force(&self, ax: S, ay: S, bx: S, by: S, alive: S, kappa: S) -> (S, S, bool) {
+    fn difference(&self, ax: S, ay: S, bx: S, by: S) -> (S, S, S) {
         let dx = self.ex + bx - ax;
         let dy = self.ey + by - ay;
-        let squared = dx * dx + dy * dy;
-        let over = (squared > self.limit_squared(kappa)) & (alive > S::ZERO);
-        let inverse_length = squared.max(S::RESOLUTION).inverse_sqrt();
-        let f = alive * self.stiffness * (S::ONE - self.rest * inverse_length);
-        (f * dx, f * dy, over)
+        (dx, dy, dx * dx + dy * dy)
     }
 
-    /// (κ·l0)²: the squared length past which a spring breaks.
+    /// Whether a spring of squared length `squared` and limit `limit` is intact and past its
+    /// break stretch (Eq. 5): l > κ·l0 as l² > (κ·l0)², with no square root.
     #[inline(always)]
-    fn limit_squared(&self, kappa: S) -> S {
-        let limit = kappa * self.rest;
-        limit * limit
+    #[allow(clippy::neg_cmp_op_on_partial_ord, reason = "a NaN limit is an intact spring's")]
+    fn past_limit(squared: S, limit: S) -> bool {
+        (squared > limit) & !(limit < S::ZERO)
+    }
+
+    /// The break test alone, computed as the force pass computes it.
+    #[inline(always)]
+    fn breaks(&self, ax: S, ay: S, bx: S, by: S, limit: S) -> bool {
+        Self::past_limit(self.difference(ax, ay, bx, by).2, limit)
     }
 }
 
-/// The force vectors of a row's springs in one direction, from the displacements of their
-/// first nodes `a` and second nodes `b`; whether any intact one is past its break stretch.
-/// Equal-length slices and plain indexing let the loop vectorise.
-#[inline(always)]
-fn row_forces<S: Scalar>(
+/// Springs per chunk of a row in the force pass (a multiple of 4).
+const CHUNK: usize = 256;
+
+/// A chunk of a row's springs in the force pass: difference vectors, squared and inverse
+/// lengths. The last chunk of a row takes up to four more: the springs of the run past its
+/// last whole vector and the spring that wraps around the row's end.
+struct Chunk<S> {
+    dx: [S; CHUNK + 4],
+    dy: [S; CHUNK + 4],
+    squared: [S; CHUNK + 4],
+    inverse: [S; CHUNK + 4],
+}
+
+impl<S: Scalar> Chunk<S> {
+    fn new() -> Self {
+        let zero = [S::ZERO; CHUNK + 4];
+        Chunk { dx: zero, dy: zero, squared: zero, inverse: zero }
+    }
+
+    /// The run's springs `start..end` (at most `CHUNK`, a multiple of 4), and when `end` is
+    /// the end of the run's whole vectors, the run's last springs and the wrapping one after
+    /// them: difference vectors and squared and inverse lengths. Returns how many of the
+    /// run's last springs there are.
+    #[inline(always)]
+    fn load(&mut self, law: &SpringLaw<S>, row: &Row, (ux, uy): (&[S], &[S]), start: usize, end: usize) -> usize {
+        let (a, b, m) = (row.a + start, row.b + start, end - start);
+        self.differences(law, (&ux[a..a + m], &uy[a..a + m]), (&ux[b..b + m], &uy[b..b + m]));
+        if end < row.body() {
+            self.inverse_lengths(m);
+            return 0;
+        }
+        let count = row.len - end;
+        for t in 0..count {
+            let (a, b) = (a + m + t, b + m + t);
+            self.set(m + t, law, (ux[a], uy[a]), (ux[b], uy[b]));
+        }
+        if let Some((i, j, _)) = row.wrap {
+            self.set(m + count, law, (ux[i], uy[i]), (ux[j], uy[j]));
+        }
+        let more = count > 0 || row.wrap.is_some();
+        self.inverse_lengths(if more { m + 4 } else { m });
+        count
+    }
+
+    /// The springs from `a` to `b`: difference vectors and squared lengths.
+    #[inline(never)]
+    fn differences(&mut self, law: &SpringLaw<S>, (ax, ay): (&[S], &[S]), (bx, by): (&[S], &[S])) {
+        let m = ax.len();
+        let (ay, bx, by) = (&ay[..m], &bx[..m], &by[..m]);
+        let (dx, dy, squared) = (&mut self.dx[..m], &mut self.dy[..m], &mut self.squared[..m]);
+        for t in 0..m {
+            (dx[t], dy[t], squared[t]) = law.difference(ax[t], ay[t], bx[t], by[t]);
+        }
+    }
+
+    /// Spring `t` of the chunk, from (ax, ay) to (bx, by), without its inverse length.
+    #[inline(always)]
+    fn set(&mut self, t: usize, law: &SpringLaw<S>, (ax, ay): (S, S), (bx, by): (S, S)) {
+        (self.dx[t], self.dy[t], self.squared[t]) = law.difference(ax, ay, bx, by);
+    }
+
+    /// 1/l of the first `m` springs, from l² (at least the backend's resolution).
+    #[inline(never)]
+    fn inverse_lengths(&mut self, m: usize) {
+        let (squared, inverse) = (&self.squared[..m], &mut self.inverse[..m]);
+        for t in 0..m {
+            inverse[t] = squared[t].max(S::RESOLUTION).inverse_sqrt();
+        }
+    }
+
+    /// The first `m` springs, for the force loop.
+    #[inline(always)]
+    fn view(&self, m: usize) -> ChunkView<'_, S> {
+        ChunkView { dx: &self.dx[..m], dy: &self.dy[..m], squared: &self.squared[..m], inverse: &self.inverse[..m] }
+    }
+}
+
+/// The first springs of a chunk, all slices of one length.
+struct ChunkView<'c, S> {
+    dx: &'c [S],
+    dy: &'c [S],
+    squared: &'c [S],
+    inverse: &'c [S],
+}
+
+impl<S: Scalar> ChunkView<'_, S> {
+    /// Spring `t`'s force on its first node (Eq. 2), k·(l − l0)·d/l computed as
+    /// k·(1 − l0/l)·d, and whether it is past its break stretch; a spring past it, or broken,
+    /// exerts none (the paper's loop skips it: the force is exactly +0 then).
+    #[inline(always)]
+    fn force(&self, law: &SpringLaw<S>, t: usize, limit: S) -> (S, S, bool) {
+        let squared = self.squared[t];
+        let over = SpringLaw::past_limit(squared, limit);
+        // The stiffness times the spring's liveness (1 or 0): k > 0, so 0·k is +0.
+        let k = if limit < S::ZERO { S::ZERO } else { law.stiffness };
+        let f = k * (S::ONE - law.rest * self.inverse[t]);
+        let (x, y) = (f * self.dx[t], f * self.dy[t]);
+        if over { (S::ZERO, S::ZERO, true) } else { (x, y, false) }
+    }
+}
+
+/// A chunk of a row's springs in its own direction, each from node t to node t + 1: each
+/// node's force (Eq. 2) in the paper's order, its shear spring −h·u, its own spring's force
+/// (zero past the break stretch) and minus its left neighbour's (`left` for the chunk's first
+/// node); whether a spring is past, and the last spring's force. (The output and the springs'
+/// arrays come in as separate arguments, so that the compiler knows they do not overlap.)
+#[inline(never)]
+fn chunk_forces_summed<S: Scalar>(
     law: &SpringLaw<S>,
-    a: (&[S], &[S]),
-    b: (&[S], &[S]),
-    springs: (&[S], &[S]),
-    out: (&mut [S], &mut [S]),
+    (chunk, limits): (&Chunk<S>, &[S]),
+    (h, ux, uy): (S, &[S], &[S]),
+    fx: &mut [S],
+    fy: &mut [S],
+    left: (S, S),
+) -> (bool, (S, S)) {
+    let m = fx.len();
+    let view = chunk.view(m);
+    let (limits, ux, uy, fy) = (&limits[..m], &ux[..m], &uy[..m], &mut fy[..m]);
+    let (mut over, (mut left_x, mut left_y)) = (false, left);
+    for t in 0..m {
+        let (x, y, o) = view.force(law, t, limits[t]);
+        fx[t] = (-(h * ux[t]) + x) - left_x;
+        fy[t] = (-(h * uy[t]) + y) - left_y;
+        (left_x, left_y) = (x, y);
+        over |= o;
+    }
+    (over, (left_x, left_y))
+}
+
+/// A chunk's force vectors added to the first nodes `fa` and subtracted from the second `fb`;
+/// whether one is past its break stretch (it adds zero).
+#[inline(never)]
+fn chunk_forces_applied<S: Scalar>(
+    law: &SpringLaw<S>,
+    chunk: &Chunk<S>,
+    limits: &[S],
+    fax: &mut [S],
+    fay: &mut [S],
+    fbx: &mut [S],
+    fby: &mut [S],
 ) -> bool {
-    let n = out.0.len();
-    let (ax, ay, bx, by) = (&a.0[..n], &a.1[..n], &b.0[..n], &b.1[..n]);
-    let (alive, kappa) = (&springs.0[..n], &springs.1[..n]);
-    let (gx, gy) = (&mut out.0[..n], &mut out.1[..n]);
+    let m = fax.len();
+    let view = chunk.view(m);
+    let (limits, fax, fay, fbx, fby) = (&limits[..m], &mut fax[..m], &mut fay[..m], &mut fbx[..m], &mut fby[..m]);
     let mut over = false;
-    for t in 0..n {
-        let (x, y, o) = law.force(ax[t], ay[t], bx[t], by[t], alive[t], kappa[t]);
-        gx[t] = x;
-        gy[t] = y;
+    for t in 0..m {
+        let (x, y, o) = view.force(law, t, limits[t]);
+        fax[t] += x;
+        fay[t] += y;
+        fbx[t] -= x;
+        fby[t] -= y;
         over |= o;
     }
     over
 }
 
-/// f = −h·u for every node (the shear springs of Eq. 2).
-#[inline(always)]
-fn shear_forces<S: Scalar>(h: S, (ux, uy): (&[S], &[S]), (fx, fy): (&mut [S], &mut [S])) {
-    let n = fx.len();
-    let (ux, uy, fy) = (&ux[..n], &uy[..n], &mut fy[..n]);
-    for i in 0..n {
-        fx[i] = -(h * ux[i]);
-        fy[i] = -(h * uy[i]);
+/// A row's springs in one direction: the run of `len` springs `s..s + len` from nodes
+/// `a..a + len` to nodes `b..b + len`, and the spring `w` from node `i` to node `j` that wraps
+/// around the row's end, if any (`(i, j, w)`).
+#[derive(Clone, Copy)]
+struct Row {
+    a: usize,
+    b: usize,
+    s: usize,
+    len: usize,
+    wrap: Option<(usize, usize, usize)>,
+}
+
+impl Row {
+    /// The run's springs that go through whole vectors (a multiple of 4).
+    fn body(&self) -> usize {
+        self.len - self.len % 4
     }
 }
 
-/// f += sign·g over a row (sign ±1: the force on a spring's first or second node).
+/// A row's springs in its own direction (from each node to the next, and from the last to the
+/// first) with the shear springs: every node's force, in the paper's order (shear, its own
+/// spring, its left neighbour's, and the wrapping spring at the row's ends). Returns whether
+/// one of the run's springs is past its break stretch (it adds zero) and whether the wrapping
+/// one is (it adds nothing).
 #[inline(always)]
-fn add_row<S: Scalar>(fx: &mut [S], fy: &mut [S], gx: &[S], gy: &[S], sign: S) {
-    let n = fx.len();
-    let (fy, gx, gy) = (&mut fy[..n], &gx[..n], &gy[..n]);
-    if sign > S::ZERO {
-        for i in 0..n {
-            fx[i] += gx[i];
-            fy[i] += gy[i];
+fn row_forces_summed<S: Scalar>(
+    law: &SpringLaw<S>,
+    row: &Row,
+    (ux, uy): (&[S], &[S]),
+    (limits, h): (&[S], S),
+    (fx, fy): (&mut [S], &mut [S]),
+    chunk: &mut Chunk<S>,
+) -> (bool, bool) {
+    let Row { a, s, len, .. } = *row;
+    debug_assert_eq!(row.b, a + 1);
+    let body = row.body();
+    let (mut over, mut left) = (false, (S::ZERO, S::ZERO));
+    let mut start = 0;
+    loop {
+        let end = body.min(start + CHUNK);
+        let count = chunk.load(law, row, (ux, uy), start, end);
+        let (o, l) = chunk_forces_summed(
+            law,
+            (chunk, &limits[s + start..s + end]),
+            (h, &ux[a + start..a + end], &uy[a + start..a + end]),
+            &mut fx[a + start..a + end],
+            &mut fy[a + start..a + end],
+            left,
+        );
+        (over, left) = (over | o, l);
+        if end < body {
+            start = end;
+            continue;
         }
+        let (m, view) = (end - start, chunk.view(end - start + 4));
+        for t in 0..count {
+            let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
+            let i = a + end + t;
+            fx[i] = (-(h * ux[i]) + x) - left.0;
+            fy[i] = (-(h * uy[i]) + y) - left.1;
+            left = (x, y);
+            over |= o;
+        }
+        // The last node has no spring of its own but the wrapping one.
+        let last = a + len;
+        fx[last] = -(h * ux[last]) - left.0;
+        fy[last] = -(h * uy[last]) - left.1;
+        let mut wrap_over = false;
+        if let Some((i, j, w)) = row.wrap {
+            debug_assert_eq!((i, j), (last, a));
+            let (x, y, o) = view.force(law, m + count, limits[w]);
+            if o {
+                wrap_over = true;
+            } else {
+                fx[a] -= x;
+                fy[a] -= y;
+                fx[last] += x;
+                fy[last] += y;
+            }
+        }
+        return (over, wrap_over);
+    }
+}
+
+/// Two disjoint runs `a..a + n` and `b..b + n` of one array, both writable.
+#[inline(always)]
+fn two_runs<S>(v: &mut [S], a: usize, b: usize, n: usize) -> (&mut [S], &mut [S]) {
+    if a < b {
+        let (low, high) = v.split_at_mut(b);
+        (&mut low[a..a + n], &mut high[..n])
     } else {
-        for i in 0..n {
-            fx[i] -= gx[i];
-            fy[i] -= gy[i];
+        let (low, high) = v.split_at_mut(a);
+        (&mut high[..n], &mut low[b..b + n])
+    }
+}
+
+/// A row's springs in a direction that joins the row to the next: each spring's force is
+/// added to its first node and subtracted from its second, with no scratch row. The runs lie
+/// in different rows and each node takes one term, so every sum keeps its order. Returns
+/// whether one of the run's springs is past its break stretch (it adds zero) and whether the
+/// wrapping one is (it adds nothing).
+#[inline(always)]
+fn row_forces_applied<S: Scalar>(
+    law: &SpringLaw<S>,
+    row: &Row,
+    u: (&[S], &[S]),
+    limits: &[S],
+    (fx, fy): (&mut [S], &mut [S]),
+    chunk: &mut Chunk<S>,
+) -> (bool, bool) {
+    let Row { a, b, s, .. } = *row;
+    let body = row.body();
+    let mut over = false;
+    let mut start = 0;
+    loop {
+        let end = body.min(start + CHUNK);
+        let count = chunk.load(law, row, u, start, end);
+        {
+            let (fax, fbx) = two_runs(fx, a + start, b + start, end - start);
+            let (fay, fby) = two_runs(fy, a + start, b + start, end - start);
+            over |= chunk_forces_applied(law, chunk, &limits[s + start..s + end], fax, fay, fbx, fby);
+        }
+        if end < body {
+            start = end;
+            continue;
+        }
+        let (m, view) = (end - start, chunk.view(end - start + 4));
+        for t in 0..count {
+            let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
+            let (i, j) = (a + end + t, b + end + t);
+            fx[i] += x;
+            fy[i] += y;
+            fx[j] -= x;
+            fy[j] -= y;
+            over |= o;
+        }
+        let mut wrap_over = false;
+        if let Some((i, j, w)) = row.wrap {
+            let (x, y, o) = view.force(law, m + count, limits[w]);
+            if o {
+                wrap_over = true;
+            } else {
+                fx[i] += x;
+                fy[i] += y;
+                fx[j] -= x;
+                fy[j] -= y;
+            }
+        }
+        return (over, wrap_over);
+    }
+}
+
+/// Spring breaks: the limits (set to broken), the break times and the time now.
+struct Breaks<'b, S> {
+    limit: &'b mut [S],
+    break_time: &'b mut [u32],
+    time: u32,
+    count: u32,
+}
+
+impl<S: Scalar> Breaks<'_, S> {
+    /// Breaks spring `s`.
+    fn record(&mut self, s: usize) {
+        self.limit[s] = broken();
+        self.break_time[s] = self.time;
+        self.count += 1;
+    }
+
+    /// Breaks the run's springs that are past their break stretch (those the force pass
+    /// flagged; it changed no displacement).
+    #[inline(never)]
+    fn record_run(&mut self, law: &SpringLaw<S>, row: &Row, (ux, uy): (&[S], &[S])) {
+        let Row { a, b, s, len, .. } = *row;
+        for t in 0..len {
+            if law.breaks(ux[a + t], uy[a + t], ux[b + t], uy[b + t], self.limit[s + t]) {
+                self.record(s + t);
+            }
         }
     }
 }
 
-/// The largest |component| of any node's force, over four independent lanes so that the
-/// reduction vectorises (max is exact, so the lanes change nothing but speed).
+/// Whether some node's force has a component v with ¬(|v| < tolerance), NaN aside: the quick
+/// half of the stability test, exactly "largest |component| ≥ tolerance" (a NaN fails the
+/// exact test that follows). Two comparisons per component and no branch within a block of
+/// nodes, so it vectorises; an unstable lattice (the usual case) is known after a few blocks.
 #[inline(always)]
-fn largest_component<S: Scalar>(fx: &[S], fy: &[S]) -> S {
-    let n = fx.len();
-    let fy = &fy[..n];
-    let mut lanes = [S::ZERO; 4];
-    let whole = n - n % 4;
-    for i in (0..whole).step_by(4) {
-        for (k, lane) in lanes.iter_mut().enumerate() {
-            *lane = lane.max(fx[i + k].abs()).max(fy[i + k].abs());
+#[allow(clippy::neg_cmp_op_on_partial_ord, reason = "a NaN tolerance is never met")]
+fn some_component_reaches<S: Scalar>(fx: &[S], fy: &[S], tolerance: S) -> bool {
+    // A tolerance ≤ 0 (or NaN) is never met: |v| ≥ 0.
+    if !(S::ZERO < tolerance) {
+        return true;
+    }
+    fx.chunks(64).zip(fy.chunks(64)).any(|(fx, fy)| {
+        let fy = &fy[..fx.len()];
+        let mut reaches = false;
+        for i in 0..fx.len() {
+            let (x, y) = (fx[i], fy[i]);
+            reaches |= (x >= tolerance) | (-x >= tolerance) | (y >= tolerance) | (-y >= tolerance);
         }
-    }
-    for i in whole..n {
-        lanes[0] = lanes[0].max(fx[i].abs()).max(fy[i].abs());
-    }
-    lanes[0].max(lanes[1]).max(lanes[2].max(lanes[3]))
+        reaches
+    })
 }
 
 /// Eq. 4, every node: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
 /// x = xᵖ + (vᵖ − F/c)(−m/c)(e^(−cτ/m) − 1) + (F/c)·τ.
-#[inline(always)]
-fn move_nodes<S: Scalar>(d: &mut Dynamics<'_, S>, (ux, uy): (&mut [S], &mut [S])) {
-    let (decay, drift, inverse_damping, step_over_damping) = (d.decay, d.drift, d.inverse_damping, d.step_over_damping);
+/// (The arrays come in as separate arguments, so that the compiler knows they do not overlap.)
+#[inline(never)]
+fn move_nodes<S: Scalar>(
+    [decay, drift, inverse_damping, step_over_damping]: [S; 4],
+    vx: &mut [S],
+    vy: &mut [S],
+    fx: &[S],
+    fy: &[S],
+    ux: &mut [S],
+    uy: &mut [S],
+) {
     let n = ux.len();
-    let (uy, vx, vy, fx, fy) = (&mut uy[..n], &mut d.vx[..n], &mut d.vy[..n], &d.fx[..n], &d.fy[..n]);
+    let (uy, vx, vy, fx, fy) = (&mut uy[..n], &mut vx[..n], &mut vy[..n], &fx[..n], &fy[..n]);
     for i in 0..n {
         let qx = vx[i] - fx[i] * inverse_damping;
         let qy = vy[i] - fy[i] * inverse_damping;
@@ -211,93 +535,85 @@ impl<S: Scalar> Mud<'_, S> {
         let (rest, deep) = self.factors();
         let time = (self.long_steps as f32).to_bits();
         let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
+        d.set_limits(rest, self.break_stretch);
         let (ux, uy) = (&mut *self.ux, &mut *self.uy);
         let m = &self.material;
         let lattice = self.lattice;
         let (nodes, columns, rows) = (lattice.node_count(), lattice.columns as usize, lattice.rows as usize);
         let periodic = lattice.boundary == Boundary::Periodic;
-        let (fx, fy, alive) = (&mut *d.fx, &mut *d.fy, &mut *d.alive);
-        let (gx, gy) = (&mut *d.gx, &mut *d.gy);
-        let (break_time, break_stretch) = (&mut *self.break_time, &*self.break_stretch);
-
-        // Eq. 2, shear part: −h·(x_i − X_i).
-        shear_forces(m.shear, (ux, uy), (fx, fy));
-        // Eq. 5 then Eq. 2, spring part, direction by direction, row by row.
-        let mut newly_broken = 0;
-        for k in 0..lattice.directions() {
+        let (fx, fy) = (&mut *d.fx, &mut *d.fy);
+        let mut breaks = Breaks { limit: &mut *d.limit, break_time: &mut *self.break_time, time, count: 0 };
+        let law = |k: usize| {
             let v = lattice.direction_vector(k);
-            let law = SpringLaw {
-                rest,
-                ex: S::from_f32(v[0]) * deep,
-                ey: S::from_f32(v[1]) * deep,
-                stiffness: m.stiffness[k],
-            };
-            for row in 0..rows {
-                let (di, dj) = lattice.step(k, row);
-                let mut next_row = row + dj as usize;
-                if next_row >= rows {
+            SpringLaw { rest, ex: S::from_f32(v[0]) * deep, ey: S::from_f32(v[1]) * deep, stiffness: m.stiffness[k] }
+        };
+        let mut chunk = Chunk::new();
+
+        // Direction 0 (to the right, in the row) with the shear part of Eq. 2, −h·(x_i − X_i).
+        debug_assert_eq!(lattice.step(0, 0), (1, 0));
+        let law0 = law(0);
+        let len = columns - 1;
+        for r in 0..rows {
+            let a = r * columns;
+            let row = Row { a, b: a + 1, s: a, len, wrap: periodic.then_some((a + len, a, a + len)) };
+            let (over, wrap_over) =
+                row_forces_summed(&law0, &row, (ux, uy), (breaks.limit, m.shear), (fx, fy), &mut chunk);
+            if over {
+                breaks.record_run(&law0, &row, (ux, uy));
+            }
+            if wrap_over {
+                breaks.record(a + len);
+            }
+        }
+
+        // Eq. 5 then Eq. 2 for the directions that join a row to the next, row by row.
+        for k in 1..lattice.directions() {
+            let law = law(k);
+            for r in 0..rows {
+                let (di, dj) = lattice.step(k, r);
+                debug_assert_eq!(dj, 1);
+                let mut next = r + 1;
+                if next == rows {
                     if !periodic {
                         continue;
                     }
-                    next_row -= rows;
+                    next = 0;
                 }
-                // The contiguous run: columns whose neighbour stays in the lattice.
+                // The contiguous run: columns whose neighbour stays in the lattice; and the
+                // spring that wraps around the row's end.
                 let (lo, hi) = (usize::from(di < 0), columns - usize::from(di > 0));
-                let len = hi - lo;
-                let a = row * columns + lo;
-                let b = (next_row * columns + lo) as i64 + di;
-                let b = b as usize;
-                let s = k * nodes + a;
-                let over = row_forces(
-                    &law,
-                    (&ux[a..a + len], &uy[a..a + len]),
-                    (&ux[b..b + len], &uy[b..b + len]),
-                    (&alive[s..s + len], &break_stretch[s..s + len]),
-                    (&mut gx[..len], &mut gy[..len]),
-                );
+                let a = r * columns + lo;
+                let wrap = match di {
+                    _ if !periodic => None,
+                    1 => Some((r * columns + columns - 1, next * columns)),
+                    -1 => Some((r * columns, next * columns + columns - 1)),
+                    _ => None,
+                };
+                let row = Row {
+                    a,
+                    b: ((next * columns + lo) as i64 + di) as usize,
+                    s: k * nodes + a,
+                    len: hi - lo,
+                    wrap: wrap.map(|(i, j)| (i, j, k * nodes + i)),
+                };
+                let (over, wrap_over) = row_forces_applied(&law, &row, (ux, uy), breaks.limit, (fx, fy), &mut chunk);
                 if over {
-                    for t in 0..len {
-                        let (x, y) = (law.ex + ux[b + t] - ux[a + t], law.ey + uy[b + t] - uy[a + t]);
-                        if alive[s + t] > S::ZERO && x * x + y * y > law.limit_squared(break_stretch[s + t]) {
-                            alive[s + t] = S::ZERO;
-                            break_time[s + t] = time;
-                            newly_broken += 1;
-                            gx[t] = S::ZERO;
-                            gy[t] = S::ZERO;
-                        }
-                    }
+                    breaks.record_run(&law, &row, (ux, uy));
                 }
-                add_row(&mut fx[a..a + len], &mut fy[a..a + len], &gx[..len], &gy[..len], S::ONE);
-                add_row(&mut fx[b..b + len], &mut fy[b..b + len], &gx[..len], &gy[..len], -S::ONE);
-                // The spring that wraps around the row's end.
-                if periodic && di != 0 {
-                    let (i, j) = if di > 0 {
-                        (row * columns + columns - 1, next_row * columns)
-                    } else {
-                        (row * columns, next_row * columns + columns - 1)
-                    };
-                    let s = k * nodes + i;
-                    let (x, y, o) = law.force(ux[i], uy[i], ux[j], uy[j], alive[s], break_stretch[s]);
-                    if o {
-                        alive[s] = S::ZERO;
-                        break_time[s] = time;
-                        newly_broken += 1;
-                    } else {
-                        fx[i] += x;
-                        fy[i] += y;
-                        fx[j] -= x;
-                        fy[j] -= y;
-                    }
+                if let (true, Some((_, _, w))) = (wrap_over, row.wrap) {
+                    breaks.record(w);
                 }
             }
         }
-        // Eq. 3: stable when every |F_i| < δF. The largest force component decides at once
-        // unless it is below δF; only then is each |F_i| checked exactly.
-        let largest = largest_component(fx, fy);
-        let stable =
-            largest < m.force_tolerance && fx.iter().zip(fy.iter()).all(|(&x, &y)| below(x, y, m.force_tolerance));
+        let newly_broken = breaks.count;
+        // Eq. 3: stable when every |F_i| < δF. A component of at least δF decides at once;
+        // only when there is none is each |F_i| checked exactly.
+        let tolerance = m.force_tolerance;
+        let stable = !some_component_reaches(fx, fy, tolerance)
+            && fx.iter().zip(fy.iter()).all(|(&x, &y)| below(x, y, tolerance));
         if !stable {
-            move_nodes(d, (ux, uy));
+            let constants = [d.decay, d.drift, d.inverse_damping, d.step_over_damping];
+            move_nodes(constants, d.vx, d.vy, d.fx, d.fy, ux, uy);
         }
         self.broken += newly_broken;
         if newly_broken > 0 && self.density_reached() {
