@@ -21,7 +21,7 @@ use hibi_core::glass::{
 };
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, object, write_out};
-use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
+use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
     HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_RENDER_LAYER,
@@ -284,10 +284,6 @@ unsafe fn plan(params: *const hibi_glass_params) -> Result<Layout, hibi_status> 
     // SAFETY: non-null and aligned (checked); readable by the caller's contract.
     let params = from_c(unsafe { &*params })?;
     let counts = params.memory().map_err(glass_param_status)?;
-    let place = |at: usize, align: usize, n: usize, size: usize| -> Option<(usize, usize)> {
-        let start = round_up(at, align);
-        Some((start, start.checked_add(n.checked_mul(size)?)?))
-    };
     let layout = (|| {
         let (cracks, end) = place(size_of::<hibi_glass>(), align_of::<Crack>(), counts.cracks, size_of::<Crack>())?;
         let (vertices, end) = place(end, align_of::<Vertex>(), counts.vertices, size_of::<Vertex>())?;
@@ -304,21 +300,6 @@ unsafe fn plan(params: *const hibi_glass_params) -> Result<Layout, hibi_status> 
         })
     })();
     layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
-}
-
-/// Fills `n` elements of type `T` at `block + offset` with `T::default()` and returns them.
-///
-/// # Safety
-/// The range must lie in the block, aligned for `T`, and outlive every use of the slice.
-unsafe fn array<T: Default>(block: *mut u8, offset: usize, n: usize) -> &'static mut [T] {
-    // SAFETY: the caller's contract; every element is written before the slice is made.
-    unsafe {
-        let start = block.add(offset).cast::<T>();
-        for i in 0..n {
-            start.add(i).write(T::default());
-        }
-        core::slice::from_raw_parts_mut(start, n)
-    }
 }
 
 /// Builds a plate in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).

@@ -67,3 +67,25 @@ pub(crate) unsafe fn release_block(ptr: *mut u8, origin: Origin) {
 pub(crate) const fn round_up(size: usize, align: usize) -> usize {
     (size + align - 1) & !(align - 1)
 }
+
+/// Places `n` elements of `size` bytes aligned to `align` at or after byte `at` of a block:
+/// their offset and the end of the range; None on overflow.
+pub(crate) fn place(at: usize, align: usize, n: usize, size: usize) -> Option<(usize, usize)> {
+    let start = round_up(at, align);
+    Some((start, start.checked_add(n.checked_mul(size)?)?))
+}
+
+/// Fills `n` elements of type `T` at `block + offset` with `T::default()` and returns them.
+///
+/// # Safety
+/// The range must lie in the block, aligned for `T`, and outlive every use of the slice.
+pub(crate) unsafe fn array<T: Default>(block: *mut u8, offset: usize, n: usize) -> &'static mut [T] {
+    // SAFETY: the caller's contract; every element is written before the slice is made.
+    unsafe {
+        let start = block.add(offset).cast::<T>();
+        for i in 0..n {
+            start.add(i).write(T::default());
+        }
+        core::slice::from_raw_parts_mut(start, n)
+    }
+}

@@ -25,7 +25,7 @@ use hibi_core::skin::{
 };
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, write_out};
-use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
+use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
     HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
@@ -317,10 +317,6 @@ unsafe fn plan(params: *const hibi_skin_params) -> Result<Layout, hibi_status> {
     // SAFETY: non-null and aligned (checked); readable by the caller's contract.
     let params = from_c(unsafe { &*params })?;
     let counts = params.memory().map_err(skin_param_status)?;
-    let place = |at: usize, align: usize, n: usize, size: usize| -> Option<(usize, usize)> {
-        let start = round_up(at, align);
-        Some((start, start.checked_add(n.checked_mul(size)?)?))
-    };
     let layout = (|| {
         let (cells, end) = place(size_of::<hibi_skin>(), align_of::<SkinCell>(), counts.cells, size_of::<SkinCell>())?;
         let (vertices, end) = place(end, align_of::<[i64; 2]>(), counts.vertices, size_of::<[i64; 2]>())?;
@@ -339,21 +335,6 @@ unsafe fn plan(params: *const hibi_skin_params) -> Result<Layout, hibi_status> {
         })
     })();
     layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
-}
-
-/// Fills `n` elements of type `T` at `block + offset` with `T::default()` and returns them.
-///
-/// # Safety
-/// The range must lie in the block, aligned for `T`, and outlive every use of the slice.
-unsafe fn array<T: Default>(block: *mut u8, offset: usize, n: usize) -> &'static mut [T] {
-    // SAFETY: the caller's contract; every element is written before the slice is made.
-    unsafe {
-        let start = block.add(offset).cast::<T>();
-        for i in 0..n {
-            start.add(i).write(T::default());
-        }
-        core::slice::from_raw_parts_mut(start, n)
-    }
 }
 
 /// Builds a skin in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).
