@@ -5,13 +5,13 @@
 
 use std::time::{Duration, Instant};
 
-use hibi_core::glass::{Glass, GlassBuffers, GlassParams, GlassRender};
+use hibi_core::glass::{Glass, GlassParams, GlassRender};
+use hibi_tests::GlassVecs;
 
 fn main() {
     let base = GlassParams::default();
     let m = base.memory().expect("valid parameters");
-    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
-    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
+    let mut memory = GlassVecs::new(&m);
     let render = GlassRender::default();
     let (mut mask, mut time) = (vec![0u8; 640 * 640], vec![0.0f32; 640 * 640]);
     let (mut generation, mut masks, mut times) = (Duration::ZERO, Duration::ZERO, Duration::ZERO);
@@ -19,9 +19,7 @@ fn main() {
     for seed in 0..u64::from(plates) {
         let params = GlassParams { seed, ..base };
         let start = Instant::now();
-        let buffers =
-            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
-        let mut glass = Glass::new(&params, buffers).expect("memory suffices");
+        let mut glass = Glass::new(&params, memory.buffers()).expect("memory suffices");
         while !glass.step(u64::MAX).finished {}
         generation += start.elapsed();
         let start = Instant::now();

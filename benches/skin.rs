@@ -14,7 +14,8 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use fastnoise_lite::{CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType};
-use hibi_core::skin::{Skin, SkinBuffers, SkinLayers, preset};
+use hibi_core::skin::{Skin, SkinLayers, preset};
+use hibi_tests::SkinVecs;
 
 /// Timed runs per measurement.
 const RUNS: usize = 10;
@@ -80,11 +81,7 @@ fn main() {
     let (w, h) = (params.width as usize, params.height as usize);
     let pixels = w * h;
     let m = params.memory().expect("valid parameters");
-    let mut cells = vec![Default::default(); m.cells];
-    let mut vertices = vec![[0i64; 2]; m.vertices];
-    let mut sites = vec![Default::default(); m.sites];
-    let mut clip = vec![Default::default(); m.clip];
-    let mut words = vec![0u32; m.words];
+    let mut memory = SkinVecs::new(&m);
     let (mut height, mut normals) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels]);
 
     let noise = black_box(cellular());
@@ -103,14 +100,7 @@ fn main() {
     for round in 0..=RUNS {
         // Ours: build, then render, into the same buffers each round.
         let start = Instant::now();
-        let buffers = SkinBuffers {
-            cells: &mut cells,
-            vertices: &mut vertices,
-            sites: &mut sites,
-            clip: &mut clip,
-            words: &mut words,
-        };
-        let skin = Skin::new(black_box(&params), buffers).expect("memory suffices");
+        let skin = Skin::new(black_box(&params), memory.buffers()).expect("memory suffices");
         let built = start.elapsed();
         let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normals), ..SkinLayers::default() };
         skin.render::<f32>(layers).expect("buffers suffice");

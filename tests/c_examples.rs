@@ -240,12 +240,12 @@ fn mud_example_is_clean_under_sanitizers() {
 /// The glass example's mask, as Rust draws it for the same parameters, and its fragment ring
 /// and point counts.
 fn expected_glass() -> (Vec<u8>, (usize, usize)) {
-    use hibi_core::glass::{Glass, GlassBuffers, GlassParams, GlassRender};
+    use hibi_core::glass::{Glass, GlassParams, GlassRender};
+    use hibi_tests::GlassVecs;
     let params = GlassParams { seed: 7, ..GlassParams::default() };
     let m = params.memory().unwrap();
-    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
-    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
-    let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+    let mut memory = GlassVecs::new(&m);
+    let buffers = memory.buffers();
     let mut glass = Glass::new(&params, buffers).unwrap();
     while !glass.step(100).finished {}
     let mut mask = vec![0u8; 640 * 640];
@@ -307,19 +307,12 @@ fn glass_example_is_clean_under_sanitizers() {
 /// preview, the cell count per level, and the cell (and its parent) that pixel (100, 100)
 /// lies in at level 2.
 fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
-    use hibi_core::skin::{ShadeParams, Skin, SkinBuffers, SkinLayers, SkinParams, preset, shade};
+    use hibi_core::skin::{ShadeParams, Skin, SkinLayers, SkinParams, preset, shade};
+    use hibi_tests::SkinVecs;
     let params = SkinParams { width: 200, height: 200, ..preset("fig19a").unwrap() };
     let m = params.memory().unwrap();
-    let (mut cells, mut vertices) = (vec![Default::default(); m.cells], vec![[0i64; 2]; m.vertices]);
-    let (mut sites, mut clip, mut words) =
-        (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
-    let buffers = SkinBuffers {
-        cells: &mut cells,
-        vertices: &mut vertices,
-        sites: &mut sites,
-        clip: &mut clip,
-        words: &mut words,
-    };
+    let mut memory = SkinVecs::new(&m);
+    let buffers = memory.buffers();
     let skin = Skin::new(&params, buffers).unwrap();
     let pixels = 200 * 200;
     let (mut height, mut normal, mut map) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels], vec![0u32; pixels]);

@@ -1,14 +1,13 @@
 //! Model B against the paper's facts (Agui et al.) and the acceptance list.
 
 use hibi_core::glass::{CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams};
-use hibi_tests::fnv1a64;
+use hibi_tests::{GlassVecs, fnv1a64};
 
 /// Runs `params` to the end of generation and hands the plate to `inspect`.
 fn with_plate<R>(params: &GlassParams, inspect: impl FnOnce(&mut Glass) -> R) -> R {
     let m = params.memory().expect("valid parameters");
-    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
-    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
-    let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+    let mut memory = GlassVecs::new(&m);
+    let buffers = memory.buffers();
     let mut glass = Glass::new(params, buffers).expect("memory suffices");
     while !glass.step(100_000).finished {}
     inspect(&mut glass)
@@ -259,9 +258,8 @@ fn fragments_of_several_impacts_and_of_a_cut_short_run_still_tile_the_plate() {
     // Part way through growth.
     let p = GlassParams { seed: 6, ..GlassParams::default() };
     let m = p.memory().unwrap();
-    let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
-    let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
-    let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+    let mut memory = GlassVecs::new(&m);
+    let buffers = memory.buffers();
     let mut g = Glass::new(&p, buffers).unwrap();
     for _ in 0..4 {
         g.step(150);

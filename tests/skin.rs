@@ -3,23 +3,13 @@
 use hibi_core::skin::{
     PRESETS, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, preset, shade,
 };
-use hibi_tests::fnv1a64;
+use hibi_tests::{SkinVecs, fnv1a64};
 
 /// Builds `params` and hands the skin to `inspect`.
 fn with_skin<R>(params: &SkinParams, inspect: impl FnOnce(&Skin) -> R) -> R {
     let m = params.memory().expect("valid parameters");
-    let mut cells = vec![Default::default(); m.cells];
-    let mut vertices = vec![[0i64; 2]; m.vertices];
-    let (mut sites, mut clip, mut words) =
-        (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
-    let buffers = SkinBuffers {
-        cells: &mut cells,
-        vertices: &mut vertices,
-        sites: &mut sites,
-        clip: &mut clip,
-        words: &mut words,
-    };
-    let skin = Skin::new(params, buffers).expect("memory suffices");
+    let mut memory = SkinVecs::new(&m);
+    let skin = Skin::new(params, memory.buffers()).expect("memory suffices");
     inspect(&skin)
 }
 

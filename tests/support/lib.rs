@@ -41,3 +41,66 @@ pub fn profile_dir() -> PathBuf {
 pub fn fnv1a64(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
 }
+
+/// Owned memory for a glass plate, sized by [`hibi_core::glass::GlassParams::memory`].
+pub struct GlassVecs {
+    cracks: Vec<hibi_core::glass::Crack>,
+    vertices: Vec<hibi_core::glass::Vertex>,
+    edges: Vec<hibi_core::glass::Edge>,
+    words: Vec<u32>,
+}
+
+impl GlassVecs {
+    /// Memory of the sizes `m` asks for.
+    pub fn new(m: &hibi_core::glass::GlassMemory) -> Self {
+        GlassVecs {
+            cracks: vec![Default::default(); m.cracks],
+            vertices: vec![Default::default(); m.vertices],
+            edges: vec![Default::default(); m.edges],
+            words: vec![0; m.words],
+        }
+    }
+
+    /// The buffers for [`hibi_core::glass::Glass::new`].
+    pub fn buffers(&mut self) -> hibi_core::glass::GlassBuffers<'_> {
+        hibi_core::glass::GlassBuffers {
+            cracks: &mut self.cracks,
+            vertices: &mut self.vertices,
+            edges: &mut self.edges,
+            words: &mut self.words,
+        }
+    }
+}
+
+/// Owned memory for a skin, sized by [`hibi_core::skin::SkinParams::memory`].
+pub struct SkinVecs {
+    cells: Vec<hibi_core::skin::SkinCell>,
+    vertices: Vec<[i64; 2]>,
+    sites: Vec<hibi_core::skin::Site>,
+    clip: Vec<hibi_core::skin::ClipVertex>,
+    words: Vec<u32>,
+}
+
+impl SkinVecs {
+    /// Memory of the sizes `m` asks for.
+    pub fn new(m: &hibi_core::skin::SkinMemory) -> Self {
+        SkinVecs {
+            cells: vec![Default::default(); m.cells],
+            vertices: vec![[0; 2]; m.vertices],
+            sites: vec![Default::default(); m.sites],
+            clip: vec![Default::default(); m.clip],
+            words: vec![0; m.words],
+        }
+    }
+
+    /// The buffers for [`hibi_core::skin::Skin::new`].
+    pub fn buffers(&mut self) -> hibi_core::skin::SkinBuffers<'_> {
+        hibi_core::skin::SkinBuffers {
+            cells: &mut self.cells,
+            vertices: &mut self.vertices,
+            sites: &mut self.sites,
+            clip: &mut self.clip,
+            words: &mut self.words,
+        }
+    }
+}
