@@ -200,7 +200,6 @@ fn assert_fragments_tile(p: &GlassParams, frags: &[(FragmentRing, Vec<[f32; 2]>)
         assert!(ring.iter().all(|q| (0.0..=p.width).contains(&q[0]) && (0.0..=p.height).contains(&q[1])));
     }
     // A deterministic cloud of sample points (irrational steps, so none lands on a crack).
-    let mut covered_once = 0;
     for k in 0..4000 {
         let q = [
             (k as f64 * 0.618_033_988_75).fract() * f64::from(p.width),
@@ -212,9 +211,7 @@ fn assert_fragments_tile(p: &GlassParams, frags: &[(FragmentRing, Vec<[f32; 2]>)
             .map(|(r, _)| if r.area > 0.0 { 1 } else { -1 })
             .sum();
         assert_eq!(count, 1, "{what}: point {q:?} lies in {count} fragments");
-        covered_once += 1;
     }
-    assert_eq!(covered_once, 4000);
 }
 
 #[test]

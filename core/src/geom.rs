@@ -486,4 +486,20 @@ mod tests {
         );
         assert_eq!(Segment::new(q(0.0, 0.0), q(4.0, 0.0)).distance_to_point(q(2.0, 3.0)), Q16::from_i32(3));
     }
+
+    #[test]
+    fn pseudo_angle_orders_directions_like_the_angle() {
+        let mut previous = -1.0;
+        for k in 0..360 {
+            let a = (k as f32).to_radians();
+            let d = [libm::cosf(a), libm::sinf(a)];
+            let p = pseudo_angle(d);
+            assert!((0.0..4.0).contains(&p) && p > previous, "{k}°: {p} after {previous}");
+            previous = p;
+        }
+        assert_eq!(pseudo_angle([2.0, 0.0]), 0.0);
+        assert_eq!(pseudo_angle([0.0, 3.0]), 1.0);
+        assert_eq!(pseudo_angle([-1.0, 0.0]), 2.0);
+        assert_eq!(pseudo_angle([0.0, -5.0]), 3.0);
+    }
 }

@@ -272,22 +272,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn pseudo_angle_orders_directions_like_the_angle() {
-        let mut previous = -1.0;
-        for k in 0..360 {
-            let a = (k as f32).to_radians();
-            let d = [libm::cosf(a), libm::sinf(a)];
-            let p = pseudo_angle(d);
-            assert!((0.0..4.0).contains(&p) && p > previous, "{k}°: {p} after {previous}");
-            previous = p;
-        }
-        assert_eq!(pseudo_angle([2.0, 0.0]), 0.0);
-        assert_eq!(pseudo_angle([0.0, 3.0]), 1.0);
-        assert_eq!(pseudo_angle([-1.0, 0.0]), 2.0);
-        assert_eq!(pseudo_angle([0.0, -5.0]), 3.0);
-    }
-
-    #[test]
     fn a_point_is_inside_a_square_by_crossings() {
         let square = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]];
         let count = |p: [f32; 2]| (0..4).filter(|&i| crosses_ray(square[i], square[(i + 1) % 4], p)).count();

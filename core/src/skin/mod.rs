@@ -414,13 +414,6 @@ impl<'a> Skin<'a> {
     /// exactly once.
     pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
         let mut crossings = [0u64; MAX_OUTLINE];
-        let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
-        let periodic = self.params.periodic;
-        scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), &mut crossings, |x, y| {
-            let (x, y) = if periodic { (x.rem_euclid(w), y.rem_euclid(h)) } else { (x, y) };
-            if (0..w).contains(&x) && (0..h).contains(&y) {
-                visit(x as u32, y as u32);
-            }
-        });
+        self.for_each_pixel_unwrapped(cell, &mut crossings, |_, _, x, y| visit(x, y));
     }
 }

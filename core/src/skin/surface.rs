@@ -72,7 +72,8 @@ impl Skin<'_> {
             let table = &self.tables[level];
             let roundness = S::from_f32(self.params.level[level].roundness);
             let end = S::from_f32(table.end);
-            let n = self.prepare(c, &mut wedges);
+            // Wedges serve heights and normals; a cell map alone needs only the pixels.
+            let n = if height.is_some() || normal.is_some() { self.prepare(c, &mut wedges) } else { 0 };
             let unit = (1u64 << self.fixed_point_bits()) as f64;
             let centre = [(c.centre[0] as f64 / unit) as f32, (c.centre[1] as f64 / unit) as f32];
             let writes_cell = c.level == cell_level;
@@ -150,8 +151,10 @@ impl Skin<'_> {
         n
     }
 
-    /// Like [`Skin::for_each_pixel`], also passing the unwrapped column and row.
-    fn for_each_pixel_unwrapped(
+    /// Calls `visit(column, row, wrapped column, wrapped row)` for every pixel whose centre lies
+    /// in `cell`: unwrapped as the outline places it, and on the surface. `crossings` is scratch
+    /// of at least the outline's length.
+    pub(super) fn for_each_pixel_unwrapped(
         &self,
         cell: &SkinCell,
         crossings: &mut [u64],
