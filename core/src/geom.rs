@@ -357,9 +357,45 @@ pub fn pseudo_angle(d: [f32; 2]) -> f32 {
     }
 }
 
+/// `libm::round(x) as i64` (nearest integer, halves away from zero; saturating, NaN → 0),
+/// without libm's bit-level software rounding: below 2^52 in magnitude the truncation and the
+/// remainder `x − trunc(x)` are exact, so comparing the remainder with ±0.5 decides alike;
+/// from 2^52 on every `f64` is already an integer.
+#[inline]
+pub fn round_to_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if !(x.abs() < 4_503_599_627_370_496.0) {
+        return t;
+    }
+    let rest = x - t as f64;
+    t + i64::from(rest >= 0.5) - i64::from(rest <= -0.5)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn round_to_i64_is_libm_round() {
+        let check = |c: f64| assert_eq!(round_to_i64(c), libm::round(c) as i64, "{c:e}");
+        let edges = [0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.49999999999999994];
+        let huge = [4_503_599_627_370_495.5, -4_503_599_627_370_495.5, 4_503_599_627_370_496.0, 1e19, -1e19];
+        let special = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, f64::MAX, f64::MIN_POSITIVE];
+        edges.into_iter().chain(huge).chain(special).for_each(check);
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Magnitudes from 2^-4 to 2^60, with halves and their neighbours.
+            let v = (x >> 11) as f64 / (1u64 << 53) as f64 + (x >> 44) as f64;
+            let scale = (1u64 << (x % 61)) as f64 / 16.0;
+            let half = (x >> 20) as f64 + 0.5;
+            for c in [v * scale, -v * scale, half, -half, f64::from_bits(half.to_bits() - 1), f64::from_bits(half.to_bits() + 1)] {
+                check(c);
+            }
+        }
+    }
 
     fn p(x: f32, y: f32) -> Point<f32> {
         Point::new(x, y)

@@ -17,7 +17,9 @@
 //! gap or an overlap between them. Everything is stored at the finest level's resolution.
 
 use super::params::LevelParams;
+use super::shared::{EdgeKey, KEPT_POINTS, SharedEdges};
 use super::sites::Site;
+use crate::geom::round_to_i64;
 use crate::rng::{Rng, Stream};
 
 /// Most vertices one cell outline can have.
@@ -89,7 +91,7 @@ impl Frame {
     fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
         let q = |k: usize| {
             let world = at[k] * self.stretch[k] * self.own_unit;
-            ((libm::round(world) as i64) << (self.shift - self.bits))
+            (round_to_i64(world) << (self.shift - self.bits))
                 + i64::from(reference.image[k]) * self.world_period[k]
         };
         [q(0), q(1)]
@@ -178,7 +180,7 @@ fn bisector_meets_edge(f: &Frame, a: &Site, b: &Site, p: [i64; 2], q: [i64; 2]) 
     } else {
         // The parent's points are multiples of 2^(shift − bits + EDGE_BITS): exact division.
         let steps = 1i64 << EDGE_BITS;
-        let k = (libm::round(t * steps as f64) as i64).clamp(0, steps);
+        let k = round_to_i64(t * steps as f64).clamp(0, steps);
         [p[0] + k * ((q[0] - p[0]) >> EDGE_BITS), p[1] + k * ((q[1] - p[1]) >> EDGE_BITS)]
     };
     Corner { at: f.unfixed(fixed, lo), reference: *lo, fixed }
@@ -252,7 +254,7 @@ impl Builder<'_> {
         site: &Site,
         neighbours: &[Site],
         parent: &[[i64; 2]],
-        out: &mut [[i64; 2]],
+        (out, shared): (&mut [[i64; 2]], &mut SharedEdges),
     ) -> Result<usize, OutlineFull> {
         let n0 = parent.len();
         if n0 > self.clip.len() {
@@ -305,7 +307,7 @@ impl Builder<'_> {
                 farthest = reach(&self.clip[..n]);
             }
         }
-        self.finish(f, site, neighbours, (parent, chunk_count), n, out)
+        self.finish(f, site, neighbours, (parent, chunk_count), n, (out, shared))
     }
 
     /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count, or
@@ -389,7 +391,7 @@ impl Builder<'_> {
         neighbours: &[Site],
         (parent, chunk_count): (&[[i64; 2]], usize),
         n: usize,
-        out: &mut [[i64; 2]],
+        (out, shared): (&mut [[i64; 2]], &mut SharedEdges),
     ) -> Result<usize, OutlineFull> {
         let mut written = 0;
         let mut push = |p: [i64; 2], written: &mut usize| -> Result<(), OutlineFull> {
@@ -415,21 +417,48 @@ impl Builder<'_> {
                 continue;
             }
             // A bisector edge, split where the parent's outline crosses it (clipping a
-            // non-convex parent bridges such crossings; the sibling has the pieces).
+            // non-convex parent bridges such crossings; the sibling has the pieces), each piece
+            // perturbed: built by whichever of the two cells comes first.
             let b = &neighbours[label as usize];
+            push(start.fixed, &mut written)?;
+            let (key, forward, image) = edge_key(f, a, b, &start, &end);
+            let to_surface = |p: [i64; 2]| [p[0] + image[0], p[1] + image[1]];
+            if let Some((points, m)) = shared.take(f.level, &key) {
+                for i in 0..m {
+                    push(to_surface(points[if forward { i } else { m - 1 - i }]), &mut written)?;
+                }
+                start = end;
+                continue;
+            }
+            let mut kept = [[0i64; 2]; KEPT_POINTS];
+            let (mut m, mut fits) = (0, true);
             let mut pieces = [start; MAX_CROSSINGS + 2];
             let near = (parent, &self.chunks[..chunk_count]);
             let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, &mut pieces) } else { 0 };
             pieces[count + 1] = end;
-            for w in pieces[..count + 2].windows(2) {
-                push(w[0].fixed, &mut written)?;
-                if f.perturbation > 0.0 && f.depth > 0 {
-                    let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
-                    let inner = perturb(f, a, b, (&w[0], &w[1]), near, &mut points);
-                    for p in &points[1..inner] {
-                        push(*p, &mut written)?;
+            for (i, w) in pieces[..count + 2].windows(2).enumerate() {
+                let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+                points[0] = w[0].fixed;
+                let inner = if f.perturbation > 0.0 && f.depth > 0 {
+                    perturb(f, a, b, (&w[0], &w[1]), near, &mut points)
+                } else {
+                    1
+                };
+                for p in &points[usize::from(i == 0)..inner] {
+                    push(*p, &mut written)?;
+                    if m < KEPT_POINTS {
+                        kept[m] = [p[0] - image[0], p[1] - image[1]];
+                        m += 1;
+                    } else {
+                        fits = false;
                     }
                 }
+            }
+            if fits {
+                if !forward {
+                    kept[..m].reverse();
+                }
+                shared.keep(f.level, key, &kept[..m]);
             }
             start = end;
         }
@@ -438,6 +467,19 @@ impl Builder<'_> {
         }
         Ok(written)
     }
+}
+
+/// The key both cells give the bisector edge of `a` and `b` from `start` to `end` (as `a`
+/// runs it); whether `a` runs it in the key's direction; and the fixed-point offset of the
+/// lower site's image, which kept points are relative to.
+fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (EdgeKey, bool, [i64; 2]) {
+    let (lo, hi) = sorted2(a, b);
+    let forward = (a.id, a.image) == (lo.id, lo.image);
+    let image = [0, 1].map(|k| i64::from(lo.image[k]) * f.world_period[k]);
+    let local = |c: &Corner| [c.fixed[0] - image[0], c.fixed[1] - image[1]];
+    let ends = if forward { [local(start), local(end)] } else { [local(end), local(start)] };
+    let offset = [hi.image[0] - lo.image[0], hi.image[1] - lo.image[1]];
+    (EdgeKey { ids: [lo.id, hi.id], offset, ends }, forward, image)
 }
 
 /// Most parent-outline crossings one bisector edge is split at.

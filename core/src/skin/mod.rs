@@ -33,6 +33,7 @@ mod presets;
 mod profile;
 mod scan;
 mod shade;
+mod shared;
 mod sites;
 mod surface;
 
@@ -47,6 +48,7 @@ pub use surface::SkinLayers;
 
 use cell::{Builder, Frame};
 use profile::ProfileTable;
+use shared::SharedEdges;
 use sites::Lattice;
 
 /// Neighbours on each side a level-1 centre is clipped against (jitter is at most half a
@@ -137,8 +139,9 @@ impl SkinParams {
         if self.periodic {
             [0, 0, lattice.count[0] - 1, lattice.count[1] - 1]
         } else {
-            let r = lattice.indices_over([0.0, 0.0], lattice.period);
-            [r[0] - 1, r[1] - 1, r[2] + 1, r[3] + 1]
+            // The lattice points within about two steps of the surface: one farther out
+            // always has nearer ones between it and the surface.
+            [-3, -3, lattice.count[0] + 1, lattice.count[1] + 1]
         }
     }
 
@@ -200,6 +203,7 @@ struct Build<'b> {
     vertex_count: usize,
     sites: &'b mut [Site],
     builder: Builder<'b>,
+    shared: SharedEdges,
 }
 
 impl Build<'_> {
@@ -224,7 +228,7 @@ impl Build<'_> {
             .builder
             .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
                 let room = tail.len().min(MAX_OUTLINE);
-                &mut tail[..room]
+                (&mut tail[..room], &mut self.shared)
             })
             .map_err(|_| SkinError::Capacity)?;
         if n < 3 {
@@ -338,6 +342,7 @@ impl<'a> Skin<'a> {
                 order: &mut buffers.words[..MAX_CHILDREN],
                 chunks: [[0; 4]; MAX_OUTLINE / 8 + 1],
             },
+            shared: SharedEdges::new(),
         };
         let lattice = lattices[0];
         let f = frames[0];
@@ -359,7 +364,7 @@ impl<'a> Skin<'a> {
                     let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
                     let corner = |dx: f64, dy: f64| {
                         let q = |k: usize, d: f64| {
-                            (libm::round((site.at[k] + d) * f.stretch[k] * 256.0) as i64) << (shift - 8)
+                            crate::geom::round_to_i64((site.at[k] + d) * f.stretch[k] * 256.0) << (shift - 8)
                         };
                         [q(0, dx), q(1, dy)]
                     };

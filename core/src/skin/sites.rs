@@ -108,10 +108,18 @@ impl Lattice {
     /// The lattice indices (i0, j0, i1, j1) of every site that can lie in the frame box
     /// [min, max] (jitter included).
     pub(super) fn indices_over(&self, min: [f64; 2], max: [f64; 2]) -> [i64; 4] {
-        let lo = |v: f64, step: f64| libm::floor(v / step - 2.0) as i64;
-        let hi = |v: f64, step: f64| libm::ceil(v / step + 1.0) as i64;
-        let mut r =
-            [lo(min[0], self.step[0]), lo(min[1], self.step[1]), hi(max[0], self.step[0]), hi(max[1], self.step[1])];
+        // Site (i, j) lies in [i + 1/2 − J, i + 1 + J] × [j + 1/2 − J, j + 1/2 + J] steps, J
+        // half the jitter ratio (odd triangular rows are shifted by half a step); a hundredth
+        // of a step covers rounding.
+        let half = 0.5 * self.jitter + 0.01;
+        let lo = |v: f64, step: f64, reach: f64| libm::ceil(v / step - reach) as i64;
+        let hi = |v: f64, step: f64| libm::floor(v / step - 0.5 + half) as i64;
+        let mut r = [
+            lo(min[0], self.step[0], 1.0 + half),
+            lo(min[1], self.step[1], 0.5 + half),
+            hi(max[0], self.step[0]),
+            hi(max[1], self.step[1]),
+        ];
         if !self.periodic {
             r[0] = r[0].max(-MARGIN);
             r[1] = r[1].max(-MARGIN);

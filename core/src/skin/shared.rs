@@ -1,0 +1,74 @@
+//! Edges built once for two cells. A bisector edge between two cells of a level (paper §4.1
+//! (2): split where the parent's outline crosses it, then perturbed) is a function of data
+//! both cells share, computed in the frame and direction of the lower site id. The cell built
+//! first keeps the edge's inner points here; its neighbour, built soon after (siblings are
+//! built one after another), takes them instead of computing them again. Keeping is only a
+//! shortcut: a neighbour that finds nothing computes the same points itself.
+
+use super::params::MAX_LEVELS;
+
+/// Inner points one kept edge can hold (perturbation depth 3 with no crossing).
+pub(super) const KEPT_POINTS: usize = 7;
+/// Edges kept per level.
+const SLOTS: usize = 32;
+
+/// What identifies an edge from both sides: the two sites' ids, lower first, the higher one's
+/// periodic image relative to the lower's, and the edge's ends relative to the lower's image,
+/// in the direction the lower one runs it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct EdgeKey {
+    pub(super) ids: [u32; 2],
+    pub(super) offset: [i32; 2],
+    pub(super) ends: [[i64; 2]; 2],
+}
+
+/// One kept edge: its key and its inner points (relative to the lower site's image, in its
+/// direction).
+#[derive(Clone, Copy, Default)]
+struct Kept {
+    key: EdgeKey,
+    count: u8,
+    valid: bool,
+    points: [[i64; 2]; KEPT_POINTS],
+}
+
+/// The edges kept for the neighbours still to be built, per level (a level's siblings are
+/// built between the cells of finer levels).
+pub(super) struct SharedEdges {
+    kept: [[Kept; SLOTS]; MAX_LEVELS],
+    /// The slot each level overwrites next when none is free.
+    next: [usize; MAX_LEVELS],
+}
+
+impl SharedEdges {
+    pub(super) fn new() -> SharedEdges {
+        SharedEdges { kept: [[Kept::default(); SLOTS]; MAX_LEVELS], next: [0; MAX_LEVELS] }
+    }
+
+    /// The inner points kept for `key` on `level` (each edge is taken once: it has two sides).
+    pub(super) fn take(&mut self, level: u32, key: &EdgeKey) -> Option<([[i64; 2]; KEPT_POINTS], usize)> {
+        let slot = self.kept[level as usize].iter_mut().find(|k| k.valid && k.key == *key)?;
+        slot.valid = false;
+        Some((slot.points, usize::from(slot.count)))
+    }
+
+    /// Keeps `points` for `key` on `level`, in a free slot or over the oldest-written one.
+    pub(super) fn keep(&mut self, level: u32, key: EdgeKey, points: &[[i64; 2]]) {
+        if points.len() > KEPT_POINTS {
+            return;
+        }
+        let l = level as usize;
+        let slot = match self.kept[l].iter().position(|k| !k.valid) {
+            Some(free) => free,
+            None => {
+                let s = self.next[l];
+                self.next[l] = (s + 1) % SLOTS;
+                s
+            }
+        };
+        let mut kept = Kept { key, count: points.len() as u8, valid: true, points: [[0; 2]; KEPT_POINTS] };
+        kept.points[..points.len()].copy_from_slice(points);
+        self.kept[l][slot] = kept;
+    }
+
+}
