@@ -266,10 +266,11 @@ impl Builder<'_> {
         }
         let mut n = n0;
         // Neighbours nearest first (ties by id, so the order is fixed).
-        let distance = |s: &Site| {
-            let d = [s.at[0] - site.at[0], s.at[1] - site.at[1]];
+        let distance_to = |p: [f64; 2]| {
+            let d = [p[0] - site.at[0], p[1] - site.at[1]];
             d[0] * d[0] + d[1] * d[1]
         };
+        let distance = |s: &Site| distance_to(s.at);
         let m = neighbours.len();
         for (k, o) in self.order[..m].iter_mut().enumerate() {
             *o = k as u32;
@@ -278,15 +279,7 @@ impl Builder<'_> {
             let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
             distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
         });
-        let reach = |clip: &[ClipVertex]| {
-            clip.iter()
-                .map(|v| {
-                    let d = [v.at[0] - site.at[0], v.at[1] - site.at[1]];
-                    d[0] * d[0] + d[1] * d[1]
-                })
-                .fold(0.0f64, f64::max)
-        };
-        let mut farthest = reach(&self.clip[..n]);
+        let mut farthest = self.clip[..n].iter().fold(0.0f64, |far, v| far.max(distance_to(v.at)));
         for k in 0..m {
             let j = self.order[k] as usize;
             let b = &neighbours[j];
@@ -298,50 +291,65 @@ impl Builder<'_> {
             if distance(b) > 4.0 * farthest {
                 break;
             }
-            let clipped = self.clip_by_bisector(n, site, b, j as u32)?;
-            if let Some(count) = clipped {
+            if let Some((count, reach)) = self.clip_by_bisector(n, site, b, j as u32)? {
                 n = count;
                 if n == 0 {
                     return Ok(0);
                 }
-                farthest = reach(&self.clip[..n]);
+                farthest = reach;
             }
         }
         self.finish(f, site, neighbours, (parent, chunk_count), n, (out, shared))
     }
 
-    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count, or
-    /// None if the whole outline is already nearer `a`.
-    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<Option<usize>, OutlineFull> {
+    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count and the
+    /// largest squared distance of a kept vertex from `a`, or None if the whole outline is
+    /// already nearer `a`.
+    fn clip_by_bisector(
+        &mut self,
+        n: usize,
+        a: &Site,
+        b: &Site,
+        j: u32,
+    ) -> Result<Option<(usize, f64)>, OutlineFull> {
         let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
         let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
         let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
         if self.clip[..n].iter().all(|v| side(v.at) <= 0.0) {
             return Ok(None);
         }
-        let mut out = 0;
+        let (mut out, mut farthest) = (0, 0.0f64);
+        let mut sn = side(self.clip[0].at);
         for k in 0..n {
             let (cur, next) = (self.clip[k], self.clip[(k + 1) % n]);
-            let (sc, sn) = (side(cur.at), side(next.at));
+            let sc = sn;
+            sn = side(next.at);
             let (cin, nin) = (sc <= 0.0, sn <= 0.0);
             let extra = usize::from(cin) + usize::from(cin != nin);
             if out + extra > self.spare.len() {
                 return Err(OutlineFull);
             }
-            if cin {
-                self.spare[out] = cur;
+            let mut keep = |v: ClipVertex| {
+                let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
+                let r2 = r[0] * r[0] + r[1] * r[1];
+                if r2 > farthest {
+                    farthest = r2;
+                }
+                self.spare[out] = v;
                 out += 1;
+            };
+            if cin {
+                keep(cur);
             }
             if cin != nin {
                 let t = sc / (sc - sn);
                 let at = [cur.at[0] + t * (next.at[0] - cur.at[0]), cur.at[1] + t * (next.at[1] - cur.at[1])];
                 let label = if cin { j } else { cur.label };
-                self.spare[out] = ClipVertex { at, label };
-                out += 1;
+                keep(ClipVertex { at, label });
             }
         }
         core::mem::swap(&mut self.clip, &mut self.spare);
-        Ok(Some(out))
+        Ok(Some((out, farthest)))
     }
 
     /// The corner between an edge labelled `into` and one labelled `from` (starting at clip
