@@ -16,7 +16,7 @@
 //! children of neighbouring parents meet along the very same line, and no pixel falls in a
 //! gap or an overlap between them. Everything is stored at the finest level's resolution.
 
-use super::params::LevelParams;
+use super::params::{LevelParams, MAX_PERTURBATION_DEPTH};
 use super::shared::{EdgeKey, KEPT_POINTS, SharedEdges};
 use super::sites::Site;
 use crate::geom::round_to_i64;
@@ -55,7 +55,8 @@ pub(super) struct Frame {
     own_unit: f64,
     to_frame: [f64; 2],
     pub(super) perturbation: f64,
-    pub(super) decay: f64,
+    /// A·2^(−n·h) for subdivision n = 1..=depth (index n − 1), of the perturbation's V.
+    amplitude: [f64; MAX_PERTURBATION_DEPTH as usize],
     pub(super) depth: u32,
 }
 
@@ -74,7 +75,9 @@ impl Frame {
             own_unit: (1u64 << (BASE_BITS + EDGE_BITS * level as u32)) as f64,
             to_frame: [1.0 / ((1u64 << shift) as f64 * stretch[0]), 1.0 / ((1u64 << shift) as f64 * stretch[1])],
             perturbation: f64::from(l.perturbation),
-            decay: f64::from(l.perturbation_decay),
+            amplitude: core::array::from_fn(|n| {
+                f64::from(l.perturbation) * libm::exp2(-((n + 1) as f64) * f64::from(l.perturbation_decay))
+            }),
             depth: l.perturbation_depth,
         }
     }
@@ -272,13 +275,29 @@ impl Builder<'_> {
         };
         let distance = |s: &Site| distance_to(s.at);
         let m = neighbours.len();
-        for (k, o) in self.order[..m].iter_mut().enumerate() {
-            *o = k as u32;
+        if m <= FEW {
+            // A few siblings: each one's rank is the count of those before it, without
+            // branches (squared distances are ≥ 0, so their bits order as the values do; ties
+            // go by id, then image).
+            let mut keys = [(0u64, 0u64); FEW];
+            for (key, s) in keys.iter_mut().zip(neighbours) {
+                let image = s.image.map(|v| (v as u64).wrapping_add(1 << 15) & 0xFFFF);
+                *key = (distance(s).to_bits(), u64::from(s.id) << 32 | image[0] << 16 | image[1]);
+            }
+            for i in 0..m {
+                let (d, t) = keys[i];
+                let rank: usize = keys[..m].iter().map(|&(e, u)| usize::from((e < d) | ((e == d) & (u < t)))).sum();
+                self.order[rank] = i as u32;
+            }
+        } else {
+            for (k, o) in self.order[..m].iter_mut().enumerate() {
+                *o = k as u32;
+            }
+            self.order[..m].sort_unstable_by(|&i, &j| {
+                let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
+                distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
+            });
         }
-        self.order[..m].sort_unstable_by(|&i, &j| {
-            let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
-            distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
-        });
         let mut farthest = self.clip[..n].iter().fold(0.0f64, |far, v| far.max(distance_to(v.at)));
         for k in 0..m {
             let j = self.order[k] as usize;
@@ -445,7 +464,7 @@ impl Builder<'_> {
             let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, &mut pieces) } else { 0 };
             pieces[count + 1] = end;
             for (i, w) in pieces[..count + 2].windows(2).enumerate() {
-                let mut points = [[0i64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+                let mut points = [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
                 points[0] = w[0].fixed;
                 let inner = if f.perturbation > 0.0 && f.depth > 0 {
                     perturb(f, a, b, (&w[0], &w[1]), near, &mut points)
@@ -489,6 +508,9 @@ fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (Edg
     let offset = [hi.image[0] - lo.image[0], hi.image[1] - lo.image[1]];
     (EdgeKey { ids: [lo.id, hi.id], offset, ends }, forward, image)
 }
+
+/// Neighbour lists up to this long are ordered by rank on the stack, longer ones sorted.
+const FEW: usize = 32;
 
 /// Most parent-outline crossings one bisector edge is split at.
 const MAX_CROSSINGS: usize = 16;
@@ -585,7 +607,7 @@ fn perturb(
     let (p0, p1) = (place(from), place(to));
     let length = libm::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
     let pieces = 1usize << f.depth;
-    let mut line = [[0.0f64; 2]; (1 << super::params::MAX_PERTURBATION_DEPTH) + 1];
+    let mut line = [[0.0f64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
     line[0] = p0;
     line[pieces] = p1;
     if length > 0.0 {
@@ -607,7 +629,7 @@ fn perturb(
         let mut rng = Rng::from_key(f.seed, key ^ ends);
         let mut step = pieces;
         for level in 1..=f.depth {
-            let amplitude = f.perturbation * libm::exp2(-f64::from(level) * f.decay) * length;
+            let amplitude = f.amplitude[level as usize - 1] * length;
             let half = step / 2;
             let mut i = 0;
             while i < pieces {

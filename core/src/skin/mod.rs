@@ -382,8 +382,11 @@ impl<'a> Skin<'a> {
         }
         let (cell_count, vertex_count) = (build.cell_count, build.vertex_count);
         let (cells, vertices) = (build.cells, build.vertices);
-        let tables =
-            core::array::from_fn(|l| ProfileTable::new(&params.level[l.min(params.levels as usize - 1)].profile));
+        // One table per level in use (the rest repeat the last; they are never read).
+        let mut tables = [ProfileTable::new(&params.level[0].profile); MAX_LEVELS];
+        for l in 1..MAX_LEVELS {
+            tables[l] = if l < params.levels as usize { ProfileTable::new(&params.level[l].profile) } else { tables[l - 1] };
+        }
         Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
     }
 
