@@ -364,7 +364,8 @@ pub fn pseudo_angle(d: [f32; 2]) -> f32 {
 #[inline]
 pub fn round_to_i64(x: f64) -> i64 {
     let t = x as i64;
-    if !(x.abs() < 4_503_599_627_370_496.0) {
+    // Also NaN, which `as` maps to 0.
+    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
         return t;
     }
     let rest = x - t as f64;
@@ -391,7 +392,14 @@ mod tests {
             let v = (x >> 11) as f64 / (1u64 << 53) as f64 + (x >> 44) as f64;
             let scale = (1u64 << (x % 61)) as f64 / 16.0;
             let half = (x >> 20) as f64 + 0.5;
-            for c in [v * scale, -v * scale, half, -half, f64::from_bits(half.to_bits() - 1), f64::from_bits(half.to_bits() + 1)] {
+            for c in [
+                v * scale,
+                -v * scale,
+                half,
+                -half,
+                f64::from_bits(half.to_bits() - 1),
+                f64::from_bits(half.to_bits() + 1),
+            ] {
                 check(c);
             }
         }

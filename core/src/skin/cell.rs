@@ -94,8 +94,7 @@ impl Frame {
     fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
         let q = |k: usize| {
             let world = at[k] * self.stretch[k] * self.own_unit;
-            (round_to_i64(world) << (self.shift - self.bits))
-                + i64::from(reference.image[k]) * self.world_period[k]
+            (round_to_i64(world) << (self.shift - self.bits)) + i64::from(reference.image[k]) * self.world_period[k]
         };
         [q(0), q(1)]
     }
@@ -324,13 +323,7 @@ impl Builder<'_> {
     /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count and the
     /// largest squared distance of a kept vertex from `a`, or None if the whole outline is
     /// already nearer `a`.
-    fn clip_by_bisector(
-        &mut self,
-        n: usize,
-        a: &Site,
-        b: &Site,
-        j: u32,
-    ) -> Result<Option<(usize, f64)>, OutlineFull> {
+    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<Option<(usize, f64)>, OutlineFull> {
         let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
         let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
         let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];

@@ -273,7 +273,8 @@ impl Build<'_> {
             for i in r[0]..=r[2] {
                 let s = lattice.site(i, j);
                 let p = f.site_fixed(&s);
-                if scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
+                let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
+                if in_box && scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
                     if count == MAX_CHILDREN {
                         return Err(SkinError::Capacity);
                     }
@@ -385,7 +386,8 @@ impl<'a> Skin<'a> {
         // One table per level in use (the rest repeat the last; they are never read).
         let mut tables = [ProfileTable::new(&params.level[0].profile); MAX_LEVELS];
         for l in 1..MAX_LEVELS {
-            tables[l] = if l < params.levels as usize { ProfileTable::new(&params.level[l].profile) } else { tables[l - 1] };
+            tables[l] =
+                if l < params.levels as usize { ProfileTable::new(&params.level[l].profile) } else { tables[l - 1] };
         }
         Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
     }

@@ -70,5 +70,4 @@ impl SharedEdges {
         kept.points[..points.len()].copy_from_slice(points);
         self.kept[l][slot] = kept;
     }
-
 }
