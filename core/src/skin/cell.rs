@@ -192,6 +192,12 @@ fn bisector_meets_edge(f: &Frame, a: &Site, b: &Site, p: [i64; 2], q: [i64; 2]) 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct OutlineFull;
 
+/// The index after `i` around a closed outline of `n` vertices (no division).
+#[inline]
+fn next(i: usize, n: usize) -> usize {
+    if i + 1 == n { 0 } else { i + 1 }
+}
+
 /// Edges of a parent outline per chunk (for its bounding boxes).
 pub(super) const CHUNK: usize = 8;
 
@@ -212,7 +218,7 @@ pub(super) fn chunk_boxes(outline: &[[i64; 2]], chunks: &mut [[i64; 4]]) -> usiz
     for (c, b) in chunks[..count].iter_mut().enumerate() {
         let mut bounds = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
         for i in c * CHUNK..=((c + 1) * CHUNK).min(m) {
-            let p = outline[i % m];
+            let p = outline[if i == m { 0 } else { i }];
             bounds = [bounds[0].min(p[0]), bounds[1].min(p[1]), bounds[2].max(p[0]), bounds[3].max(p[1])];
         }
         *b = bounds;
@@ -235,7 +241,7 @@ fn edges_near(
             continue;
         }
         for e in c * CHUNK..((c + 1) * CHUNK).min(m) {
-            let (p, q) = (outline[e], outline[(e + 1) % m]);
+            let (p, q) = (outline[e], outline[next(e, m)]);
             if (0..2).any(|k| p[k].max(q[k]) < low[k] - slack || p[k].min(q[k]) > high[k] + slack) {
                 continue;
             }
@@ -333,9 +339,9 @@ impl Builder<'_> {
         let (mut out, mut farthest) = (0, 0.0f64);
         let mut sn = side(self.clip[0].at);
         for k in 0..n {
-            let (cur, next) = (self.clip[k], self.clip[(k + 1) % n]);
+            let (cur, following) = (self.clip[k], self.clip[next(k, n)]);
             let sc = sn;
-            sn = side(next.at);
+            sn = side(following.at);
             let (cin, nin) = (sc <= 0.0, sn <= 0.0);
             let extra = usize::from(cin) + usize::from(cin != nin);
             if out + extra > self.spare.len() {
@@ -355,7 +361,7 @@ impl Builder<'_> {
             }
             if cin != nin {
                 let t = sc / (sc - sn);
-                let at = [cur.at[0] + t * (next.at[0] - cur.at[0]), cur.at[1] + t * (next.at[1] - cur.at[1])];
+                let at = [cur.at[0] + t * (following.at[0] - cur.at[0]), cur.at[1] + t * (following.at[1] - cur.at[1])];
                 let label = if cin { j } else { cur.label };
                 keep(ClipVertex { at, label });
             }
@@ -377,7 +383,7 @@ impl Builder<'_> {
     ) -> Corner {
         let edge = |label: u32| {
             let i = (label & !PARENT_EDGE) as usize;
-            (parent[i], parent[(i + 1) % parent.len()])
+            (parent[i], parent[next(i, parent.len())])
         };
         match (into & PARENT_EDGE != 0, from & PARENT_EDGE != 0) {
             (true, true) => {
@@ -423,7 +429,7 @@ impl Builder<'_> {
             Ok(())
         };
         let corner_at = |k: usize| {
-            let into = self.clip[(k + n - 1) % n].label;
+            let into = self.clip[if k == 0 { n - 1 } else { k - 1 }].label;
             self.corner(f, a, neighbours, parent, (into, self.clip[k].label), k)
         };
         let mut start = corner_at(0);
@@ -531,7 +537,7 @@ fn crossings(
     let mut found = 0;
     let mut along = [0i128; MAX_CROSSINGS + 2];
     edges_near(parent, chunks, (low, high), 0, |e| {
-        let (p, q) = (parent[e], parent[(e + 1) % m]);
+        let (p, q) = (parent[e], parent[next(e, m)]);
         let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
         let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
         let proper = ((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0));
@@ -669,7 +675,7 @@ fn perturb(
         let mut near = false;
         edges_near(parent, chunks, (low, high), slack, |e| {
             near = true;
-            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[(e + 1) % m], lo));
+            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[next(e, m)], lo));
             blocked = line.windows(2).any(|w| cross(w[0], w[1], r, s));
             blocked
         });
