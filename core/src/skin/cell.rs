@@ -682,9 +682,9 @@ fn perturb(
         // With no crossing, only a first or last piece leaving from an end on the outline
         // can lie outside: its inner end tells.
         if near && !blocked {
-            blocked = [line[1], line[pieces - 1]]
-                .iter()
-                .any(|q| !super::scan::contains_chunked(parent, chunks, CHUNK, f.fixed(*q, lo)));
+            // (One point when the edge has two pieces.)
+            let ends: &[usize] = if pieces == 2 { &[1] } else { &[1, pieces - 1] };
+            blocked = ends.iter().any(|&k| !super::scan::contains_chunked(parent, chunks, CHUNK, f.fixed(line[k], lo)));
         }
     }
     if !inside || blocked {
