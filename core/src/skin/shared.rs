@@ -7,10 +7,11 @@
 
 use super::params::MAX_LEVELS;
 
-/// Inner points one kept edge can hold (perturbation depth 3 with no crossing).
-pub(super) const KEPT_POINTS: usize = 7;
+/// Inner points one kept edge can hold (perturbation depth 2 with no crossing: the finer
+/// levels, where nearly all edges are).
+pub(super) const KEPT_POINTS: usize = 3;
 /// Edges kept per level.
-const SLOTS: usize = 32;
+const SLOTS: usize = 16;
 
 /// What identifies an edge from both sides: the two sites' ids, lower first, the higher one's
 /// periodic image relative to the lower's, and the edge's ends relative to the lower's image,
