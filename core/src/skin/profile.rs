@@ -13,8 +13,9 @@ pub(super) struct ProfileTable {
     pub(super) end: f32,
     /// SAMPLES / end.
     scale: f32,
-    pub(super) height: [f32; SAMPLES + 1],
-    pub(super) slope: [f32; SAMPLES + 1],
+    /// Height and slope at each sample, side by side so that a lookup reads one stretch of
+    /// memory.
+    samples: [[f32; 2]; SAMPLES + 1],
 }
 
 /// A cubic Bézier coordinate at t: B(t) = (1−t)³p0 + 3(1−t)²t p1 + 3(1−t)t² p2 + t³p3.
@@ -34,8 +35,7 @@ impl ProfileTable {
     pub(super) fn new(profile: &Profile) -> ProfileTable {
         let points = profile.used();
         let end = points[points.len() - 1][0];
-        let mut table =
-            ProfileTable { end, scale: SAMPLES as f32 / end, height: [0.0; SAMPLES + 1], slope: [0.0; SAMPLES + 1] };
+        let (mut height, mut slope) = ([0.0f32; SAMPLES + 1], [0.0f32; SAMPLES + 1]);
         for k in 0..=SAMPLES {
             let x = f64::from(end) * k as f64 / SAMPLES as f64;
             // The segment whose x' range holds x (the last one that starts at or before it).
@@ -60,31 +60,57 @@ impl ProfileTable {
             let t = 0.5 * (lo + hi);
             let dx = bezier_derivative(px, t);
             let dz = bezier_derivative(pz, t);
-            table.height[k] = bezier(pz, t) as f32;
+            height[k] = bezier(pz, t) as f32;
             // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
             // clamp it to a steep but finite value.
-            table.slope[k] = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
+            slope[k] = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
         }
         // Fill vertical tangents with their neighbours' slope.
         for k in 0..=SAMPLES {
-            if table.slope[k] == 0.0 {
-                let neighbour = if k > 0 { table.slope[k - 1] } else { table.slope[(k + 1).min(SAMPLES)] };
-                let dz =
-                    (table.height[k.min(SAMPLES - 1) + 1] - table.height[k.min(SAMPLES - 1)]) * SAMPLES as f32 / end;
-                table.slope[k] = if dz != 0.0 { dz } else { neighbour };
+            if slope[k] == 0.0 {
+                let neighbour = if k > 0 { slope[k - 1] } else { slope[(k + 1).min(SAMPLES)] };
+                let dz = (height[k.min(SAMPLES - 1) + 1] - height[k.min(SAMPLES - 1)]) * SAMPLES as f32 / end;
+                slope[k] = if dz != 0.0 { dz } else { neighbour };
             }
         }
-        table
+        ProfileTable { end, scale: SAMPLES as f32 / end, samples: core::array::from_fn(|k| [height[k], slope[k]]) }
     }
 
-    /// Height and slope at `x` ∈ [0, end], linearly interpolated.
-    #[inline]
+    /// Height and slope at `x` ∈ [0, end], linearly interpolated: what `interval` and `lerp`
+    /// give in two parts.
+    #[cfg(test)]
     pub(super) fn at(&self, x: f32) -> (f32, f32) {
         let f = (x * self.scale).clamp(0.0, SAMPLES as f32);
-        let k = (f as usize).min(SAMPLES - 1);
-        let w = f - k as f32;
-        let lerp = |v: &[f32; SAMPLES + 1]| v[k] + (v[k + 1] - v[k]) * w;
-        (lerp(&self.height), lerp(&self.slope))
+        // f rounded down, the last interval for f = SAMPLES.
+        let k = (f as u32).min(SAMPLES as u32 - 1);
+        self.lerp(k, f - k as f32)
+    }
+
+    /// The lookup of height and slope at `x`, part one (the other is `lerp`), split so that a
+    /// batch of lookups does the arithmetic of each part together: the sample interval `x`
+    /// falls in and the weight of its far end (the interval is f = x·SAMPLES/end, clamped to
+    /// [0, SAMPLES], rounded down; the last one for f = SAMPLES). Only
+    /// comparisons, basic arithmetic and bit casts, which vectorise: for 0 <= f < 2^23,
+    /// f + 2^23 is 2^23 plus f rounded to an integer, exactly, and that integer is in the low
+    /// bits of the sum.
+    #[inline(always)]
+    pub(super) fn interval(&self, x: f32) -> (u32, f32) {
+        const ROUND: f32 = 8_388_608.0;
+        let f = (x * self.scale).clamp(0.0, SAMPLES as f32);
+        let near = (f + ROUND) - ROUND;
+        let below = if near > f { near - 1.0 } else { near };
+        let k = if below < SAMPLES as f32 { below } else { (SAMPLES - 1) as f32 };
+        ((k + ROUND).to_bits().wrapping_sub(ROUND.to_bits()), f - k)
+    }
+
+    /// Height and slope at weight `w` along interval `k`.
+    #[inline(always)]
+    pub(super) fn lerp(&self, k: u32, w: f32) -> (f32, f32) {
+        // k < SAMPLES already; the mask shows it.
+        const { assert!(SAMPLES.is_power_of_two()) };
+        let k = k as usize & (SAMPLES - 1);
+        let ([h0, s0], [h1, s1]) = (self.samples[k], self.samples[k + 1]);
+        (h0 + (h1 - h0) * w, s0 + (s1 - s0) * w)
     }
 }
 
@@ -106,5 +132,17 @@ mod tests {
         let t = ProfileTable::new(&PROFILE_13B);
         assert!((t.at(0.0).0 - 3.0).abs() < 1e-5 && t.at(3.0).1.abs() < 1e-4);
         assert!(t.at(10.0).0.abs() < 1e-5 && t.at(9.8).1 < -2.0);
+    }
+
+    #[test]
+    fn the_lookup_in_two_parts_is_the_lookup() {
+        let t = ProfileTable::new(&PROFILE_13B);
+        let samples = (0..=SAMPLES).map(|k| k as f32 / t.scale);
+        let near = samples.clone().flat_map(|x| [x, f32::from_bits(x.to_bits() + 1), x - 1e-6, x + 1e-6]);
+        for x in near.chain((-1000..=11_000).map(|i| i as f32 * 1e-3)).chain([-1.0, 10.0, 11.0, 1e9]) {
+            let (k, w) = t.interval(x);
+            let (a, b) = (t.at(x), t.lerp(k, w));
+            assert_eq!((a.0.to_bits(), a.1.to_bits()), (b.0.to_bits(), b.1.to_bits()), "{x}");
+        }
     }
 }

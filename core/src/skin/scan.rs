@@ -38,77 +38,181 @@ pub(super) fn contains_chunked(outline: &[[i64; 2]], boxes: &[[i64; 4]], chunk: 
             continue;
         }
         for i in c * chunk..((c + 1) * chunk).min(n) {
-            inside ^= crosses(outline[i], outline[(i + 1) % n], p);
+            inside ^= crosses(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
         }
     }
     inside
 }
 
-/// Calls `visit(column, row)` for every pixel whose centre `outline` (fixed point of `shift`
-/// fractional bits) contains, in row order (columns and rows may lie outside the raster; the
-/// caller wraps or clips them). `crossings` is scratch for edge crossings (at least the
-/// outline's length): the outline is walked edge by edge over bands of rows that fit in it.
-pub(super) fn for_each_pixel(outline: &[[i64; 2]], shift: u32, crossings: &mut [u64], mut visit: impl FnMut(i64, i64)) {
+/// Rows a cell may span for [`for_each_span`]'s direct path.
+const DIRECT_ROWS: usize = 64;
+
+/// Calls `visit(row, c1, c2)` for every run of pixels `c1..c2` (c1 < c2) of one row whose
+/// centres `outline` (fixed point of `shift` fractional bits) contains, in row order
+/// (columns and rows may lie outside the raster; the caller wraps or clips them). `crossings`
+/// is scratch for edge crossings (at least the outline's length).
+///
+/// A centre is inside when an odd number of crossings lie strictly to its right: in each row,
+/// the columns in [c1, c2), [c3, c4), ... of the sorted crossings. Most cells are crossed
+/// twice in every row: their crossings are kept per row directly. Otherwise the outline is
+/// walked edge by edge over bands of rows whose crossings fit in `crossings`, and sorted.
+pub(super) fn for_each_span(
+    outline: &[[i64; 2]],
+    shift: u32,
+    crossings: &mut [u64],
+    mut visit: impl FnMut(i64, i64, i64),
+) {
     let n = outline.len();
     if n < 3 || crossings.len() < n {
         return;
     }
-    let unit = 1i64 << shift;
-    let half = unit / 2;
+    let half = 1i64 << (shift - 1);
     let (mut y0, mut y1, mut x0) = (i64::MAX, i64::MIN, i64::MAX);
     for v in outline {
         y0 = y0.min(v[1]);
         y1 = y1.max(v[1]);
         x0 = x0.min(v[0]);
     }
-    // Rows whose centre lies in [y0, y1]; columns counted from `base`.
-    let first = (y0 - half).div_euclid(unit);
-    let last = (y1 - half).div_euclid(unit) + 1;
-    let base = x0.div_euclid(unit) - 2;
+    // Rows whose centre lies in [y0, y1]. (An arithmetic shift right by `shift` is the floor of
+    // the division by the unit.)
+    let first = (y0 - half) >> shift;
+    let last = ((y1 - half) >> shift) + 1;
+    let rows = (last - first + 1) as usize;
+    if rows <= DIRECT_ROWS && 2 * rows <= crossings.len() {
+        // Each row's first two crossings, in `crossings`, and how many it has.
+        let mut count = [0u8; DIRECT_ROWS];
+        let pair = &mut crossings[..2 * rows];
+        each_crossing(outline, shift, first, last, |row, column| {
+            let r = (row - first) as usize;
+            let k = count[r];
+            if k < 2 {
+                pair[2 * r + usize::from(k)] = column as u64;
+            }
+            count[r] = k.saturating_add(1);
+        });
+        if count[..rows].iter().all(|&k| k == 0 || k == 2) {
+            for (r, (&k, c)) in count[..rows].iter().zip(pair.chunks_exact(2)).enumerate() {
+                let (c1, c2) = (c[0] as i64, c[1] as i64);
+                let (c1, c2) = (c1.min(c2), c1.max(c2));
+                if k == 2 && c1 < c2 {
+                    visit(first + r as i64, c1, c2);
+                }
+            }
+            return;
+        }
+    }
+    // Columns counted from `base` in the sort keys.
+    let base = (x0 >> shift) - 2;
     let band = (crossings.len() / n).max(1) as i64;
     let mut top = first;
     while top <= last {
         let bottom = (top + band - 1).min(last);
         let mut m = 0;
-        for i in 0..n {
-            let (a, b) = (outline[i], outline[(i + 1) % n]);
-            let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
-            if low == high {
-                continue;
+        each_crossing(outline, shift, top, bottom, |row, column| {
+            crossings[m] = (((row - top) as u64) << 40) | (column - base) as u64;
+            m += 1;
+        });
+        let found = &mut crossings[..m];
+        found.sort_unstable();
+        for pair in found.chunks_exact(2) {
+            let row = top + (pair[0] >> 40) as i64;
+            let (c1, c2) = ((pair[0] & ((1 << 40) - 1)) as i64 + base, (pair[1] & ((1 << 40) - 1)) as i64 + base);
+            if c1 < c2 {
+                visit(row, c1, c2);
             }
-            // Rows whose centre yc has low <= yc < high (exactly one end above it).
-            let from = (low - half + unit - 1).div_euclid(unit).max(top);
-            let to = ((high - half + unit - 1).div_euclid(unit) - 1).min(bottom);
-            let (ax, ay, bx, by) = (a[0] as f64, a[1] as f64, b[0] as f64, b[1] as f64);
-            for row in from..=to {
+        }
+        top = bottom + 1;
+    }
+}
+
+/// Calls `put(row, column)` for every crossing of an edge of `outline` with the centre line of
+/// a row in `top..=bottom`: `column` is the first pixel column whose centre is not left of the
+/// crossing (the half-open [`crosses`] test, decided exactly).
+#[inline]
+fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut put: impl FnMut(i64, i64)) {
+    let unit = 1i64 << shift;
+    let half = unit / 2;
+    // 2^−shift: scaling by it is exact, like dividing by `unit`.
+    let to_pixels = 1.0 / unit as f64;
+    let mut a = outline[outline.len() - 1];
+    for &b in outline {
+        // The edge a→b (in any order: the caller sorts the crossings by row).
+        let a = core::mem::replace(&mut a, b);
+        let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
+        // Rows whose centre yc has low <= yc < high (exactly one end above it).
+        let from = ((low - half + unit - 1) >> shift).max(top);
+        let to = (((high - half + unit - 1) >> shift) - 1).min(bottom);
+        if from > to {
+            continue;
+        }
+        // The edge crosses the row through yc at X = ax + (yc − ay)·dx/dy, and `crosses`
+        // holds for the pixel centres left of X: the first column not left of it is
+        // ceil((X − half) / unit) = ax_pixels + ceil(f), with ax − half = ax_pixels·unit +
+        // ax_rest (0 <= ax_rest < unit) and f = (ax_rest + (yc − ay)·dx/dy) / unit.
+        //
+        // In f64, with |dx|, |dy| < 2^52 and shift <= 52 every integer here converts exactly
+        // (yc − ay too, |yc − ay| <= |dy|, and stepping it by the unit stays exact); slope =
+        // dx/dy, the product and the sum each round once (relative error 2^−53), so
+        // |f̃ − f| <= (3.01·|dx| + 1.01·ax_rest)·2^−53 / unit <= (3.01·2^20 + 1.01)·2^−53 <
+        // 2^−31 when |dx| < 2^20 pixels; the fraction of f̃ rounds by at most 2^−53 more. So
+        // when that fraction is more than 2^−30 from 0 and 1, f lies strictly between the
+        // same integers and ceil(f) = floor(f̃) + 1. Otherwise (X within 2^−30 px of a pixel
+        // centre, or a huge edge) the exact integer test settles it.
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let fast = shift <= 52 && dx.unsigned_abs() < 1 << 52.min(shift + 20) && dy.unsigned_abs() < 1 << 52;
+        let ax_pixels = (a[0] - half) >> shift;
+        let ax_rest = ((a[0] - half) & (unit - 1)) as f64;
+        let slope = dx as f64 / dy as f64;
+        // yc − ay.
+        let mut rise = (pixel_centre(from, shift) - a[1]) as f64;
+        for row in from..=to {
+            let f = (ax_rest + rise * slope) * to_pixels;
+            rise += unit as f64;
+            // floor(f) and f − floor(f) without a conversion, for |f| < 2^51 (on the fast path
+            // |f| <= 2^20 + 1): f + 1.5·2^52 is f rounded to an integer, exactly, in the low
+            // bits of the sum.
+            let sum = f + ROUND;
+            let near = sum - ROUND;
+            let up = near > f;
+            let whole = (sum.to_bits() as i64).wrapping_sub(ROUND.to_bits() as i64).wrapping_sub(i64::from(up));
+            let fraction = f - if up { near - 1.0 } else { near };
+            let column = if fast && fraction > MARGIN && fraction < 1.0 - MARGIN {
+                ax_pixels + whole + 1
+            } else {
+                // Found near the estimate, then settled with the exact test.
                 let yc = pixel_centre(row, shift);
-                // The first pixel column whose centre is not left of the crossing: found near
-                // the rounded crossing, then settled with the exact test.
-                let x = ax + (yc as f64 - ay) * (bx - ax) / (by - ay);
-                let mut column = libm::floor((x - half as f64) / unit as f64) as i64;
+                let mut column = ax_pixels.saturating_add(floor(f));
                 while crosses(a, b, [pixel_centre(column, shift), yc]) {
                     column += 1;
                 }
                 while !crosses(a, b, [pixel_centre(column - 1, shift), yc]) {
                     column -= 1;
                 }
-                crossings[m] = (((row - top) as u64) << 40) | (column - base) as u64;
-                m += 1;
-            }
+                column
+            };
+            put(row, column);
         }
-        let found = &mut crossings[..m];
-        found.sort_unstable();
-        // A centre is inside when an odd number of crossings lie strictly to its right: in each
-        // row, the columns in [c1, c2), [c3, c4), ...
-        for pair in found.chunks_exact(2) {
-            let row = top + (pair[0] >> 40) as i64;
-            let (c1, c2) = ((pair[0] & ((1 << 40) - 1)) as i64 + base, (pair[1] & ((1 << 40) - 1)) as i64 + base);
-            for column in c1..c2 {
-                visit(column, row);
-            }
-        }
-        top = bottom + 1;
     }
+}
+
+/// How close (in pixels) a crossing's estimate may come to a pixel centre before the exact
+/// test decides (see [`each_crossing`]).
+const MARGIN: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// 1.5·2^52, which rounds an f64 below 2^51 in magnitude to an integer when added.
+const ROUND: f64 = 6_755_399_441_055_744.0;
+
+/// The largest integer <= `x`, for |x| < 2^63 (saturating beyond; NaN gives 0).
+fn floor(x: f64) -> i64 {
+    let t = x as i64;
+    t - i64::from((t as f64) > x)
+}
+
+/// Calls `visit(column, row)` for every pixel whose centre `outline` (fixed point of `shift`
+/// fractional bits) contains, in row order; see [`for_each_span`].
+#[cfg(test)]
+fn for_each_pixel(outline: &[[i64; 2]], shift: u32, crossings: &mut [u64], mut visit: impl FnMut(i64, i64)) {
+    for_each_span(outline, shift, crossings, |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
 }
 
 #[cfg(test)]
@@ -134,5 +238,99 @@ mod tests {
             }
         }
         assert!(inside > 300, "{inside}");
+    }
+
+    /// A xorshift step.
+    fn next(state: &mut u64) -> u64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        *state
+    }
+
+    #[test]
+    fn every_crossing_is_the_first_column_not_left_of_the_edge() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        for shift in [8, 20, 32, 44] {
+            let unit = 1i64 << shift;
+            for case in 0..20_000 {
+                let mut r = |bits: u32| {
+                    let bits = bits.min(62);
+                    (next(&mut state) >> (64 - bits)) as i64 - (1i64 << (bits - 1))
+                };
+                let a = [r(shift + 16), r(shift + 16)];
+                // Mostly short edges; some wider than the fast path takes (2^20 px), some
+                // through pixel centres or a unit beside them.
+                let (dx, dy) = match case % 4 {
+                    0 => (r(shift + 6), r(shift + 6)),
+                    1 => (r(shift + 23), r(shift + 3)),
+                    2 => (0, r(shift + 4)),
+                    _ => (2 * unit * r(5), unit * r(4)),
+                };
+                let mut a = a;
+                if case % 8 >= 4 {
+                    // A corner on, or a unit beside, a pixel centre.
+                    a = [pixel_centre(a[0] >> shift, shift) + r(2), pixel_centre(a[1] >> shift, shift)];
+                }
+                let b = [a[0] + dx, a[1] + dy];
+                let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
+                // Row centres (2k + 1)·unit/2 in [low, high).
+                let (half, unit) = (i128::from(unit / 2), i128::from(unit));
+                let first = -(half - i128::from(low)).div_euclid(unit);
+                let last = (i128::from(high) - 1 - half).div_euclid(unit);
+                let rows = (last - first + 1).max(0) as usize;
+                let mut found = 0;
+                // Both directions of the edge (an outline of two vertices).
+                each_crossing(&[a, b], shift, i64::MIN / 4, i64::MAX / 4, |row, column| {
+                    let yc = pixel_centre(row, shift);
+                    assert!((low..high).contains(&yc), "{a:?} {b:?}: row {row}");
+                    let left = crosses(a, b, [pixel_centre(column - 1, shift), yc]);
+                    let here = crosses(a, b, [pixel_centre(column, shift), yc]);
+                    assert!(left && !here, "{a:?} {b:?} shift {shift}: row {row}, column {column}");
+                    found += 1;
+                });
+                assert_eq!(found, 2 * rows, "{a:?} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn spans_are_the_pixels_inside_on_both_paths() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        for shift in [8u32, 32] {
+            let unit = 1i64 << shift;
+            for case in 0..400 {
+                // A star around (20, 20) px (two crossings per row, mostly), or a random
+                // polygon (often self-crossing: more).
+                let n = 3 + (next(&mut state) % 14) as usize;
+                let mut outline = [[0i64; 2]; 16];
+                for (i, v) in outline[..n].iter_mut().enumerate() {
+                    let random = (next(&mut state) >> 40) as i64 % (40 * unit);
+                    *v = if case % 2 == 0 {
+                        let t = core::f64::consts::TAU * i as f64 / n as f64;
+                        let radius = (4 + (next(&mut state) % 12) as i64) * unit;
+                        let (s, c) = libm::sincos(t);
+                        [20 * unit + (radius as f64 * c) as i64, 20 * unit + (radius as f64 * s) as i64]
+                    } else {
+                        [random, (next(&mut state) >> 40) as i64 % (40 * unit)]
+                    };
+                    if i % 3 == 0 {
+                        // Corners on pixel centres.
+                        *v = [pixel_centre(v[0] >> shift, shift), pixel_centre(v[1] >> shift, shift)];
+                    }
+                }
+                let outline = &outline[..n];
+                for scratch in [&mut [0u64; 512][..], &mut [0u64; 16][..n.max(3)]] {
+                    let mut grid = [[0u8; 44]; 44];
+                    for_each_pixel(outline, shift, scratch, |x, y| grid[y as usize][x as usize] += 1);
+                    for (y, row) in grid.iter().enumerate() {
+                        for (x, &k) in row.iter().enumerate() {
+                            let p = [pixel_centre(x as i64, shift), pixel_centre(y as i64, shift)];
+                            assert_eq!(k, u8::from(contains(outline, p)), "case {case}: ({x}, {y})");
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -11,10 +11,18 @@
 //! middle of each edge; the paper gives no formula). The level's normal
 //! is the profile's normal in the x'z' plane, turned to the ray's direction, with z = 1; the
 //! surface's normal sums the levels' x and y (Fig. 10).
+//!
+//! Pixels go through in batches, a plain loop per step, so that the processor overlaps many
+//! pixels and most steps handle several at once: a cell's pixels find their fan triangles
+//! (by pseudo-angle, the same ones as a binary search over the corners' angles), then the
+//! pixels of cells of one level get their profile coordinate and normal factor, then their
+//! profile samples.
+
+use core::cmp::Ordering;
 
 use super::cell::MAX_OUTLINE;
-use super::{Skin, SkinCell, SkinError};
-use crate::geom::pseudo_angle;
+use super::profile::ProfileTable;
+use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::scalar::Scalar;
 
 /// The maps to write; each is optional and `width × height` long, row-major.
@@ -40,13 +48,297 @@ struct Wedge {
     angle: f32,
 }
 
+/// Wedges a render keeps: one per outline edge and one at the front (see [`Fan`]).
+const SLOTS: usize = MAX_OUTLINE + 1;
+
+/// A cell's wedges: `slots[1..=n]` from the corner of smallest angle on, and `slots[0]` the
+/// last one again. A pixel in direction `a` (a pseudo-angle) lies in the wedge its ray leaves
+/// by, the last one whose first corner's angle is at most `a`, cyclically: `slots[k]` with k
+/// the number of wedges whose angle is at most `a`. (For a cell star-shaped around its
+/// centre, as Voronoi cells and their perturbations mostly are, the angles ascend and k is a
+/// binary search's answer.)
+struct Fan<'w> {
+    slots: &'w [Wedge],
+    /// Whether the angles ascend: then k is also the count of angles at most `a`.
+    sorted: bool,
+}
+
+/// Fans of up to this many wedges count their angles below a pixel's (in steps that handle
+/// several pixels at once) instead of searching them.
+const COUNTED: usize = 48;
+
+/// A cell's pixels whose wedges are looked up together.
+const BATCH: usize = 64;
+
+/// Pixels (of cells of one level) whose heights and normals are evaluated together.
+const QUEUE: usize = 128;
+
+/// Pixels on their way to the maps, a field per array so that each step is a plain loop: first
+/// the pixels of the cell being drawn (`len`), then, with their wedges found, those of any
+/// cells of its level (`ready`). Steps that handle several pixels at once run over whole
+/// groups; the lanes past the pixels hold stale but finite values.
+struct Batch<S> {
+    len: usize,
+    /// Index in the maps (and four spare lanes for the groups of four that fill them).
+    index: [u32; BATCH + 4],
+    /// Offset from the centre in pixels, its pseudo-angle, and k in [`Fan`].
+    dx: [f32; BATCH + 4],
+    dy: [f32; BATCH + 4],
+    angle: [f32; BATCH],
+    wedge: [u32; BATCH],
+    ready: usize,
+    /// Index in the maps.
+    ready_index: [u32; QUEUE],
+    /// u in the pixel's wedge, and the offset in apothems.
+    u: [f32; QUEUE],
+    qx: [f32; QUEUE],
+    qy: [f32; QUEUE],
+    /// The profile's sample interval and the weight of its far end at the pixel's x', and the
+    /// factor that turns the profile's slope into the normal's x and y.
+    interval: [u32; QUEUE],
+    weight: [f32; QUEUE],
+    lean: [S; QUEUE],
+}
+
+/// Where the maps a render writes go.
+trait Sink {
+    /// Whether heights or normals are wanted (else only the cell map is drawn).
+    const SHADES: bool;
+    /// Whether normals are wanted.
+    const NORMALS: bool;
+    /// Adds one level's height `z` and normal x/y `slope` to pixel `i`.
+    fn add(&mut self, i: usize, z: f32, slope: [f32; 2]);
+}
+
+/// No height or normal map.
+struct NoMaps;
+
+impl Sink for NoMaps {
+    const SHADES: bool = false;
+    const NORMALS: bool = false;
+    fn add(&mut self, _: usize, _: f32, _: [f32; 2]) {}
+}
+
+/// Heights only.
+struct Heights<'o>(&'o mut [f32]);
+
+impl Sink for Heights<'_> {
+    const SHADES: bool = true;
+    const NORMALS: bool = false;
+    #[inline]
+    fn add(&mut self, i: usize, z: f32, _: [f32; 2]) {
+        self.0[i] += z;
+    }
+}
+
+/// Normals only.
+struct Normals<'o>(&'o mut [[f32; 3]]);
+
+impl Sink for Normals<'_> {
+    const SHADES: bool = true;
+    const NORMALS: bool = true;
+    #[inline]
+    fn add(&mut self, i: usize, _: f32, slope: [f32; 2]) {
+        self.0[i][0] += slope[0];
+        self.0[i][1] += slope[1];
+    }
+}
+
+/// Heights and normals.
+struct Both<'o>(&'o mut [f32], &'o mut [[f32; 3]]);
+
+impl Sink for Both<'_> {
+    const SHADES: bool = true;
+    const NORMALS: bool = true;
+    #[inline]
+    fn add(&mut self, i: usize, z: f32, slope: [f32; 2]) {
+        self.0[i] += z;
+        self.1[i][0] += slope[0];
+        self.1[i][1] += slope[1];
+    }
+}
+
+/// What every pixel of one level shares.
+struct Ridge<'t, S> {
+    table: &'t ProfileTable,
+    end: S,
+    roundness: S,
+    /// 1 − roundness.
+    flat: S,
+}
+
+impl<S: Scalar> Batch<S> {
+    fn new() -> Self {
+        Batch {
+            len: 0,
+            index: [0; BATCH + 4],
+            dx: [0.0; BATCH + 4],
+            dy: [0.0; BATCH + 4],
+            angle: [0.0; BATCH],
+            wedge: [0; BATCH],
+            ready: 0,
+            ready_index: [0; QUEUE],
+            u: [0.0; QUEUE],
+            qx: [0.0; QUEUE],
+            qy: [0.0; QUEUE],
+            interval: [0; QUEUE],
+            weight: [0.0; QUEUE],
+            lean: [S::ZERO; QUEUE],
+        }
+    }
+
+    /// Queues the pixels `x0..x1` of row `y` (as the outline places them), `i0..` in the maps,
+    /// of the cell centred at `centre` (pixels), with fan `fan`.
+    #[inline]
+    fn span<K: Sink>(&mut self, ridge: &Ridge<S>, fan: &Fan, sink: &mut K, centre: [f32; 2], row: [i64; 3], i0: usize) {
+        let [y, mut x0, x1] = row;
+        let mut i0 = i0;
+        let dy = (y as f32 + 0.5) - centre[1];
+        while x0 < x1 {
+            if self.len == BATCH {
+                self.locate(ridge, fan, sink);
+            }
+            let len = self.len;
+            let count = ((x1 - x0) as usize).min(BATCH - len);
+            // Four at a time, past `count` into the spare lanes. (x0 + j) as f32 is x0 as f32 +
+            // j as f32, exactly (pixel columns are far below 2^24).
+            let (first, left) = ((i0 as u32), x0 as f32 + 0.5);
+            for c in (0..count).step_by(4) {
+                let at = len + c..len + c + 4;
+                let (index, dx, y) = (&mut self.index[at.clone()], &mut self.dx[at.clone()], &mut self.dy[at]);
+                for l in 0..4 {
+                    let j = c + l;
+                    (index[l], dx[l], y[l]) = (first + j as u32, (left + j as f32) - centre[0], dy);
+                }
+            }
+            self.len = len + count;
+            (x0, i0) = (x0 + count as i64, i0 + count);
+        }
+    }
+
+    /// Finds the wedges of the cell's queued pixels (fan `fan`) and readies them, evaluating
+    /// the ready ones first if they would not fit.
+    fn locate<K: Sink>(&mut self, ridge: &Ridge<S>, fan: &Fan, sink: &mut K) {
+        let n = self.len;
+        if self.ready + n > QUEUE {
+            self.evaluate(ridge, sink);
+        }
+        // The direction of each pixel from the centre, eight at a time (the lanes past `n` are
+        // stale).
+        let m = n.next_multiple_of(8);
+        for ((a, x), y) in
+            self.angle[..m].chunks_exact_mut(8).zip(self.dx[..m].chunks_exact(8)).zip(self.dy[..m].chunks_exact(8))
+        {
+            for l in 0..8 {
+                a[l] = direction(x[l], y[l]);
+            }
+        }
+        // The fan triangle its ray leaves by.
+        let wedges = &fan.slots[1..];
+        if fan.sorted && wedges.len() <= COUNTED {
+            // Eight pixels at a time.
+            for (ks, angles) in self.wedge[..m].chunks_exact_mut(8).zip(self.angle[..m].chunks_exact(8)) {
+                let mut k = [0u32; 8];
+                for w in wedges {
+                    for (k, &a) in k.iter_mut().zip(angles) {
+                        *k += u32::from(w.angle <= a);
+                    }
+                }
+                ks.copy_from_slice(&k);
+            }
+        } else {
+            for (k, &a) in self.wedge[..n].iter_mut().zip(&self.angle[..n]) {
+                *k = wedges.partition_point(|w| w.angle <= a) as u32;
+            }
+        }
+        // u and the offset in apothems there (in f32: the offsets are in pixels, which Q16.16
+        // could not square).
+        let r = self.ready..self.ready + n;
+        let pixel = self.index[..n].iter().zip(&self.wedge[..n]).zip(self.dx[..n].iter().zip(&self.dy[..n]));
+        let index = self.ready_index[r.clone()].iter_mut().zip(&mut self.u[r.clone()]);
+        let ready = index.zip(self.qx[r.clone()].iter_mut().zip(&mut self.qy[r.clone()]));
+        for (((&i, &k), (&dx, &dy)), ((index, u), (qx, qy))) in pixel.zip(ready) {
+            let w = &fan.slots[k as usize];
+            *index = i;
+            *u = dx * w.g[0] + dy * w.g[1];
+            (*qx, *qy) = (dx * w.inverse_apothem, dy * w.inverse_apothem);
+        }
+        (self.len, self.ready) = (0, r.end);
+    }
+
+    /// Adds the ready pixels' heights and normals (all of the level of `ridge`) to `sink`.
+    fn evaluate<K: Sink>(&mut self, ridge: &Ridge<S>, sink: &mut K) {
+        let n = self.ready;
+        for j in 0..n {
+            let (at, lean) = ridge.shape(self.u[j], [self.qx[j], self.qy[j]]);
+            (self.interval[j], self.weight[j]) = ridge.table.interval(at);
+            self.lean[j] = lean;
+        }
+        let pixel = self.ready_index[..n].iter().zip(&self.interval[..n]).zip(&self.weight[..n]);
+        let normal = self.lean[..n].iter().zip(&self.qx[..n]).zip(&self.qy[..n]);
+        for (((&i, &k), &w), ((&lean, &qx), &qy)) in pixel.zip(normal) {
+            let (z, dz) = ridge.table.lerp(k, w);
+            let slope = if K::NORMALS {
+                // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
+                let lean = S::from_f32(-dz) * lean;
+                [(lean * S::from_f32(qx)).to_f32(), (lean * S::from_f32(qy)).to_f32()]
+            } else {
+                [0.0; 2]
+            };
+            sink.add(i as usize, z, slope);
+        }
+        self.ready = 0;
+    }
+}
+
+impl<S: Scalar> Ridge<'_, S> {
+    /// From u and the offset q in apothems: x' for the profile, and the factor that turns the
+    /// profile's slope dz'/dx' into the normal's x and y (times q; 0 at the centre, q = 0).
+    #[inline(always)]
+    fn shape(&self, u: f32, q: [f32; 2]) -> (f32, S) {
+        let u = S::from_f32(u).clamp(S::ZERO, S::ONE);
+        let q = [S::from_f32(q[0]), S::from_f32(q[1])];
+        let r2 = q[0] * q[0] + q[1] * q[1];
+        // r = |p − p0| / apothem, and 1/r.
+        let inverse_r = r2.inverse_sqrt();
+        let r = r2 * inverse_r;
+        // Polygonal x' (u) blended with circular x' (r, which is at least u, capped at the
+        // edge): ρ = 1 gives circles inscribed in each edge, the corners beyond them at the
+        // foot.
+        let steep = u > S::RESOLUTION;
+        let circular = if steep { r.max(u) } else { u };
+        let bent = self.flat * u + self.roundness * circular.min(S::ONE);
+        // The normal leans along the ray by the profile's slope times du'/du there: 1 − ρ +
+        // ρ·r/u inside the circle (where u_c = u·r/u), 1 − ρ beyond it; over r, which makes q
+        // the ray's unit vector. So the factor is (1 − ρ)/r + ρ·max(1/u, 1/r) inside (r/u is
+        // at least 1, and taken as 1 where u is 0), (1 − ρ)/r beyond.
+        let circle = if steep { (S::ONE / u).max(inverse_r) } else { inverse_r };
+        let inside = if circular < S::ONE { self.roundness * circle } else { S::ZERO };
+        let lean = if r > S::ZERO { self.flat * inverse_r + inside } else { S::ZERO };
+        ((self.end * bent).to_f32(), lean)
+    }
+}
+
+/// [`pseudo_angle`](crate::geom::pseudo_angle) written without branches, the same value: by
+/// quadrant, base + |y| / (|x| + |y|) or base + |x| / (|x| + |y|), which are the very
+/// operands of its four divisions up to sign (IEEE arithmetic is symmetric in sign).
+#[inline]
+fn direction(x: f32, y: f32) -> f32 {
+    let (upper, right) = (y >= 0.0, x >= 0.0);
+    let (ax, ay) = (x.abs(), y.abs());
+    let num = if upper == right { ay } else { ax };
+    // Quadrants 0 (x, y >= 0), 1 (x < 0 <= y), 2 (x, y < 0), 3 (y < 0 <= x).
+    let base = (u32::from(!upper) << 1 | u32::from(upper != right)) as f32;
+    base + num / (ax + ay)
+}
+
 impl Skin<'_> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written. Uses about 48 KiB of stack for
-    /// one outline's wedges and crossings.
+    /// cell level is not below `levels`, nothing is written. Uses about 53 KiB of stack for
+    /// one outline's wedges and crossings and a batch of pixels.
     pub fn render<S: Scalar>(&self, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
-        let SkinLayers { mut height, mut normal, mut cell, cell_level } = layers;
+        let SkinLayers { height, normal, cell, cell_level } = layers;
         let lengths =
             [height.as_ref().map(|b| b.len()), normal.as_ref().map(|b| b.len()), cell.as_ref().map(|b| b.len())];
         if lengths.iter().flatten().any(|&n| n < pixels) {
@@ -55,100 +347,152 @@ impl Skin<'_> {
         if cell.is_some() && cell_level >= self.params.levels {
             return Err(SkinError::Level);
         }
-        let width = self.params.width as usize;
-        if let Some(h) = height.as_deref_mut() {
-            h[..pixels].fill(0.0);
-        }
-        if let Some(n) = normal.as_deref_mut() {
-            n[..pixels].fill([0.0; 3]);
-        }
-        if let Some(c) = cell.as_deref_mut() {
+        let cell = cell.map(|c| {
             c[..pixels].fill(u32::MAX);
-        }
-        let mut wedges = [Wedge::default(); MAX_OUTLINE];
-        let mut crossings = [0u64; MAX_OUTLINE];
-        for (index, c) in self.cells.iter().enumerate() {
-            let level = c.level as usize;
-            let table = &self.tables[level];
-            let roundness = S::from_f32(self.params.level[level].roundness);
-            let end = S::from_f32(table.end);
-            // Wedges serve heights and normals; a cell map alone needs only the pixels.
-            let n = if height.is_some() || normal.is_some() { self.prepare(c, &mut wedges) } else { 0 };
-            let unit = (1u64 << self.fixed_point_bits()) as f64;
-            let centre = [(c.centre[0] as f64 / unit) as f32, (c.centre[1] as f64 / unit) as f32];
-            let writes_cell = c.level == cell_level;
-            self.for_each_pixel_unwrapped(c, &mut crossings, |x, y, wx, wy| {
-                let i = wy as usize * width + wx as usize;
-                if writes_cell && let Some(map) = cell.as_deref_mut() {
-                    map[i] = index as u32;
-                }
-                if height.is_none() && normal.is_none() {
-                    return;
-                }
-                let d = [(x as f32 + 0.5) - centre[0], (y as f32 + 0.5) - centre[1]];
-                let (z, slope_xy) = if d == [0.0, 0.0] {
-                    (table.at(0.0).0, [0.0, 0.0])
-                } else {
-                    // The fan triangle the ray from the centre through p leaves by: wedges
-                    // are sorted by the angle of their first corner.
-                    let a = pseudo_angle(d);
-                    let k = wedges[..n].partition_point(|w| w.angle <= a);
-                    let current = if k == 0 { n - 1 } else { k - 1 };
-                    let w = wedges[current];
-                    evaluate::<S>(table, end, roundness, d, w)
-                };
-                if let Some(h) = height.as_deref_mut() {
-                    h[i] += z;
-                }
-                if let Some(nm) = normal.as_deref_mut() {
-                    nm[i][0] += slope_xy[0];
-                    nm[i][1] += slope_xy[1];
-                }
-            });
-        }
-        if let Some(nm) = normal {
-            for v in &mut nm[..pixels] {
-                // Fig. 10: each level's normal has z = 1; x and y add up. Rows run down the
-                // raster, so y flips for a y-up normal map.
-                let (x, y) = (v[0], -v[1]);
-                let length = libm::sqrtf(x * x + y * y + 1.0);
-                *v = [x / length, y / length, 1.0 / length];
+            (&mut c[..pixels], cell_level)
+        });
+        match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
+            (None, None) => self.draw::<S, _>(&mut NoMaps, cell),
+            (Some(h), None) => {
+                h.fill(0.0);
+                self.draw::<S, _>(&mut Heights(h), cell);
+            }
+            (None, Some(n)) => {
+                n.fill([0.0; 3]);
+                self.draw::<S, _>(&mut Normals(n), cell);
+                normalise(n);
+            }
+            (Some(h), Some(n)) => {
+                h.fill(0.0);
+                n.fill([0.0; 3]);
+                self.draw::<S, _>(&mut Both(h, n), cell);
+                normalise(n);
             }
         }
         Ok(())
     }
 
-    /// Fills `wedges` for `cell`'s outline; returns the outline length.
-    fn prepare(&self, cell: &SkinCell, wedges: &mut [Wedge]) -> usize {
+    /// Adds every cell's height and normal to `sink` and writes the cells of one level into
+    /// the cell map.
+    fn draw<S: Scalar, K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
+        let width = self.params.width as usize;
+        let mut wedges = [Wedge::default(); SLOTS];
+        let mut crossings = [0u64; MAX_OUTLINE];
+        let mut batch = Batch::<S>::new();
+        let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
+        let ridges: [Ridge<S>; MAX_LEVELS] = core::array::from_fn(|level| {
+            let table = &self.tables[level];
+            let roundness = S::from_f32(self.params.level[level].roundness);
+            Ridge { table, end: S::from_f32(table.end), roundness, flat: S::ONE - roundness }
+        });
+        // The level of the ready pixels.
+        let mut ready = 0;
+        for (index, c) in self.cells.iter().enumerate() {
+            let mut map = cell.as_mut().filter(|(_, level)| *level == c.level).map(|(map, _)| &mut **map);
+            if map.is_none() && !K::SHADES {
+                continue;
+            }
+            let level = c.level as usize;
+            if level != ready {
+                // Each pixel gets its levels' heights in the order of levels.
+                batch.evaluate(&ridges[ready], sink);
+                ready = level;
+            }
+            let ridge = &ridges[level];
+            let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
+            // Wedges serve heights and normals; a cell map alone needs only the pixels.
+            let fan = if K::SHADES { self.prepare(c, &mut wedges) } else { Fan { slots: &[], sorted: false } };
+            self.for_each_run(c, &mut crossings, |y, x0, x1, wx, wy| {
+                let i0 = wy as usize * width + wx as usize;
+                if let Some(map) = map.as_deref_mut() {
+                    map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
+                }
+                if K::SHADES {
+                    batch.span(ridge, &fan, sink, centre, [y, x0, x1], i0);
+                }
+            });
+            if batch.len > 0 {
+                batch.locate(ridge, &fan, sink);
+            }
+        }
+        batch.evaluate(&ridges[ready], sink);
+    }
+
+    /// Fills `slots` with `cell`'s fan.
+    fn prepare<'w>(&self, cell: &SkinCell, slots: &'w mut [Wedge]) -> Fan<'w> {
         let outline = self.outline(cell);
         let n = outline.len();
-        let unit = (1u64 << self.fixed_point_bits()) as f64;
+        // 2^−bits: scaling by it is exact, so that (x as f32)·to_pixels rounds x / unit once,
+        // like an exact division (below 2^53 also like (x as f64 / unit) as f32).
+        let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f32;
+        let pixels = |x: i64| x as f32 * to_pixels;
         let c = cell.centre;
+        let wedges = &mut slots[1..=n];
+        // The first corner of smallest angle, and the last place where the angle does not
+        // ascend (cyclically) and how many there are: the angles ascend from `start` on if that
+        // is only just before `start`, or nowhere.
+        let (mut start, mut smallest) = (0, f32::INFINITY);
+        let (mut descents, mut descent, mut previous) = (0, 0, f32::NAN);
         for i in 0..n {
-            let (a, b) = (outline[i], outline[(i + 1) % n]);
-            let va = [((a[0] - c[0]) as f64 / unit) as f32, ((a[1] - c[1]) as f64 / unit) as f32];
-            let e = [((b[0] - a[0]) as f64 / unit) as f32, ((b[1] - a[1]) as f64 / unit) as f32];
+            let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
+            let (va, e) = ([pixels(a[0] - c[0]), pixels(a[1] - c[1])], [pixels(b[0] - a[0]), pixels(b[1] - a[1])]);
             // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
             let outward = [e[1], -e[0]];
             let reach = va[0] * outward[0] + va[1] * outward[1];
             let length = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
-            // Stored from the corner of smallest angle on, so that (for a cell star-shaped
-            // around its centre, as Voronoi cells and their perturbations are) the angles
-            // ascend and a binary search finds a pixel's wedge.
+            let angle = direction(va[0], va[1]);
             wedges[i] = if reach > 0.0 && length > 0.0 {
+                let per_reach = 1.0 / reach;
                 Wedge {
-                    g: [outward[0] / reach, outward[1] / reach],
-                    inverse_apothem: length / reach,
-                    angle: pseudo_angle(va),
+                    g: [outward[0] * per_reach, outward[1] * per_reach],
+                    inverse_apothem: length * per_reach,
+                    angle,
                 }
             } else {
                 // The centre on or beyond this edge's line (a fold): this wedge reads as edge.
-                Wedge { g: [0.0, 0.0], inverse_apothem: 1.0, angle: pseudo_angle(va) }
+                Wedge { g: [0.0, 0.0], inverse_apothem: 1.0, angle }
             };
+            if angle < smallest || i == 0 {
+                (start, smallest) = (i, angle);
+            }
+            if i > 0 && previous.partial_cmp(&angle).is_none_or(Ordering::is_gt) {
+                (descents, descent) = (descents + 1, i);
+            }
+            previous = angle;
         }
-        let start = (0..n).fold(0, |best, i| if wedges[i].angle < wedges[best].angle { i } else { best });
-        wedges[..n].rotate_left(start);
-        n
+        if wedges[n - 1].angle.partial_cmp(&wedges[0].angle).is_none_or(Ordering::is_gt) {
+            (descents, descent) = (descents + 1, 0);
+        }
+        let sorted = descents == 0 || (descents == 1 && descent == start);
+        wedges.rotate_left(start);
+        slots[0] = slots[n];
+        Fan { slots: &slots[..=n], sorted }
+    }
+
+    /// Calls `visit(row, x0, x1, wrapped x0, wrapped row)` for every run of pixels `x0..x1` of
+    /// one row whose centres lie in `cell`: unwrapped as the outline places them, and on the
+    /// surface, where the run is contiguous (a run across the periodic seam comes in two
+    /// pieces). `crossings` is scratch of at least the outline's length.
+    fn for_each_run(&self, cell: &SkinCell, crossings: &mut [u64], mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
+        let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
+        let periodic = self.params.periodic;
+        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), crossings, |y, x0, x1| {
+            if periodic {
+                let wy = y.rem_euclid(h) as u32;
+                let mut x = x0;
+                while x < x1 {
+                    let wx = x.rem_euclid(w);
+                    let next = x1.min(x + (w - wx));
+                    visit(y, x, next, wx as u32, wy);
+                    x = next;
+                }
+            } else if (0..h).contains(&y) {
+                let (x0, x1) = (x0.max(0), x1.min(w));
+                if x0 < x1 {
+                    visit(y, x0, x1, x0 as u32, y as u32);
+                }
+            }
+        });
     }
 
     /// Calls `visit(column, row, wrapped column, wrapped row)` for every pixel whose centre lies
@@ -160,45 +504,51 @@ impl Skin<'_> {
         crossings: &mut [u64],
         mut visit: impl FnMut(i64, i64, u32, u32),
     ) {
-        let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
-        let periodic = self.params.periodic;
-        super::scan::for_each_pixel(self.outline(cell), self.fixed_point_bits(), crossings, |x, y| {
-            let (wx, wy) = if periodic { (x.rem_euclid(w), y.rem_euclid(h)) } else { (x, y) };
-            if (0..w).contains(&wx) && (0..h).contains(&wy) {
-                visit(x, y, wx as u32, wy as u32);
+        self.for_each_run(cell, crossings, |y, x0, x1, wx, wy| {
+            for (x, wx) in (x0..x1).zip(wx..) {
+                visit(x, y, wx, wy);
             }
         });
     }
 }
 
-/// One level's height and normal x/y (z = 1) at offset `d` from the centre, in wedge `w`.
-#[inline]
-fn evaluate<S: Scalar>(
-    table: &super::profile::ProfileTable,
-    end: S,
-    roundness: S,
-    d: [f32; 2],
-    w: Wedge,
-) -> (f32, [f32; 2]) {
-    // Offsets in apothems keep every quantity small (Q16.16 has range ±32768).
-    let scale = S::from_f32(w.inverse_apothem);
-    let q = [S::from_f32(d[0]) * scale, S::from_f32(d[1]) * scale];
-    let u = (S::from_f32(d[0] * w.g[0] + d[1] * w.g[1])).clamp(S::ZERO, S::ONE);
-    let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
-    // k = |b − p0| / apothem − 1, with |b − p0| = |p − p0| / u.
-    let k = if u > S::RESOLUTION { (r / u - S::ONE).max(S::ZERO) } else { S::ZERO };
-    // Polygonal x' (u) blended with circular x' (|p − p0| / apothem = u·(1 + k), capped at the
-    // edge): ρ = 1 gives circles inscribed in each edge, the corners beyond them at the foot.
-    let circular = u * (S::ONE + k);
-    let (round, round_rate) = if circular < S::ONE { (circular, S::ONE + k) } else { (S::ONE, S::ZERO) };
-    let flat = S::ONE - roundness;
-    let bent = flat * u + roundness * round;
-    let rate = flat + roundness * round_rate;
-    let (z, dz) = table.at((end * bent).to_f32());
-    if r <= S::ZERO {
-        return (z, [0.0, 0.0]);
+/// Fig. 10: each level's normal has z = 1; x and y add up. Rows run down the raster, so y
+/// flips for a y-up normal map.
+fn normalise(normals: &mut [[f32; 3]]) {
+    for v in normals {
+        let (x, y) = (v[0], -v[1]);
+        let s = Scalar::inverse_sqrt(x * x + y * y + 1.0);
+        *v = [x * s, y * s, s];
     }
-    // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray's direction.
-    let lean = (S::ZERO - S::from_f32(dz) * rate) / r;
-    (z, [(lean * q[0]).to_f32(), (lean * q[1]).to_f32()])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::pseudo_angle;
+
+    #[test]
+    fn direction_is_the_pseudo_angle_bit_for_bit() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let special = [0.0, -0.0, 1.0, -1.0, 1e-30, -1e-30, 3e7, -3e7, 0.5, -0.5];
+        for a in special {
+            for b in special {
+                if a != 0.0 || b != 0.0 {
+                    assert_eq!(direction(a, b), pseudo_angle([a, b]), "({a}, {b})");
+                }
+            }
+        }
+        for _ in 0..200_000 {
+            let r = next();
+            let scale = [1e-3, 1.0, 40.0, 1e4][(r >> 62) as usize];
+            let (a, b) = (((r as u32) as f32 / 2e9 - 1.07) * scale, (((r >> 32) as u32) as f32 / 2e9 - 1.07) * scale);
+            assert_eq!(direction(a, b).to_bits(), pseudo_angle([a, b]).to_bits(), "({a}, {b})");
+        }
+    }
 }
