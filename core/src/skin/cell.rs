@@ -202,6 +202,21 @@ fn next(i: usize, n: usize) -> usize {
 pub(super) const CHUNK: usize = 8;
 
 /// Scratch and output for building outlines.
+/// Scratch for one bisector edge: its pieces and one piece's points.
+pub(super) struct EdgeScratch {
+    pieces: [Corner; MAX_CROSSINGS + 2],
+    points: [[i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
+}
+
+impl EdgeScratch {
+    pub(super) fn new() -> EdgeScratch {
+        EdgeScratch {
+            pieces: [Corner::default(); MAX_CROSSINGS + 2],
+            points: [[0; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
+        }
+    }
+}
+
 pub(super) struct Builder<'s> {
     pub(super) clip: &'s mut [ClipVertex],
     pub(super) spare: &'s mut [ClipVertex],
@@ -262,7 +277,7 @@ impl Builder<'_> {
         site: &Site,
         neighbours: &[Site],
         parent: &[[i64; 2]],
-        (out, shared): (&mut [[i64; 2]], &mut SharedEdges),
+        (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
     ) -> Result<usize, OutlineFull> {
         let n0 = parent.len();
         if n0 > self.clip.len() {
@@ -323,7 +338,7 @@ impl Builder<'_> {
                 farthest = reach;
             }
         }
-        self.finish(f, site, neighbours, (parent, chunk_count), n, (out, shared))
+        self.finish(f, site, neighbours, (parent, chunk_count), n, (out, shared, scratch))
     }
 
     /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count and the
@@ -417,7 +432,7 @@ impl Builder<'_> {
         neighbours: &[Site],
         (parent, chunk_count): (&[[i64; 2]], usize),
         n: usize,
-        (out, shared): (&mut [[i64; 2]], &mut SharedEdges),
+        (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
     ) -> Result<usize, OutlineFull> {
         let mut written = 0;
         let mut push = |p: [i64; 2], written: &mut usize| -> Result<(), OutlineFull> {
@@ -458,15 +473,16 @@ impl Builder<'_> {
             }
             let mut kept = [[0i64; 2]; KEPT_POINTS];
             let (mut m, mut fits) = (0, true);
-            let mut pieces = [start; MAX_CROSSINGS + 2];
+            let pieces = &mut scratch.pieces;
+            pieces[0] = start;
             let near = (parent, &self.chunks[..chunk_count]);
-            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, &mut pieces) } else { 0 };
+            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, pieces) } else { 0 };
             pieces[count + 1] = end;
             for (i, w) in pieces[..count + 2].windows(2).enumerate() {
-                let mut points = [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
+                let points = &mut scratch.points;
                 points[0] = w[0].fixed;
                 let inner = if f.perturbation > 0.0 && f.depth > 0 {
-                    perturb(f, a, b, (&w[0], &w[1]), near, &mut points)
+                    perturb(f, a, b, (&w[0], &w[1]), near, points)
                 } else {
                     1
                 };

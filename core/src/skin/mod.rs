@@ -204,6 +204,7 @@ struct Build<'b> {
     sites: &'b mut [Site],
     builder: Builder<'b>,
     shared: SharedEdges,
+    scratch: cell::EdgeScratch,
 }
 
 impl Build<'_> {
@@ -228,7 +229,7 @@ impl Build<'_> {
             .builder
             .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
                 let room = tail.len().min(MAX_OUTLINE);
-                (&mut tail[..room], &mut self.shared)
+                (&mut tail[..room], &mut self.shared, &mut self.scratch)
             })
             .map_err(|_| SkinError::Capacity)?;
         if n < 3 {
@@ -344,6 +345,7 @@ impl<'a> Skin<'a> {
                 chunks: [[0; 4]; MAX_OUTLINE / 8 + 1],
             },
             shared: SharedEdges::new(),
+            scratch: cell::EdgeScratch::new(),
         };
         let lattice = lattices[0];
         let f = frames[0];
