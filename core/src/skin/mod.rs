@@ -309,7 +309,9 @@ enum ParentOutline {
 }
 
 impl<'a> Skin<'a> {
-    /// Builds every cell of every level into the caller's buffers.
+    /// Builds every cell of every level into the caller's buffers. Uses about 80 KiB of stack
+    /// with three levels (scratch for one outline per level, and the edges kept for
+    /// neighbours).
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
         let m = params.memory()?;
         let short = [
