@@ -3,6 +3,8 @@
 //! It uses only `hibi_core`'s public API: the models compute into buffers this program
 //! allocates, and this program turns their maps into pictures (normal maps and previews of
 //! the crack models, PNG and animated PNG encoding, the gallery page).
+// Doc comments here are `--help` text: units read "[px]", not links.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 mod args;
 mod gallery;

@@ -5,8 +5,8 @@
 //! | backend | type | math | determinism |
 //! |---|---|---|---|
 //! | default | `f32` | IEEE `+ − × ÷`, `libm` for the rest | same bits everywhere |
-//! | `micromath` feature | [`micromath::F32`] | fast approximations of sin, cos, atan2, exp (errors ≤ 1.5·10⁻³, atan2 ≤ 4·10⁻³); IEEE sqrt | same bits everywhere |
-//! | `fixed` feature | [`Q16`] (Q16.16) | integer arithmetic, saturating; functions in [`fixed_point`] | same bits everywhere |
+//! | `micromath` feature | `micromath::F32` | fast approximations of sin, cos, atan2, exp (errors ≤ 1.5·10⁻³, atan2 ≤ 4·10⁻³); IEEE sqrt | same bits everywhere |
+//! | `fixed` feature | `Q16` (Q16.16) | integer arithmetic, saturating; functions in `fixed_point` | same bits everywhere |
 //!
 //! All three are deterministic: the float backends use only IEEE basic operations and
 //! software functions (`libm`, `micromath`), never `mul_add` or platform intrinsics; the

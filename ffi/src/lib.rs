@@ -12,6 +12,8 @@
 //!   (`*_memory_size` + `*_create_in`);
 //! - every exported function runs inside one guard: no panic ever unwinds into C.
 #![allow(non_camel_case_types)]
+// Doc comments here are the C header's comments (cbindgen): units read "[px]", not links.
+#![allow(rustdoc::broken_intra_doc_links)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
 use core::ffi::c_char;

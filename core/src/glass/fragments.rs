@@ -18,7 +18,7 @@ use crate::geom::pseudo_angle;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct FragmentRing {
-    /// Signed area [px²]: positive for an outer ring, negative for a hole.
+    /// Signed area \[px²\]: positive for an outer ring, negative for a hole.
     pub area: f64,
     /// Index of the ring's first point.
     pub first_point: u32,

@@ -80,7 +80,7 @@ pub struct Crack {
     pub impact: u32,
     /// The tip w, a vertex of the crack.
     pub tip: [f32; 2],
-    /// The direction of growth [radians].
+    /// The direction of growth \[radians\].
     pub heading: f32,
     /// |v|, pixels per step.
     pub speed: f32,

@@ -7,9 +7,9 @@ use crate::rng::Spread;
 /// §4.3) and ours where it gives none (see each field).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GlassParams {
-    /// Plate width [px]. Paper: 640.
+    /// Plate width \[px\]. Paper: 640.
     pub width: f32,
-    /// Plate height [px]. Paper: 640.
+    /// Plate height \[px\]. Paper: 640.
     pub height: f32,
     /// The impact point L (x, y), inside the plate. Paper: (320, 320).
     pub impact: [f32; 2],
@@ -29,9 +29,9 @@ pub struct GlassParams {
     pub ring_slope: f32,
     /// b in R = ⌊a·M + b⌋ (Eq. 3). 0.5, as for a.
     pub ring_offset: f32,
-    /// g in d_ave = g·M + h, the mean ring radius [px] (Eq. 7). Paper: 0.470.
+    /// g in d_ave = g·M + h, the mean ring radius \[px\] (Eq. 7). Paper: 0.470.
     pub ring_radius_slope: f32,
-    /// h in d_ave = g·M + h [px] (Eq. 7). Paper: 13.90.
+    /// h in d_ave = g·M + h \[px\] (Eq. 7). Paper: 13.90.
     pub ring_radius_offset: f32,
     /// V1_ave: mean speed of the large cracks [px per step] (Eq. 9). Paper: 30–60, ≤ 40
     /// looks natural; default 40.
@@ -44,13 +44,13 @@ pub struct GlassParams {
     pub spread_ratio: f32,
     /// Normal or uniform Rand(x). Paper: both (Fig. 15 normal, Fig. 16 uniform).
     pub spread: Spread,
-    /// θ_th: the largest turn per step [radians] (Eq. 18). Paper: 30°.
+    /// θ_th: the largest turn per step \[radians\] (Eq. 18). Paper: 30°.
     pub turn_limit: f32,
-    /// T in weight(t) = 1 − exp(−t/T) (Eq. 19) [steps]. Paper: 10.
+    /// T in weight(t) = 1 − exp(−t/T) (Eq. 19) \[steps\]. Paper: 10.
     pub turn_delay: f32,
-    /// φ: angle of the sector S ahead of a tip [radians]. Paper: 100°.
+    /// φ: angle of the sector S ahead of a tip \[radians\]. Paper: 100°.
     pub sector_angle: f32,
-    /// B: radius of the sector S [px]. Paper: 50.
+    /// B: radius of the sector S \[px\]. Paper: 50.
     pub sector_radius: f32,
     /// k1 in F1 = k1·(w − tip)/|w − tip|³: the push from other tips. The paper gives only the
     /// 1/r² law; ours: 400 px², so that a tip 20 px away pushes as hard as F3.
@@ -59,7 +59,7 @@ pub struct GlassParams {
     /// The paper gives only the 1/d² law; ours: 400 px².
     pub crack_attraction: f32,
     /// Standard deviation of the direction of F3 (a unit force) around the tip's heading
-    /// [radians]. The paper gives none; ours: 15°, which reproduces its measured turns per
+    /// \[radians\]. The paper gives none; ours: 15°, which reproduces its measured turns per
     /// segment (roughly symmetric, −22.5° to 27.5°).
     pub wander: f32,
     /// How hard a ring crack keeps to its circle (a unit force along the circle plus this

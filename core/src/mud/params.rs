@@ -64,18 +64,18 @@ pub struct MudParams {
     /// Seed of every random draw of the run.
     pub seed: u64,
 
-    /// H: thickness of the surface layer [cm]. Not given by the paper: 1 cm, with W = 1 cm,
+    /// H: thickness of the surface layer \[cm\]. Not given by the paper: 1 cm, with W = 1 cm,
     /// gives the closed polygonal cells of its figures (MODELS.md §A, measured note).
     pub layer_thickness: f32,
-    /// W: element size, the lattice spacing [cm]. Not given by the paper: 1 cm (see H).
+    /// W: element size, the lattice spacing \[cm\]. Not given by the paper: 1 cm (see H).
     pub element_size: f32,
-    /// T: the long time step [s]; break times are reported in long steps.
+    /// T: the long time step \[s\]; break times are reported in long steps.
     pub long_step: f32,
-    /// τ: the short time step of the explicit solver [s]. Paper: 0.001.
+    /// τ: the short time step of the explicit solver \[s\]. Paper: 0.001.
     pub short_step: f32,
     /// γ: shrink ratio per long step, in (0, 1]. Paper: 0.9999.
     pub shrink_ratio: f32,
-    /// δx: allowed displacement error [cm]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
+    /// δx: allowed displacement error \[cm\]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
     pub displacement_tolerance: f32,
     /// α: damping factor, c = 2·√(k_max·m)·α. Paper: 20 (empirically stable).
     pub damping_factor: f32,

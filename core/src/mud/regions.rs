@@ -27,7 +27,7 @@ pub struct CrackStatistics {
     pub crack_density: f32,
     /// Cells enclosed by the drawn crack network.
     pub cells: u32,
-    /// Mean area of a cell [cm²]: the lattice's area over the number of cells.
+    /// Mean area of a cell \[cm²\]: the lattice's area over the number of cells.
     pub mean_cell_area: f32,
 }
 

@@ -85,9 +85,9 @@ pub struct LevelParams {
 /// Everything that defines a skin: size, seed, layout and the levels.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkinParams {
-    /// Width of the surface and of its rasters [px].
+    /// Width of the surface and of its rasters \[px\].
     pub width: u32,
-    /// Height [px].
+    /// Height \[px\].
     pub height: u32,
     /// Seed of every random draw.
     pub seed: u64,
