@@ -237,23 +237,7 @@ pub(crate) fn glass_param_status(error: GlassParamError) -> hibi_status {
 
 /// The core error behind a glass parameter status.
 fn glass_param_error(status: hibi_status) -> Option<GlassParamError> {
-    use GlassParamError::*;
-    const ALL: [GlassParamError; 13] = [
-        Size,
-        Impact,
-        RadialMean,
-        RingThreshold,
-        CountFormula,
-        RingRadius,
-        Speed,
-        SpreadRatio,
-        TurnLimit,
-        TurnDelay,
-        Sector,
-        Forces,
-        Capacity,
-    ];
-    ALL.iter().copied().find(|e| glass_param_status(*e) == status)
+    GlassParamError::ALL.get(status.checked_sub(1024)? as usize).copied()
 }
 
 /// The status that reports a skin parameter error.
@@ -263,21 +247,7 @@ pub(crate) fn skin_param_status(error: SkinParamError) -> hibi_status {
 
 /// The core error behind a skin parameter status.
 fn skin_param_error(status: hibi_status) -> Option<SkinParamError> {
-    use SkinParamError::*;
-    const ALL: [SkinParamError; 11] = [
-        Size,
-        JitterRatio,
-        Levels,
-        Spacing,
-        Perturbation,
-        PerturbationDepth,
-        Stretch,
-        ProfileSegments,
-        ProfilePoints,
-        Roundness,
-        Capacity,
-    ];
-    ALL.iter().copied().find(|e| skin_param_status(*e) == status)
+    SkinParamError::ALL.get(status.checked_sub(1280)? as usize).copied()
 }
 
 /// The status that reports a mud parameter error.
@@ -287,31 +257,7 @@ pub(crate) fn mud_param_status(error: MudParamError) -> hibi_status {
 
 /// The core error behind a mud parameter status.
 fn mud_param_error(status: hibi_status) -> Option<MudParamError> {
-    use MudParamError::*;
-    const ALL: [MudParamError; 21] = [
-        Columns,
-        Rows,
-        LayerThickness,
-        ElementSize,
-        LongStep,
-        ShortStep,
-        ShrinkRatio,
-        DisplacementTolerance,
-        DampingFactor,
-        Density,
-        YoungModulus,
-        ShearModulus,
-        BreakStretchMean,
-        BreakStretchSpread,
-        AnisotropyDirection,
-        AnisotropyRatio,
-        StiffnessAnisotropyRatio,
-        TargetShrink,
-        TargetCrackDensity,
-        SizeOverflow,
-        Scale,
-    ];
-    ALL.iter().copied().find(|e| mud_param_status(*e) == status)
+    MudParamError::ALL.get(status.checked_sub(512)? as usize).copied()
 }
 
 /// The status that reports a raster error.

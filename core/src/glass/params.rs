@@ -139,6 +139,23 @@ pub enum GlassParamError {
 }
 
 impl GlassParamError {
+    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
+    pub const ALL: [GlassParamError; 13] = [
+        GlassParamError::Size,
+        GlassParamError::Impact,
+        GlassParamError::RadialMean,
+        GlassParamError::RingThreshold,
+        GlassParamError::CountFormula,
+        GlassParamError::RingRadius,
+        GlassParamError::Speed,
+        GlassParamError::SpreadRatio,
+        GlassParamError::TurnLimit,
+        GlassParamError::TurnDelay,
+        GlassParamError::Sector,
+        GlassParamError::Forces,
+        GlassParamError::Capacity,
+    ];
+
     /// The field's name and its constraint, NUL-terminated for C.
     pub const fn message(self) -> &'static core::ffi::CStr {
         use GlassParamError::*;
@@ -223,6 +240,13 @@ impl GlassParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn all_errors_are_listed_in_number_order() {
+        for (i, e) in GlassParamError::ALL.iter().enumerate() {
+            assert_eq!(*e as usize, i, "{e:?}");
+        }
+    }
 
     #[test]
     fn defaults_are_the_papers_and_valid() {

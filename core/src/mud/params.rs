@@ -188,6 +188,31 @@ pub enum MudParamError {
 }
 
 impl MudParamError {
+    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
+    pub const ALL: [MudParamError; 21] = [
+        MudParamError::Columns,
+        MudParamError::Rows,
+        MudParamError::LayerThickness,
+        MudParamError::ElementSize,
+        MudParamError::LongStep,
+        MudParamError::ShortStep,
+        MudParamError::ShrinkRatio,
+        MudParamError::DisplacementTolerance,
+        MudParamError::DampingFactor,
+        MudParamError::Density,
+        MudParamError::YoungModulus,
+        MudParamError::ShearModulus,
+        MudParamError::BreakStretchMean,
+        MudParamError::BreakStretchSpread,
+        MudParamError::AnisotropyDirection,
+        MudParamError::AnisotropyRatio,
+        MudParamError::StiffnessAnisotropyRatio,
+        MudParamError::TargetShrink,
+        MudParamError::TargetCrackDensity,
+        MudParamError::SizeOverflow,
+        MudParamError::Scale,
+    ];
+
     /// The field's name and its constraint, NUL-terminated for C.
     pub const fn message(self) -> &'static core::ffi::CStr {
         use MudParamError::*;
@@ -277,6 +302,13 @@ impl MudParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn all_errors_are_listed_in_number_order() {
+        for (i, e) in MudParamError::ALL.iter().enumerate() {
+            assert_eq!(*e as usize, i, "{e:?}");
+        }
+    }
 
     #[test]
     fn defaults_are_valid_and_the_papers() {

@@ -180,6 +180,21 @@ pub enum SkinParamError {
 }
 
 impl SkinParamError {
+    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
+    pub const ALL: [SkinParamError; 11] = [
+        SkinParamError::Size,
+        SkinParamError::JitterRatio,
+        SkinParamError::Levels,
+        SkinParamError::Spacing,
+        SkinParamError::Perturbation,
+        SkinParamError::PerturbationDepth,
+        SkinParamError::Stretch,
+        SkinParamError::ProfileSegments,
+        SkinParamError::ProfilePoints,
+        SkinParamError::Roundness,
+        SkinParamError::Capacity,
+    ];
+
     /// A message naming the field.
     pub const fn message(self) -> &'static core::ffi::CStr {
         use SkinParamError::*;
@@ -247,6 +262,13 @@ impl SkinParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn all_errors_are_listed_in_number_order() {
+        for (i, e) in SkinParamError::ALL.iter().enumerate() {
+            assert_eq!(*e as usize, i, "{e:?}");
+        }
+    }
 
     #[test]
     fn defaults_are_valid_and_every_bad_field_is_named() {
