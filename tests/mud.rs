@@ -103,7 +103,10 @@ fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts()
 fn halving_the_element_size_keeps_the_mean_cell_area() {
     let areas = ["fig9a", "fig9b", "fig9c"].map(|name| {
         let base = hibi_core::mud::preset(name).expect("a preset");
-        mean((1..=16).map(|seed| run::<f32>(&MudParams { seed, ..base }).0.mean_cell_area))
+        let per_seed: Vec<f32> =
+            (1..=16).map(|seed| run::<f32>(&MudParams { seed, ..base }).0.mean_cell_area).collect();
+        println!("{name}, seeds 1-16: {per_seed:.1?} cm²");
+        mean(per_seed.into_iter())
     });
     println!("mean cell area at W = 2, 1, 0.5 cm: {areas:.1?} cm²");
     assert!(within(areas[0], areas[1], 0.30), "W = 2 vs 1 cm: {areas:?}");

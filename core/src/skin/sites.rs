@@ -3,6 +3,7 @@
 //! plane before the level's stretch).
 
 use super::params::{SiteLayout, SkinParams};
+use crate::geom::round_to_i64;
 use crate::rng::{Rng, Spread, Stream};
 
 /// Lattice indices reach this far outside the surface (non-periodic ids stay unique).
@@ -45,7 +46,7 @@ impl Lattice {
         let period = [f64::from(p.width) / f64::from(l.stretch[0]), f64::from(p.height) / f64::from(l.stretch[1])];
         let s = f64::from(l.spacing);
         let row = if p.layout == SiteLayout::Triangular { s * libm::sqrt(3.0) / 2.0 } else { s };
-        let mut count = [libm::round(period[0] / s).max(1.0) as i64, libm::round(period[1] / row).max(1.0) as i64];
+        let mut count = [round_to_i64(period[0] / s).max(1), round_to_i64(period[1] / row).max(1)];
         let mut step = [s, row];
         if p.periodic {
             if p.layout == SiteLayout::Triangular && count[1] % 2 == 1 {
