@@ -23,6 +23,7 @@ use core::cmp::Ordering;
 use super::cell::MAX_OUTLINE;
 use super::profile::ProfileTable;
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
+use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
 
 /// The maps to write; each is optional and `width × height` long, row-major.
@@ -230,7 +231,7 @@ impl<S: Scalar> Batch<S> {
             self.angle[..m].chunks_exact_mut(8).zip(self.dx[..m].chunks_exact(8)).zip(self.dy[..m].chunks_exact(8))
         {
             for l in 0..8 {
-                a[l] = direction(x[l], y[l]);
+                a[l] = pseudo_angle([x[l], y[l]]);
             }
         }
         // The fan triangle its ray leaves by.
@@ -317,19 +318,6 @@ impl<S: Scalar> Ridge<'_, S> {
         let lean = if r > S::ZERO { self.flat * inverse_r + inside } else { S::ZERO };
         ((self.end * bent).to_f32(), lean)
     }
-}
-
-/// [`pseudo_angle`](crate::geom::pseudo_angle) written without branches, the same value: by
-/// quadrant, base + |y| / (|x| + |y|) or base + |x| / (|x| + |y|), which are the very
-/// operands of its four divisions up to sign (IEEE arithmetic is symmetric in sign).
-#[inline]
-fn direction(x: f32, y: f32) -> f32 {
-    let (upper, right) = (y >= 0.0, x >= 0.0);
-    let (ax, ay) = (x.abs(), y.abs());
-    let num = if upper == right { ay } else { ax };
-    // Quadrants 0 (x, y >= 0), 1 (x < 0 <= y), 2 (x, y < 0), 3 (y < 0 <= x).
-    let base = (u32::from(!upper) << 1 | u32::from(upper != right)) as f32;
-    base + num / (ax + ay)
 }
 
 impl Skin<'_> {
@@ -440,7 +428,7 @@ impl Skin<'_> {
             let outward = [e[1], -e[0]];
             let reach = va[0] * outward[0] + va[1] * outward[1];
             let length = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
-            let angle = direction(va[0], va[1]);
+            let angle = pseudo_angle(va);
             wedges[i] = if reach > 0.0 && length > 0.0 {
                 let per_reach = 1.0 / reach;
                 Wedge {
@@ -519,36 +507,5 @@ fn normalise(normals: &mut [[f32; 3]]) {
         let (x, y) = (v[0], -v[1]);
         let s = Scalar::inverse_sqrt(x * x + y * y + 1.0);
         *v = [x * s, y * s, s];
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geom::pseudo_angle;
-
-    #[test]
-    fn direction_is_the_pseudo_angle_bit_for_bit() {
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
-        let special = [0.0, -0.0, 1.0, -1.0, 1e-30, -1e-30, 3e7, -3e7, 0.5, -0.5];
-        for a in special {
-            for b in special {
-                if a != 0.0 || b != 0.0 {
-                    assert_eq!(direction(a, b), pseudo_angle([a, b]), "({a}, {b})");
-                }
-            }
-        }
-        for _ in 0..200_000 {
-            let r = next();
-            let scale = [1e-3, 1.0, 40.0, 1e4][(r >> 62) as usize];
-            let (a, b) = (((r as u32) as f32 / 2e9 - 1.07) * scale, (((r >> 32) as u32) as f32 / 2e9 - 1.07) * scale);
-            assert_eq!(direction(a, b).to_bits(), pseudo_angle([a, b]).to_bits(), "({a}, {b})");
-        }
     }
 }
