@@ -146,10 +146,12 @@ fn sorted2<'s>(a: &'s Site, b: &'s Site) -> (&'s Site, &'s Site) {
 
 /// The circumcentre of three sites (a Voronoi vertex), in the frame of the lowest id.
 fn circumcentre(f: &Frame, a: &Site, b: &Site, c: &Site) -> Corner {
-    let mut s = [a, b, c];
-    s.sort_unstable_by_key(|x| x.id);
-    let r = s[0];
-    let (p, q) = (f.relative(s[1], r), f.relative(s[2], r));
+    // Ordered by (id, image), in three exchanges.
+    let (a, b) = sorted2(a, b);
+    let (b, c) = sorted2(b, c);
+    let (a, b) = sorted2(a, b);
+    let r = a;
+    let (p, q) = (f.relative(b, r), f.relative(c, r));
     let o = r.base;
     let (bx, by, cx, cy) = (p[0] - o[0], p[1] - o[1], q[0] - o[0], q[1] - o[1]);
     let d = 2.0 * (bx * cy - by * cx);
@@ -221,8 +223,14 @@ pub(super) struct Builder<'s> {
     pub(super) clip: &'s mut [ClipVertex],
     pub(super) spare: &'s mut [ClipVertex],
     pub(super) order: &'s mut [u32],
-    /// Bounding boxes (x0, y0, x1, y1) of the parent outline's edges, `CHUNK` at a time.
-    pub(super) chunks: [[i64; 4]; MAX_OUTLINE / CHUNK + 1],
+}
+
+/// A parent outline (fixed point, counter-clockwise) and the bounding boxes (x0, y0, x1, y1)
+/// of its edges, `CHUNK` at a time (from [`chunk_boxes`]).
+#[derive(Clone, Copy)]
+pub(super) struct Parent<'p> {
+    pub(super) outline: &'p [[i64; 2]],
+    pub(super) chunks: &'p [[i64; 4]],
 }
 
 /// Fills `chunks` with the boxes of `outline`'s edges taken `CHUNK` at a time; returns how
@@ -276,15 +284,14 @@ impl Builder<'_> {
         f: &Frame,
         site: &Site,
         neighbours: &[Site],
-        parent: &[[i64; 2]],
+        parent: Parent,
         (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
     ) -> Result<usize, OutlineFull> {
-        let n0 = parent.len();
+        let n0 = parent.outline.len();
         if n0 > self.clip.len() {
             return Err(OutlineFull);
         }
-        let chunk_count = chunk_boxes(parent, &mut self.chunks);
-        for (k, p) in parent.iter().enumerate() {
+        for (k, p) in parent.outline.iter().enumerate() {
             self.clip[k] = ClipVertex { at: f.in_frame(*p), label: PARENT_EDGE | k as u32 };
         }
         let mut n = n0;
@@ -297,17 +304,17 @@ impl Builder<'_> {
         let m = neighbours.len();
         if m <= FEW {
             // A few siblings: each one's rank is the count of those before it, without
-            // branches (squared distances are ≥ 0, so their bits order as the values do; ties
-            // go by id, then image).
-            let mut keys = [(0u64, 0u64); FEW];
+            // branches (ties go by place in the list, which is the order of ids: sites are
+            // listed in lattice order).
+            let mut keys = [0.0f64; FEW];
             for (key, s) in keys.iter_mut().zip(neighbours) {
-                let image = s.image.map(|v| (v as u64).wrapping_add(1 << 15) & 0xFFFF);
-                *key = (distance(s).to_bits(), u64::from(s.id) << 32 | image[0] << 16 | image[1]);
+                *key = distance(s);
             }
             for i in 0..m {
-                let (d, t) = keys[i];
-                let rank: usize = keys[..m].iter().map(|&(e, u)| usize::from((e < d) | ((e == d) & (u < t)))).sum();
-                self.order[rank] = i as u32;
+                let d = keys[i];
+                let before: usize = keys[..i].iter().map(|&e| usize::from(e <= d)).sum();
+                let after: usize = keys[i + 1..m].iter().map(|&e| usize::from(e < d)).sum();
+                self.order[before + after] = i as u32;
             }
         } else {
             for (k, o) in self.order[..m].iter_mut().enumerate() {
@@ -315,7 +322,7 @@ impl Builder<'_> {
             }
             self.order[..m].sort_unstable_by(|&i, &j| {
                 let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
-                distance(a).total_cmp(&distance(b)).then(a.id.cmp(&b.id)).then(a.image.cmp(&b.image))
+                distance(a).total_cmp(&distance(b)).then(i.cmp(&j))
             });
         }
         let mut farthest = self.clip[..n].iter().fold(0.0f64, |far, v| far.max(distance_to(v.at)));
@@ -338,7 +345,7 @@ impl Builder<'_> {
                 farthest = reach;
             }
         }
-        self.finish(f, site, neighbours, (parent, chunk_count), n, (out, shared, scratch))
+        self.finish(f, site, neighbours, parent, n, (out, shared, scratch))
     }
 
     /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count and the
@@ -348,12 +355,29 @@ impl Builder<'_> {
         let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
         let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
         let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
-        if self.clip[..n].iter().all(|v| side(v.at) <= 0.0) {
+        let Some(first_out) = self.clip[..n].iter().position(|v| side(v.at) > 0.0) else {
             return Ok(None);
+        };
+        // The vertices before the one before the first outside are kept as they are.
+        let unchanged = first_out.saturating_sub(1);
+        if unchanged > self.spare.len() {
+            return Err(OutlineFull);
         }
-        let (mut out, mut farthest) = (0, 0.0f64);
-        let mut sn = side(self.clip[0].at);
-        for k in 0..n {
+        let reach = |v: &ClipVertex| {
+            let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
+            r[0] * r[0] + r[1] * r[1]
+        };
+        let mut farthest = 0.0f64;
+        for (o, v) in self.spare[..unchanged].iter_mut().zip(&self.clip[..unchanged]) {
+            *o = *v;
+            let r2 = reach(v);
+            if r2 > farthest {
+                farthest = r2;
+            }
+        }
+        let mut out = unchanged;
+        let mut sn = side(self.clip[unchanged].at);
+        for k in unchanged..n {
             let (cur, following) = (self.clip[k], self.clip[next(k, n)]);
             let sc = sn;
             sn = side(following.at);
@@ -363,8 +387,7 @@ impl Builder<'_> {
                 return Err(OutlineFull);
             }
             let mut keep = |v: ClipVertex| {
-                let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
-                let r2 = r[0] * r[0] + r[1] * r[1];
+                let r2 = reach(&v);
                 if r2 > farthest {
                     farthest = r2;
                 }
@@ -430,7 +453,7 @@ impl Builder<'_> {
         f: &Frame,
         a: &Site,
         neighbours: &[Site],
-        (parent, chunk_count): (&[[i64; 2]], usize),
+        near: Parent,
         n: usize,
         (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
     ) -> Result<usize, OutlineFull> {
@@ -445,7 +468,7 @@ impl Builder<'_> {
         };
         let corner_at = |k: usize| {
             let into = self.clip[if k == 0 { n - 1 } else { k - 1 }].label;
-            self.corner(f, a, neighbours, parent, (into, self.clip[k].label), k)
+            self.corner(f, a, neighbours, near.outline, (into, self.clip[k].label), k)
         };
         let mut start = corner_at(0);
         let first = start;
@@ -475,7 +498,6 @@ impl Builder<'_> {
             let (mut m, mut fits) = (0, true);
             let pieces = &mut scratch.pieces;
             pieces[0] = start;
-            let near = (parent, &self.chunks[..chunk_count]);
             let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, pieces) } else { 0 };
             pieces[count + 1] = end;
             for (i, w) in pieces[..count + 2].windows(2).enumerate() {
@@ -525,7 +547,7 @@ fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (Edg
 }
 
 /// Neighbour lists up to this long are ordered by rank on the stack, longer ones sorted.
-const FEW: usize = 32;
+const FEW: usize = 96;
 
 /// Most parent-outline crossings one bisector edge is split at.
 const MAX_CROSSINGS: usize = 16;
@@ -544,7 +566,7 @@ fn crossings(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    (parent, chunks): (&[[i64; 2]], &[[i64; 4]]),
+    Parent { outline: parent, chunks }: Parent,
     out: &mut [Corner],
 ) -> usize {
     let (x, y) = (start.fixed, end.fixed);
@@ -608,7 +630,7 @@ fn perturb(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    (parent, chunks): (&[[i64; 2]], &[[i64; 4]]),
+    Parent { outline: parent, chunks }: Parent,
     points: &mut [[i64; 2]],
 ) -> usize {
     let (lo, hi) = sorted2(a, b);

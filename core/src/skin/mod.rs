@@ -46,7 +46,7 @@ pub use shade::{ShadeParams, shade};
 pub use sites::Site;
 pub use surface::SkinLayers;
 
-use cell::{Builder, Frame};
+use cell::{Builder, Frame, Parent};
 use profile::ProfileTable;
 use shared::SharedEdges;
 use sites::Lattice;
@@ -221,9 +221,13 @@ impl Build<'_> {
     ) -> Result<(), SkinError> {
         let f = self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
-        let outline: &[[i64; 2]] = match parent {
-            ParentOutline::Stored(first, count) => &head[first..first + count],
-            ParentOutline::Box(ref b) => b,
+        let mut box_chunks = [[0i64; 4]; 1];
+        let outline = match parent {
+            ParentOutline::Stored(first, count, chunks) => Parent { outline: &head[first..first + count], chunks },
+            ParentOutline::Box(ref b) => {
+                let count = cell::chunk_boxes(b, &mut box_chunks);
+                Parent { outline: b, chunks: &box_chunks[..count] }
+            }
         };
         let n = self
             .builder
@@ -266,6 +270,7 @@ impl Build<'_> {
             hi = [hi[0].max(v[0]), hi[1].max(v[1])];
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
+        // Its edges' boxes, for every child's outline too.
         let mut boxes = [[0i64; 4]; MAX_OUTLINE / cell::CHUNK + 1];
         let chunks = cell::chunk_boxes(outline, &mut boxes);
         let base = level * MAX_CHILDREN;
@@ -294,16 +299,16 @@ impl Build<'_> {
         }
         for k in 0..count {
             let s = self.sites[base + k];
-            self.cell(level, s, (base, count), ParentOutline::Stored(first, n), parent)?;
+            self.cell(level, s, (base, count), ParentOutline::Stored(first, n, &boxes[..chunks]), parent)?;
         }
         Ok(())
     }
 }
 
 /// The outline a cell is clipped to.
-enum ParentOutline {
-    /// Stored vertices (first, count).
-    Stored(usize, usize),
+enum ParentOutline<'c> {
+    /// Stored vertices (first, count) and their chunk boxes.
+    Stored(usize, usize, &'c [[i64; 4]]),
     /// A rectangle (the surface, or a box around a periodic centre).
     Box([[i64; 2]; 4]),
 }
@@ -340,12 +345,7 @@ impl<'a> Skin<'a> {
             vertices: buffers.vertices,
             vertex_count: 0,
             sites: buffers.sites,
-            builder: Builder {
-                clip,
-                spare,
-                order: &mut buffers.words[..MAX_CHILDREN],
-                chunks: [[0; 4]; MAX_OUTLINE / 8 + 1],
-            },
+            builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
             shared: SharedEdges::new(),
             scratch: cell::EdgeScratch::new(),
         };
