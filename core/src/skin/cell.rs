@@ -687,21 +687,28 @@ fn perturb(
     }
     let line = &line[..=pieces];
     let (x, y) = (lo.base, f.relative(hi, lo));
-    let inside = line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1));
-    // The diamond's outline.
-    let mut blocked = false;
+    if !line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1)) {
+        return 1;
+    }
+    // The diamond's outline: no piece between points inside it can cross it where it is
+    // convex.
     let diamond = [x, p0, y, p1];
-    for w in line.windows(2) {
-        for k in 0..4 {
-            let (r, s) = (diamond[k], diamond[(k + 1) % 4]);
-            blocked |= cross(w[0], w[1], r, s);
+    let turns = [orient(x, p0, y), orient(p0, y, p1), orient(y, p1, x), orient(p1, x, p0)];
+    let convex = turns.iter().all(|&t| t > 0.0) || turns.iter().all(|&t| t < 0.0);
+    let mut blocked = false;
+    if !convex {
+        for w in line.windows(2) {
+            for k in 0..4 {
+                let (r, s) = (diamond[k], diamond[(k + 1) % 4]);
+                blocked |= cross(w[0], w[1], r, s);
+            }
         }
     }
     // A child's edge must stay inside its parent: not cross the parent's outline anywhere,
     // and (near it) keep every point inside. The parent is the same for both cells that
     // share the edge, so they judge alike. (Level 0's "parent" is the surface or a box of
     // the cell's own; its edges may leave it.)
-    if f.level > 0 && !blocked && inside {
+    if f.level > 0 && !blocked {
         let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for q in line {
             low = [low[0].min(q[0]), low[1].min(q[1])];
@@ -725,7 +732,7 @@ fn perturb(
             blocked = ends.iter().any(|&k| !super::scan::contains_chunked(parent, chunks, CHUNK, f.fixed(line[k], lo)));
         }
     }
-    if !inside || blocked {
+    if blocked {
         return 1;
     }
     for (k, at) in line.iter().enumerate().take(pieces).skip(1) {

@@ -56,6 +56,8 @@ use sites::Lattice;
 const WINDOW: i64 = 4;
 /// Most centre points one parent can hold, or one level-1 window.
 pub const MAX_CHILDREN: usize = 4096;
+/// Parent outlines up to this long keep their chunk boxes in a small array.
+const SHORT_OUTLINE: usize = 256;
 /// No cell (a parent of a level-1 cell).
 pub const NO_CELL: u32 = u32::MAX;
 
@@ -271,8 +273,16 @@ impl Build<'_> {
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
-        let mut boxes = [[0i64; 4]; MAX_OUTLINE / cell::CHUNK + 1];
-        let chunks = cell::chunk_boxes(outline, &mut boxes);
+        // (Most outlines are short: a small array spares clearing a large one.)
+        let (mut small, mut large);
+        let boxes: &mut [[i64; 4]] = if n <= SHORT_OUTLINE {
+            small = [[0i64; 4]; SHORT_OUTLINE / cell::CHUNK + 1];
+            &mut small
+        } else {
+            large = [[0i64; 4]; MAX_OUTLINE / cell::CHUNK + 1];
+            &mut large
+        };
+        let chunks = cell::chunk_boxes(outline, boxes);
         let base = level * MAX_CHILDREN;
         let mut count = 0;
         for j in r[1]..=r[3] {

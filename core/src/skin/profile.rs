@@ -36,29 +36,40 @@ impl ProfileTable {
         let points = profile.used();
         let end = points[points.len() - 1][0];
         let (mut height, mut slope) = ([0.0f32; SAMPLES + 1], [0.0f32; SAMPLES + 1]);
+        let segments = points.len() / 3;
+        // Each sample's x and segment (the last one that starts at or before it).
+        let mut x = [0.0f64; SAMPLES + 1];
+        let mut segment = [0usize; SAMPLES + 1];
         for k in 0..=SAMPLES {
-            let x = f64::from(end) * k as f64 / SAMPLES as f64;
-            // The segment whose x' range holds x (the last one that starts at or before it).
-            let segments = points.len() / 3;
+            x[k] = f64::from(end) * k as f64 / SAMPLES as f64;
             let mut s = 0;
-            while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x {
+            while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x[k] {
                 s += 1;
             }
-            let c = &points[3 * s..3 * s + 4];
-            let px = [c[0][0], c[1][0], c[2][0], c[3][0]].map(f64::from);
-            let pz = [c[0][1], c[1][1], c[2][1], c[3][1]].map(f64::from);
-            // x'(t) is monotone (control x' never decrease): bisection finds t.
-            let (mut lo, mut hi) = (0.0f64, 1.0f64);
-            for _ in 0..48 {
-                let mid = 0.5 * (lo + hi);
-                if bezier(px, mid) < x {
-                    lo = mid;
+            segment[k] = s;
+        }
+        let controls = |k: usize, axis: usize| {
+            let c = &points[3 * segment[k]..3 * segment[k] + 4];
+            [c[0][axis], c[1][axis], c[2][axis], c[3][axis]].map(f64::from)
+        };
+        // x'(t) is monotone (control x' never decrease): bisection finds t, every sample's
+        // step in turn (so that the processor overlaps them).
+        let (mut lo, mut hi) = ([0.0f64; SAMPLES + 1], [1.0f64; SAMPLES + 1]);
+        let px: [[f64; 4]; SAMPLES + 1] = core::array::from_fn(|k| controls(k, 0));
+        for _ in 0..48 {
+            for k in 0..=SAMPLES {
+                let mid = 0.5 * (lo[k] + hi[k]);
+                if bezier(px[k], mid) < x[k] {
+                    lo[k] = mid;
                 } else {
-                    hi = mid;
+                    hi[k] = mid;
                 }
             }
-            let t = 0.5 * (lo + hi);
-            let dx = bezier_derivative(px, t);
+        }
+        for k in 0..=SAMPLES {
+            let t = 0.5 * (lo[k] + hi[k]);
+            let pz = controls(k, 1);
+            let dx = bezier_derivative(px[k], t);
             let dz = bezier_derivative(pz, t);
             height[k] = bezier(pz, t) as f32;
             // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
