@@ -56,14 +56,16 @@ impl ProfileTable {
         // step in turn (so that the processor overlaps them).
         let (mut lo, mut hi) = ([0.0f64; SAMPLES + 1], [1.0f64; SAMPLES + 1]);
         let px: [[f64; 4]; SAMPLES + 1] = core::array::from_fn(|k| controls(k, 0));
+        // The control x' by point, a plain array each (so that the steps go several at once).
+        let c: [[f64; SAMPLES + 1]; 4] = core::array::from_fn(|i| core::array::from_fn(|k| px[k][i]));
         for _ in 0..48 {
-            for k in 0..=SAMPLES {
-                let mid = 0.5 * (lo[k] + hi[k]);
-                if bezier(px[k], mid) < x[k] {
-                    lo[k] = mid;
-                } else {
-                    hi[k] = mid;
-                }
+            let bounds = lo.iter_mut().zip(hi.iter_mut());
+            let curve = c[0].iter().zip(&c[1]).zip(c[2].iter().zip(&c[3])).zip(&x);
+            for ((lo, hi), (((&c0, &c1), (&c2, &c3)), &x)) in bounds.zip(curve) {
+                let mid = 0.5 * (*lo + *hi);
+                let below = bezier([c0, c1, c2, c3], mid) < x;
+                *lo = if below { mid } else { *lo };
+                *hi = if below { *hi } else { mid };
             }
         }
         for k in 0..=SAMPLES {
