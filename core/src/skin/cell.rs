@@ -54,6 +54,8 @@ pub(super) struct Frame {
     /// 2^bits, and 1 / (2^shift · stretch) per axis.
     own_unit: f64,
     to_frame: [f64; 2],
+    /// 2^shift · stretch per axis.
+    from_frame: [f64; 2],
     pub(super) perturbation: f64,
     /// A·2^(−n·h) for subdivision n = 1..=depth (index n − 1), of the perturbation's V.
     amplitude: [f64; MAX_PERTURBATION_DEPTH as usize],
@@ -74,6 +76,7 @@ impl Frame {
             bits: BASE_BITS + EDGE_BITS * level as u32,
             own_unit: (1u64 << (BASE_BITS + EDGE_BITS * level as u32)) as f64,
             to_frame: [1.0 / ((1u64 << shift) as f64 * stretch[0]), 1.0 / ((1u64 << shift) as f64 * stretch[1])],
+            from_frame: [(1u64 << shift) as f64 * stretch[0], (1u64 << shift) as f64 * stretch[1]],
             perturbation: f64::from(l.perturbation),
             amplitude: core::array::from_fn(|n| {
                 f64::from(l.perturbation) * libm::exp2(-((n + 1) as f64) * f64::from(l.perturbation_decay))
@@ -208,13 +211,19 @@ pub(super) const CHUNK: usize = 8;
 pub(super) struct EdgeScratch {
     pieces: [Corner; MAX_CROSSINGS + 2],
     points: [[i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
+    /// The parent's edges near the edge being built.
+    listed: [u32; LISTED],
 }
+
+/// Most parent edges listed near one bisector edge (beyond, its tests look at all of them).
+const LISTED: usize = 64;
 
 impl EdgeScratch {
     pub(super) fn new() -> EdgeScratch {
         EdgeScratch {
             pieces: [Corner::default(); MAX_CROSSINGS + 2],
             points: [[0; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
+            listed: [0; LISTED],
         }
     }
 }
@@ -271,6 +280,67 @@ fn edges_near(
             if visit(e) {
                 return;
             }
+        }
+    }
+}
+
+/// The parent's edges a bisector edge is tested against ([`crossings`], [`perturb`]): every
+/// one (found through the chunk boxes), or, for a test that stays inside `region`, the ones
+/// listed as meeting it (in order, so that both give the same edges in the same order).
+#[derive(Clone, Copy)]
+struct Nearby<'p> {
+    parent: Parent<'p>,
+    region: [i64; 4],
+    listed: Option<&'p [u32]>,
+}
+
+impl<'p> Nearby<'p> {
+    /// Lists (into `space`) the edges of `parent` that meet the box any test of the bisector
+    /// edge from `start` to `end` can make: the edge's box widened by the farthest its
+    /// perturbation can reach (each subdivision moves a point at most 3·A·2^(−n·h)·L off the
+    /// line through its ends, eq. (2)'s V with Rnd within ±3) and the tests' slack.
+    fn list(f: &Frame, parent: Parent<'p>, (start, end): (&Corner, &Corner), space: &'p mut [u32; LISTED]) -> Self {
+        let (x, y) = (start.fixed, end.fixed);
+        let d = f.in_frame([y[0] - x[0], y[1] - x[1]]);
+        let length = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
+        let reach = 3.0 * f.amplitude[..f.depth as usize].iter().sum::<f64>() * length * 1.001;
+        let widen = |k: usize| (reach * f.from_frame[k]) as i64 + (1 << (f.shift - BASE_BITS)) + 16;
+        let (wx, wy) = (widen(0), widen(1));
+        let (low, high) = ([x[0].min(y[0]) - wx, x[1].min(y[1]) - wy], [x[0].max(y[0]) + wx, x[1].max(y[1]) + wy]);
+        let (mut count, mut fits) = (0, true);
+        edges_near(parent.outline, parent.chunks, (low, high), 0, |e| {
+            if count == LISTED {
+                fits = false;
+                return true;
+            }
+            space[count] = e as u32;
+            count += 1;
+            false
+        });
+        let space: &'p [u32; LISTED] = space;
+        Nearby { parent, region: [low[0], low[1], high[0], high[1]], listed: fits.then(|| &space[..count]) }
+    }
+
+    /// [`edges_near`] over the parent.
+    fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, mut visit: impl FnMut(usize) -> bool) {
+        let outline = self.parent.outline;
+        let r = self.region;
+        let (x0, y0, x1, y1) = (low[0] - slack, low[1] - slack, high[0] + slack, high[1] + slack);
+        match self.listed {
+            Some(listed) if r[0] <= x0 && r[1] <= y0 && x1 <= r[2] && y1 <= r[3] => {
+                let m = outline.len();
+                for &e in listed {
+                    let e = e as usize;
+                    let (p, q) = (outline[e], outline[next(e, m)]);
+                    if p[0].max(q[0]) < x0 || p[0].min(q[0]) > x1 || p[1].max(q[1]) < y0 || p[1].min(q[1]) > y1 {
+                        continue;
+                    }
+                    if visit(e) {
+                        return;
+                    }
+                }
+            }
+            _ => edges_near(outline, self.parent.chunks, (low, high), slack, visit),
         }
     }
 }
@@ -496,15 +566,19 @@ impl Builder<'_> {
             }
             let mut kept = [[0i64; 2]; KEPT_POINTS];
             let (mut m, mut fits) = (0, true);
-            let pieces = &mut scratch.pieces;
+            let EdgeScratch { pieces, points, listed } = &mut *scratch;
             pieces[0] = start;
-            let count = if f.level > 0 { crossings(f, a, b, (&start, &end), near, pieces) } else { 0 };
+            let (count, nearby) = if f.level > 0 {
+                let nearby = Nearby::list(f, near, (&start, &end), listed);
+                (crossings(f, a, b, (&start, &end), &nearby, pieces), nearby)
+            } else {
+                (0, Nearby { parent: near, region: [0; 4], listed: None })
+            };
             pieces[count + 1] = end;
             for (i, w) in pieces[..count + 2].windows(2).enumerate() {
-                let points = &mut scratch.points;
                 points[0] = w[0].fixed;
                 let inner = if f.perturbation > 0.0 && f.depth > 0 {
-                    perturb(f, a, b, (&w[0], &w[1]), near, points)
+                    perturb(f, a, b, (&w[0], &w[1]), &nearby, points)
                 } else {
                     1
                 };
@@ -566,15 +640,16 @@ fn crossings(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    Parent { outline: parent, chunks }: Parent,
+    nearby: &Nearby,
     out: &mut [Corner],
 ) -> usize {
     let (x, y) = (start.fixed, end.fixed);
     let (low, high) = ([x[0].min(y[0]), x[1].min(y[1])], [x[0].max(y[0]), x[1].max(y[1])]);
+    let parent = nearby.parent.outline;
     let m = parent.len();
     let mut found = 0;
     let mut along = [0i128; MAX_CROSSINGS + 2];
-    edges_near(parent, chunks, (low, high), 0, |e| {
+    nearby.edges_near((low, high), 0, |e| {
         let (p, q) = (parent[e], parent[next(e, m)]);
         let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
         let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
@@ -630,7 +705,7 @@ fn perturb(
     a: &Site,
     b: &Site,
     (start, end): (&Corner, &Corner),
-    Parent { outline: parent, chunks }: Parent,
+    nearby: &Nearby,
     points: &mut [[i64; 2]],
 ) -> usize {
     let (lo, hi) = sorted2(a, b);
@@ -716,9 +791,10 @@ fn perturb(
         }
         let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
         let slack = 1i64 << (f.shift - BASE_BITS);
+        let Parent { outline: parent, chunks } = nearby.parent;
         let m = parent.len();
         let mut near = false;
-        edges_near(parent, chunks, (low, high), slack, |e| {
+        nearby.edges_near((low, high), slack, |e| {
             near = true;
             let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[next(e, m)], lo));
             blocked = line.windows(2).any(|w| cross(w[0], w[1], r, s));
@@ -740,4 +816,63 @@ fn perturb(
         points[index] = f.fixed(*at, lo);
     }
     pieces
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    /// The edges visited for a query box, through the chunk boxes or through `nearby`.
+    fn visited(search: impl FnOnce(&mut dyn FnMut(usize) -> bool)) -> ([usize; 64], usize) {
+        let (mut seen, mut count) = ([0usize; 64], 0);
+        search(&mut |e| {
+            seen[count] = e;
+            count += 1;
+            false
+        });
+        (seen, count)
+    }
+
+    #[test]
+    fn listed_edges_give_what_the_chunks_give() {
+        // A star-shaped outline of 40 wiggly vertices, queries of every size around it.
+        let level = LevelParams { perturbation: 0.1, perturbation_depth: 2, ..LevelParams::default() };
+        let f = Frame::new(1, &level, 1, [64, 64], 2);
+        let mut rng = Rng::from_key(3, 4);
+        let unit = 1i64 << f.shift;
+        let outline: [[i64; 2]; 40] = core::array::from_fn(|k| {
+            let angle = k as f64 / 40.0 * core::f64::consts::TAU;
+            let r = (8.0 + 4.0 * rng.uniform_f64()) * unit as f64;
+            [(32.0 * unit as f64 + r * libm::cos(angle)) as i64, (32.0 * unit as f64 + r * libm::sin(angle)) as i64]
+        });
+        let mut boxes = [[0i64; 4]; 40 / CHUNK + 1];
+        let chunks = chunk_boxes(&outline, &mut boxes);
+        let parent = Parent { outline: &outline, chunks: &boxes[..chunks] };
+        let mut space = [0u32; LISTED];
+        let corner = |p: [i64; 2]| Corner { fixed: p, ..Corner::default() };
+        let (start, end) = (corner([34 * unit, 32 * unit]), corner([42 * unit, 36 * unit]));
+        let nearby = Nearby::list(&f, parent, (&start, &end), &mut space);
+        assert!(nearby.listed.is_some_and(|l| !l.is_empty() && l.len() < 40));
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..2000 {
+            // Around the listed edge's box, some inside the region, some reaching past it.
+            let centre =
+                [(33.0 + 10.0 * rng.uniform_f64()) * unit as f64, (31.0 + 6.0 * rng.uniform_f64()) * unit as f64];
+            let half = [0, 1].map(|_| rng.uniform_f64() * 3.0 * unit as f64);
+            let low = [(centre[0] - half[0]) as i64, (centre[1] - half[1]) as i64];
+            let high = [(centre[0] + half[0]) as i64, (centre[1] + half[1]) as i64];
+            let slack = 1 << (f.shift - BASE_BITS);
+            let r = nearby.region;
+            let held = r[0] <= low[0] - slack && r[1] <= low[1] - slack && high[0] + slack <= r[2];
+            if held && high[1] + slack <= r[3] {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+            let expected = visited(|visit| edges_near(&outline, parent.chunks, (low, high), slack, visit));
+            assert_eq!(visited(|visit| nearby.edges_near((low, high), slack, visit)), expected);
+        }
+        assert!(inside > 50 && outside > 50, "{inside} {outside}");
+    }
 }
