@@ -59,8 +59,6 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
         let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
         let limit = take(scalars, lattice.spring_count());
-        // `memory_for` still counts a row of force vectors (x, y) after `limit`; the force
-        // pass no longer needs it.
         vx.fill(S::ZERO);
         vy.fill(S::ZERO);
         // Intact springs get their limits at the first step.

@@ -71,12 +71,12 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     let springs = nodes * dirs;
     // Per node: displacement (x, y); explicit adds velocity and force (x, y).
     // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
-    // solver's break misfit. The explicit solver adds a row of force vectors (x, y).
+    // solver's break misfit.
     // Words per spring: the other node and the break time; quasi-static adds a tournament
     // tree over springs (2·P, P the next power of two), a work queue, node flags and a list
     // of relaxed nodes (3 per node).
     let (scalars, words) = match solver {
-        Solver::Explicit => (6 * nodes + 2 * springs + 2 * columns as u128, 2 * springs),
+        Solver::Explicit => (6 * nodes + 2 * springs, 2 * springs),
         Solver::QuasiStatic => {
             let leaves = if springs <= 1 { 1 } else { 1u128 << (128 - (springs - 1).leading_zeros()) };
             (2 * nodes + 2 * springs, 2 * springs + 2 * leaves + 3 * nodes)

@@ -56,7 +56,7 @@ use sites::Lattice;
 const WINDOW: i64 = 4;
 /// Most centre points one parent can hold, or one level-1 window.
 pub const MAX_CHILDREN: usize = 4096;
-/// Parent outlines up to this long keep their chunk boxes in a small array.
+/// Outlines up to this long keep their scratch (chunk boxes, crossings) in a small array.
 const SHORT_OUTLINE: usize = 256;
 /// No cell (a parent of a level-1 cell).
 pub const NO_CELL: u32 = u32::MAX;
@@ -324,7 +324,7 @@ enum ParentOutline<'c> {
 }
 
 impl<'a> Skin<'a> {
-    /// Builds every cell of every level into the caller's buffers. Uses about 80 KiB of stack
+    /// Builds every cell of every level into the caller's buffers. Uses about 84 KiB of stack
     /// with three levels (scratch for one outline per level, and the edges kept for
     /// neighbours).
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
@@ -437,7 +437,15 @@ impl<'a> Skin<'a> {
     /// the surface when periodic). Across the cells of one level every pixel is visited
     /// exactly once.
     pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
-        let mut crossings = [0u64; MAX_OUTLINE];
-        self.for_each_pixel_unwrapped(cell, &mut crossings, |_, _, x, y| visit(x, y));
+        // Scratch for the outline's crossings (a small array spares clearing a large one).
+        let (mut small, mut large);
+        let crossings: &mut [u64] = if cell.vertex_count as usize <= SHORT_OUTLINE {
+            small = [0u64; SHORT_OUTLINE];
+            &mut small
+        } else {
+            large = [0u64; MAX_OUTLINE];
+            &mut large
+        };
+        self.for_each_pixel_unwrapped(cell, crossings, |_, _, x, y| visit(x, y));
     }
 }
