@@ -361,10 +361,10 @@ impl Builder<'_> {
         if n0 > self.clip.len() {
             return Err(OutlineFull);
         }
-        for (k, p) in parent.outline.iter().enumerate() {
-            self.clip[k] = ClipVertex { at: f.in_frame(*p), label: PARENT_EDGE | k as u32 };
-        }
+        // The outline starts as the parent's, read from it until the first clip writes one.
         let mut n = n0;
+        let mut fresh = true;
+        let from_parent = |k: usize| ClipVertex { at: f.in_frame(parent.outline[k]), label: PARENT_EDGE | k as u32 };
         // Neighbours nearest first (ties by id, so the order is fixed).
         let distance_to = |p: [f64; 2]| {
             let d = [p[0] - site.at[0], p[1] - site.at[1]];
@@ -395,7 +395,8 @@ impl Builder<'_> {
                 distance(a).total_cmp(&distance(b)).then(i.cmp(&j))
             });
         }
-        let mut farthest = self.clip[..n].iter().fold(0.0f64, |far, v| far.max(distance_to(v.at)));
+        // (Unbounded until the first clip: the nearest neighbours clip the parent.)
+        let mut farthest = f64::INFINITY;
         for k in 0..m {
             let j = self.order[k] as usize;
             let b = &neighbours[j];
@@ -407,75 +408,29 @@ impl Builder<'_> {
             if distance(b) > 4.0 * farthest {
                 break;
             }
-            if let Some((count, reach)) = self.clip_by_bisector(n, site, b, j as u32)? {
-                n = count;
+            let clipped = if fresh {
+                clip_by_bisector(from_parent, n, (site, b, j as u32), self.clip)?
+            } else {
+                let clip = &*self.clip;
+                let clipped = clip_by_bisector(|k| clip[k], n, (site, b, j as u32), self.spare)?;
+                if clipped.is_some() {
+                    core::mem::swap(&mut self.clip, &mut self.spare);
+                }
+                clipped
+            };
+            if let Some((count, reach)) = clipped {
+                (n, fresh, farthest) = (count, false, reach);
                 if n == 0 {
                     return Ok(0);
                 }
-                farthest = reach;
+            }
+        }
+        if fresh {
+            for (k, v) in self.clip[..n].iter_mut().enumerate() {
+                *v = from_parent(k);
             }
         }
         self.finish(f, site, neighbours, parent, n, (out, shared, scratch))
-    }
-
-    /// Keeps the part of the outline nearer `a` than `b`; returns the new vertex count and the
-    /// largest squared distance of a kept vertex from `a`, or None if the whole outline is
-    /// already nearer `a`.
-    fn clip_by_bisector(&mut self, n: usize, a: &Site, b: &Site, j: u32) -> Result<Option<(usize, f64)>, OutlineFull> {
-        let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
-        let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
-        let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
-        let Some(first_out) = self.clip[..n].iter().position(|v| side(v.at) > 0.0) else {
-            return Ok(None);
-        };
-        // The vertices before the one before the first outside are kept as they are.
-        let unchanged = first_out.saturating_sub(1);
-        if unchanged > self.spare.len() {
-            return Err(OutlineFull);
-        }
-        let reach = |v: &ClipVertex| {
-            let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
-            r[0] * r[0] + r[1] * r[1]
-        };
-        let mut farthest = 0.0f64;
-        for (o, v) in self.spare[..unchanged].iter_mut().zip(&self.clip[..unchanged]) {
-            *o = *v;
-            let r2 = reach(v);
-            if r2 > farthest {
-                farthest = r2;
-            }
-        }
-        let mut out = unchanged;
-        let mut sn = side(self.clip[unchanged].at);
-        for k in unchanged..n {
-            let (cur, following) = (self.clip[k], self.clip[next(k, n)]);
-            let sc = sn;
-            sn = side(following.at);
-            let (cin, nin) = (sc <= 0.0, sn <= 0.0);
-            let extra = usize::from(cin) + usize::from(cin != nin);
-            if out + extra > self.spare.len() {
-                return Err(OutlineFull);
-            }
-            let mut keep = |v: ClipVertex| {
-                let r2 = reach(&v);
-                if r2 > farthest {
-                    farthest = r2;
-                }
-                self.spare[out] = v;
-                out += 1;
-            };
-            if cin {
-                keep(cur);
-            }
-            if cin != nin {
-                let t = sc / (sc - sn);
-                let at = [cur.at[0] + t * (following.at[0] - cur.at[0]), cur.at[1] + t * (following.at[1] - cur.at[1])];
-                let label = if cin { j } else { cur.label };
-                keep(ClipVertex { at, label });
-            }
-        }
-        core::mem::swap(&mut self.clip, &mut self.spare);
-        Ok(Some((out, farthest)))
     }
 
     /// The corner between an edge labelled `into` and one labelled `from` (starting at clip
@@ -605,6 +560,71 @@ impl Builder<'_> {
         }
         Ok(written)
     }
+}
+
+/// Keeps the part of the outline (`n` vertices, `vertex(k)`) nearer `a` than `b` (neighbour
+/// `j`), into `out`; returns the new vertex count and the largest squared distance of a
+/// kept vertex from `a`, or None (writing nothing) if the whole outline is already nearer
+/// `a`.
+fn clip_by_bisector(
+    vertex: impl Fn(usize) -> ClipVertex,
+    n: usize,
+    (a, b, j): (&Site, &Site, u32),
+    out: &mut [ClipVertex],
+) -> Result<Option<(usize, f64)>, OutlineFull> {
+    let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
+    let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
+    let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
+    let Some(first_out) = (0..n).position(|k| side(vertex(k).at) > 0.0) else {
+        return Ok(None);
+    };
+    // The vertices before the one before the first outside are kept as they are.
+    let unchanged = first_out.saturating_sub(1);
+    if unchanged > out.len() {
+        return Err(OutlineFull);
+    }
+    let reach = |v: &ClipVertex| {
+        let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
+        r[0] * r[0] + r[1] * r[1]
+    };
+    let mut farthest = 0.0f64;
+    for (k, o) in out[..unchanged].iter_mut().enumerate() {
+        *o = vertex(k);
+        let r2 = reach(o);
+        if r2 > farthest {
+            farthest = r2;
+        }
+    }
+    let mut written = unchanged;
+    let mut sn = side(vertex(unchanged).at);
+    for k in unchanged..n {
+        let (cur, following) = (vertex(k), vertex(next(k, n)));
+        let sc = sn;
+        sn = side(following.at);
+        let (cin, nin) = (sc <= 0.0, sn <= 0.0);
+        let extra = usize::from(cin) + usize::from(cin != nin);
+        if written + extra > out.len() {
+            return Err(OutlineFull);
+        }
+        let mut keep = |v: ClipVertex| {
+            let r2 = reach(&v);
+            if r2 > farthest {
+                farthest = r2;
+            }
+            out[written] = v;
+            written += 1;
+        };
+        if cin {
+            keep(cur);
+        }
+        if cin != nin {
+            let t = sc / (sc - sn);
+            let at = [cur.at[0] + t * (following.at[0] - cur.at[0]), cur.at[1] + t * (following.at[1] - cur.at[1])];
+            let label = if cin { j } else { cur.label };
+            keep(ClipVertex { at, label });
+        }
+    }
+    Ok(Some((written, farthest)))
 }
 
 /// The key both cells give the bisector edge of `a` and `b` from `start` to `end` (as `a`
