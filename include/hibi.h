@@ -1140,6 +1140,26 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_SKIN_SHADE 1347
 
 /**
+ * `hibi_skin_shade`: a `ridge` channel is outside [0, 1].
+ */
+#define HIBI_ERROR_SKIN_SHADE_RIDGE 1350
+
+/**
+ * `hibi_skin_shade`: a `furrow` channel is outside [0, 1].
+ */
+#define HIBI_ERROR_SKIN_SHADE_FURROW 1351
+
+/**
+ * `hibi_skin_shade`: `ambient` is outside [0, 1].
+ */
+#define HIBI_ERROR_SKIN_SHADE_AMBIENT 1352
+
+/**
+ * `hibi_skin_shade`: `specular` is negative or not finite.
+ */
+#define HIBI_ERROR_SKIN_SHADE_SPECULAR 1353
+
+/**
  * `hibi_skin_params_preset`: no preset has that name.
  */
 #define HIBI_ERROR_SKIN_UNKNOWN_PRESET 1348
@@ -1601,8 +1621,9 @@ struct hibi_skin_shade_params hibi_skin_shade_params_default(void);
  * A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
  * it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
  * per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
- * `height` and `rgb` must hold as many pixels as `normal`; if not, or if the light is zero
- * or not finite, nothing is written.
+ * `height` and `rgb` must hold as many pixels as `normal`; if not, or if a parameter is out
+ * of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
+ * `specular` negative), nothing is written.
  *
  * # Safety
  * `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL

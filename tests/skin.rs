@@ -1,7 +1,7 @@
 //! Model C against the paper (Ishii et al.) and the acceptance list.
 
 use hibi_core::skin::{
-    PRESETS, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, preset, shade,
+    PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, preset, shade,
 };
 use hibi_tests::{SkinVecs, fnv1a64};
 
@@ -312,7 +312,16 @@ fn bad_input_is_refused_and_nothing_is_written() {
         let (h, n) = maps::<f32>(skin);
         let mut rgb = vec![[1u8; 3]; 64 * 64];
         let dark = ShadeParams { light: [0.0; 3], ..ShadeParams::default() };
-        assert_eq!(shade(&h, &n, &dark, &mut rgb), Err(SkinError::Shade));
+        assert_eq!(shade(&h, &n, &dark, &mut rgb), Err(SkinError::Shade(ShadeError::Light)));
+        let refused = [
+            (ShadeParams { ridge: [0.5, 1.01, 0.5], ..ShadeParams::default() }, ShadeError::Ridge),
+            (ShadeParams { furrow: [0.5, 0.5, -0.01], ..ShadeParams::default() }, ShadeError::Furrow),
+            (ShadeParams { ambient: f32::NAN, ..ShadeParams::default() }, ShadeError::Ambient),
+            (ShadeParams { specular: -1.0, ..ShadeParams::default() }, ShadeError::Specular),
+        ];
+        for (bad, error) in refused {
+            assert_eq!(shade(&h, &n, &bad, &mut rgb), Err(SkinError::Shade(error)));
+        }
         assert!(rgb.iter().all(|v| *v == [1; 3]));
         shade(&h, &n, &ShadeParams::default(), &mut rgb).unwrap();
         assert!(rgb.iter().any(|v| *v != [1; 3]));

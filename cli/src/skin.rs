@@ -3,8 +3,8 @@
 
 use hibi_core::Spread;
 use hibi_core::skin::{
-    MAX_SEGMENTS, Profile, ShadeParams, SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinParamError,
-    SkinParams, shade,
+    MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers,
+    SkinParamError, SkinParams, shade,
 };
 
 use crate::Failure;
@@ -126,20 +126,27 @@ fn message(e: SkinParamError) -> String {
 /// Checks the parameters, the light and the layer; a usage error names the option.
 pub fn check(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<(), Failure> {
     params.memory().map_err(|e| Failure::invalid("skin", option(e), message(e)))?;
-    let unit = |c: [f32; 3]| c.iter().all(|v| (0.0..=1.0).contains(v));
-    let length = light.light.iter().map(|v| v * v).sum::<f32>();
-    let checks = [
-        (length.is_finite() && length > 0.0, "--light", "must be a finite, non-zero direction"),
-        (unit(light.ridge), "--ridge", "must be three numbers in [0, 1]"),
-        (unit(light.furrow), "--furrow", "must be three numbers in [0, 1]"),
-        ((0.0..=1.0).contains(&light.ambient), "--ambient", "must be in [0, 1]"),
-        (light.specular.is_finite() && light.specular >= 0.0, "--specular", "must be finite and >= 0"),
-        (layer != Layer::Time, "--layer", "skin does not grow, so it has no time layer (mask, height, normal, shaded)"),
-    ];
-    match checks.iter().find(|(ok, _, _)| !ok) {
-        Some(&(_, name, why)) => Err(Failure::invalid("skin", name, why.into())),
-        None => Ok(()),
+    light.validate().map_err(shade_failure)?;
+    if layer == Layer::Time {
+        return Err(Failure::invalid(
+            "skin",
+            "--layer",
+            "skin does not grow, so it has no time layer (mask, height, normal, shaded)".into(),
+        ));
     }
+    Ok(())
+}
+
+/// A shading parameter error as a usage error naming its option.
+fn shade_failure(e: ShadeError) -> Failure {
+    let name = match e {
+        ShadeError::Light => "--light",
+        ShadeError::Ridge => "--ridge",
+        ShadeError::Furrow => "--furrow",
+        ShadeError::Ambient => "--ambient",
+        ShadeError::Specular => "--specular",
+    };
+    Failure::invalid("skin", name, e.message().to_string_lossy().into_owned())
 }
 
 /// A built skin's picture and what to say about it.
@@ -241,7 +248,7 @@ fn failure(e: SkinError) -> Failure {
              --perturbation-depth, or make finer levels less fine (--spacing)"
                 .into(),
         ),
-        SkinError::Shade => Failure::invalid("skin", "--light", "must be a finite, non-zero direction".into()),
+        SkinError::Shade(e) => shade_failure(e),
         other => Failure::Runtime(format!("skin: internal error: {other:?}")),
     }
 }

@@ -120,7 +120,7 @@ fn growth_is_an_animated_png_or_a_numbered_sequence() {
 
 #[test]
 fn bad_options_are_usage_errors_naming_the_option() {
-    let cases: [(&[&str], &str); 12] = [
+    let cases: [(&[&str], &str); 14] = [
         (&["mud", "--size", "0x10"], "--size"),
         (&["mud", "--rows", "5"], "--rows"),
         (&["mud", "--young-modulus", "-1"], "--young-modulus"),
@@ -133,6 +133,8 @@ fn bad_options_are_usage_errors_naming_the_option() {
         (&["skin", "--spacing", "3=5"], "--spacing"),
         (&["skin", "--profile", "0,3 10,0"], "--profile"),
         (&["skin", "--frames", "3"], "--frames"),
+        (&["skin", "--ambient", "1.5"], "--ambient"),
+        (&["skin", "--furrow", "0.5,2,0.5"], "--furrow"),
     ];
     let dir = scratch("usage");
     for (args, option) in cases {

@@ -20,8 +20,9 @@ use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
 use hibi_core::skin::{
-    ClipVertex, LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeParams, Site,
-    SiteLayout, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinMemory, SkinParams, preset, shade,
+    ClipVertex, LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError,
+    ShadeParams, Site, SiteLayout, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinMemory, SkinParams, preset,
+    shade,
 };
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, write_out};
@@ -29,7 +30,8 @@ use crate::memory::{Origin, array, caller_block, library_block, place, release_b
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
     HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
-    HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
+    HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW, HIBI_ERROR_SKIN_SHADE_RIDGE,
+    HIBI_ERROR_SKIN_SHADE_SPECULAR, HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
 };
 
 /// Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -367,7 +369,11 @@ fn skin_status(error: SkinError) -> hibi_status {
         SkinError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
         SkinError::Capacity => HIBI_ERROR_SKIN_CAPACITY,
         SkinError::Level => HIBI_ERROR_SKIN_LEVEL,
-        SkinError::Shade => HIBI_ERROR_SKIN_SHADE,
+        SkinError::Shade(ShadeError::Light) => HIBI_ERROR_SKIN_SHADE,
+        SkinError::Shade(ShadeError::Ridge) => HIBI_ERROR_SKIN_SHADE_RIDGE,
+        SkinError::Shade(ShadeError::Furrow) => HIBI_ERROR_SKIN_SHADE_FURROW,
+        SkinError::Shade(ShadeError::Ambient) => HIBI_ERROR_SKIN_SHADE_AMBIENT,
+        SkinError::Shade(ShadeError::Specular) => HIBI_ERROR_SKIN_SHADE_SPECULAR,
     }
 }
 
@@ -555,8 +561,9 @@ pub extern "C" fn hibi_skin_shade_params_default() -> hibi_skin_shade_params {
 /// A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
 /// it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
 /// per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
-/// `height` and `rgb` must hold as many pixels as `normal`; if not, or if the light is zero
-/// or not finite, nothing is written.
+/// `height` and `rgb` must hold as many pixels as `normal`; if not, or if a parameter is out
+/// of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
+/// `specular` negative), nothing is written.
 ///
 /// # Safety
 /// `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL
@@ -735,7 +742,7 @@ mod tests {
 
     #[test]
     fn every_skin_status_has_its_own_message() {
-        let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1349).collect();
+        let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1353).collect();
         // SAFETY: hibi_status_string returns static NUL-terminated strings.
         let text = |code| unsafe { CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
         for (i, a) in codes.iter().enumerate() {
@@ -745,7 +752,7 @@ mod tests {
             }
         }
         assert_eq!(text(1291), "unknown status code");
-        assert_eq!(text(1350), "unknown status code");
+        assert_eq!(text(1354), "unknown status code");
     }
 
     #[test]
@@ -859,8 +866,16 @@ mod tests {
                 hibi_skin_shade(hc, pixels, nc, 3 * pixels, &light, r, 3 * pixels - 1),
                 HIBI_ERROR_BUFFER_TOO_SMALL
             );
-            let dark = hibi_skin_shade_params { light: [0.0, 0.0, f32::NAN], ..light };
-            assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, &dark, r, 3 * pixels), HIBI_ERROR_SKIN_SHADE);
+            let refused = [
+                (hibi_skin_shade_params { light: [0.0, 0.0, f32::NAN], ..light }, HIBI_ERROR_SKIN_SHADE),
+                (hibi_skin_shade_params { ridge: [0.5, 1.5, 0.5], ..light }, HIBI_ERROR_SKIN_SHADE_RIDGE),
+                (hibi_skin_shade_params { furrow: [f32::NAN, 0.5, 0.5], ..light }, HIBI_ERROR_SKIN_SHADE_FURROW),
+                (hibi_skin_shade_params { ambient: -0.1, ..light }, HIBI_ERROR_SKIN_SHADE_AMBIENT),
+                (hibi_skin_shade_params { specular: f32::INFINITY, ..light }, HIBI_ERROR_SKIN_SHADE_SPECULAR),
+            ];
+            for (bad, status) in refused {
+                assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, &bad, r, 3 * pixels), status);
+            }
             assert_eq!(hibi_skin_shade(hc, pixels, nc, 3 * pixels, null(), r, 3 * pixels), HIBI_ERROR_NULL_POINTER);
             assert_eq!(hibi_skin_shade(null(), pixels, nc, 3 * pixels, &light, r, 3 * pixels), HIBI_ERROR_NULL_POINTER);
             assert!(rgb.iter().all(|&v| v == 1));

@@ -6,7 +6,7 @@ use hibi_core::RngError;
 use hibi_core::glass::GlassParamError;
 use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
-use hibi_core::skin::SkinParamError;
+use hibi_core::skin::{ShadeError, SkinParamError};
 
 use crate::guard::guard;
 
@@ -211,6 +211,14 @@ pub const HIBI_ERROR_SKIN_CAPACITY: hibi_status = 1345;
 pub const HIBI_ERROR_SKIN_LEVEL: hibi_status = 1346;
 /// `hibi_skin_shade`: the light direction is zero or not finite.
 pub const HIBI_ERROR_SKIN_SHADE: hibi_status = 1347;
+/// `hibi_skin_shade`: a `ridge` channel is outside [0, 1].
+pub const HIBI_ERROR_SKIN_SHADE_RIDGE: hibi_status = 1350;
+/// `hibi_skin_shade`: a `furrow` channel is outside [0, 1].
+pub const HIBI_ERROR_SKIN_SHADE_FURROW: hibi_status = 1351;
+/// `hibi_skin_shade`: `ambient` is outside [0, 1].
+pub const HIBI_ERROR_SKIN_SHADE_AMBIENT: hibi_status = 1352;
+/// `hibi_skin_shade`: `specular` is negative or not finite.
+pub const HIBI_ERROR_SKIN_SHADE_SPECULAR: hibi_status = 1353;
 /// `hibi_skin_params_preset`: no preset has that name.
 pub const HIBI_ERROR_SKIN_UNKNOWN_PRESET: hibi_status = 1348;
 /// A cell index is not below `hibi_skin_cell_count`.
@@ -320,7 +328,11 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
             c"skin: an outline or a parent's centre points outgrew their capacity (lower depth or spacing ratio)"
         }
         HIBI_ERROR_SKIN_LEVEL => c"skin: cell_level must be below levels",
-        HIBI_ERROR_SKIN_SHADE => c"skin: the light direction must be finite and non-zero",
+        HIBI_ERROR_SKIN_SHADE => ShadeError::Light.message(),
+        HIBI_ERROR_SKIN_SHADE_RIDGE => ShadeError::Ridge.message(),
+        HIBI_ERROR_SKIN_SHADE_FURROW => ShadeError::Furrow.message(),
+        HIBI_ERROR_SKIN_SHADE_AMBIENT => ShadeError::Ambient.message(),
+        HIBI_ERROR_SKIN_SHADE_SPECULAR => ShadeError::Specular.message(),
         HIBI_ERROR_SKIN_UNKNOWN_PRESET => c"skin: no preset has that name",
         HIBI_ERROR_SKIN_CELL_INDEX => c"skin: cell index out of range",
         _ => match (mud_param_error(status), glass_param_error(status), skin_param_error(status)) {

@@ -42,7 +42,7 @@ pub use params::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, Profile, SiteLayout, SkinParamError, SkinParams,
 };
 pub use presets::{PRESETS, preset};
-pub use shade::{ShadeParams, shade};
+pub use shade::{ShadeError, ShadeParams, shade};
 pub use sites::Site;
 pub use surface::SkinLayers;
 
@@ -125,8 +125,8 @@ pub enum SkinError {
     Capacity,
     /// The requested cell-map level is not below `levels`.
     Level,
-    /// The shading light direction is zero or not finite.
-    Shade,
+    /// A shading parameter is out of range.
+    Shade(ShadeError),
 }
 
 impl From<SkinParamError> for SkinError {

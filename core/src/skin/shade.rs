@@ -19,6 +19,59 @@ pub struct ShadeParams {
     pub specular: f32,
 }
 
+/// Which shading parameter is out of range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum ShadeError {
+    /// The light direction is zero or not finite.
+    Light = 0,
+    /// A `ridge` channel is outside [0, 1].
+    Ridge = 1,
+    /// A `furrow` channel is outside [0, 1].
+    Furrow = 2,
+    /// `ambient` is outside [0, 1].
+    Ambient = 3,
+    /// `specular` is negative or not finite.
+    Specular = 4,
+}
+
+impl ShadeError {
+    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
+    pub const ALL: [ShadeError; 5] =
+        [ShadeError::Light, ShadeError::Ridge, ShadeError::Furrow, ShadeError::Ambient, ShadeError::Specular];
+
+    /// A message naming the field.
+    pub const fn message(self) -> &'static core::ffi::CStr {
+        match self {
+            ShadeError::Light => c"skin: the shading light direction must be finite and non-zero",
+            ShadeError::Ridge => c"skin: the shading ridge colour must be three numbers in [0, 1]",
+            ShadeError::Furrow => c"skin: the shading furrow colour must be three numbers in [0, 1]",
+            ShadeError::Ambient => c"skin: the shading ambient must be in [0, 1]",
+            ShadeError::Specular => c"skin: the shading specular must be finite and >= 0",
+        }
+    }
+}
+
+impl ShadeParams {
+    /// Checks every field against its documented range.
+    pub fn validate(&self) -> Result<(), ShadeError> {
+        let l = self.light;
+        let length = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+        let unit = |c: [f32; 3]| c.iter().all(|v| (0.0..=1.0).contains(v));
+        let checks = [
+            (length.is_finite() && length > 0.0, ShadeError::Light),
+            (unit(self.ridge), ShadeError::Ridge),
+            (unit(self.furrow), ShadeError::Furrow),
+            ((0.0..=1.0).contains(&self.ambient), ShadeError::Ambient),
+            (self.specular.is_finite() && self.specular >= 0.0, ShadeError::Specular),
+        ];
+        match checks.iter().find(|(ok, _)| !ok) {
+            Some(&(_, e)) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
 impl Default for ShadeParams {
     /// Light from the upper left, a light skin tone.
     fn default() -> Self {
@@ -33,18 +86,17 @@ impl Default for ShadeParams {
 }
 
 /// Lights `normal` (and darkens towards the furrows by `height`, scaled to its own range) into
-/// 8-bit RGB (sRGB-encoded) in `out`. All three buffers must hold as many pixels as `normal`;
-/// nothing is written otherwise.
+/// 8-bit RGB (sRGB-encoded) in `out`. All three buffers must hold as many pixels as `normal`,
+/// and the parameters must be in range ([`ShadeParams::validate`]); nothing is written
+/// otherwise.
 pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mut [[u8; 3]]) -> Result<(), SkinError> {
     let pixels = normal.len();
     if height.len() < pixels || out.len() < pixels {
         return Err(SkinError::BufferTooSmall { needed: pixels });
     }
+    params.validate().map_err(SkinError::Shade)?;
     let l = params.light;
     let length = libm::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    if !(length.is_finite() && length > 0.0) {
-        return Err(SkinError::Shade);
-    }
     let light = [l[0] / length, l[1] / length, l[2] / length];
     // Blinn's half vector between the light and a viewer straight above.
     let h = [light[0], light[1], light[2] + 1.0];
@@ -75,4 +127,18 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
 fn encode_srgb(v: f32) -> u8 {
     let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * libm::powf(v, 1.0 / 2.4) - 0.055 };
     libm::roundf(s * 255.0) as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shade_errors_are_listed_in_number_order_with_distinct_messages() {
+        for (i, e) in ShadeError::ALL.iter().enumerate() {
+            assert_eq!(*e as usize, i);
+            assert!(ShadeError::ALL[..i].iter().all(|o| o.message() != e.message()));
+        }
+        assert_eq!(ShadeParams::default().validate(), Ok(()));
+    }
 }
