@@ -116,6 +116,12 @@ impl Frame {
         self.fixed(site.base, site)
     }
 
+    /// How far (1/256 px, in fixed point) the test that keeps a perturbed edge inside its
+    /// parent looks beyond the edge's box.
+    fn inside_slack(&self) -> i64 {
+        1 << (self.shift - BASE_BITS)
+    }
+
     /// A fixed-point point in this frame, absolute.
     pub(super) fn in_frame(&self, p: [i64; 2]) -> [f64; 2] {
         [p[0] as f64 * self.to_frame[0], p[1] as f64 * self.to_frame[1]]
@@ -304,7 +310,8 @@ impl<'p> Nearby<'p> {
         let d = f.in_frame([y[0] - x[0], y[1] - x[1]]);
         let length = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
         let reach = 3.0 * f.amplitude[..f.depth as usize].iter().sum::<f64>() * length * 1.001;
-        let widen = |k: usize| (reach * f.from_frame[k]) as i64 + (1 << (f.shift - BASE_BITS)) + 16;
+        // (Plus the stay-inside test's slack, and a few units for rounding to fixed point.)
+        let widen = |k: usize| (reach * f.from_frame[k]) as i64 + f.inside_slack() + 16;
         let (wx, wy) = (widen(0), widen(1));
         let (low, high) = ([x[0].min(y[0]) - wx, x[1].min(y[1]) - wy], [x[0].max(y[0]) + wx, x[1].max(y[1]) + wy]);
         let (mut count, mut fits) = (0, true);
@@ -810,7 +817,7 @@ fn perturb(
             high = [high[0].max(q[0]), high[1].max(q[1])];
         }
         let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
-        let slack = 1i64 << (f.shift - BASE_BITS);
+        let slack = f.inside_slack();
         let Parent { outline: parent, chunks } = nearby.parent;
         let m = parent.len();
         let mut near = false;
@@ -882,7 +889,7 @@ mod tests {
             let half = [0, 1].map(|_| rng.uniform_f64() * 3.0 * unit as f64);
             let low = [(centre[0] - half[0]) as i64, (centre[1] - half[1]) as i64];
             let high = [(centre[0] + half[0]) as i64, (centre[1] + half[1]) as i64];
-            let slack = 1 << (f.shift - BASE_BITS);
+            let slack = f.inside_slack();
             let r = nearby.region;
             let held = r[0] <= low[0] - slack && r[1] <= low[1] - slack && high[0] + slack <= r[2];
             if held && high[1] + slack <= r[3] {

@@ -55,9 +55,8 @@ impl ProfileTable {
         // x'(t) is monotone (control x' never decrease): bisection finds t, every sample's
         // step in turn (so that the processor overlaps them).
         let (mut lo, mut hi) = ([0.0f64; SAMPLES + 1], [1.0f64; SAMPLES + 1]);
-        let px: [[f64; 4]; SAMPLES + 1] = core::array::from_fn(|k| controls(k, 0));
         // The control x' by point, a plain array each (so that the steps go several at once).
-        let c: [[f64; SAMPLES + 1]; 4] = core::array::from_fn(|i| core::array::from_fn(|k| px[k][i]));
+        let c: [[f64; SAMPLES + 1]; 4] = core::array::from_fn(|i| core::array::from_fn(|k| controls(k, 0)[i]));
         for _ in 0..48 {
             let bounds = lo.iter_mut().zip(hi.iter_mut());
             let curve = c[0].iter().zip(&c[1]).zip(c[2].iter().zip(&c[3])).zip(&x);
@@ -71,7 +70,7 @@ impl ProfileTable {
         for k in 0..=SAMPLES {
             let t = 0.5 * (lo[k] + hi[k]);
             let pz = controls(k, 1);
-            let dx = bezier_derivative(px[k], t);
+            let dx = bezier_derivative(controls(k, 0), t);
             let dz = bezier_derivative(pz, t);
             height[k] = bezier(pz, t) as f32;
             // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
