@@ -364,17 +364,23 @@ impl<'a> Skin<'a> {
         let r = params.level0_indices(&lattice);
         let (w, h) = (i64::from(size[0]) << shift, i64::from(size[1]) << shift);
         let surface = [[0, 0], [w, 0], [w, h], [0, h]];
+        // Each centre's neighbours: the window around it, row by row (level 0 keeps them in the
+        // first block of `sites`), slid along the row one column at a time.
+        let side = (2 * WINDOW + 1) as usize;
+        let n = side * side;
         for j in r[1]..=r[3] {
             for i in r[0]..=r[2] {
-                let site = lattice.site(i, j);
-                // Its neighbours: the window around it (level 0 keeps them in the first block).
-                let mut n = 0;
-                for dj in -WINDOW..=WINDOW {
-                    for di in -WINDOW..=WINDOW {
-                        build.sites[n] = lattice.site(i + di, j + dj);
-                        n += 1;
+                for (row, dj) in build.sites[..n].chunks_exact_mut(side).zip(-WINDOW..) {
+                    if i == r[0] {
+                        for (s, di) in row.iter_mut().zip(-WINDOW..) {
+                            *s = lattice.site(i + di, j + dj);
+                        }
+                    } else {
+                        row.copy_within(1.., 0);
+                        row[side - 1] = lattice.site(i + WINDOW, j + dj);
                     }
                 }
+                let site = build.sites[n / 2];
                 let parent = if params.periodic {
                     let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
                     let corner = |dx: f64, dy: f64| {
