@@ -372,26 +372,20 @@ impl Builder<'_> {
         let mut n = n0;
         let mut fresh = true;
         let from_parent = |k: usize| ClipVertex { at: f.in_frame(parent.outline[k]), label: PARENT_EDGE | k as u32 };
-        // Neighbours nearest first (ties by id, so the order is fixed).
+        // Neighbours nearest first, ties by place in the list (which is the order of ids:
+        // sites are listed in lattice order). A few are picked one at a time as the clipping
+        // asks for them (most cells are done after a handful); more are sorted.
         let distance_to = |p: [f64; 2]| {
             let d = [p[0] - site.at[0], p[1] - site.at[1]];
             d[0] * d[0] + d[1] * d[1]
         };
         let distance = |s: &Site| distance_to(s.at);
         let m = neighbours.len();
-        if m <= FEW {
-            // A few siblings: each one's rank is the count of those before it, without
-            // branches (ties go by place in the list, which is the order of ids: sites are
-            // listed in lattice order).
-            let mut keys = [0.0f64; FEW];
+        let few = m <= FEW;
+        let mut keys = [f64::INFINITY; FEW];
+        if few {
             for (key, s) in keys.iter_mut().zip(neighbours) {
                 *key = distance(s);
-            }
-            for i in 0..m {
-                let d = keys[i];
-                let before: usize = keys[..i].iter().map(|&e| usize::from(e <= d)).sum();
-                let after: usize = keys[i + 1..m].iter().map(|&e| usize::from(e < d)).sum();
-                self.order[before + after] = i as u32;
             }
         } else {
             for (k, o) in self.order[..m].iter_mut().enumerate() {
@@ -405,7 +399,17 @@ impl Builder<'_> {
         // (Unbounded until the first clip: the nearest neighbours clip the parent.)
         let mut farthest = f64::INFINITY;
         for k in 0..m {
-            let j = self.order[k] as usize;
+            let j = if few {
+                let nearest = keys[..m].iter().fold(f64::INFINITY, |a, &e| a.min(e));
+                // (Every one picked: only the marks are left.)
+                let Some(j) = keys[..m].iter().position(|&e| e == nearest).filter(|_| nearest < f64::INFINITY) else {
+                    break;
+                };
+                keys[j] = f64::INFINITY;
+                j
+            } else {
+                self.order[k] as usize
+            };
             let b = &neighbours[j];
             if b.id == site.id && b.image == site.image {
                 continue;
