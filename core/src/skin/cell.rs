@@ -246,6 +246,20 @@ pub(super) struct Builder<'s> {
 pub(super) struct Parent<'p> {
     pub(super) outline: &'p [[i64; 2]],
     pub(super) chunks: &'p [[i64; 4]],
+    /// The outline as its children's clipping starts from it ([`parent_vertex`], made once
+    /// for all of them), or empty: then each vertex is made as it is read.
+    pub(super) frame: &'p [ClipVertex],
+}
+
+/// Vertex `k` of a parent's outline as a child in frame `f` starts clipping it: labelled as
+/// the parent's edge `k`.
+pub(super) fn parent_vertex(f: &Frame, outline: &[[i64; 2]], k: usize) -> ClipVertex {
+    ClipVertex { at: f.in_frame(outline[k]), label: PARENT_EDGE | k as u32 }
+}
+
+/// Reads clip vertices from a slice (one reader type for every slice, so one clipping loop).
+fn reader(vertices: &[ClipVertex]) -> impl Fn(usize) -> ClipVertex + '_ {
+    move |k| vertices[k]
 }
 
 /// Fills `chunks` with the boxes of `outline`'s edges taken `CHUNK` at a time; returns how
@@ -371,7 +385,8 @@ impl Builder<'_> {
         // The outline starts as the parent's, read from it until the first clip writes one.
         let mut n = n0;
         let mut fresh = true;
-        let from_parent = |k: usize| ClipVertex { at: f.in_frame(parent.outline[k]), label: PARENT_EDGE | k as u32 };
+        let from_parent = |k: usize| parent_vertex(f, parent.outline, k);
+        let made = parent.frame.len() == n0;
         // Neighbours nearest first, ties by place in the list (which is the order of ids:
         // sites are listed in lattice order). A few are picked one at a time as the clipping
         // asks for them (most cells are done after a handful); more are sorted.
@@ -400,11 +415,17 @@ impl Builder<'_> {
         let mut farthest = f64::INFINITY;
         for k in 0..m {
             let j = if few {
-                let nearest = keys[..m].iter().fold(f64::INFINITY, |a, &e| a.min(e));
+                // The first of the nearest, without branches (which one it is follows no
+                // pattern a processor could learn).
+                let (mut nearest, mut j) = (f64::INFINITY, usize::MAX);
+                for (i, &e) in keys[..m].iter().enumerate() {
+                    let nearer = e < nearest;
+                    (nearest, j) = (if nearer { e } else { nearest }, if nearer { i } else { j });
+                }
                 // (Every one picked: only the marks are left.)
-                let Some(j) = keys[..m].iter().position(|&e| e == nearest).filter(|_| nearest < f64::INFINITY) else {
+                if j == usize::MAX {
                     break;
-                };
+                }
                 keys[j] = f64::INFINITY;
                 j
             } else {
@@ -419,11 +440,12 @@ impl Builder<'_> {
             if distance(b) > 4.0 * farthest {
                 break;
             }
-            let clipped = if fresh {
+            let clipped = if fresh && made {
+                clip_by_bisector(reader(parent.frame), n, (site, b, j as u32), self.clip)?
+            } else if fresh {
                 clip_by_bisector(from_parent, n, (site, b, j as u32), self.clip)?
             } else {
-                let clip = &*self.clip;
-                let clipped = clip_by_bisector(|k| clip[k], n, (site, b, j as u32), self.spare)?;
+                let clipped = clip_by_bisector(reader(self.clip), n, (site, b, j as u32), self.spare)?;
                 if clipped.is_some() {
                     core::mem::swap(&mut self.clip, &mut self.spare);
                 }
@@ -822,7 +844,7 @@ fn perturb(
         }
         let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
         let slack = f.inside_slack();
-        let Parent { outline: parent, chunks } = nearby.parent;
+        let Parent { outline: parent, chunks, .. } = nearby.parent;
         let m = parent.len();
         let mut near = false;
         nearby.edges_near((low, high), slack, |e| {
@@ -879,7 +901,7 @@ mod tests {
         });
         let mut boxes = [[0i64; 4]; 40 / CHUNK + 1];
         let chunks = chunk_boxes(&outline, &mut boxes);
-        let parent = Parent { outline: &outline, chunks: &boxes[..chunks] };
+        let parent = Parent { outline: &outline, chunks: &boxes[..chunks], frame: &[] };
         let mut space = [0u32; LISTED];
         let corner = |p: [i64; 2]| Corner { fixed: p, ..Corner::default() };
         let (start, end) = (corner([34 * unit, 32 * unit]), corner([42 * unit, 36 * unit]));

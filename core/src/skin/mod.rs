@@ -180,7 +180,8 @@ impl SkinParams {
             cells,
             vertices,
             sites: MAX_CHILDREN * levels,
-            clip: 2 * MAX_OUTLINE,
+            // Two outlines being clipped, and each level's parent outline as its children start.
+            clip: (2 + levels) * MAX_OUTLINE,
             words: MAX_CHILDREN + MAX_OUTLINE,
         })
     }
@@ -204,6 +205,9 @@ struct Build<'b> {
     vertices: &'b mut [[i64; 2]],
     vertex_count: usize,
     sites: &'b mut [Site],
+    /// Per level, the parent outline of the cells being built, as their clipping starts from
+    /// it ([`MAX_OUTLINE`] each).
+    parent_frames: &'b mut [ClipVertex],
     builder: Builder<'b>,
     shared: SharedEdges,
     scratch: cell::EdgeScratch,
@@ -225,10 +229,14 @@ impl Build<'_> {
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
         let outline = match parent {
-            ParentOutline::Stored(first, count, chunks) => Parent { outline: &head[first..first + count], chunks },
+            ParentOutline::Stored(first, count, chunks) => Parent {
+                outline: &head[first..first + count],
+                chunks,
+                frame: &self.parent_frames[level * MAX_OUTLINE..][..count],
+            },
             ParentOutline::Box(ref b) => {
                 let count = cell::chunk_boxes(b, &mut box_chunks);
-                Parent { outline: b, chunks: &box_chunks[..count] }
+                Parent { outline: b, chunks: &box_chunks[..count], frame: &[] }
             }
         };
         let n = self
@@ -283,6 +291,10 @@ impl Build<'_> {
             &mut large
         };
         let chunks = cell::chunk_boxes(outline, boxes);
+        // Its outline as every child's clipping starts from it.
+        for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
+            *v = cell::parent_vertex(&f, outline, k);
+        }
         let base = level * MAX_CHILDREN;
         let mut count = 0;
         for j in r[1]..=r[3] {
@@ -345,7 +357,8 @@ impl<'a> Skin<'a> {
         });
         let shift = frames[0].shift;
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
-        let (clip, spare) = buffers.clip.split_at_mut(MAX_OUTLINE);
+        let (clip, rest) = buffers.clip.split_at_mut(MAX_OUTLINE);
+        let (spare, parent_frames) = rest.split_at_mut(MAX_OUTLINE);
         let mut build = Build {
             params: *params,
             frames,
@@ -355,6 +368,7 @@ impl<'a> Skin<'a> {
             vertices: buffers.vertices,
             vertex_count: 0,
             sites: buffers.sites,
+            parent_frames,
             builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
             shared: SharedEdges::new(),
             scratch: cell::EdgeScratch::new(),
