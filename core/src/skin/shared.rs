@@ -23,6 +23,21 @@ pub(super) struct EdgeKey {
     pub(super) ends: [[i64; 2]; 2],
 }
 
+impl EdgeKey {
+    /// The key folded into a word, never 0.
+    fn tag(&self) -> u64 {
+        let [[a, b], [c, d]] = self.ends;
+        let ids = u64::from(self.ids[0]) << 32 | u64::from(self.ids[1]);
+        let offset = u64::from(self.offset[0] as u32) << 32 | u64::from(self.offset[1] as u32);
+        (ids ^ offset.rotate_left(16)
+            ^ (a as u64)
+            ^ (b as u64).rotate_left(13)
+            ^ (c as u64).rotate_left(29)
+            ^ (d as u64).rotate_left(43))
+            | 1
+    }
+}
+
 /// One kept edge: its key and its inner points (relative to the lower site's image, in its
 /// direction).
 #[derive(Clone, Copy, Default)]
@@ -37,20 +52,42 @@ struct Kept {
 /// built between the cells of finer levels).
 pub(super) struct SharedEdges {
     kept: [[Kept; SLOTS]; MAX_LEVELS],
+    /// Each slot's key folded into a word ([`EdgeKey::tag`]), 0 where the slot is free: the
+    /// slots are searched by these, side by side.
+    tags: [[u64; SLOTS]; MAX_LEVELS],
     /// The slot each level overwrites next when none is free.
     next: [usize; MAX_LEVELS],
 }
 
 impl SharedEdges {
     pub(super) fn new() -> SharedEdges {
-        SharedEdges { kept: [[Kept::default(); SLOTS]; MAX_LEVELS], next: [0; MAX_LEVELS] }
+        SharedEdges {
+            kept: [[Kept::default(); SLOTS]; MAX_LEVELS],
+            tags: [[0; SLOTS]; MAX_LEVELS],
+            next: [0; MAX_LEVELS],
+        }
     }
 
     /// The inner points kept for `key` on `level` (each edge is taken once: it has two sides).
     pub(super) fn take(&mut self, level: u32, key: &EdgeKey) -> Option<([[i64; 2]; KEPT_POINTS], usize)> {
-        let slot = self.kept[level as usize].iter_mut().find(|k| k.valid && k.key == *key)?;
-        slot.valid = false;
-        Some((slot.points, usize::from(slot.count)))
+        let l = level as usize;
+        // The last slot with the key's tag, without branches (which slot holds the edge, if
+        // any, follows no pattern a processor could learn); then the key itself, and every
+        // slot should two keys share a tag.
+        let tag = key.tag();
+        let mut found = SLOTS;
+        for (i, &t) in self.tags[l].iter().enumerate() {
+            found = if t == tag { i } else { found };
+        }
+        let slot = match self.kept[l].get(found) {
+            Some(k) if k.key == *key => found,
+            Some(_) => self.kept[l].iter().position(|k| k.valid && k.key == *key)?,
+            None => return None,
+        };
+        let kept = &mut self.kept[l][slot];
+        kept.valid = false;
+        self.tags[l][slot] = 0;
+        Some((kept.points, usize::from(kept.count)))
     }
 
     /// Keeps `points` for `key` on `level`, in a free slot or over the oldest-written one.
@@ -70,5 +107,6 @@ impl SharedEdges {
         let mut kept = Kept { key, count: points.len() as u8, valid: true, points: [[0; 2]; KEPT_POINTS] };
         kept.points[..points.len()].copy_from_slice(points);
         self.kept[l][slot] = kept;
+        self.tags[l][slot] = key.tag();
     }
 }
