@@ -110,3 +110,24 @@ impl SharedEdges {
         self.tags[l][slot] = key.tag();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_sharing_a_tag_each_find_their_own_points() {
+        // Ids (0, 0) and (0, 1) fold to the same tag.
+        let key = |id: u32| EdgeKey { ids: [0, id], ..EdgeKey::default() };
+        assert_eq!(key(0).tag(), key(1).tag());
+        let mut shared = SharedEdges::new();
+        shared.keep(1, key(0), &[[1, 2]]);
+        shared.keep(1, key(1), &[[3, 4], [5, 6]]);
+        assert!(shared.take(0, &key(0)).is_none(), "another level");
+        let (points, count) = shared.take(1, &key(0)).expect("kept");
+        assert_eq!(&points[..count], &[[1, 2]]);
+        assert!(shared.take(1, &key(0)).is_none(), "taken once");
+        let (points, count) = shared.take(1, &key(1)).expect("kept");
+        assert_eq!(&points[..count], &[[3, 4], [5, 6]]);
+    }
+}
