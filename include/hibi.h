@@ -681,7 +681,8 @@ typedef struct hibi_skin_params {
    */
   uint32_t jitter;
   /**
-   * 1: the surface repeats with period (width, height), a tileable texture; 0: it does not
+   * 1: the surface repeats with period (width, height), a tileable texture (each level
+   * then has a whole number of spacings, at least two, across each axis); 0: it does not
    * (default).
    */
   uint32_t periodic;

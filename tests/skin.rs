@@ -47,7 +47,12 @@ fn at_every_level_each_pixel_lies_in_exactly_one_cell() {
 /// where the parent's outline crosses them, so both see the same pieces.
 #[test]
 fn strongly_stretched_parents_still_tile_exactly() {
+    // Periodic, level 0 twentyfold wide: a 150 px surface has room for less than one
+    // spacing across, and gets two centre points (with one, each cell's neighbours across
+    // were its own images, and a few pixels at the seam fell in two cells or none).
+    let periodic = SkinParams { width: 150, height: 112, periodic: true, ..preset("fig19d").unwrap() };
     assert_tiles(&[
+        ("periodic fig19d", periodic),
         ("fig19d", sized("fig19d", 160)),
         ("fig19e", sized("fig19e", 200)),
         ("fig19f", sized("fig19f", 200)),

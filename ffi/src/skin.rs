@@ -117,7 +117,8 @@ pub struct hibi_skin_params {
     /// Parameter 1: the jitter of lattice centres, `HIBI_SPREAD_UNIFORM` (default) or
     /// `HIBI_SPREAD_NORMAL`.
     pub jitter: u32,
-    /// 1: the surface repeats with period (width, height), a tileable texture; 0: it does not
+    /// 1: the surface repeats with period (width, height), a tileable texture (each level
+    /// then has a whole number of spacings, at least two, across each axis); 0: it does not
     /// (default).
     pub periodic: u32,
     /// Width of the surface and of its rasters [px], 1..=32768 (default 400).

@@ -97,7 +97,9 @@ pub struct SkinParams {
     pub jitter: Spread,
     /// Parameter 1: jitter ratio, largest jitter per axis / lattice spacing, in [0, 1].
     pub jitter_ratio: f32,
-    /// Tileable: the surface repeats with period (width, height).
+    /// Tileable: the surface repeats with period (width, height). Each level's lattice then
+    /// fits a whole number of spacings into the period, and at least two centre points
+    /// across it on each axis (a spacing wider than half the surface shrinks to that).
     pub periodic: bool,
     /// Parameter 4: number of hierarchy levels, 1..=[`MAX_LEVELS`].
     pub levels: u32,

@@ -49,6 +49,10 @@ impl Lattice {
         let mut count = [round_to_i64(period[0] / s).max(1), round_to_i64(period[1] / row).max(1)];
         let mut step = [s, row];
         if p.periodic {
+            // At least two centre points across each period: with one, a cell's only neighbours
+            // along that axis are its own images, and the cells inside it no longer meet
+            // exactly across the seam.
+            count = [count[0].max(2), count[1].max(2)];
             if p.layout == SiteLayout::Triangular && count[1] % 2 == 1 {
                 count[1] += 1; // shifted rows alternate: an even number of rows tiles
             }
