@@ -288,15 +288,24 @@ fn edges_near(
     mut visit: impl FnMut(usize) -> bool,
 ) {
     let m = outline.len();
+    let (low, high) = ([low[0] - slack, low[1] - slack], [high[0] + slack, high[1] + slack]);
     for (c, b) in chunks.iter().enumerate() {
-        if b[2] < low[0] - slack || b[0] > high[0] + slack || b[3] < low[1] - slack || b[1] > high[1] + slack {
+        if b[2] < low[0] || b[0] > high[0] || b[3] < low[1] || b[1] > high[1] {
             continue;
         }
+        // The chunk's edges that meet the box, listed without branches (which ones do follows
+        // the outline's shape, no pattern a processor could learn), then visited.
+        let (mut hits, mut count) = ([0usize; CHUNK], 0);
         for e in c * CHUNK..((c + 1) * CHUNK).min(m) {
             let (p, q) = (outline[e], outline[next(e, m)]);
-            if (0..2).any(|k| p[k].max(q[k]) < low[k] - slack || p[k].min(q[k]) > high[k] + slack) {
-                continue;
-            }
+            let apart = (p[0].max(q[0]) < low[0])
+                | (p[0].min(q[0]) > high[0])
+                | (p[1].max(q[1]) < low[1])
+                | (p[1].min(q[1]) > high[1]);
+            hits[count] = e;
+            count += usize::from(!apart);
+        }
+        for &e in &hits[..count] {
             if visit(e) {
                 return;
             }
