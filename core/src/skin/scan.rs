@@ -12,13 +12,13 @@ pub(super) const fn pixel_centre(i: i64, shift: u32) -> i64 {
 /// y, strict in x), exactly.
 fn crosses(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
     let (ax, ay, bx, by) = (a[0], a[1], b[0], b[1]);
-    if (ay > p[1]) == (by > p[1]) {
-        return false;
-    }
-    // p.x < ax + (p.y − ay)(bx − ax)/(by − ay), multiplied through by (by − ay).
+    let straddles = (ay > p[1]) != (by > p[1]);
+    // p.x < ax + (p.y − ay)(bx − ax)/(by − ay), multiplied through by (by − ay). (Worked out
+    // whether or not the edge straddles, without branches: which edges do follows the
+    // outline's shape, no pattern a processor could learn.)
     let lhs = i128::from(p[0] - ax) * i128::from(by - ay);
     let rhs = i128::from(p[1] - ay) * i128::from(bx - ax);
-    if by > ay { lhs < rhs } else { lhs > rhs }
+    straddles & (if by > ay { lhs < rhs } else { lhs > rhs })
 }
 
 /// Whether `outline` contains `p` (even–odd rule, fixed point).
