@@ -59,6 +59,10 @@ pub(super) struct Frame {
     pub(super) perturbation: f64,
     /// A·2^(−n·h) for subdivision n = 1..=depth (index n − 1), of the perturbation's V.
     amplitude: [f64; MAX_PERTURBATION_DEPTH as usize],
+    /// The farthest a perturbed point can move off its edge's line, per unit of the edge's
+    /// length: 3·Σ A·2^(−n·h) over the subdivisions (eq. (2)'s V with Rnd within ±3), and a
+    /// thousandth more for rounding.
+    reach: f64,
     pub(super) depth: u32,
 }
 
@@ -66,6 +70,9 @@ impl Frame {
     pub(super) fn new(level: usize, l: &LevelParams, seed: u64, size: [u32; 2], levels: u32) -> Frame {
         let stretch = [f64::from(l.stretch[0]), f64::from(l.stretch[1])];
         let shift = fixed_point_bits(levels);
+        let amplitude = core::array::from_fn(|n| {
+            f64::from(l.perturbation) * libm::exp2(-((n + 1) as f64) * f64::from(l.perturbation_decay))
+        });
         Frame {
             level: level as u32,
             seed,
@@ -78,9 +85,8 @@ impl Frame {
             to_frame: [1.0 / ((1u64 << shift) as f64 * stretch[0]), 1.0 / ((1u64 << shift) as f64 * stretch[1])],
             from_frame: [(1u64 << shift) as f64 * stretch[0], (1u64 << shift) as f64 * stretch[1]],
             perturbation: f64::from(l.perturbation),
-            amplitude: core::array::from_fn(|n| {
-                f64::from(l.perturbation) * libm::exp2(-((n + 1) as f64) * f64::from(l.perturbation_decay))
-            }),
+            amplitude,
+            reach: 3.0 * amplitude[..l.perturbation_depth as usize].iter().sum::<f64>() * 1.001,
             depth: l.perturbation_depth,
         }
     }
@@ -212,7 +218,6 @@ fn next(i: usize, n: usize) -> usize {
 /// Edges of a parent outline per chunk (for its bounding boxes).
 pub(super) const CHUNK: usize = 8;
 
-/// Scratch and output for building outlines.
 /// Scratch for one bisector edge: its pieces and one piece's points.
 pub(super) struct EdgeScratch {
     pieces: [Corner; MAX_CROSSINGS + 2],
@@ -234,6 +239,7 @@ impl EdgeScratch {
     }
 }
 
+/// Scratch for building outlines.
 pub(super) struct Builder<'s> {
     pub(super) clip: &'s mut [ClipVertex],
     pub(super) spare: &'s mut [ClipVertex],
@@ -278,6 +284,12 @@ pub(super) fn chunk_boxes(outline: &[[i64; 2]], chunks: &mut [[i64; 4]]) -> usiz
     count
 }
 
+/// Whether the box of the edge p–q misses the box [low, high] (tested without branches).
+#[inline]
+fn apart(p: [i64; 2], q: [i64; 2], (low, high): ([i64; 2], [i64; 2])) -> bool {
+    (p[0].max(q[0]) < low[0]) | (p[0].min(q[0]) > high[0]) | (p[1].max(q[1]) < low[1]) | (p[1].min(q[1]) > high[1])
+}
+
 /// Calls `visit` with each edge of `outline` whose box meets [low, high] (widened by
 /// `slack`), chunk by chunk, until it returns true.
 fn edges_near(
@@ -297,13 +309,8 @@ fn edges_near(
         // the outline's shape, no pattern a processor could learn), then visited.
         let (mut hits, mut count) = ([0usize; CHUNK], 0);
         for e in c * CHUNK..((c + 1) * CHUNK).min(m) {
-            let (p, q) = (outline[e], outline[next(e, m)]);
-            let apart = (p[0].max(q[0]) < low[0])
-                | (p[0].min(q[0]) > high[0])
-                | (p[1].max(q[1]) < low[1])
-                | (p[1].min(q[1]) > high[1]);
             hits[count] = e;
-            count += usize::from(!apart);
+            count += usize::from(!apart(outline[e], outline[next(e, m)], (low, high)));
         }
         for &e in &hits[..count] {
             if visit(e) {
@@ -326,13 +333,12 @@ struct Nearby<'p> {
 impl<'p> Nearby<'p> {
     /// Lists (into `space`) the edges of `parent` that meet the box any test of the bisector
     /// edge from `start` to `end` can make: the edge's box widened by the farthest its
-    /// perturbation can reach (each subdivision moves a point at most 3·A·2^(−n·h)·L off the
-    /// line through its ends, eq. (2)'s V with Rnd within ±3) and the tests' slack.
+    /// perturbation can reach ([`Frame::reach`] times its length) and the tests' slack.
     fn list(f: &Frame, parent: Parent<'p>, (start, end): (&Corner, &Corner), space: &'p mut [u32; LISTED]) -> Self {
         let (x, y) = (start.fixed, end.fixed);
         let d = f.in_frame([y[0] - x[0], y[1] - x[1]]);
         let length = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
-        let reach = 3.0 * f.amplitude[..f.depth as usize].iter().sum::<f64>() * length * 1.001;
+        let reach = f.reach * length;
         // (Plus the stay-inside test's slack, and a few units for rounding to fixed point.)
         let widen = |k: usize| (reach * f.from_frame[k]) as i64 + f.inside_slack() + 16;
         let (wx, wy) = (widen(0), widen(1));
@@ -355,14 +361,14 @@ impl<'p> Nearby<'p> {
     fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, mut visit: impl FnMut(usize) -> bool) {
         let outline = self.parent.outline;
         let r = self.region;
-        let (x0, y0, x1, y1) = (low[0] - slack, low[1] - slack, high[0] + slack, high[1] + slack);
+        let wide = ([low[0] - slack, low[1] - slack], [high[0] + slack, high[1] + slack]);
+        let ([x0, y0], [x1, y1]) = wide;
         match self.listed {
             Some(listed) if r[0] <= x0 && r[1] <= y0 && x1 <= r[2] && y1 <= r[3] => {
                 let m = outline.len();
                 for &e in listed {
                     let e = e as usize;
-                    let (p, q) = (outline[e], outline[next(e, m)]);
-                    if p[0].max(q[0]) < x0 || p[0].min(q[0]) > x1 || p[1].max(q[1]) < y0 || p[1].min(q[1]) > y1 {
+                    if apart(outline[e], outline[next(e, m)], wide) {
                         continue;
                     }
                     if visit(e) {
@@ -682,7 +688,8 @@ fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (Edg
     (EdgeKey { ids: [lo.id, hi.id], offset, ends }, forward, image)
 }
 
-/// Neighbour lists up to this long are ordered by rank on the stack, longer ones sorted.
+/// Neighbour lists up to this long are picked nearest first as the clipping asks for them,
+/// longer ones sorted.
 const FEW: usize = 96;
 
 /// Most parent-outline crossings one bisector edge is split at.

@@ -281,50 +281,59 @@ impl Build<'_> {
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
-        // (Most outlines are short: a small array spares clearing a large one.)
-        let (mut small, mut large);
-        let boxes: &mut [[i64; 4]] = if n <= SHORT_OUTLINE {
-            small = [[0i64; 4]; SHORT_OUTLINE / cell::CHUNK + 1];
-            &mut small
-        } else {
-            large = [[0i64; 4]; MAX_OUTLINE / cell::CHUNK + 1];
-            &mut large
-        };
-        let chunks = cell::chunk_boxes(outline, boxes);
-        // Its outline as every child's clipping starts from it.
-        for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
-            *v = cell::parent_vertex(&f, outline, k);
-        }
-        let base = level * MAX_CHILDREN;
-        let mut count = 0;
-        for j in r[1]..=r[3] {
-            for i in r[0]..=r[2] {
-                let s = lattice.site(i, j);
-                let p = f.site_fixed(&s);
-                let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
-                if in_box && scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
-                    if count == MAX_CHILDREN {
-                        return Err(SkinError::Capacity);
-                    }
-                    self.sites[base + count] = s;
-                    count += 1;
+        let short = n <= SHORT_OUTLINE;
+        with_scratch::<_, _, { SHORT_OUTLINE / cell::CHUNK + 1 }, { MAX_OUTLINE / cell::CHUNK + 1 }>(
+            short,
+            [0i64; 4],
+            |boxes| {
+                let outline = &self.vertices[first..first + n];
+                let chunks = cell::chunk_boxes(outline, boxes);
+                // Its outline as every child's clipping starts from it.
+                for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
+                    *v = cell::parent_vertex(&f, outline, k);
                 }
-            }
-        }
-        if count == 0 {
-            // No centre point fell inside: the parent is one cell of this level, centred where
-            // the parent is.
-            let c = self.cells[parent as usize].centre;
-            let at = f.in_frame(c);
-            self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
-            count = 1;
-        }
-        for k in 0..count {
-            let s = self.sites[base + k];
-            self.cell(level, s, (base, count), ParentOutline::Stored(first, n, &boxes[..chunks]), parent)?;
-        }
-        Ok(())
+                let base = level * MAX_CHILDREN;
+                let mut count = 0;
+                for j in r[1]..=r[3] {
+                    for i in r[0]..=r[2] {
+                        let s = lattice.site(i, j);
+                        let p = f.site_fixed(&s);
+                        let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
+                        if in_box && scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
+                            if count == MAX_CHILDREN {
+                                return Err(SkinError::Capacity);
+                            }
+                            self.sites[base + count] = s;
+                            count += 1;
+                        }
+                    }
+                }
+                if count == 0 {
+                    // No centre point fell inside: the parent is one cell of this level,
+                    // centred where the parent is.
+                    let c = self.cells[parent as usize].centre;
+                    let at = f.in_frame(c);
+                    self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
+                    count = 1;
+                }
+                for k in 0..count {
+                    let s = self.sites[base + k];
+                    self.cell(level, s, (base, count), ParentOutline::Stored(first, n, &boxes[..chunks]), parent)?;
+                }
+                Ok(())
+            },
+        )
     }
+}
+
+/// Calls `f` with zeroed scratch on the stack, `SMALL` elements if `small`, else `LARGE`
+/// (most outlines are short, and a small array spares clearing a large one).
+fn with_scratch<T: Copy, R, const SMALL: usize, const LARGE: usize>(
+    small: bool,
+    zero: T,
+    f: impl FnOnce(&mut [T]) -> R,
+) -> R {
+    if small { f(&mut [zero; SMALL]) } else { f(&mut [zero; LARGE]) }
 }
 
 /// The outline a cell is clipped to.
@@ -457,15 +466,10 @@ impl<'a> Skin<'a> {
     /// the surface when periodic). Across the cells of one level every pixel is visited
     /// exactly once.
     pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
-        // Scratch for the outline's crossings (a small array spares clearing a large one).
-        let (mut small, mut large);
-        let crossings: &mut [u64] = if cell.vertex_count as usize <= SHORT_OUTLINE {
-            small = [0u64; SHORT_OUTLINE];
-            &mut small
-        } else {
-            large = [0u64; MAX_OUTLINE];
-            &mut large
-        };
-        self.for_each_pixel_unwrapped(cell, crossings, |_, _, x, y| visit(x, y));
+        // Scratch for the outline's crossings.
+        let short = cell.vertex_count as usize <= SHORT_OUTLINE;
+        with_scratch::<_, _, SHORT_OUTLINE, MAX_OUTLINE>(short, 0u64, |crossings| {
+            self.for_each_pixel_unwrapped(cell, crossings, |_, _, x, y| visit(x, y))
+        });
     }
 }

@@ -44,6 +44,8 @@ impl EdgeKey {
 struct Kept {
     key: EdgeKey,
     count: u8,
+    /// Whether the slot holds an edge not yet taken (its tag is then not 0: the search
+    /// compares tags, the fallback for a shared tag reads this).
     valid: bool,
     points: [[i64; 2]; KEPT_POINTS],
 }
