@@ -36,21 +36,39 @@ fn within(a: f32, b: f32, tolerance: f32) -> bool {
     (a - b).abs() <= tolerance * a.max(b)
 }
 
-#[test]
-fn explicit_and_quasi_static_agree_over_eight_seeds() {
+/// Mean crack density and mean cell area of each solver (explicit, quasi-static) over seeds
+/// 1..=`seeds` on a 48² hexagonal lattice, printed.
+fn solver_means(seeds: u64) -> ((f32, f32), (f32, f32)) {
     let mut explicit = Vec::new();
     let mut fast = Vec::new();
-    for seed in 1..=8 {
+    for seed in 1..=seeds {
         let p = MudParams { seed, ..params(48) };
         explicit.push(run::<f32>(&MudParams { solver: Solver::Explicit, ..p }).0);
         fast.push(run::<f32>(&MudParams { solver: Solver::QuasiStatic, ..p }).0);
     }
     let density = (mean(explicit.iter().map(|s| s.crack_density)), mean(fast.iter().map(|s| s.crack_density)));
     let area = (mean(explicit.iter().map(|s| s.mean_cell_area)), mean(fast.iter().map(|s| s.mean_cell_area)));
-    println!("crack density explicit {:.4} quasi-static {:.4}", density.0, density.1);
-    println!("mean cell area explicit {:.2} quasi-static {:.2} cm²", area.0, area.1);
+    println!("seeds 1-{seeds}: crack density explicit {:.4} quasi-static {:.4}", density.0, density.1);
+    println!("seeds 1-{seeds}: mean cell area explicit {:.2} quasi-static {:.2} cm²", area.0, area.1);
+    (density, area)
+}
+
+#[test]
+fn explicit_and_quasi_static_agree_over_eight_seeds() {
+    let (density, area) = solver_means(8);
     assert!(within(density.0, density.1, 0.15), "crack density {density:?}");
     assert!(within(area.0, area.1, 0.15), "mean cell area {area:?}");
+}
+
+/// The same over 24 seeds (about a minute in release, so only on request:
+/// `cargo test --release --test mud -- --ignored --nocapture`): crack density agrees closely,
+/// while the quasi-static cells come out larger, by more than the 8 seeds show.
+#[test]
+#[ignore = "a minute in release; the README's 24-seed figures"]
+fn explicit_and_quasi_static_over_twenty_four_seeds() {
+    let (density, area) = solver_means(24);
+    assert!(within(density.0, density.1, 0.10), "crack density {density:?}");
+    assert!(area.1 > area.0 && within(area.0, area.1, 0.20), "mean cell area {area:?}");
 }
 
 /// The share of crack length in each 15° orientation bin, and the effective fraction of
