@@ -71,6 +71,9 @@ const COUNTED: usize = 48;
 /// A cell's pixels whose wedges are looked up together.
 const BATCH: usize = 64;
 
+/// Outline edges whose wedges are made together.
+const EDGES: usize = 8;
+
 /// Pixels (of cells of one level) whose heights and normals are evaluated together.
 const QUEUE: usize = 128;
 
@@ -421,32 +424,51 @@ impl Skin<'_> {
         // is only just before `start`, or nowhere.
         let (mut start, mut smallest) = (0, f32::INFINITY);
         let (mut descents, mut descent, mut previous) = (0, 0, f32::NAN);
-        for i in 0..n {
-            let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
-            let (va, e) = ([pixels(a[0] - c[0]), pixels(a[1] - c[1])], [pixels(b[0] - a[0]), pixels(b[1] - a[1])]);
-            // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
-            let outward = [e[1], -e[0]];
-            let reach = va[0] * outward[0] + va[1] * outward[1];
-            let length = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
-            let angle = pseudo_angle(va);
-            wedges[i] = if reach > 0.0 && length > 0.0 {
+        // A few edges at a time, each step a plain loop over them, so that the divisions go
+        // several at once (the lanes past the outline's end hold zeros, and are not kept).
+        for (chunk, out) in wedges.chunks_mut(EDGES).enumerate() {
+            let first = chunk * EDGES;
+            // The first corner relative to the centre, and the edge, in pixels.
+            let (mut va, mut e) = ([[0.0f32; EDGES]; 2], [[0.0f32; EDGES]; 2]);
+            for l in 0..out.len() {
+                let i = first + l;
+                let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
+                (va[0][l], va[1][l]) = (pixels(a[0] - c[0]), pixels(a[1] - c[1]));
+                (e[0][l], e[1][l]) = (pixels(b[0] - a[0]), pixels(b[1] - a[1]));
+            }
+            // (libm's square root is a scalar instruction, in a loop of its own.)
+            let mut length = [0.0f32; EDGES];
+            for l in 0..EDGES {
+                length[l] = libm::sqrtf(e[0][l] * e[0][l] + e[1][l] * e[1][l]);
+            }
+            let (mut gx, mut gy) = ([0.0f32; EDGES], [0.0f32; EDGES]);
+            let (mut inverse_apothem, mut angle) = ([0.0f32; EDGES], [0.0f32; EDGES]);
+            let [vx, vy] = va;
+            let [ex, ey] = e;
+            for l in 0..EDGES {
+                // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
+                let outward = [ey[l], -ex[l]];
+                let reach = vx[l] * outward[0] + vy[l] * outward[1];
                 let per_reach = 1.0 / reach;
-                Wedge {
-                    g: [outward[0] * per_reach, outward[1] * per_reach],
-                    inverse_apothem: length * per_reach,
-                    angle,
+                // With the centre on or beyond this edge's line (a fold), the wedge reads as
+                // edge.
+                let kept = (reach > 0.0) & (length[l] > 0.0);
+                gx[l] = if kept { outward[0] * per_reach } else { 0.0 };
+                gy[l] = if kept { outward[1] * per_reach } else { 0.0 };
+                inverse_apothem[l] = if kept { length[l] * per_reach } else { 1.0 };
+                angle[l] = pseudo_angle([vx[l], vy[l]]);
+            }
+            for (l, w) in out.iter_mut().enumerate() {
+                let (i, angle) = (first + l, angle[l]);
+                *w = Wedge { g: [gx[l], gy[l]], inverse_apothem: inverse_apothem[l], angle };
+                if angle < smallest || i == 0 {
+                    (start, smallest) = (i, angle);
                 }
-            } else {
-                // The centre on or beyond this edge's line (a fold): this wedge reads as edge.
-                Wedge { g: [0.0, 0.0], inverse_apothem: 1.0, angle }
-            };
-            if angle < smallest || i == 0 {
-                (start, smallest) = (i, angle);
+                if i > 0 && previous.partial_cmp(&angle).is_none_or(Ordering::is_gt) {
+                    (descents, descent) = (descents + 1, i);
+                }
+                previous = angle;
             }
-            if i > 0 && previous.partial_cmp(&angle).is_none_or(Ordering::is_gt) {
-                (descents, descent) = (descents + 1, i);
-            }
-            previous = angle;
         }
         if wedges[n - 1].angle.partial_cmp(&wedges[0].angle).is_none_or(Ordering::is_gt) {
             (descents, descent) = (descents + 1, 0);
