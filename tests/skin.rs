@@ -17,14 +17,20 @@ fn sized(name: &str, size: u32) -> SkinParams {
     SkinParams { width: size, height: size, ..preset(name).unwrap() }
 }
 
-/// How many cells of each level own each pixel.
-fn coverage(skin: &Skin) -> Vec<Vec<u8>> {
+/// How many cells of each level own each pixel, and (the last one of) which.
+fn coverage(skin: &Skin) -> (Vec<Vec<u8>>, Vec<Vec<u32>>) {
     let p = skin.params();
-    let mut counts = vec![vec![0u8; (p.width * p.height) as usize]; p.levels as usize];
-    for c in skin.cells() {
-        skin.for_each_pixel(c, |x, y| counts[c.level as usize][(y * p.width + x) as usize] += 1);
+    let pixels = (p.width * p.height) as usize;
+    let mut counts = vec![vec![0u8; pixels]; p.levels as usize];
+    let mut owner = vec![vec![u32::MAX; pixels]; p.levels as usize];
+    for (k, c) in skin.cells().iter().enumerate() {
+        skin.for_each_pixel(c, |x, y| {
+            let i = (y * p.width + x) as usize;
+            counts[c.level as usize][i] += 1;
+            owner[c.level as usize][i] = k as u32;
+        });
     }
-    counts
+    (counts, owner)
 }
 
 #[test]
@@ -62,7 +68,8 @@ fn strongly_stretched_parents_still_tile_exactly() {
 fn assert_tiles(cases: &[(&str, SkinParams)]) {
     for (name, p) in cases {
         with_skin(p, |skin| {
-            for (level, counts) in coverage(skin).iter().enumerate() {
+            let (counts, owner) = coverage(skin);
+            for (level, counts) in counts.iter().enumerate() {
                 let bad: Vec<usize> = (0..counts.len()).filter(|&i| counts[i] != 1).collect();
                 assert!(
                     bad.is_empty(),
@@ -71,10 +78,16 @@ fn assert_tiles(cases: &[(&str, SkinParams)]) {
                     bad.first().map(|&i| (i as u32 % p.width, i as u32 / p.width))
                 );
             }
-            // And every cell of a finer level lies inside its parent.
+            // And every cell of a finer level lies inside its parent, pixel for pixel (the
+            // render reads each pixel's coarser cells as its finest cell's ancestors).
             for c in skin.cells().iter().filter(|c| c.level > 0) {
                 let parent = skin.cells()[c.parent as usize];
                 assert_eq!(parent.level + 1, c.level, "{name}");
+            }
+            for level in 1..owner.len() {
+                let (coarse, fine) = (&owner[level - 1], &owner[level]);
+                let strays = (0..fine.len()).filter(|&i| skin.cells()[fine[i] as usize].parent != coarse[i]).count();
+                assert_eq!(strays, 0, "{name} level {level}: pixels outside their cell's parent");
             }
         });
     }
@@ -209,7 +222,7 @@ fn a_periodic_surface_has_no_seam() {
     });
     // Not periodic: the edges are cut.
     let q = sized("fig19a", 160);
-    with_skin(&q, |skin| assert!(coverage(skin).iter().all(|c| c.iter().all(|&k| k == 1))));
+    with_skin(&q, |skin| assert!(coverage(skin).0.iter().all(|c| c.iter().all(|&k| k == 1))));
 }
 
 #[test]
