@@ -199,6 +199,44 @@ fn maps<S: hibi_core::Scalar>(skin: &Skin) -> (Vec<f32>, Vec<[f32; 3]>) {
     (h, nm)
 }
 
+/// The render draws the finest cells and reads each pixel's coarser cells as their
+/// ancestors: every map is the same whether it is asked for alone or with the others, and the
+/// cell map of each level names the cell that owns the pixel.
+#[test]
+fn each_map_is_the_same_alone_or_with_the_others() {
+    let mut periodic = sized("fig19b", 120);
+    periodic.periodic = true;
+    let cases = [("fig19a", sized("fig19a", 150)), ("fig19f", sized("fig19f", 150)), ("periodic fig19b", periodic)];
+    for (name, p) in cases {
+        with_skin(&p, |skin| {
+            let (together_h, together_n) = maps::<f32>(skin);
+            let n = together_h.len();
+            let (mut h, mut nm) = (vec![-1.0f32; n], vec![[-1.0f32; 3]; n]);
+            skin.render::<f32>(SkinLayers { height: Some(&mut h), ..SkinLayers::default() }).unwrap();
+            skin.render::<f32>(SkinLayers { normal: Some(&mut nm), ..SkinLayers::default() }).unwrap();
+            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert!(bits(&h) == bits(&together_h), "{name}: heights alone");
+            assert!(bits(nm.as_flattened()) == bits(together_n.as_flattened()), "{name}: normals alone");
+            let (_, owner) = coverage(skin);
+            for level in 0..p.levels {
+                let (mut alone, mut with) = (vec![0u32; n], vec![0u32; n]);
+                skin.render::<f32>(SkinLayers { cell: Some(&mut alone), cell_level: level, ..SkinLayers::default() })
+                    .unwrap();
+                let layers = SkinLayers {
+                    height: Some(&mut h),
+                    normal: Some(&mut nm),
+                    cell: Some(&mut with),
+                    cell_level: level,
+                };
+                skin.render::<f32>(layers).unwrap();
+                assert!(alone == owner[level as usize], "{name}: cell map of level {level}");
+                assert!(with == alone, "{name}: cell map of level {level} with the other maps");
+                assert!(bits(&h) == bits(&together_h), "{name}: heights with cell map {level}");
+            }
+        });
+    }
+}
+
 #[test]
 fn a_periodic_surface_has_no_seam() {
     let mut p = sized("fig19a", 160);

@@ -19,6 +19,7 @@
 //! profile samples.
 
 use core::cmp::Ordering;
+use core::ops::Range;
 
 use super::cell::MAX_OUTLINE;
 use super::profile::ProfileTable;
@@ -68,40 +69,79 @@ struct Fan<'w> {
 /// several pixels at once) instead of searching them.
 const COUNTED: usize = 48;
 
-/// A cell's pixels whose wedges are looked up together.
+/// Pixels whose wedges are looked up together: of one finest-level cell for its own level,
+/// of the cells that share their coarser cells for the coarser levels.
 const BATCH: usize = 64;
+
+/// Lanes of a batch: steps that handle eight pixels at once may run past its end.
+const LANES: usize = BATCH + 8;
 
 /// Outline edges whose wedges are made together.
 const EDGES: usize = 8;
 
-/// Pixels (of cells of one level) whose heights and normals are evaluated together.
+/// Pixels whose heights and normals are evaluated together.
 const QUEUE: usize = 128;
 
-/// Pixels on their way to the maps, a field per array so that each step is a plain loop: first
-/// the pixels of the cell being drawn (`len`), then, with their wedges found, those of any
-/// cells of its level (`ready`). Steps that handle several pixels at once run over whole
-/// groups; the lanes past the pixels hold stale but finite values.
+/// Where a level's fan is kept while its cell's descendants are drawn: its length (with the
+/// front slot), whether its angles ascend, its centre (pixels) and its cell.
+#[derive(Clone, Copy, Default)]
+struct FanAt {
+    len: usize,
+    sorted: bool,
+    centre: [f32; 2],
+    cell: u32,
+}
+
+/// The fans of the cell being drawn and of its ancestors, one per level.
+struct Fans<'w> {
+    wedges: &'w [[Wedge; SLOTS]; MAX_LEVELS],
+    at: &'w [FanAt; MAX_LEVELS],
+    /// The level of the cells being drawn (the finest).
+    finest: usize,
+}
+
+impl Fans<'_> {
+    fn fan(&self, level: usize) -> Fan<'_> {
+        let at = &self.at[level];
+        Fan { slots: &self.wedges[level][..at.len], sorted: at.sorted }
+    }
+}
+
+/// Pixels on their way to the maps, a field per array so that each step is a plain loop:
+/// first the pixels queued from finest-level cells that share their coarser cells (`len`),
+/// then, with their wedges at every level found, those ready to evaluate (`ready`). Steps
+/// that handle several pixels at once run over whole groups; the lanes past the pixels hold
+/// stale but finite values.
 struct Batch<S> {
     len: usize,
-    /// Index in the maps (and four spare lanes for the groups of four that fill them).
-    index: [u32; BATCH + 4],
-    /// Offset from the centre in pixels, its pseudo-angle, and k in [`Fan`].
-    dx: [f32; BATCH + 4],
-    dy: [f32; BATCH + 4],
-    angle: [f32; BATCH],
-    wedge: [u32; BATCH],
+    /// The first lane of the finest cell being drawn.
+    cell: usize,
+    /// Index in the maps, and the pixel's centre as the outline places it (pixels).
+    index: [u32; LANES],
+    x: [f32; LANES],
+    y: [f32; LANES],
+    /// Offset from the centre of the level being looked up, its pseudo-angle, and k in
+    /// [`Fan`].
+    dx: [f32; LANES],
+    dy: [f32; LANES],
+    angle: [f32; LANES],
+    wedge: [u32; LANES],
     ready: usize,
     /// Index in the maps.
     ready_index: [u32; QUEUE],
-    /// u in the pixel's wedge, and the offset in apothems.
-    u: [f32; QUEUE],
-    qx: [f32; QUEUE],
-    qy: [f32; QUEUE],
+    /// Per level, u in the pixel's wedge, and the offset in apothems.
+    u: [[f32; QUEUE]; MAX_LEVELS],
+    qx: [[f32; QUEUE]; MAX_LEVELS],
+    qy: [[f32; QUEUE]; MAX_LEVELS],
     /// The profile's sample interval and the weight of its far end at the pixel's x', and the
-    /// factor that turns the profile's slope into the normal's x and y.
+    /// factor that turns the profile's slope into the normal's x and y (of the level being
+    /// evaluated).
     interval: [u32; QUEUE],
     weight: [f32; QUEUE],
     lean: [S; QUEUE],
+    /// The sums over the levels evaluated: height, and the normal's x and y.
+    height: [f32; QUEUE],
+    slope: [[f32; QUEUE]; 2],
 }
 
 /// Where the maps a render writes go.
@@ -110,8 +150,9 @@ trait Sink {
     const SHADES: bool;
     /// Whether normals are wanted.
     const NORMALS: bool;
-    /// Adds one level's height `z` and normal x/y `slope` to pixel `i`.
-    fn add(&mut self, i: usize, z: f32, slope: [f32; 2]);
+    /// Sets pixel `i` to height `z` and to the normal whose x and y (before normalising) sum
+    /// to `slope`.
+    fn set(&mut self, i: usize, z: f32, slope: [f32; 2]);
 }
 
 /// No height or normal map.
@@ -120,7 +161,7 @@ struct NoMaps;
 impl Sink for NoMaps {
     const SHADES: bool = false;
     const NORMALS: bool = false;
-    fn add(&mut self, _: usize, _: f32, _: [f32; 2]) {}
+    fn set(&mut self, _: usize, _: f32, _: [f32; 2]) {}
 }
 
 /// Heights only.
@@ -130,8 +171,8 @@ impl Sink for Heights<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = false;
     #[inline]
-    fn add(&mut self, i: usize, z: f32, _: [f32; 2]) {
-        self.0[i] += z;
+    fn set(&mut self, i: usize, z: f32, _: [f32; 2]) {
+        self.0[i] = z;
     }
 }
 
@@ -142,9 +183,8 @@ impl Sink for Normals<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = true;
     #[inline]
-    fn add(&mut self, i: usize, _: f32, slope: [f32; 2]) {
-        self.0[i][0] += slope[0];
-        self.0[i][1] += slope[1];
+    fn set(&mut self, i: usize, _: f32, slope: [f32; 2]) {
+        self.0[i] = unit_normal(slope);
     }
 }
 
@@ -155,10 +195,9 @@ impl Sink for Both<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = true;
     #[inline]
-    fn add(&mut self, i: usize, z: f32, slope: [f32; 2]) {
-        self.0[i] += z;
-        self.1[i][0] += slope[0];
-        self.1[i][1] += slope[1];
+    fn set(&mut self, i: usize, z: f32, slope: [f32; 2]) {
+        self.0[i] = z;
+        self.1[i] = unit_normal(slope);
     }
 }
 
@@ -175,32 +214,37 @@ impl<S: Scalar> Batch<S> {
     fn new() -> Self {
         Batch {
             len: 0,
-            index: [0; BATCH + 4],
-            dx: [0.0; BATCH + 4],
-            dy: [0.0; BATCH + 4],
-            angle: [0.0; BATCH],
-            wedge: [0; BATCH],
+            cell: 0,
+            index: [0; LANES],
+            x: [0.0; LANES],
+            y: [0.0; LANES],
+            dx: [0.0; LANES],
+            dy: [0.0; LANES],
+            angle: [0.0; LANES],
+            wedge: [0; LANES],
             ready: 0,
             ready_index: [0; QUEUE],
-            u: [0.0; QUEUE],
-            qx: [0.0; QUEUE],
-            qy: [0.0; QUEUE],
+            u: [[0.0; QUEUE]; MAX_LEVELS],
+            qx: [[0.0; QUEUE]; MAX_LEVELS],
+            qy: [[0.0; QUEUE]; MAX_LEVELS],
             interval: [0; QUEUE],
             weight: [0.0; QUEUE],
             lean: [S::ZERO; QUEUE],
+            height: [0.0; QUEUE],
+            slope: [[0.0; QUEUE]; 2],
         }
     }
 
     /// Queues the pixels `x0..x1` of row `y` (as the outline places them), `i0..` in the maps,
-    /// of the cell centred at `centre` (pixels), with fan `fan`.
+    /// of the finest-level cell being drawn.
     #[inline]
-    fn span<K: Sink>(&mut self, ridge: &Ridge<S>, fan: &Fan, sink: &mut K, centre: [f32; 2], row: [i64; 3], i0: usize) {
+    fn span<K: Sink>(&mut self, fans: &Fans, ridges: &[Ridge<S>], sink: &mut K, row: [i64; 3], i0: usize) {
         let [y, mut x0, x1] = row;
         let mut i0 = i0;
-        let dy = (y as f32 + 0.5) - centre[1];
+        let centre_y = y as f32 + 0.5;
         while x0 < x1 {
             if self.len == BATCH {
-                self.locate(ridge, fan, sink);
+                self.flush(fans, ridges, sink);
             }
             let len = self.len;
             let count = ((x1 - x0) as usize).min(BATCH - len);
@@ -209,10 +253,10 @@ impl<S: Scalar> Batch<S> {
             let (first, left) = ((i0 as u32), x0 as f32 + 0.5);
             for c in (0..count).step_by(4) {
                 let at = len + c..len + c + 4;
-                let (index, dx, y) = (&mut self.index[at.clone()], &mut self.dx[at.clone()], &mut self.dy[at]);
+                let (index, x, y) = (&mut self.index[at.clone()], &mut self.x[at.clone()], &mut self.y[at]);
                 for l in 0..4 {
                     let j = c + l;
-                    (index[l], dx[l], y[l]) = (first + j as u32, (left + j as f32) - centre[0], dy);
+                    (index[l], x[l], y[l]) = (first + j as u32, left + j as f32, centre_y);
                 }
             }
             self.len = len + count;
@@ -220,28 +264,50 @@ impl<S: Scalar> Batch<S> {
         }
     }
 
-    /// Finds the wedges of the cell's queued pixels (fan `fan`) and readies them, evaluating
-    /// the ready ones first if they would not fit.
-    fn locate<K: Sink>(&mut self, ridge: &Ridge<S>, fan: &Fan, sink: &mut K) {
-        let n = self.len;
-        if self.ready + n > QUEUE {
-            self.evaluate(ridge, sink);
+    /// Finds the wedges of the finest-level cell's queued pixels in its own fan.
+    fn close_cell(&mut self, fans: &Fans) {
+        let level = fans.finest;
+        self.locate(level, self.cell..self.len, &fans.fan(level), fans.at[level].centre);
+        self.cell = self.len;
+    }
+
+    /// Readies the queued pixels: their wedges in the finest cell's fan (for those not found
+    /// yet) and in the coarser cells' fans, which they all share. Evaluates the ready pixels
+    /// if another batch might not fit after them.
+    fn flush<K: Sink>(&mut self, fans: &Fans, ridges: &[Ridge<S>], sink: &mut K) {
+        self.close_cell(fans);
+        for level in 0..fans.finest {
+            self.locate(level, 0..self.len, &fans.fan(level), fans.at[level].centre);
         }
-        // The direction of each pixel from the centre, eight at a time (the lanes past `n` are
-        // stale).
-        let m = n.next_multiple_of(8);
-        for ((a, x), y) in
-            self.angle[..m].chunks_exact_mut(8).zip(self.dx[..m].chunks_exact(8)).zip(self.dy[..m].chunks_exact(8))
-        {
+        (self.ready, self.len, self.cell) = (self.ready + self.len, 0, 0);
+        if self.ready + BATCH > QUEUE {
+            self.evaluate(ridges, sink);
+        }
+    }
+
+    /// Finds the wedges of the queued pixels in `lanes` in the fan `fan` of level `level`,
+    /// centred at `centre`, and readies them at that level.
+    fn locate(&mut self, level: usize, lanes: Range<usize>, fan: &Fan, centre: [f32; 2]) {
+        let (a, n) = (lanes.start, lanes.len());
+        if n == 0 {
+            return;
+        }
+        // The offset and direction of each pixel from the centre, eight at a time (the lanes
+        // past `n` are stale).
+        let all = a..a + n.next_multiple_of(8);
+        let offsets = self.dx[all.clone()].chunks_exact_mut(8).zip(self.dy[all.clone()].chunks_exact_mut(8));
+        let at = self.x[all.clone()].chunks_exact(8).zip(self.y[all.clone()].chunks_exact(8));
+        for (((dx, dy), (x, y)), angle) in offsets.zip(at).zip(self.angle[all.clone()].chunks_exact_mut(8)) {
             for l in 0..8 {
-                a[l] = pseudo_angle([x[l], y[l]]);
+                (dx[l], dy[l]) = (x[l] - centre[0], y[l] - centre[1]);
+                angle[l] = pseudo_angle([dx[l], dy[l]]);
             }
         }
         // The fan triangle its ray leaves by.
         let wedges = &fan.slots[1..];
         if fan.sorted && wedges.len() <= COUNTED {
             // Eight pixels at a time.
-            for (ks, angles) in self.wedge[..m].chunks_exact_mut(8).zip(self.angle[..m].chunks_exact(8)) {
+            for (ks, angles) in self.wedge[all.clone()].chunks_exact_mut(8).zip(self.angle[all].chunks_exact(8)) {
                 let mut k = [0u32; 8];
                 for w in wedges {
                     for (k, &a) in k.iter_mut().zip(angles) {
@@ -251,45 +317,56 @@ impl<S: Scalar> Batch<S> {
                 ks.copy_from_slice(&k);
             }
         } else {
-            for (k, &a) in self.wedge[..n].iter_mut().zip(&self.angle[..n]) {
+            for (k, &a) in self.wedge[lanes.clone()].iter_mut().zip(&self.angle[lanes.clone()]) {
                 *k = wedges.partition_point(|w| w.angle <= a) as u32;
             }
         }
         // u and the offset in apothems there (in f32: the offsets are in pixels, which Q16.16
         // could not square).
-        let r = self.ready..self.ready + n;
-        let pixel = self.index[..n].iter().zip(&self.wedge[..n]).zip(self.dx[..n].iter().zip(&self.dy[..n]));
-        let index = self.ready_index[r.clone()].iter_mut().zip(&mut self.u[r.clone()]);
-        let ready = index.zip(self.qx[r.clone()].iter_mut().zip(&mut self.qy[r.clone()]));
+        let r = self.ready + a..self.ready + a + n;
+        let pixel = self.index[lanes.clone()].iter().zip(&self.wedge[lanes.clone()]);
+        let pixel = pixel.zip(self.dx[lanes.clone()].iter().zip(&self.dy[lanes]));
+        let index = self.ready_index[r.clone()].iter_mut().zip(&mut self.u[level][r.clone()]);
+        let ready = index.zip(self.qx[level][r.clone()].iter_mut().zip(&mut self.qy[level][r]));
         for (((&i, &k), (&dx, &dy)), ((index, u), (qx, qy))) in pixel.zip(ready) {
             let w = &fan.slots[k as usize];
             *index = i;
             *u = dx * w.g[0] + dy * w.g[1];
             (*qx, *qy) = (dx * w.inverse_apothem, dy * w.inverse_apothem);
         }
-        (self.len, self.ready) = (0, r.end);
     }
 
-    /// Adds the ready pixels' heights and normals (all of the level of `ridge`) to `sink`.
-    fn evaluate<K: Sink>(&mut self, ridge: &Ridge<S>, sink: &mut K) {
+    /// Sums the ready pixels' heights and normals over the levels of `ridges`, in the order of
+    /// levels, and sets them in `sink`.
+    fn evaluate<K: Sink>(&mut self, ridges: &[Ridge<S>], sink: &mut K) {
         let n = self.ready;
-        for j in 0..n {
-            let (at, lean) = ridge.shape(self.u[j], [self.qx[j], self.qy[j]]);
-            (self.interval[j], self.weight[j]) = ridge.table.interval(at);
-            self.lean[j] = lean;
+        self.height[..n].fill(0.0);
+        for slope in &mut self.slope {
+            slope[..n].fill(0.0);
         }
-        let pixel = self.ready_index[..n].iter().zip(&self.interval[..n]).zip(&self.weight[..n]);
-        let normal = self.lean[..n].iter().zip(&self.qx[..n]).zip(&self.qy[..n]);
-        for (((&i, &k), &w), ((&lean, &qx), &qy)) in pixel.zip(normal) {
-            let (z, dz) = ridge.table.lerp(k, w);
-            let slope = if K::NORMALS {
-                // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
-                let lean = S::from_f32(-dz) * lean;
-                [(lean * S::from_f32(qx)).to_f32(), (lean * S::from_f32(qy)).to_f32()]
-            } else {
-                [0.0; 2]
-            };
-            sink.add(i as usize, z, slope);
+        for (level, ridge) in ridges.iter().enumerate() {
+            let (u, qx, qy) = (&self.u[level][..n], &self.qx[level][..n], &self.qy[level][..n]);
+            for j in 0..n {
+                let (at, lean) = ridge.shape(u[j], [qx[j], qy[j]]);
+                (self.interval[j], self.weight[j]) = ridge.table.interval(at);
+                self.lean[j] = lean;
+            }
+            let sample = self.interval[..n].iter().zip(&self.weight[..n]).zip(&mut self.height[..n]);
+            let [sx, sy] = &mut self.slope;
+            let normal = self.lean[..n].iter().zip(qx.iter().zip(qy)).zip(sx[..n].iter_mut().zip(&mut sy[..n]));
+            for (((&k, &w), height), ((&lean, (&qx, &qy)), (sx, sy))) in sample.zip(normal) {
+                let (z, dz) = ridge.table.lerp(k, w);
+                *height += z;
+                if K::NORMALS {
+                    // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
+                    let lean = S::from_f32(-dz) * lean;
+                    *sx += (lean * S::from_f32(qx)).to_f32();
+                    *sy += (lean * S::from_f32(qy)).to_f32();
+                }
+            }
+        }
+        for j in 0..n {
+            sink.set(self.ready_index[j] as usize, self.height[j], [self.slope[0][j], self.slope[1][j]]);
         }
         self.ready = 0;
     }
@@ -325,8 +402,8 @@ impl<S: Scalar> Ridge<'_, S> {
 
 impl Skin<'_> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written. Uses about 53 KiB of stack for
-    /// one outline's wedges and crossings and a batch of pixels.
+    /// cell level is not below `levels`, nothing is written. Uses about 160 KiB of stack for
+    /// the wedges of one outline per level, one outline's crossings and a batch of pixels.
     pub fn render<S: Scalar>(&self, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { height, normal, cell, cell_level } = layers;
@@ -342,6 +419,8 @@ impl Skin<'_> {
             c[..pixels].fill(u32::MAX);
             (&mut c[..pixels], cell_level)
         });
+        // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
+        let flat = unit_normal([0.0; 2]);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
             (None, None) => self.draw::<S, _>(&mut NoMaps, cell),
             (Some(h), None) => {
@@ -349,64 +428,76 @@ impl Skin<'_> {
                 self.draw::<S, _>(&mut Heights(h), cell);
             }
             (None, Some(n)) => {
-                n.fill([0.0; 3]);
+                n.fill(flat);
                 self.draw::<S, _>(&mut Normals(n), cell);
-                normalise(n);
             }
             (Some(h), Some(n)) => {
                 h.fill(0.0);
-                n.fill([0.0; 3]);
+                n.fill(flat);
                 self.draw::<S, _>(&mut Both(h, n), cell);
-                normalise(n);
             }
         }
         Ok(())
     }
 
-    /// Adds every cell's height and normal to `sink` and writes the cells of one level into
-    /// the cell map.
+    /// Sets every pixel's height and normal in `sink`, summed over the levels, and writes the
+    /// cells of one level into the cell map.
+    ///
+    /// The cells of the finest level are drawn: the cells of every coarser level are the
+    /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
+    /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
+    /// while its descendants are drawn.
     fn draw<S: Scalar, K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
         let width = self.params.width as usize;
-        let mut wedges = [Wedge::default(); SLOTS];
         let mut crossings = [0u64; MAX_OUTLINE];
+        if !K::SHADES {
+            // A cell map alone needs only the pixels of its level's cells.
+            let Some((map, level)) = cell else { return };
+            for (index, c) in self.cells.iter().enumerate().filter(|(_, c)| c.level == level) {
+                self.for_each_run(c, &mut crossings, |_, x0, x1, wx, wy| {
+                    let i0 = wy as usize * width + wx as usize;
+                    map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
+                });
+            }
+            return;
+        }
+        let mut wedges = [[Wedge::default(); SLOTS]; MAX_LEVELS];
+        let mut fans = [FanAt::default(); MAX_LEVELS];
         let mut batch = Batch::<S>::new();
         let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
+        let levels = self.params.levels as usize;
+        let finest = levels - 1;
         let ridges: [Ridge<S>; MAX_LEVELS] = core::array::from_fn(|level| {
             let table = &self.tables[level];
             let roundness = S::from_f32(self.params.level[level].roundness);
             Ridge { table, end: S::from_f32(table.end), roundness, flat: S::ONE - roundness }
         });
-        // The level of the ready pixels.
-        let mut ready = 0;
+        let ridges = &ridges[..levels];
         for (index, c) in self.cells.iter().enumerate() {
-            let mut map = cell.as_mut().filter(|(_, level)| *level == c.level).map(|(map, _)| &mut **map);
-            if map.is_none() && !K::SHADES {
+            let level = c.level as usize;
+            if level < finest && batch.len > 0 {
+                // The queued pixels lie in the cell this one follows.
+                batch.flush(&Fans { wedges: &wedges, at: &fans, finest }, ridges, sink);
+            }
+            let fan = self.prepare(c, &mut wedges[level]);
+            let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
+            fans[level] = FanAt { len: fan.slots.len(), sorted: fan.sorted, centre, cell: index as u32 };
+            if level < finest {
                 continue;
             }
-            let level = c.level as usize;
-            if level != ready {
-                // Each pixel gets its levels' heights in the order of levels.
-                batch.evaluate(&ridges[ready], sink);
-                ready = level;
-            }
-            let ridge = &ridges[level];
-            let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
-            // Wedges serve heights and normals; a cell map alone needs only the pixels.
-            let fan = if K::SHADES { self.prepare(c, &mut wedges) } else { Fan { slots: &[], sorted: false } };
+            let view = Fans { wedges: &wedges, at: &fans, finest };
+            let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
             self.for_each_run(c, &mut crossings, |y, x0, x1, wx, wy| {
                 let i0 = wy as usize * width + wx as usize;
-                if let Some(map) = map.as_deref_mut() {
-                    map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
+                if let Some((map, owner)) = map.as_mut() {
+                    map[i0..i0 + (x1 - x0) as usize].fill(*owner);
                 }
-                if K::SHADES {
-                    batch.span(ridge, &fan, sink, centre, [y, x0, x1], i0);
-                }
+                batch.span(&view, ridges, sink, [y, x0, x1], i0);
             });
-            if batch.len > 0 {
-                batch.locate(ridge, &fan, sink);
-            }
+            batch.close_cell(&view);
         }
-        batch.evaluate(&ridges[ready], sink);
+        batch.flush(&Fans { wedges: &wedges, at: &fans, finest }, ridges, sink);
+        batch.evaluate(ridges, sink);
     }
 
     /// Fills `slots` with `cell`'s fan.
@@ -522,12 +613,10 @@ impl Skin<'_> {
     }
 }
 
-/// Fig. 10: each level's normal has z = 1; x and y add up. Rows run down the raster, so y
-/// flips for a y-up normal map.
-fn normalise(normals: &mut [[f32; 3]]) {
-    for v in normals {
-        let (x, y) = (v[0], -v[1]);
-        let s = Scalar::inverse_sqrt(x * x + y * y + 1.0);
-        *v = [x * s, y * s, s];
-    }
+/// Fig. 10: each level's normal has z = 1; x and y add up to `slope`. Rows run down the
+/// raster, so y flips for a y-up normal map.
+fn unit_normal(slope: [f32; 2]) -> [f32; 3] {
+    let (x, y) = (slope[0], -slope[1]);
+    let s = Scalar::inverse_sqrt(x * x + y * y + 1.0);
+    [x * s, y * s, s]
 }
