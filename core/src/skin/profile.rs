@@ -88,18 +88,18 @@ impl ProfileTable {
         ProfileTable { end, scale: SAMPLES as f32 / end, samples: core::array::from_fn(|k| [height[k], slope[k]]) }
     }
 
-    /// Height and slope at `x` ∈ [0, end], linearly interpolated: what `interval` and `lerp`
-    /// give in two parts.
+    /// Height and slope at `x` ∈ [0, end], linearly interpolated: what `interval`, `ends` and
+    /// `blend` give in parts.
     #[cfg(test)]
     pub(super) fn at(&self, x: f32) -> (f32, f32) {
         let f = (x * self.scale).clamp(0.0, SAMPLES as f32);
         // f rounded down, the last interval for f = SAMPLES.
         let k = (f as u32).min(SAMPLES as u32 - 1);
-        self.lerp(k, f - k as f32)
+        blend(self.ends(k), f - k as f32)
     }
 
-    /// The lookup of height and slope at `x`, part one (the other is `lerp`), split so that a
-    /// batch of lookups does the arithmetic of each part together: the sample interval `x`
+    /// The lookup of height and slope at `x`, part one (then `ends` and `blend`), split so that
+    /// a batch of lookups does the arithmetic of each part together: the sample interval `x`
     /// falls in and the weight of its far end (the interval is f = x·SAMPLES/end, clamped to
     /// [0, SAMPLES], rounded down; the last one for f = SAMPLES). Only
     /// comparisons, basic arithmetic and bit casts, which vectorise: for 0 <= f < 2^23,
@@ -115,15 +115,21 @@ impl ProfileTable {
         ((k + ROUND).to_bits().wrapping_sub(ROUND.to_bits()), f - k)
     }
 
-    /// Height and slope at weight `w` along interval `k`.
+    /// Height and slope at both ends of interval `k` (what [`blend`] weighs), apart so that a
+    /// batch of lookups reads its samples in one loop and does its arithmetic in another.
     #[inline(always)]
-    pub(super) fn lerp(&self, k: u32, w: f32) -> (f32, f32) {
+    pub(super) fn ends(&self, k: u32) -> [[f32; 2]; 2] {
         // k < SAMPLES already; the mask shows it.
         const { assert!(SAMPLES.is_power_of_two()) };
         let k = k as usize & (SAMPLES - 1);
-        let ([h0, s0], [h1, s1]) = (self.samples[k], self.samples[k + 1]);
-        (h0 + (h1 - h0) * w, s0 + (s1 - s0) * w)
+        [self.samples[k], self.samples[k + 1]]
     }
+}
+
+/// Height and slope at weight `w` between the ends of an interval ([`ProfileTable::ends`]).
+#[inline(always)]
+pub(super) fn blend([[h0, s0], [h1, s1]]: [[f32; 2]; 2], w: f32) -> (f32, f32) {
+    (h0 + (h1 - h0) * w, s0 + (s1 - s0) * w)
 }
 
 #[cfg(test)]
@@ -153,7 +159,7 @@ mod tests {
         let near = samples.clone().flat_map(|x| [x, f32::from_bits(x.to_bits() + 1), x - 1e-6, x + 1e-6]);
         for x in near.chain((-1000..=11_000).map(|i| i as f32 * 1e-3)).chain([-1.0, 10.0, 11.0, 1e9]) {
             let (k, w) = t.interval(x);
-            let (a, b) = (t.at(x), t.lerp(k, w));
+            let (a, b) = (t.at(x), blend(t.ends(k), w));
             assert_eq!((a.0.to_bits(), a.1.to_bits()), (b.0.to_bits(), b.1.to_bits()), "{x}");
         }
     }

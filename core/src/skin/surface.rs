@@ -22,7 +22,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use super::cell::MAX_OUTLINE;
-use super::profile::ProfileTable;
+use super::profile::{ProfileTable, blend};
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
@@ -139,9 +139,13 @@ struct Batch<S> {
     interval: [u32; QUEUE],
     weight: [f32; QUEUE],
     lean: [S; QUEUE],
-    /// The sums over the levels evaluated: height, and the normal's x and y.
+    /// The profile's samples at the interval's ends.
+    ends: [[[f32; 2]; 2]; QUEUE],
+    /// The sums over the levels evaluated: height, and the normal's x and y; and the unit
+    /// normal they make.
     height: [f32; QUEUE],
     slope: [[f32; QUEUE]; 2],
+    normal: [[f32; QUEUE]; 3],
 }
 
 /// Where the maps a render writes go.
@@ -150,9 +154,8 @@ trait Sink {
     const SHADES: bool;
     /// Whether normals are wanted.
     const NORMALS: bool;
-    /// Sets pixel `i` to height `z` and to the normal whose x and y (before normalising) sum
-    /// to `slope`.
-    fn set(&mut self, i: usize, z: f32, slope: [f32; 2]);
+    /// Sets pixel `i` to height `z` and unit normal `normal` (when normals are wanted).
+    fn set(&mut self, i: usize, z: f32, normal: [f32; 3]);
 }
 
 /// No height or normal map.
@@ -161,7 +164,7 @@ struct NoMaps;
 impl Sink for NoMaps {
     const SHADES: bool = false;
     const NORMALS: bool = false;
-    fn set(&mut self, _: usize, _: f32, _: [f32; 2]) {}
+    fn set(&mut self, _: usize, _: f32, _: [f32; 3]) {}
 }
 
 /// Heights only.
@@ -171,7 +174,7 @@ impl Sink for Heights<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = false;
     #[inline]
-    fn set(&mut self, i: usize, z: f32, _: [f32; 2]) {
+    fn set(&mut self, i: usize, z: f32, _: [f32; 3]) {
         self.0[i] = z;
     }
 }
@@ -183,8 +186,8 @@ impl Sink for Normals<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = true;
     #[inline]
-    fn set(&mut self, i: usize, _: f32, slope: [f32; 2]) {
-        self.0[i] = unit_normal(slope);
+    fn set(&mut self, i: usize, _: f32, normal: [f32; 3]) {
+        self.0[i] = normal;
     }
 }
 
@@ -195,9 +198,9 @@ impl Sink for Both<'_> {
     const SHADES: bool = true;
     const NORMALS: bool = true;
     #[inline]
-    fn set(&mut self, i: usize, z: f32, slope: [f32; 2]) {
+    fn set(&mut self, i: usize, z: f32, normal: [f32; 3]) {
         self.0[i] = z;
-        self.1[i] = unit_normal(slope);
+        self.1[i] = normal;
     }
 }
 
@@ -230,8 +233,10 @@ impl<S: Scalar> Batch<S> {
             interval: [0; QUEUE],
             weight: [0.0; QUEUE],
             lean: [S::ZERO; QUEUE],
+            ends: [[[0.0; 2]; 2]; QUEUE],
             height: [0.0; QUEUE],
             slope: [[0.0; QUEUE]; 2],
+            normal: [[0.0; QUEUE]; 3],
         }
     }
 
@@ -351,11 +356,15 @@ impl<S: Scalar> Batch<S> {
                 (self.interval[j], self.weight[j]) = ridge.table.interval(at);
                 self.lean[j] = lean;
             }
-            let sample = self.interval[..n].iter().zip(&self.weight[..n]).zip(&mut self.height[..n]);
+            // The samples read in a loop of their own, the arithmetic several at once.
+            for (ends, &k) in self.ends[..n].iter_mut().zip(&self.interval[..n]) {
+                *ends = ridge.table.ends(k);
+            }
+            let sample = self.ends[..n].iter().zip(&self.weight[..n]).zip(&mut self.height[..n]);
             let [sx, sy] = &mut self.slope;
             let normal = self.lean[..n].iter().zip(qx.iter().zip(qy)).zip(sx[..n].iter_mut().zip(&mut sy[..n]));
-            for (((&k, &w), height), ((&lean, (&qx, &qy)), (sx, sy))) in sample.zip(normal) {
-                let (z, dz) = ridge.table.lerp(k, w);
+            for (((&ends, &w), height), ((&lean, (&qx, &qy)), (sx, sy))) in sample.zip(normal) {
+                let (z, dz) = blend(ends, w);
                 *height += z;
                 if K::NORMALS {
                     // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
@@ -365,8 +374,17 @@ impl<S: Scalar> Batch<S> {
                 }
             }
         }
+        if K::NORMALS {
+            // Normalised in a plain loop of their own, several at once.
+            let [sx, sy] = &self.slope;
+            let [nx, ny, nz] = &mut self.normal;
+            for j in 0..n {
+                [nx[j], ny[j], nz[j]] = unit_normal([sx[j], sy[j]]);
+            }
+        }
+        let [nx, ny, nz] = &self.normal;
         for j in 0..n {
-            sink.set(self.ready_index[j] as usize, self.height[j], [self.slope[0][j], self.slope[1][j]]);
+            sink.set(self.ready_index[j] as usize, self.height[j], [nx[j], ny[j], nz[j]]);
         }
         self.ready = 0;
     }
