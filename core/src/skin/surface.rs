@@ -12,11 +12,14 @@
 //! is the profile's normal in the x'z' plane, turned to the ray's direction, with z = 1; the
 //! surface's normal sums the levels' x and y (Fig. 10).
 //!
-//! Pixels go through in batches, a plain loop per step, so that the processor overlaps many
-//! pixels and most steps handle several at once: a cell's pixels find their fan triangles
-//! (by pseudo-angle, the same ones as a binary search over the corners' angles), then the
-//! pixels of cells of one level get their profile coordinate and normal factor, then their
-//! profile samples.
+//! Only the finest cells are drawn: a coarser cell is the union of its descendants, pixel for
+//! pixel, so each pixel's coarser cells are its finest cell's ancestors, whose fans are kept
+//! one per level. Pixels go through in batches, a plain loop per step, so that the processor
+//! overlaps many pixels and most steps handle several at once: a finest cell's pixels find
+//! their fan triangles (by pseudo-angle, the same ones as a binary search over the corners'
+//! angles), then, with those of its siblings, their ancestors' triangles; then every level's
+//! profile coordinate and normal factor, its profile samples, and the sums over the levels,
+//! which are written once.
 
 use core::cmp::Ordering;
 use core::ops::Range;
