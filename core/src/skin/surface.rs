@@ -287,6 +287,7 @@ impl<S: Scalar> Batch<S> {
         for level in 0..fans.finest {
             self.locate(level, 0..self.len, &fans.fan(level), fans.at[level].centre);
         }
+        self.ready_index[self.ready..self.ready + self.len].copy_from_slice(&self.index[..self.len]);
         (self.ready, self.len, self.cell) = (self.ready + self.len, 0, 0);
         if self.ready + BATCH > QUEUE {
             self.evaluate(ridges, sink);
@@ -332,13 +333,11 @@ impl<S: Scalar> Batch<S> {
         // u and the offset in apothems there (in f32: the offsets are in pixels, which Q16.16
         // could not square).
         let r = self.ready + a..self.ready + a + n;
-        let pixel = self.index[lanes.clone()].iter().zip(&self.wedge[lanes.clone()]);
-        let pixel = pixel.zip(self.dx[lanes.clone()].iter().zip(&self.dy[lanes]));
-        let index = self.ready_index[r.clone()].iter_mut().zip(&mut self.u[level][r.clone()]);
-        let ready = index.zip(self.qx[level][r.clone()].iter_mut().zip(&mut self.qy[level][r]));
-        for (((&i, &k), (&dx, &dy)), ((index, u), (qx, qy))) in pixel.zip(ready) {
+        let pixel = self.wedge[lanes.clone()].iter().zip(self.dx[lanes.clone()].iter().zip(&self.dy[lanes]));
+        let ready =
+            self.u[level][r.clone()].iter_mut().zip(self.qx[level][r.clone()].iter_mut().zip(&mut self.qy[level][r]));
+        for ((&k, (&dx, &dy)), (u, (qx, qy))) in pixel.zip(ready) {
             let w = &fan.slots[k as usize];
-            *index = i;
             *u = dx * w.g[0] + dy * w.g[1];
             (*qx, *qy) = (dx * w.inverse_apothem, dy * w.inverse_apothem);
         }
