@@ -394,3 +394,29 @@ fn every_preset_builds_and_renders() {
         });
     }
 }
+
+/// What the docs promise a thread that builds and renders: about 84 KiB and 160 KiB of stack in
+/// an optimised build, so 256 KiB is enough for both (a debug build needs about twice that).
+/// An overflow aborts the test run.
+#[test]
+fn a_fig19a_skin_builds_and_renders_in_a_256_kib_stack() {
+    let kib = if cfg!(debug_assertions) { 512 } else { 256 };
+    let cells = std::thread::Builder::new()
+        .stack_size(kib * 1024)
+        .spawn(|| {
+            let p = preset("fig19a").unwrap();
+            with_skin(&p, |skin| {
+                let n = (p.width * p.height) as usize;
+                let (mut h, mut nm, mut c) = (vec![0.0f32; n], vec![[0.0f32; 3]; n], vec![0u32; n]);
+                let layers =
+                    SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut c), cell_level: 2 };
+                skin.render::<f32>(layers).unwrap();
+                assert!(c.iter().all(|&i| i != hibi_core::skin::NO_CELL));
+                skin.cells().len()
+            })
+        })
+        .unwrap()
+        .join()
+        .unwrap();
+    assert!(cells > 10_000, "{cells}");
+}
