@@ -433,7 +433,7 @@ pub extern "C" fn hibi_skin_memory_align() -> usize {
 
 /// Creates a skin in library memory, building every cell outline of every level. Free it
 /// with `hibi_skin_destroy`. `*out` is written only on success. Uses about 84 KiB of the
-/// calling thread's stack in an optimised build of the library (about twice that in a debug
+/// calling thread's stack in an optimised build of the library (about 190 KiB in a debug
 /// build).
 ///
 /// # Safety
@@ -525,7 +525,8 @@ unsafe fn layer<'a, T>(ptr: *mut T, len: usize) -> Result<Option<&'a mut [T]>, h
 /// misaligned, or `cell_level` is not below `levels`, nothing is written.
 ///
 /// Uses about 160 KiB of the calling thread's stack in an optimised build of the library
-/// (about twice that in a debug build): a thread that creates and renders skins needs 256 KiB.
+/// (more in a debug build): a thread that creates and renders skins needs about 184 KiB
+/// (248 KiB with a debug build of the library); 256 KiB is enough.
 ///
 /// # Safety
 /// `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for
