@@ -145,11 +145,12 @@ pub(super) const fn fixed_point_bits(levels: u32) -> u32 {
 }
 
 /// A corner computed the same way by every cell that has it: its frame position relative to
-/// the image of `reference`, and its fixed-point position.
+/// the periodic image `image` (of the site it was computed from), and its fixed-point
+/// position.
 #[derive(Clone, Copy, Debug, Default)]
 struct Corner {
     at: [f64; 2],
-    reference: Site,
+    image: [i32; 2],
     fixed: [i64; 2],
 }
 
@@ -172,7 +173,7 @@ fn circumcentre(f: &Frame, a: &Site, b: &Site, c: &Site) -> Corner {
     let d = 2.0 * (bx * cy - by * cx);
     let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
     let at = [o[0] + (cy * b2 - by * c2) / d, o[1] + (bx * c2 - cx * b2) / d];
-    Corner { at, reference: *r, fixed: f.fixed(at, r) }
+    Corner { at, image: r.image, fixed: f.fixed(at, r) }
 }
 
 /// Where the bisector of `a` and `b` meets the parent's edge from `p` to `q`: at a parameter
@@ -202,7 +203,7 @@ fn bisector_meets_edge(f: &Frame, a: &Site, b: &Site, p: [i64; 2], q: [i64; 2]) 
         let k = round_to_i64(t * steps as f64).clamp(0, steps);
         [p[0] + k * ((q[0] - p[0]) >> EDGE_BITS), p[1] + k * ((q[1] - p[1]) >> EDGE_BITS)]
     };
-    Corner { at: f.unfixed(fixed, lo), reference: *lo, fixed }
+    Corner { at: f.unfixed(fixed, lo), image: lo.image, fixed }
 }
 
 /// Why an outline could not be built.
@@ -216,7 +217,7 @@ fn next(i: usize, n: usize) -> usize {
 }
 
 /// Edges of a parent outline per chunk (for its bounding boxes).
-pub(super) const CHUNK: usize = 8;
+pub(super) const CHUNK: usize = 4;
 
 /// Scratch for one bisector edge: its pieces and one piece's points.
 pub(super) struct EdgeScratch {
@@ -499,7 +500,7 @@ impl Builder<'_> {
         match (into & PARENT_EDGE != 0, from & PARENT_EDGE != 0) {
             (true, true) => {
                 let p = edge(from).0;
-                Corner { at: f.unfixed(p, a), reference: *a, fixed: p }
+                Corner { at: f.unfixed(p, a), image: a.image, fixed: p }
             }
             (false, false) if into != from => {
                 circumcentre(f, a, &neighbours[into as usize], &neighbours[from as usize])
@@ -515,7 +516,7 @@ impl Builder<'_> {
             // A degenerate corner (the same bisector on both sides): where clipping put it.
             (false, false) => {
                 let at = [self.clip[k].at[0] - a.at[0] + a.base[0], self.clip[k].at[1] - a.at[1] + a.base[1]];
-                Corner { at, reference: *a, fixed: f.fixed(at, a) }
+                Corner { at, image: a.image, fixed: f.fixed(at, a) }
             }
         }
     }
@@ -782,7 +783,7 @@ fn perturb(
     let (from, to) = if forward { (start, end) } else { (end, start) };
     // Both ends in `lo`'s frame.
     let place = |c: &Corner| {
-        let d = [c.reference.image[0] - lo.image[0], c.reference.image[1] - lo.image[1]];
+        let d = [c.image[0] - lo.image[0], c.image[1] - lo.image[1]];
         [c.at[0] + f64::from(d[0]) * f.period[0], c.at[1] + f64::from(d[1]) * f.period[1]]
     };
     let (p0, p1) = (place(from), place(to));
