@@ -254,7 +254,7 @@ pub(super) struct Parent<'p> {
     pub(super) outline: &'p [[i64; 2]],
     pub(super) chunks: &'p [[i64; 4]],
     /// The outline as its children's clipping starts from it ([`parent_vertex`], made once
-    /// for all of them), or empty: then each vertex is made as it is read.
+    /// for all of them).
     pub(super) frame: &'p [ClipVertex],
 }
 
@@ -395,14 +395,13 @@ impl Builder<'_> {
         (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
     ) -> Result<usize, OutlineFull> {
         let n0 = parent.outline.len();
+        debug_assert_eq!(parent.frame.len(), n0, "the parent's clip vertices are made");
         if n0 > self.clip.len() {
             return Err(OutlineFull);
         }
         // The outline starts as the parent's, read from it until the first clip writes one.
         let mut n = n0;
         let mut fresh = true;
-        let from_parent = |k: usize| parent_vertex(f, parent.outline, k);
-        let made = parent.frame.len() == n0;
         // Neighbours nearest first, ties by place in the list (which is the order of ids:
         // sites are listed in lattice order). A few are picked one at a time as the clipping
         // asks for them (most cells are done after a handful); more are sorted.
@@ -456,10 +455,8 @@ impl Builder<'_> {
             if distance(b) > 4.0 * farthest {
                 break;
             }
-            let clipped = if fresh && made {
+            let clipped = if fresh {
                 clip_by_bisector(reader(parent.frame), n, (site, b, j as u32), self.clip)?
-            } else if fresh {
-                clip_by_bisector(from_parent, n, (site, b, j as u32), self.clip)?
             } else {
                 let clipped = clip_by_bisector(reader(self.clip), n, (site, b, j as u32), self.spare)?;
                 if clipped.is_some() {
@@ -475,9 +472,7 @@ impl Builder<'_> {
             }
         }
         if fresh {
-            for (k, v) in self.clip[..n].iter_mut().enumerate() {
-                *v = from_parent(k);
-            }
+            self.clip[..n].copy_from_slice(parent.frame);
         }
         self.finish(f, site, neighbours, parent, n, (out, shared, scratch))
     }

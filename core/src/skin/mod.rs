@@ -236,7 +236,11 @@ impl Build<'_> {
             },
             ParentOutline::Box(ref b) => {
                 let count = cell::chunk_boxes(b, &mut box_chunks);
-                Parent { outline: b, chunks: &box_chunks[..count], frame: &[] }
+                let frame = &mut self.parent_frames[level * MAX_OUTLINE..][..b.len()];
+                for (k, v) in frame.iter_mut().enumerate() {
+                    *v = cell::parent_vertex(&f, b, k);
+                }
+                Parent { outline: b, chunks: &box_chunks[..count], frame }
             }
         };
         let n = self
