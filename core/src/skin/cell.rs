@@ -16,6 +16,7 @@
 //! children of neighbouring parents meet along the very same line, and no pixel falls in a
 //! gap or an overlap between them. Everything is stored at the finest level's resolution.
 
+use super::grid::{EdgeGrid, each_edge};
 use super::params::{LevelParams, MAX_PERTURBATION_DEPTH};
 use super::shared::{EdgeKey, KEPT_POINTS, SharedEdges};
 use super::sites::Site;
@@ -253,9 +254,34 @@ pub(super) struct Builder<'s> {
 pub(super) struct Parent<'p> {
     pub(super) outline: &'p [[i64; 2]],
     pub(super) chunks: &'p [[i64; 4]],
+    /// Its edges binned, for an outline of at most [`super::grid::GRID_EDGES`] edges (searched through
+    /// the chunks otherwise).
+    pub(super) grid: Option<&'p EdgeGrid>,
     /// The outline as its children's clipping starts from it ([`parent_vertex`], made once
     /// for all of them).
     pub(super) frame: &'p [ClipVertex],
+}
+
+impl Parent<'_> {
+    /// Calls `visit` with each edge whose box meets [low, high] (widened by `slack`), in the
+    /// outline's order, until it returns true.
+    fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, mut visit: impl FnMut(usize) -> bool) {
+        let Some(grid) = self.grid else {
+            return edges_near(self.outline, self.chunks, (low, high), slack, visit);
+        };
+        let outline = self.outline;
+        let m = outline.len();
+        let wide = ([low[0] - slack, low[1] - slack], [high[0] + slack, high[1] + slack]);
+        each_edge(grid.near(wide), |e| !apart(outline[e], outline[next(e, m)], wide) && visit(e));
+    }
+
+    /// Whether the outline contains `p` (even–odd rule, fixed point).
+    pub(super) fn contains(&self, p: [i64; 2]) -> bool {
+        match self.grid {
+            Some(grid) => super::scan::contains_among(self.outline, grid.across(p), p),
+            None => super::scan::contains_chunked(self.outline, self.chunks, CHUNK, p),
+        }
+    }
 }
 
 /// Vertex `k` of a parent's outline as a child in frame `f` starts clipping it: labelled as
@@ -345,7 +371,7 @@ impl<'p> Nearby<'p> {
         let (wx, wy) = (widen(0), widen(1));
         let (low, high) = ([x[0].min(y[0]) - wx, x[1].min(y[1]) - wy], [x[0].max(y[0]) + wx, x[1].max(y[1]) + wy]);
         let (mut count, mut fits) = (0, true);
-        edges_near(parent.outline, parent.chunks, (low, high), 0, |e| {
+        parent.edges_near((low, high), 0, |e| {
             if count == LISTED {
                 fits = false;
                 return true;
@@ -377,7 +403,7 @@ impl<'p> Nearby<'p> {
                     }
                 }
             }
-            _ => edges_near(outline, self.parent.chunks, (low, high), slack, visit),
+            _ => self.parent.edges_near((low, high), slack, visit),
         }
     }
 }
@@ -856,7 +882,7 @@ fn perturb(
         }
         let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
         let slack = f.inside_slack();
-        let Parent { outline: parent, chunks, .. } = nearby.parent;
+        let parent = nearby.parent.outline;
         let m = parent.len();
         let mut near = false;
         nearby.edges_near((low, high), slack, |e| {
@@ -870,7 +896,7 @@ fn perturb(
         if near && !blocked {
             // (One point when the edge has two pieces.)
             let ends: &[usize] = if pieces == 2 { &[1] } else { &[1, pieces - 1] };
-            blocked = ends.iter().any(|&k| !super::scan::contains_chunked(parent, chunks, CHUNK, f.fixed(line[k], lo)));
+            blocked = ends.iter().any(|&k| !nearby.parent.contains(f.fixed(line[k], lo)));
         }
     }
     if blocked {
@@ -887,6 +913,7 @@ fn perturb(
 mod tests {
     use super::*;
     use crate::rng::Rng;
+    use crate::skin::grid::EdgeGrid;
 
     /// The edges visited for a query box, through the chunk boxes or through `nearby`.
     fn visited(search: impl FnOnce(&mut dyn FnMut(usize) -> bool)) -> ([usize; 64], usize) {
@@ -897,6 +924,44 @@ mod tests {
             false
         });
         (seen, count)
+    }
+
+    #[test]
+    fn the_grid_finds_what_the_chunks_find() {
+        // Star-shaped outlines with deep notches (edges of every length and slope), boxes and
+        // points inside, around and far outside them.
+        let mut rng = Rng::from_key(5, 6);
+        let unit = 1i64 << 20;
+        for vertices in [3usize, 17, 40, 64] {
+            let mut outline = [[0i64; 2]; 64];
+            for (k, v) in outline[..vertices].iter_mut().enumerate() {
+                let angle = k as f64 / vertices as f64 * core::f64::consts::TAU;
+                let r = (2.0 + 10.0 * rng.uniform_f64()) * unit as f64;
+                *v = [(r * libm::cos(angle)) as i64, (r * libm::sin(angle)) as i64];
+            }
+            let outline = &outline[..vertices];
+            let mut boxes = [[0i64; 4]; 64 / CHUNK + 1];
+            let chunks = chunk_boxes(outline, &mut boxes);
+            let mut grid = EdgeGrid::new();
+            grid.fill(outline);
+            let chunked = Parent { outline, chunks: &boxes[..chunks], grid: None, frame: &[] };
+            let binned = Parent { grid: Some(&grid), ..chunked };
+            let (mut met, mut inside) = (0, 0);
+            for _ in 0..4000 {
+                let at = |rng: &mut Rng| ((rng.uniform_f64() * 30.0 - 15.0) * unit as f64) as i64;
+                let p = [at(&mut rng), at(&mut rng)];
+                let half = [0, 1].map(|_| (rng.uniform_f64() * rng.uniform_f64() * 8.0 * unit as f64) as i64);
+                let (low, high) = ([p[0] - half[0], p[1] - half[1]], [p[0] + half[0], p[1] + half[1]]);
+                let slack = (rng.uniform_f64() * 1000.0) as i64;
+                let expected = visited(|visit| chunked.edges_near((low, high), slack, visit));
+                assert_eq!(visited(|visit| binned.edges_near((low, high), slack, visit)), expected);
+                met += usize::from(expected.1 > 0);
+                let contained = chunked.contains(p);
+                assert_eq!(binned.contains(p), contained, "{p:?} in an outline of {vertices}");
+                inside += usize::from(contained);
+            }
+            assert!(met > 300 && inside > 50, "{met} boxes met edges, {inside} points inside");
+        }
     }
 
     #[test]
@@ -913,7 +978,7 @@ mod tests {
         });
         let mut boxes = [[0i64; 4]; 40 / CHUNK + 1];
         let chunks = chunk_boxes(&outline, &mut boxes);
-        let parent = Parent { outline: &outline, chunks: &boxes[..chunks], frame: &[] };
+        let parent = Parent { outline: &outline, chunks: &boxes[..chunks], grid: None, frame: &[] };
         let mut space = [0u32; LISTED];
         let corner = |p: [i64; 2]| Corner { fixed: p, ..Corner::default() };
         let (start, end) = (corner([34 * unit, 32 * unit]), corner([42 * unit, 36 * unit]));

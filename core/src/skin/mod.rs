@@ -28,6 +28,7 @@
 //! ```
 
 mod cell;
+mod grid;
 pub mod params;
 mod presets;
 mod profile;
@@ -47,6 +48,7 @@ pub use sites::Site;
 pub use surface::SkinLayers;
 
 use cell::{Builder, Frame, Parent};
+use grid::{EdgeGrid, GRID_EDGES};
 use profile::ProfileTable;
 use shared::SharedEdges;
 use sites::Lattice;
@@ -208,6 +210,9 @@ struct Build<'b> {
     /// Per level, the parent outline of the cells being built, as their clipping starts from
     /// it ([`MAX_OUTLINE`] each).
     parent_frames: &'b mut [ClipVertex],
+    /// Per level, the edges of the parent outline of the cells being built, binned (for an
+    /// outline of at most [`GRID_EDGES`] edges).
+    grids: [EdgeGrid; MAX_LEVELS],
     builder: Builder<'b>,
     shared: SharedEdges,
     scratch: cell::EdgeScratch,
@@ -232,6 +237,7 @@ impl Build<'_> {
             ParentOutline::Stored(first, count, chunks) => Parent {
                 outline: &head[first..first + count],
                 chunks,
+                grid: (count <= GRID_EDGES).then_some(&self.grids[level]),
                 frame: &self.parent_frames[level * MAX_OUTLINE..][..count],
             },
             ParentOutline::Box(ref b) => {
@@ -240,7 +246,7 @@ impl Build<'_> {
                 for (k, v) in frame.iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, b, k);
                 }
-                Parent { outline: b, chunks: &box_chunks[..count], frame }
+                Parent { outline: b, chunks: &box_chunks[..count], grid: None, frame }
             }
         };
         let n = self
@@ -292,6 +298,15 @@ impl Build<'_> {
             |boxes| {
                 let outline = &self.vertices[first..first + n];
                 let chunks = cell::chunk_boxes(outline, boxes);
+                if n <= GRID_EDGES {
+                    self.grids[level].fill(outline);
+                }
+                let outer = Parent {
+                    outline,
+                    chunks: &boxes[..chunks],
+                    grid: (n <= GRID_EDGES).then_some(&self.grids[level]),
+                    frame: &[],
+                };
                 // Its outline as every child's clipping starts from it.
                 for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, outline, k);
@@ -303,7 +318,7 @@ impl Build<'_> {
                         let s = lattice.site(i, j);
                         let p = f.site_fixed(&s);
                         let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
-                        if in_box && scan::contains_chunked(outline, &boxes[..chunks], cell::CHUNK, p) {
+                        if in_box && outer.contains(p) {
                             if count == MAX_CHILDREN {
                                 return Err(SkinError::Capacity);
                             }
@@ -384,6 +399,7 @@ impl<'a> Skin<'a> {
             parent_frames,
             builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
             shared: SharedEdges::new(),
+            grids: [const { EdgeGrid::new() }; MAX_LEVELS],
             scratch: cell::EdgeScratch::new(),
         };
         let lattice = lattices[0];

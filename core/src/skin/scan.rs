@@ -44,6 +44,18 @@ pub(super) fn contains_chunked(outline: &[[i64; 2]], boxes: &[[i64; 4]], chunk: 
     inside
 }
 
+/// [`contains`], testing only the edges in `edges` (bit k for edge k), which must hold every
+/// edge the ray from `p` towards +x can cross.
+pub(super) fn contains_among(outline: &[[i64; 2]], edges: u64, p: [i64; 2]) -> bool {
+    let n = outline.len();
+    let mut inside = false;
+    super::grid::each_edge(edges, |i| {
+        inside ^= crosses(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
+        false
+    });
+    inside
+}
+
 /// Rows a cell may span for [`for_each_span`]'s direct path.
 const DIRECT_ROWS: usize = 64;
 

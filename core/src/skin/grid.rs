@@ -1,0 +1,109 @@
+//! A parent outline's edges binned on a grid over its bounding box. A child's build asks
+//! which of its parent's edges lie near a box (around each edge it perturbs) or across a ray
+//! (is a point inside the parent); most of a parent's edges are far from either, and the grid
+//! names the few that may not be, as bits, in the order of the outline. The exact tests then
+//! run on those alone, so every answer is the one a test of every edge gives.
+
+/// Bins per axis.
+const BINS: usize = 8;
+
+/// Most edges an outline can have for a grid (one bit each); longer outlines are searched
+/// through their chunk boxes.
+pub(super) const GRID_EDGES: usize = 64;
+
+/// The bins of one outline of at most [`GRID_EDGES`] edges.
+#[derive(Clone, Copy)]
+pub(super) struct EdgeGrid {
+    /// The outline's lowest corner, and per axis the power of two a bin spans.
+    origin: [i64; 2],
+    shift: [u32; 2],
+    /// Per bin (row by row), the edges whose boxes meet it (bit k for edge k, from vertex k
+    /// to vertex k + 1).
+    bins: [u64; BINS * BINS],
+    /// Per bin, the edges whose boxes meet it or a bin to its right in the same row.
+    rightward: [u64; BINS * BINS],
+}
+
+impl EdgeGrid {
+    pub(super) const fn new() -> EdgeGrid {
+        EdgeGrid { origin: [0; 2], shift: [0; 2], bins: [0; BINS * BINS], rightward: [0; BINS * BINS] }
+    }
+
+    /// Bins the edges of `outline` (at most [`GRID_EDGES`] of them).
+    pub(super) fn fill(&mut self, outline: &[[i64; 2]]) {
+        debug_assert!(outline.len() <= GRID_EDGES);
+        let (mut low, mut high) = ([i64::MAX; 2], [i64::MIN; 2]);
+        for v in outline {
+            low = [low[0].min(v[0]), low[1].min(v[1])];
+            high = [high[0].max(v[0]), high[1].max(v[1])];
+        }
+        self.origin = low;
+        // The least shift that puts the whole span in BINS bins.
+        self.shift = [0, 1].map(|k| {
+            let span = high[k].saturating_sub(low[k]) as u64;
+            (u64::BITS - span.leading_zeros()).saturating_sub(BINS.trailing_zeros())
+        });
+        self.bins = [0; BINS * BINS];
+        let n = outline.len();
+        for (k, &a) in outline.iter().enumerate() {
+            let b = outline[if k + 1 == n { 0 } else { k + 1 }];
+            let bit = 1u64 << k;
+            let (x0, x1) = (self.bin(0, a[0].min(b[0])), self.bin(0, a[0].max(b[0])));
+            let (y0, y1) = (self.bin(1, a[1].min(b[1])), self.bin(1, a[1].max(b[1])));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    self.bins[y * BINS + x] |= bit;
+                }
+            }
+        }
+        for (row, bins) in self.rightward.chunks_exact_mut(BINS).zip(self.bins.chunks_exact(BINS)) {
+            let mut right = 0;
+            for (r, &b) in row.iter_mut().zip(bins).rev() {
+                right |= b;
+                *r = right;
+            }
+        }
+    }
+
+    /// The bin of coordinate `v` along `axis`, the first or last for a coordinate outside the
+    /// outline's box. (It never decreases as `v` grows, so a box that meets an edge's box
+    /// meets it in a bin both are marked in.)
+    #[inline]
+    fn bin(&self, axis: usize, v: i64) -> usize {
+        (v.saturating_sub(self.origin[axis]) >> self.shift[axis]).clamp(0, BINS as i64 - 1) as usize
+    }
+
+    /// The edges whose boxes may meet the box [low, high] (a superset of those that do).
+    #[inline]
+    pub(super) fn near(&self, (low, high): ([i64; 2], [i64; 2])) -> u64 {
+        let (x0, x1) = (self.bin(0, low[0]), self.bin(0, high[0]));
+        let (y0, y1) = (self.bin(1, low[1]), self.bin(1, high[1]));
+        let mut edges = 0;
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                edges |= self.bins[y * BINS + x];
+            }
+        }
+        edges
+    }
+
+    /// The edges whose boxes may meet the ray from `p` towards +x (a superset of those that
+    /// do).
+    #[inline]
+    pub(super) fn across(&self, p: [i64; 2]) -> u64 {
+        self.rightward[self.bin(1, p[1]) * BINS + self.bin(0, p[0])]
+    }
+}
+
+/// Calls `visit` with each edge in `edges` (bit k for edge k), in ascending order, until it
+/// returns true.
+#[inline]
+pub(super) fn each_edge(mut edges: u64, mut visit: impl FnMut(usize) -> bool) {
+    while edges != 0 {
+        let e = edges.trailing_zeros() as usize;
+        edges &= edges - 1;
+        if visit(e) {
+            return;
+        }
+    }
+}
