@@ -151,14 +151,23 @@ impl Rng {
         low + (high - low) * self.uniform_f32()
     }
 
-    /// A standard normal draw (mean 0, variance 1), Marsaglia's polar method in `f64`.
+    /// A standard normal draw (mean 0, variance 1), Marsaglia's polar method in `f64`: the
+    /// first of [`Rng::normal_pair`].
     pub fn normal(&mut self) -> f64 {
+        self.normal_pair()[0]
+    }
+
+    /// Two independent standard normal draws: both values one step of Marsaglia's polar
+    /// method makes (a point (u, v) uniform in the unit disc, s = u² + v², and (u, v) times
+    /// √(−2 ln s / s)), in `f64`.
+    pub fn normal_pair(&mut self) -> [f64; 2] {
         loop {
             let u = 2.0 * self.uniform_f64() - 1.0;
             let v = 2.0 * self.uniform_f64() - 1.0;
             let s = u * u + v * v;
             if s > 0.0 && s < 1.0 {
-                return u * libm::sqrt(-2.0 * libm::log(s) / s);
+                let scale = libm::sqrt(-2.0 * libm::log(s) / s);
+                return [u * scale, v * scale];
             }
         }
     }
@@ -287,6 +296,25 @@ mod tests {
         let mut rng = Rng::new(3, Stream::BreakStretch);
         let sample = moments(DRAWS, || rng.normal());
         assert_moments(DRAWS, sample, 0.0, 1.0, 3.0);
+    }
+
+    #[test]
+    fn both_values_of_a_normal_pair_are_standard_and_uncorrelated() {
+        let mut rng = Rng::new(3, Stream::EdgePerturbation);
+        let second = moments(DRAWS, || rng.normal_pair()[1]);
+        assert_moments(DRAWS, second, 0.0, 1.0, 3.0);
+        // The product of independent standard normals has mean 0, variance 1 and fourth
+        // moment 9.
+        let product = moments(DRAWS, || {
+            let [x, y] = rng.normal_pair();
+            x * y
+        });
+        assert_moments(DRAWS, product, 0.0, 1.0, 9.0);
+        // `normal` is the first value of the pair the same stream would make.
+        let (mut a, mut b) = (Rng::new(9, Stream::BreakStretch), Rng::new(9, Stream::BreakStretch));
+        for _ in 0..100 {
+            assert_eq!(a.normal().to_bits(), b.normal_pair()[0].to_bits());
+        }
     }
 
     #[test]

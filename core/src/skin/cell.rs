@@ -830,19 +830,26 @@ fn perturb(
             .iter()
             .fold(0u64, |h, &v| (h ^ v as u64).wrapping_mul(0x0000_0100_0000_01B3).rotate_left(29));
         let mut rng = Rng::from_key(f.seed, key ^ ends);
+        // Rnd: standard normal, both values of each polar step in turn, redrawn beyond ±3 so
+        // that no wiggle runs away.
+        let mut spare = None;
+        let mut rnd = || loop {
+            let v = spare.take().unwrap_or_else(|| {
+                let [first, second] = rng.normal_pair();
+                spare = Some(second);
+                first
+            });
+            if v.abs() <= 3.0 {
+                break v;
+            }
+        };
         let mut step = pieces;
         for level in 1..=f.depth {
             let amplitude = f.amplitude[level as usize - 1] * length;
             let half = step / 2;
             let mut i = 0;
             while i < pieces {
-                // Rnd: standard normal, redrawn beyond ±3 so that no wiggle runs away.
-                let rnd = loop {
-                    let v = rng.normal();
-                    if v.abs() <= 3.0 {
-                        break v;
-                    }
-                };
+                let rnd = rnd();
                 let v = amplitude * rnd;
                 let (x, y) = (line[i], line[i + step]);
                 line[i + half] = [0.5 * (x[0] + y[0]) + v * normal[0], 0.5 * (x[1] + y[1]) + v * normal[1]];
