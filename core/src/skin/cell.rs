@@ -254,8 +254,8 @@ pub(super) struct Builder<'s> {
 pub(super) struct Parent<'p> {
     pub(super) outline: &'p [[i64; 2]],
     pub(super) chunks: &'p [[i64; 4]],
-    /// Its edges binned, for an outline of at most [`super::grid::GRID_EDGES`] edges (searched through
-    /// the chunks otherwise).
+    /// Its edges binned, for an outline short enough ([`EdgeGrid::of`]; searched through the
+    /// chunks otherwise).
     pub(super) grid: Option<&'p EdgeGrid>,
     /// The outline as its children's clipping starts from it ([`parent_vertex`], made once
     /// for all of them).
@@ -950,9 +950,13 @@ mod tests {
             let mut boxes = [[0i64; 4]; 64 / CHUNK + 1];
             let chunks = chunk_boxes(outline, &mut boxes);
             let mut grid = EdgeGrid::new();
-            grid.fill(outline);
+            let corner = |pick: fn(i64, i64) -> i64| {
+                outline.iter().fold(outline[0], |c, v| [pick(c[0], v[0]), pick(c[1], v[1])])
+            };
+            grid.fill(outline, (corner(i64::min), corner(i64::max)));
             let chunked = Parent { outline, chunks: &boxes[..chunks], grid: None, frame: &[] };
-            let binned = Parent { grid: Some(&grid), ..chunked };
+            let binned = Parent { grid: grid.of(vertices), ..chunked };
+            assert!(binned.grid.is_some());
             let (mut met, mut inside) = (0, 0);
             for _ in 0..4000 {
                 let at = |rng: &mut Rng| ((rng.uniform_f64() * 30.0 - 15.0) * unit as f64) as i64;

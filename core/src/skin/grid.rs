@@ -9,7 +9,7 @@ const BINS: usize = 8;
 
 /// Most edges an outline can have for a grid (one bit each); longer outlines are searched
 /// through their chunk boxes.
-pub(super) const GRID_EDGES: usize = 64;
+const GRID_EDGES: usize = 64;
 
 /// The bins of one outline of at most [`GRID_EDGES`] edges.
 #[derive(Clone, Copy)]
@@ -29,13 +29,12 @@ impl EdgeGrid {
         EdgeGrid { origin: [0; 2], shift: [0; 2], bins: [0; BINS * BINS], rightward: [0; BINS * BINS] }
     }
 
-    /// Bins the edges of `outline` (at most [`GRID_EDGES`] of them).
-    pub(super) fn fill(&mut self, outline: &[[i64; 2]]) {
-        debug_assert!(outline.len() <= GRID_EDGES);
-        let (mut low, mut high) = ([i64::MAX; 2], [i64::MIN; 2]);
-        for v in outline {
-            low = [low[0].min(v[0]), low[1].min(v[1])];
-            high = [high[0].max(v[0]), high[1].max(v[1])];
+    /// Bins the edges of `outline`, whose bounding box is [low, high], if it has at most
+    /// [`GRID_EDGES`] of them (a longer one is left out: [`EdgeGrid::of`] gives no grid for
+    /// it).
+    pub(super) fn fill(&mut self, outline: &[[i64; 2]], (low, high): ([i64; 2], [i64; 2])) {
+        if outline.len() > GRID_EDGES {
+            return;
         }
         self.origin = low;
         // The least shift that puts the whole span in BINS bins.
@@ -63,6 +62,12 @@ impl EdgeGrid {
                 *r = right;
             }
         }
+    }
+
+    /// The grid, for the outline of `edges` edges it was last filled with (None for an outline
+    /// too long to bin).
+    pub(super) fn of(&self, edges: usize) -> Option<&EdgeGrid> {
+        (edges <= GRID_EDGES).then_some(self)
     }
 
     /// The bin of coordinate `v` along `axis`, the first or last for a coordinate outside the

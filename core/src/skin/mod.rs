@@ -48,7 +48,7 @@ pub use sites::Site;
 pub use surface::SkinLayers;
 
 use cell::{Builder, Frame, Parent};
-use grid::{EdgeGrid, GRID_EDGES};
+use grid::EdgeGrid;
 use profile::ProfileTable;
 use shared::SharedEdges;
 use sites::Lattice;
@@ -210,8 +210,8 @@ struct Build<'b> {
     /// Per level, the parent outline of the cells being built, as their clipping starts from
     /// it ([`MAX_OUTLINE`] each).
     parent_frames: &'b mut [ClipVertex],
-    /// Per level, the edges of the parent outline of the cells being built, binned (for an
-    /// outline of at most [`GRID_EDGES`] edges).
+    /// Per level, the edges of the parent outline of the cells being built, binned (when it is
+    /// short enough: [`EdgeGrid::of`]).
     grids: [EdgeGrid; MAX_LEVELS],
     builder: Builder<'b>,
     shared: SharedEdges,
@@ -237,7 +237,7 @@ impl Build<'_> {
             ParentOutline::Stored(first, count, chunks) => Parent {
                 outline: &head[first..first + count],
                 chunks,
-                grid: (count <= GRID_EDGES).then_some(&self.grids[level]),
+                grid: self.grids[level].of(count),
                 frame: &self.parent_frames[level * MAX_OUTLINE..][..count],
             },
             ParentOutline::Box(ref b) => {
@@ -298,15 +298,8 @@ impl Build<'_> {
             |boxes| {
                 let outline = &self.vertices[first..first + n];
                 let chunks = cell::chunk_boxes(outline, boxes);
-                if n <= GRID_EDGES {
-                    self.grids[level].fill(outline);
-                }
-                let outer = Parent {
-                    outline,
-                    chunks: &boxes[..chunks],
-                    grid: (n <= GRID_EDGES).then_some(&self.grids[level]),
-                    frame: &[],
-                };
+                self.grids[level].fill(outline, (lo, hi));
+                let outer = Parent { outline, chunks: &boxes[..chunks], grid: self.grids[level].of(n), frame: &[] };
                 // Its outline as every child's clipping starts from it.
                 for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, outline, k);
