@@ -1562,7 +1562,7 @@ size_t hibi_skin_memory_align(void);
 
 /**
  * Creates a skin in library memory, building every cell outline of every level. Free it
- * with `hibi_skin_destroy`. `*out` is written only on success. Uses about 84 KiB of the
+ * with `hibi_skin_destroy`. `*out` is written only on success. Uses about 100 KiB of the
  * calling thread's stack in an optimised build of the library (about 190 KiB in a debug
  * build).
  *

@@ -357,7 +357,7 @@ enum ParentOutline<'c> {
 }
 
 impl<'a> Skin<'a> {
-    /// Builds every cell of every level into the caller's buffers. Uses about 84 KiB of stack
+    /// Builds every cell of every level into the caller's buffers. Uses about 100 KiB of stack
     /// with three levels (scratch for one outline per level, and the edges kept for
     /// neighbours).
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
