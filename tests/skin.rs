@@ -395,10 +395,9 @@ fn every_preset_builds_and_renders() {
     }
 }
 
-/// What the docs promise a thread that builds and renders: about 100 KiB and 160 KiB of stack in
-/// an optimised build: measured on a thread, both need at most 184 KiB (248 KiB in a debug
-/// build, which gets room to spare here).
-/// An overflow aborts the test run.
+/// What the docs promise a thread that builds and renders: about 100 KiB and 160 KiB of stack
+/// in an optimised build; measured on a thread, both need at most 184 KiB (248 KiB in a debug
+/// build, which gets room to spare here). An overflow aborts the test run.
 #[test]
 fn a_fig19a_skin_builds_and_renders_in_a_256_kib_stack() {
     let kib = if cfg!(debug_assertions) { 512 } else { 256 };

@@ -889,17 +889,12 @@ fn perturb(
         }
         let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
         let slack = f.inside_slack();
-        let (parent, frame) = (nearby.parent.outline, nearby.parent.frame);
+        let parent = nearby.parent.outline;
         let m = parent.len();
         let mut near = false;
         nearby.edges_near((low, high), slack, |e| {
             near = true;
-            // (In the image (0, 0) the parent's frame points are these, made once.)
-            let (r, s) = if lo.image == [0, 0] {
-                (frame[e].at, frame[next(e, m)].at)
-            } else {
-                (f.unfixed(parent[e], lo), f.unfixed(parent[next(e, m)], lo))
-            };
+            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[next(e, m)], lo));
             blocked = line.windows(2).any(|w| cross(w[0], w[1], r, s));
             blocked
         });
