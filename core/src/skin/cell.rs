@@ -384,6 +384,12 @@ impl<'p> Nearby<'p> {
         Nearby { parent, region: [low[0], low[1], high[0], high[1]], listed: fits.then(|| &space[..count]) }
     }
 
+    /// Whether no parent edge comes near the bisector edge: then every test within the
+    /// region finds none, the edge crosses no parent edge and stays inside the parent.
+    fn is_empty(&self) -> bool {
+        self.listed.is_some_and(|listed| listed.is_empty())
+    }
+
     /// [`edges_near`] over the parent.
     fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, mut visit: impl FnMut(usize) -> bool) {
         let outline = self.parent.outline;
@@ -595,7 +601,9 @@ impl Builder<'_> {
             pieces[0] = start;
             let (count, nearby) = if f.level > 0 {
                 let nearby = Nearby::list(f, near, (&start, &end), listed);
-                (crossings(f, a, b, (&start, &end), &nearby, pieces), nearby)
+                // (No parent edge near: nothing to cross.)
+                let count = if nearby.is_empty() { 0 } else { crossings(f, a, b, (&start, &end), &nearby, pieces) };
+                (count, nearby)
             } else {
                 (0, Nearby { parent: near, region: [0; 4], listed: None })
             };
@@ -881,7 +889,7 @@ fn perturb(
     // and (near it) keep every point inside. The parent is the same for both cells that
     // share the edge, so they judge alike. (Level 0's "parent" is the surface or a box of
     // the cell's own; its edges may leave it.)
-    if f.level > 0 && !blocked {
+    if f.level > 0 && !blocked && !nearby.is_empty() {
         let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for q in line {
             low = [low[0].min(q[0]), low[1].min(q[1])];
