@@ -361,25 +361,18 @@ pub fn pseudo_angle(d: [f32; 2]) -> f32 {
 }
 
 /// `libm::round(x) as i64` (nearest integer, halves away from zero; saturating, NaN → 0),
-/// without libm's bit-level software rounding, as the truncation of x ± ½ (one addition and
-/// one conversion on the way from x).
-///
-/// Below 2^52 in magnitude that sum is exact, or else rounded within the same integer
-/// interval, except for the largest `f64` below ½ (x + ½ = 1 − 2^−54, a tie, goes to 1):
-/// where the sum stays within x's binade, x and ½ are both multiples of x's unit in the last
-/// place, and so is their sum; where it reaches the next binade, it lies just at or above a
-/// power of two, which no rounding crosses; below ½ only the sum 1 − 2^−54 rounds to an
-/// integer. From 2^52 on every `f64` is already an integer.
+/// without libm's bit-level software rounding: below 2^52 in magnitude the truncation and the
+/// remainder `x − trunc(x)` are exact, so comparing the remainder with ±0.5 decides alike;
+/// from 2^52 on every `f64` is already an integer.
 #[inline]
 pub fn round_to_i64(x: f64) -> i64 {
-    /// The largest `f64` below ½.
-    const BELOW_HALF: f64 = 0.499_999_999_999_999_94;
+    let t = x as i64;
     // Also NaN, which `as` maps to 0.
     if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
-        return x as i64;
+        return t;
     }
-    let t = (x + 0.5f64.copysign(x)) as i64;
-    if x.abs() == BELOW_HALF { 0 } else { t }
+    let rest = x - t as f64;
+    t + i64::from(rest >= 0.5) - i64::from(rest <= -0.5)
 }
 
 #[cfg(test)]
