@@ -49,7 +49,7 @@ pub use surface::SkinLayers;
 
 use cell::{Builder, Frame, Parent};
 use grid::EdgeGrid;
-use profile::ProfileTable;
+use profile::{ProfileTable, Sampling};
 use shared::SharedEdges;
 use sites::Lattice;
 
@@ -439,11 +439,19 @@ impl<'a> Skin<'a> {
         }
         let (cell_count, vertex_count) = (build.cell_count, build.vertex_count);
         let (cells, vertices) = (build.cells, build.vertices);
-        // One table per level in use (the rest repeat the last; they are never read).
-        let mut tables = [ProfileTable::new(&params.level[0].profile); MAX_LEVELS];
-        for l in 1..MAX_LEVELS {
-            tables[l] =
-                if l < params.levels as usize { ProfileTable::new(&params.level[l].profile) } else { tables[l - 1] };
+        // One table per level in use (the rest repeat the last; they are never read), each
+        // level sampled where the level before was when their profiles share the sampling.
+        let profile = |l: usize| &params.level[l].profile;
+        let mut sampling = Sampling::of(profile(0));
+        let mut tables = [ProfileTable::sampled(profile(0), &sampling); MAX_LEVELS];
+        for l in 1..params.levels as usize {
+            if !Sampling::shared(profile(l - 1), profile(l)) {
+                sampling = Sampling::of(profile(l));
+            }
+            tables[l] = ProfileTable::sampled(profile(l), &sampling);
+        }
+        for l in params.levels as usize..MAX_LEVELS {
+            tables[l] = tables[l - 1];
         }
         Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
     }

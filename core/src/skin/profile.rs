@@ -30,12 +30,19 @@ fn bezier_derivative(p: [f64; 4], t: f64) -> f64 {
     3.0 * s * s * (p[1] - p[0]) + 6.0 * s * t * (p[2] - p[1]) + 3.0 * t * t * (p[3] - p[2])
 }
 
-impl ProfileTable {
-    /// Samples `profile` (validated: x' starts at 0 and never decreases).
-    pub(super) fn new(profile: &Profile) -> ProfileTable {
+/// Where each table sample lies on a profile's curve: its segment and its Bézier parameter t.
+/// Found from the control points' x' alone, so profiles that differ only in height (as a
+/// hierarchy's levels often do) share it.
+pub(super) struct Sampling {
+    segment: [usize; SAMPLES + 1],
+    t: [f64; SAMPLES + 1],
+}
+
+impl Sampling {
+    /// The sampling of `profile` (validated: x' starts at 0 and never decreases).
+    pub(super) fn of(profile: &Profile) -> Sampling {
         let points = profile.used();
         let end = points[points.len() - 1][0];
-        let (mut height, mut slope) = ([0.0f32; SAMPLES + 1], [0.0f32; SAMPLES + 1]);
         let segments = points.len() / 3;
         // Each sample's x and segment (the last one that starts at or before it).
         let mut x = [0.0f64; SAMPLES + 1];
@@ -48,15 +55,12 @@ impl ProfileTable {
             }
             segment[k] = s;
         }
-        let controls = |k: usize, axis: usize| {
-            let c = &points[3 * segment[k]..3 * segment[k] + 4];
-            [c[0][axis], c[1][axis], c[2][axis], c[3][axis]].map(f64::from)
-        };
         // x'(t) is monotone (control x' never decrease): bisection finds t, every sample's
         // step in turn (so that the processor overlaps them).
         let (mut lo, mut hi) = ([0.0f64; SAMPLES + 1], [1.0f64; SAMPLES + 1]);
         // The control x' by point, a plain array each (so that the steps go several at once).
-        let c: [[f64; SAMPLES + 1]; 4] = core::array::from_fn(|i| core::array::from_fn(|k| controls(k, 0)[i]));
+        let c: [[f64; SAMPLES + 1]; 4] =
+            core::array::from_fn(|i| core::array::from_fn(|k| controls(points, segment[k], 0)[i]));
         for _ in 0..48 {
             let bounds = lo.iter_mut().zip(hi.iter_mut());
             let curve = c[0].iter().zip(&c[1]).zip(c[2].iter().zip(&c[3])).zip(&x);
@@ -67,10 +71,39 @@ impl ProfileTable {
                 *hi = if below { *hi } else { mid };
             }
         }
+        Sampling { segment, t: core::array::from_fn(|k| 0.5 * (lo[k] + hi[k])) }
+    }
+
+    /// Whether `a` and `b` have the same sampling: the same segments and control x'.
+    pub(super) fn shared(a: &Profile, b: &Profile) -> bool {
+        let (p, q) = (a.used(), b.used());
+        p.len() == q.len() && p.iter().zip(q).all(|(p, q)| p[0].to_bits() == q[0].to_bits())
+    }
+}
+
+/// The coordinates `axis` (0 for x', 1 for z') of segment `s`'s four control points.
+fn controls(points: &[[f32; 2]], s: usize, axis: usize) -> [f64; 4] {
+    let c = &points[3 * s..3 * s + 4];
+    [c[0][axis], c[1][axis], c[2][axis], c[3][axis]].map(f64::from)
+}
+
+impl ProfileTable {
+    /// Samples `profile` (validated: x' starts at 0 and never decreases).
+    #[cfg(test)]
+    pub(super) fn new(profile: &Profile) -> ProfileTable {
+        ProfileTable::sampled(profile, &Sampling::of(profile))
+    }
+
+    /// Samples `profile` where `sampling` (its own, or one it [shares](Sampling::shared))
+    /// places the samples.
+    pub(super) fn sampled(profile: &Profile, sampling: &Sampling) -> ProfileTable {
+        let points = profile.used();
+        let end = points[points.len() - 1][0];
+        let (mut height, mut slope) = ([0.0f32; SAMPLES + 1], [0.0f32; SAMPLES + 1]);
         for k in 0..=SAMPLES {
-            let t = 0.5 * (lo[k] + hi[k]);
-            let pz = controls(k, 1);
-            let dx = bezier_derivative(controls(k, 0), t);
+            let (s, t) = (sampling.segment[k], sampling.t[k]);
+            let pz = controls(points, s, 1);
+            let dx = bezier_derivative(controls(points, s, 0), t);
             let dz = bezier_derivative(pz, t);
             height[k] = bezier(pz, t) as f32;
             // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
@@ -150,6 +183,24 @@ mod tests {
         let t = ProfileTable::new(&PROFILE_13B);
         assert!((t.at(0.0).0 - 3.0).abs() < 1e-5 && t.at(3.0).1.abs() < 1e-4);
         assert!(t.at(10.0).0.abs() < 1e-5 && t.at(9.8).1 < -2.0);
+    }
+
+    #[test]
+    fn profiles_with_the_same_abscissae_share_a_sampling() {
+        // Fig. 19's levels differ only in height: each one's table from the first's sampling
+        // is its table from its own.
+        let fig19 = crate::skin::preset("fig19a").expect("a preset");
+        let levels = fig19.level.map(|l| l.profile);
+        let first = Sampling::of(&levels[0]);
+        for profile in &levels[..fig19.levels as usize] {
+            assert!(Sampling::shared(&levels[0], profile));
+            assert_eq!(ProfileTable::sampled(profile, &first), ProfileTable::new(profile));
+        }
+        // Moving one control point along x' (or adding a segment) gives another sampling.
+        let mut moved = levels[1];
+        moved.points[2][0] = 8.0;
+        assert!(!Sampling::shared(&levels[1], &moved));
+        assert_ne!(ProfileTable::sampled(&moved, &first), ProfileTable::new(&moved));
     }
 
     #[test]
