@@ -444,14 +444,15 @@ impl<'a> Skin<'a> {
         let profile = |l: usize| &params.level[l].profile;
         let mut sampling = Sampling::of(profile(0));
         let mut tables = [ProfileTable::sampled(profile(0), &sampling); MAX_LEVELS];
-        for l in 1..params.levels as usize {
-            if !Sampling::shared(profile(l - 1), profile(l)) {
-                sampling = Sampling::of(profile(l));
-            }
-            tables[l] = ProfileTable::sampled(profile(l), &sampling);
-        }
-        for l in params.levels as usize..MAX_LEVELS {
-            tables[l] = tables[l - 1];
+        for l in 1..MAX_LEVELS {
+            tables[l] = if l < params.levels as usize {
+                if !Sampling::shared(profile(l - 1), profile(l)) {
+                    sampling = Sampling::of(profile(l));
+                }
+                ProfileTable::sampled(profile(l), &sampling)
+            } else {
+                tables[l - 1]
+            };
         }
         Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
     }
