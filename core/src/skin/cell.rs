@@ -290,11 +290,6 @@ pub(super) fn parent_vertex(f: &Frame, outline: &[[i64; 2]], k: usize) -> ClipVe
     ClipVertex { at: f.in_frame(outline[k]), label: PARENT_EDGE | k as u32 }
 }
 
-/// Reads clip vertices from a slice (one reader type for every slice, so one clipping loop).
-fn reader(vertices: &[ClipVertex]) -> impl Fn(usize) -> ClipVertex + '_ {
-    move |k| vertices[k]
-}
-
 /// Fills `chunks` with the boxes of `outline`'s edges taken `CHUNK` at a time; returns how
 /// many.
 pub(super) fn chunk_boxes(outline: &[[i64; 2]], chunks: &mut [[i64; 4]]) -> usize {
@@ -488,9 +483,9 @@ impl Builder<'_> {
                 break;
             }
             let clipped = if fresh {
-                clip_by_bisector(reader(parent.frame), n, (site, b, j as u32), self.clip)?
+                clip_by_bisector(&parent.frame[..n], (site, b, j as u32), self.clip)?
             } else {
-                let clipped = clip_by_bisector(reader(self.clip), n, (site, b, j as u32), self.spare)?;
+                let clipped = clip_by_bisector(&self.clip[..n], (site, b, j as u32), self.spare)?;
                 if clipped.is_some() {
                     core::mem::swap(&mut self.clip, &mut self.spare);
                 }
@@ -640,69 +635,91 @@ impl Builder<'_> {
     }
 }
 
-/// Keeps the part of the outline (`n` vertices, `vertex(k)`) nearer `a` than `b` (neighbour
-/// `j`), into `out`; returns the new vertex count and the largest squared distance of a
-/// kept vertex from `a`, or None (writing nothing) if the whole outline is already nearer
-/// `a`.
+/// Keeps the part of the outline `vertices` nearer `a` than `b` (neighbour `j`), into `out`;
+/// returns the new vertex count and the largest squared distance of a kept vertex from `a`,
+/// or None (writing nothing) if the whole outline is already nearer `a`.
+///
+/// The outline is one pass of Sutherland–Hodgman: each vertex on `a`'s side in turn, and
+/// where an edge crosses the bisector, the crossing. Which vertices lie beyond is marked a
+/// bit each first; then the runs between changes of side are copied whole and the crossings
+/// made where they change.
 fn clip_by_bisector(
-    vertex: impl Fn(usize) -> ClipVertex,
-    n: usize,
+    vertices: &[ClipVertex],
     (a, b, j): (&Site, &Site, u32),
     out: &mut [ClipVertex],
 ) -> Result<Option<(usize, f64)>, OutlineFull> {
+    let n = vertices.len();
     let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
     let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
     let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
-    let Some(first_out) = (0..n).position(|k| side(vertex(k).at) > 0.0) else {
-        return Ok(None);
-    };
-    // The vertices before the one before the first outside are kept as they are.
-    let unchanged = first_out.saturating_sub(1);
-    if unchanged > out.len() {
-        return Err(OutlineFull);
-    }
-    let reach = |v: &ClipVertex| {
-        let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
+    let reach = |p: [f64; 2]| {
+        let r = [p[0] - a.at[0], p[1] - a.at[1]];
         r[0] * r[0] + r[1] * r[1]
     };
-    let mut farthest = 0.0f64;
-    for (k, o) in out[..unchanged].iter_mut().enumerate() {
-        *o = vertex(k);
-        let r2 = reach(o);
-        if r2 > farthest {
-            farthest = r2;
+    // Bit k of `beyond` for vertex k (an outline has at most MAX_OUTLINE: the clip buffers'
+    // length), and the farthest of the vertices kept.
+    debug_assert!(n <= MAX_OUTLINE);
+    let mut beyond = [0u64; MAX_OUTLINE / 64];
+    let (mut any, mut farthest) = (0u64, 0.0f64);
+    for (word, chunk) in beyond.iter_mut().zip(vertices.chunks(64)) {
+        for (i, v) in chunk.iter().enumerate() {
+            let out = side(v.at) > 0.0;
+            *word |= u64::from(out) << i;
+            // (Zero beyond, by a product: which vertices are beyond follows no pattern a
+            // processor could learn, and a choice here would be compiled to a branch.)
+            let r2 = reach(v.at) * f64::from(u8::from(!out));
+            farthest = if r2 > farthest { r2 } else { farthest };
         }
+        any |= *word;
     }
-    let mut written = unchanged;
-    let mut sn = side(vertex(unchanged).at);
-    for k in unchanged..n {
-        let (cur, following) = (vertex(k), vertex(next(k, n)));
-        let sc = sn;
-        sn = side(following.at);
-        let (cin, nin) = (sc <= 0.0, sn <= 0.0);
-        let extra = usize::from(cin) + usize::from(cin != nin);
-        if written + extra > out.len() {
-            return Err(OutlineFull);
-        }
-        let mut keep = |v: ClipVertex| {
-            let r2 = reach(&v);
-            if r2 > farthest {
-                farthest = r2;
+    if any == 0 {
+        return Ok(None);
+    }
+    let is_beyond = |k: usize| beyond[k / 64] >> (k % 64) & 1 == 1;
+    let mut written = 0;
+    let mut k = 0;
+    while k < n {
+        // The run of vertices k..end on one side.
+        let inside = !is_beyond(k);
+        let end = first_from(&beyond, k, n, inside);
+        if inside {
+            // (A plain loop: runs are short, and a call to copy them would cost more.)
+            let run = out.get_mut(written..written + (end - k)).ok_or(OutlineFull)?;
+            for (o, v) in run.iter_mut().zip(&vertices[k..end]) {
+                *o = *v;
             }
-            out[written] = v;
-            written += 1;
-        };
-        if cin {
-            keep(cur);
+            written += end - k;
         }
-        if cin != nin {
+        // Where the edge from its last vertex leaves it (to vertex 0 when it ends the outline).
+        let (cur, following) = (vertices[end - 1], vertices[if end == n { 0 } else { end }]);
+        if end < n || is_beyond(0) == inside {
+            let (sc, sn) = (side(cur.at), side(following.at));
             let t = sc / (sc - sn);
             let at = [cur.at[0] + t * (following.at[0] - cur.at[0]), cur.at[1] + t * (following.at[1] - cur.at[1])];
-            let label = if cin { j } else { cur.label };
-            keep(ClipVertex { at, label });
+            let label = if inside { j } else { cur.label };
+            *out.get_mut(written).ok_or(OutlineFull)? = ClipVertex { at, label };
+            written += 1;
+            let r2 = reach(at);
+            farthest = if r2 > farthest { r2 } else { farthest };
         }
+        k = end;
     }
     Ok(Some((written, farthest)))
+}
+
+/// The first k in `from..n` whose bit in `bits` is `set`, or n.
+fn first_from(bits: &[u64], from: usize, n: usize, set: bool) -> usize {
+    let flip = if set { 0 } else { u64::MAX };
+    let mut w = from / 64;
+    let mut word = (bits[w] ^ flip) >> (from % 64) << (from % 64);
+    while word == 0 {
+        w += 1;
+        if w * 64 >= n {
+            return n;
+        }
+        word = bits[w] ^ flip;
+    }
+    (w * 64 + word.trailing_zeros() as usize).min(n)
 }
 
 /// The key both cells give the bisector edge of `a` and `b` from `start` to `end` (as `a`
@@ -981,6 +998,64 @@ mod tests {
             }
             assert!(met > 300 && inside > 50, "{met} boxes met edges, {inside} points inside");
         }
+    }
+
+    #[test]
+    fn clipping_is_one_sutherland_hodgman_pass() {
+        // Star-shaped outlines of every length around the 64-vertex words of the marks
+        // (their runs wrap around and cross words), cut by bisectors in every direction.
+        let mut rng = Rng::from_key(7, 8);
+        let site = |at: [f64; 2], id: u32| Site { at, base: at, id, image: [0, 0] };
+        let (mut out, mut expected) = ([ClipVertex::default(); MAX_OUTLINE], [ClipVertex::default(); 400]);
+        let mut cut = 0;
+        for case in 0..600 {
+            let n = [3, 5, 63, 64, 65, 127, 129, 200][case % 8];
+            let vertices: [ClipVertex; 200] = core::array::from_fn(|k| {
+                let angle = k as f64 / n as f64 * core::f64::consts::TAU;
+                let r = 2.0 + 8.0 * rng.uniform_f64();
+                ClipVertex { at: [r * libm::cos(angle), r * libm::sin(angle)], label: PARENT_EDGE | k as u32 }
+            });
+            let vertices = &vertices[..n];
+            let a = site([rng.uniform_f64() - 0.5, rng.uniform_f64() - 0.5], 1);
+            let b = site([16.0 * rng.uniform_f64() - 8.0, 16.0 * rng.uniform_f64() - 8.0], 2);
+            // The pass vertex by vertex.
+            let side = |p: [f64; 2]| {
+                (p[0] - 0.5 * (a.at[0] + b.at[0])) * (b.at[0] - a.at[0])
+                    + (p[1] - 0.5 * (a.at[1] + b.at[1])) * (b.at[1] - a.at[1])
+            };
+            let (mut m, mut farthest) = (0, 0.0f64);
+            for k in 0..n {
+                let (cur, following) = (vertices[k], vertices[(k + 1) % n]);
+                let (sc, sn) = (side(cur.at), side(following.at));
+                let mut keep = |v: ClipVertex| {
+                    let r = [v.at[0] - a.at[0], v.at[1] - a.at[1]];
+                    farthest = farthest.max(r[0] * r[0] + r[1] * r[1]);
+                    expected[m] = v;
+                    m += 1;
+                };
+                if sc <= 0.0 {
+                    keep(cur);
+                }
+                if (sc <= 0.0) != (sn <= 0.0) {
+                    let t = sc / (sc - sn);
+                    let at = [0, 1].map(|i| cur.at[i] + t * (following.at[i] - cur.at[i]));
+                    keep(ClipVertex { at, label: if sc <= 0.0 { 3 } else { cur.label } });
+                }
+            }
+            match clip_by_bisector(vertices, (&a, &b, 3), &mut out) {
+                Ok(None) => assert_eq!(&expected[..m], vertices, "case {case}: nothing beyond"),
+                Ok(Some((count, reach))) => {
+                    assert_eq!((&out[..count], reach), (&expected[..m], farthest), "case {case}");
+                    cut += 1;
+                }
+                Err(OutlineFull) => panic!("case {case}: full"),
+            }
+            // Too little room for the outline kept: full.
+            if m > 1 && m < n {
+                assert_eq!(clip_by_bisector(vertices, (&a, &b, 3), &mut out[..m - 1]), Err(OutlineFull));
+            }
+        }
+        assert!(cut > 300, "{cut} of 600 cut");
     }
 
     #[test]
