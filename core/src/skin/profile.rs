@@ -201,6 +201,12 @@ mod tests {
         moved.points[2][0] = 8.0;
         assert!(!Sampling::shared(&levels[1], &moved));
         assert_ne!(ProfileTable::sampled(&moved, &first), ProfileTable::new(&moved));
+        // (A second segment after the same first one: the x' agree as far as both go.)
+        let two = Profile::two(
+            [[0.0, 2.0], [5.0, 2.0], [9.0, 1.5], [10.0, 0.5]],
+            [[10.0, 0.5], [11.0, 0.3], [12.0, 0.1], [13.0, 0.0]],
+        );
+        assert!(!Sampling::shared(&levels[1], &two));
     }
 
     #[test]
