@@ -23,9 +23,7 @@ fn run(size: u32, solver: Solver) -> Run {
     let mut mud = Mud::new(&params, &mut scalars, &mut words).expect("memory suffices");
     let progress = mud.run();
     let seconds = start.elapsed().as_secs_f64();
-    let pixels = mud.statistics_pixels();
-    let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
-    let stats = mud.statistics(&mut mask, &mut labels).expect("scratch suffices");
+    let stats = mud.statistics();
     Run { seconds, work: progress.work, stats }
 }
 

@@ -560,7 +560,7 @@ typedef struct hibi_mud_segment {
 } hibi_mud_segment;
 
 /**
- * Crack statistics: density and the cells the drawn crack network encloses.
+ * Crack statistics of the traced network: density and the cells it encloses.
  */
 typedef struct hibi_mud_statistics {
   /**
@@ -568,7 +568,7 @@ typedef struct hibi_mud_statistics {
    */
   float crack_density;
   /**
-   * Cells enclosed by the drawn crack network.
+   * Cells the network's separating cracks enclose.
    */
   uint32_t cells;
   /**
@@ -1418,8 +1418,8 @@ hibi_status hibi_mud_segments(const struct hibi_mud *mud,
                               size_t *written);
 
 /**
- * Crack density and the cells the drawn crack network encloses (the statistics the tests
- * compare solvers and meshes by).
+ * Crack density and the cells of the traced crack network (the statistics the tests compare
+ * solvers and meshes by), measured on the network itself, not on a drawing.
  *
  * # Safety
  * `mud` must be NULL or a live run; `out` NULL or writable.

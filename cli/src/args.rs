@@ -250,9 +250,8 @@ pub struct MudOptions {
     /// Crack widths are multiplied by this before drawing [default: 1].
     #[arg(long, value_name = "SCALE", help_heading = "Model A drawing (MudRender)")]
     pub width_scale: Option<f32>,
-    /// The narrowest crack stroke [px] [default: 0.6 lattice spacing, at least 1 px: the
-    /// width the crack statistics are measured at, which joins the dashes a straight crack
-    /// breaks into on the lattice].
+    /// The narrowest crack stroke [px] [default: 0.2 lattice spacing, at least 1 px, so that
+    /// the youngest cracks stay visible; the statistics do not depend on it].
     #[arg(long, value_name = "PX", help_heading = "Model A drawing (MudRender)")]
     pub min_width: Option<f32>,
     /// Depth of the widest groove in the height map [default: 1].

@@ -1,6 +1,5 @@
 //! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
 
-use hibi_core::mud::regions::CELL_STROKE_WIDTH;
 use hibi_core::mud::{Boundary, CrackStatistics, Drive, Mud, MudParamError, MudParams, MudRender, Solver, Topology};
 
 use crate::Failure;
@@ -78,13 +77,16 @@ pub fn view(params: &MudParams, size: Option<[u32; 2]>, o: &MudOptions) -> MudRe
     }
 }
 
-/// The narrowest stroke by default: the width the core measures cells on
-/// ([`CELL_STROKE_WIDTH`] spacings, enough to join the dashes a straight crack breaks into),
-/// at least one pixel, for a raster `width` pixels wide; rounded to 1/100 px.
+/// The narrowest stroke by default: [`HAIRLINE`] spacings, at least one pixel, for a raster
+/// `width` pixels wide; rounded to 1/100 px. The traced network is connected, so the stroke
+/// only has to keep the youngest cracks visible.
 pub fn drawn_width(params: &MudParams, width: u32) -> f32 {
     let pixels_per_spacing = width as f32 / params.lattice().extent()[0];
-    ((CELL_STROKE_WIDTH * pixels_per_spacing).max(1.0) * 100.0).round() / 100.0
+    ((HAIRLINE * pixels_per_spacing).max(1.0) * 100.0).round() / 100.0
 }
+
+/// The narrowest crack drawn by default, in lattice spacings.
+const HAIRLINE: f32 = 0.2;
 
 /// A raster `width` pixels wide at the aspect of the lattice's domain.
 pub fn default_size(params: &MudParams, width: u32) -> [u32; 2] {
@@ -197,9 +199,7 @@ pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) ->
             maps
         })
         .collect();
-    let cells = mud.statistics_pixels();
-    let (mut mask, mut labels) = (vec![0u8; cells], vec![0u32; cells]);
-    let statistics = mud.statistics(&mut mask, &mut labels).expect("scratch of the size asked for");
+    let statistics = mud.statistics();
     MudRun { maps, statistics, shrink: mud.progress().shrink }
 }
 

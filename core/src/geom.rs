@@ -375,6 +375,17 @@ pub fn round_to_i64(x: f64) -> i64 {
     t + i64::from(rest >= 0.5) - i64::from(rest <= -0.5)
 }
 
+/// Whether a ray from `p` towards +x crosses the edge a–b (half-open in y, so a ray through a
+/// vertex counts once). An odd number of crossings puts `p` inside.
+pub fn crosses_ray(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> bool {
+    if (a[1] > p[1]) == (b[1] > p[1]) {
+        return false;
+    }
+    let (ax, ay, bx, by) = (f64::from(a[0]), f64::from(a[1]), f64::from(b[0]), f64::from(b[1]));
+    let x = ax + (f64::from(p[1]) - ay) * (bx - ax) / (by - ay);
+    f64::from(p[0]) < x
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -158,13 +158,13 @@ pub struct hibi_mud_segment {
     pub time: [f32; 2],
 }
 
-/// Crack statistics: density and the cells the drawn crack network encloses.
+/// Crack statistics of the traced network: density and the cells it encloses.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct hibi_mud_statistics {
     /// Crack length per area [1/cm].
     pub crack_density: f32,
-    /// Cells enclosed by the drawn crack network.
+    /// Cells the network's separating cracks enclose.
     pub cells: u32,
     /// Mean cell area [cm²].
     pub mean_cell_area: f32,
@@ -528,8 +528,8 @@ pub unsafe extern "C" fn hibi_mud_segments(
     })
 }
 
-/// Crack density and the cells the drawn crack network encloses (the statistics the tests
-/// compare solvers and meshes by).
+/// Crack density and the cells of the traced crack network (the statistics the tests compare
+/// solvers and meshes by), measured on the network itself, not on a drawing.
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `out` NULL or writable.
@@ -539,9 +539,7 @@ pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_m
         // SAFETY: the caller's contract.
         let mud = unsafe { object(mud.cast_mut()) }?;
         check_pointer(out)?;
-        let pixels = mud.mud.statistics_pixels();
-        let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
-        let s = mud.mud.statistics(&mut mask, &mut labels).map_err(|_| HIBI_ERROR_BUFFER_TOO_SMALL)?;
+        let s = mud.mud.statistics();
         let value =
             hibi_mud_statistics { crack_density: s.crack_density, cells: s.cells, mean_cell_area: s.mean_cell_area };
         // SAFETY: checked; the caller's contract.

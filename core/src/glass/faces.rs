@@ -10,7 +10,7 @@
 
 use super::grid::NONE;
 use super::{CrackEnd, Edge, Glass, Vertex};
-use crate::geom::pseudo_angle;
+use crate::geom::{crosses_ray, pseudo_angle};
 
 impl Edge {
     /// A segment of crack `crack` from vertex `from` to `to`, not yet chained or linked.
@@ -89,17 +89,6 @@ pub(super) struct FaceShape {
 /// Twice the signed area of the triangle (0, a, b): one shoelace term.
 pub(super) fn shoelace(a: [f32; 2], b: [f32; 2]) -> f64 {
     f64::from(a[0]) * f64::from(b[1]) - f64::from(b[0]) * f64::from(a[1])
-}
-
-/// Whether a ray from `p` towards +x crosses the edge a–b (half-open in y, so a ray through a
-/// vertex counts once). An odd number of crossings puts `p` inside.
-pub(super) fn crosses_ray(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> bool {
-    if (a[1] > p[1]) == (b[1] > p[1]) {
-        return false;
-    }
-    let (ax, ay, bx, by) = (f64::from(a[0]), f64::from(a[1]), f64::from(b[0]), f64::from(b[1]));
-    let x = ax + (f64::from(p[1]) - ay) * (bx - ax) / (by - ay);
-    f64::from(p[0]) < x
 }
 
 /// The shape of the face left of `start` (None if the walk is broken).

@@ -9,9 +9,10 @@
 //! signed areas add up to the plate's area, and each point of the plate lies in exactly one
 //! fragment.
 
-use super::faces::{CrackGraph, HalfEdge, PlaneGraph, crosses_ray, shoelace, walk_face};
+use super::faces::{CrackGraph, HalfEdge, PlaneGraph, shoelace, walk_face};
 use super::grid::NONE;
 use super::{Glass, GlassError, take};
+use crate::geom::crosses_ray;
 use crate::geom::pseudo_angle;
 
 /// One ring of a fragment's outline, in [`Glass::fragments`]' point buffer.

@@ -216,6 +216,42 @@ impl Lattice {
         }
     }
 
+    /// Number of mesh cells (squares, or two triangles per node), including those whose
+    /// sides are missing at an open edge (for which [`Lattice::cell`] is `None`).
+    pub const fn cell_count(&self) -> usize {
+        self.node_count() * self.cells_per_node()
+    }
+
+    /// Sides per mesh cell: 4 (square) or 3 (triangle).
+    pub const fn sides_per_cell(&self) -> usize {
+        match self.topology {
+            Topology::Square => 4,
+            Topology::Hexagonal => 3,
+        }
+    }
+
+    /// The mesh cells on either side of `spring`, each with the index of the side the spring
+    /// is in it: the cell to the spring's left (walking from its origin to the node it
+    /// reaches) first, then the one to its right. A cell is `None` where it does not exist
+    /// (an open edge).
+    pub fn cells_of_spring(&self, spring: usize) -> [Option<(usize, usize)>; 2] {
+        let (node, d) = self.spring_origin(spring);
+        let exists = |cell: Option<usize>, side: usize| cell.filter(|&c| self.cell(c).is_some()).map(|c| (c, side));
+        match (self.topology, d) {
+            // Square cell b has sides [b→right, right→up-right, up→up-right, b→up], the last
+            // two running clockwise; the side index says which.
+            (Topology::Square, 0) => [exists(Some(node), 0), exists(self.back_neighbour(node, 1), 2)],
+            (Topology::Square, _) => [exists(self.back_neighbour(node, 0), 1), exists(Some(node), 3)],
+            (Topology::Hexagonal, 0) => {
+                [exists(Some(2 * node), 0), exists(self.back_neighbour(node, 2).map(|b| 2 * b + 1), 1)]
+            }
+            (Topology::Hexagonal, 1) => [exists(Some(2 * node + 1), 0), exists(Some(2 * node), 2)],
+            (Topology::Hexagonal, _) => {
+                [exists(self.back_neighbour(node, 0).map(|b| 2 * b), 1), exists(Some(2 * node + 1), 2)]
+            }
+        }
+    }
+
     /// Mesh cell `cell` (`node·cells_per_node + k`), if all its sides exist.
     pub fn cell(&self, cell: usize) -> Option<Cell> {
         let per = self.cells_per_node();
@@ -386,6 +422,39 @@ mod tests {
             assert!((area - w * h).abs() < 1e-3, "{topology:?}: {area} vs {}", w * h);
             // Every spring separates exactly two cells.
             assert!(side_uses[..l.spring_count()].iter().all(|&n| n == 2), "{topology:?}");
+        }
+    }
+
+    #[test]
+    fn cells_of_a_spring_are_the_cells_it_is_a_side_of() {
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            for boundary in [Boundary::Open, Boundary::Periodic] {
+                let l = lattice(topology, boundary, 5, 6);
+                let mut found = [0u32; 90];
+                for (spring, found) in found.iter_mut().enumerate().take(l.spring_count()) {
+                    let (origin, d) = l.spring_origin(spring);
+                    for (k, found_cell) in l.cells_of_spring(spring).into_iter().enumerate() {
+                        let Some((cell, side)) = found_cell else { continue };
+                        let c = l.cell(cell).unwrap();
+                        assert_eq!(c.sides[side] as usize, spring, "{topology:?} {spring}");
+                        *found += 1;
+                        // The first cell lies to the spring's left, the second to its right.
+                        let n = c.corners;
+                        let at = c.reference[side];
+                        let centre = c.reference[..n].iter().fold([0.0; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
+                        let v = l.direction_vector(d);
+                        let towards = [centre[0] / n as f32 - at[0], centre[1] / n as f32 - at[1]];
+                        let left = v[0] * towards[1] - v[1] * towards[0] > 0.0;
+                        assert_eq!(left, k == 0, "{topology:?} {boundary:?} spring {spring} from {origin}");
+                    }
+                }
+                // Each side of each cell is found once, and a periodic spring has two cells.
+                let sides: usize = (0..l.cell_count()).filter(|&c| l.cell(c).is_some()).count() * l.sides_per_cell();
+                assert_eq!(found.iter().sum::<u32>() as usize, sides, "{topology:?} {boundary:?}");
+                if boundary == Boundary::Periodic {
+                    assert!(found[..l.spring_count()].iter().all(|&n| n == 2));
+                }
+            }
         }
     }
 

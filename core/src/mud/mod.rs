@@ -22,24 +22,28 @@
 //! Memory is the caller's: [`MudParams::memory`] tells how many scalars and words a run needs,
 //! [`MudStorage`] holds them in fixed-size arrays for callers without a heap.
 
+pub mod cells;
 mod explicit;
 pub mod lattice;
 pub mod material;
+pub mod network;
 pub mod params;
 pub mod presets;
 mod quasi_static;
-pub mod regions;
 pub mod render;
 pub mod spacing;
+pub mod statistics;
 pub mod trace;
 
+pub use cells::{CellCounts, CellRing};
 pub use lattice::Lattice;
 pub use material::Material;
+pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
-pub use regions::CrackStatistics;
 pub use render::{MudLayer, MudRender};
 pub use spacing::{SpacingPrediction, predict_spacing};
+pub use statistics::CrackStatistics;
 pub use trace::CrackSegment;
 
 use crate::rng::{Rng, Stream};
@@ -72,14 +76,16 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // Per node: displacement (x, y); explicit adds velocity and force (x, y).
     // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
     // solver's break misfit.
-    // Words per spring: the other node and the break time; quasi-static adds a tournament
+    // Words per spring: the other node, the break time and the traced network's cut; per
+    // mesh cell (1 square, 2 triangles per node) one word for tracing. Quasi-static adds a tournament
     // tree over springs (2·P, P the next power of two), a work queue, node flags and a list
     // of relaxed nodes (3 per node).
+    let cells = nodes * (dirs - 1);
     let (scalars, words) = match solver {
-        Solver::Explicit => (6 * nodes + 2 * springs, 2 * springs),
+        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + cells),
         Solver::QuasiStatic => {
             let leaves = if springs <= 1 { 1 } else { 1u128 << (128 - (springs - 1).leading_zeros()) };
-            (2 * nodes + 2 * springs, 2 * springs + 2 * leaves + 3 * nodes)
+            (2 * nodes + 2 * springs, 3 * springs + cells + 2 * leaves + 3 * nodes)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -185,6 +191,15 @@ pub struct Mud<'a, S: Scalar> {
     other: &'a mut [u32],
     /// Per spring: the time it broke (f32 bits, long steps), or INTACT.
     break_time: &'a mut [u32],
+    /// Per spring, the traced network: the time its crack formed (f32 bits, with
+    /// `network::BRANCH` on a branch), or INTACT where it is not cut.
+    trace: &'a mut [u32],
+    /// Per mesh cell: the tracing's stack, then the index of the cell's first network vertex.
+    stack: &'a mut [u32],
+    /// Network vertices of the last trace.
+    vertex_total: u32,
+    /// Springs broken when the network was last traced.
+    traced_broken: u32,
     solver: SolverState<'a, S>,
     /// Long steps taken (explicit) and the misfit now.
     long_steps: u32,
@@ -229,6 +244,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let break_stretch = take(&mut scalars, springs);
         let other = take(&mut words, springs);
         let break_time = take(&mut words, springs);
+        let trace = take(&mut words, springs);
+        let stack = take(&mut words, lattice.cell_count());
+        trace.fill(INTACT);
+        stack.fill(0);
         ux.fill(S::ZERO);
         uy.fill(S::ZERO);
         break_time.fill(INTACT);
@@ -258,6 +277,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
             break_stretch,
             other,
             break_time,
+            trace,
+            stack,
+            vertex_total: 0,
+            traced_broken: 0,
             solver,
             long_steps: 0,
             misfit: S::ZERO,
@@ -284,6 +307,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
             if work >= budget {
                 break;
             }
+        }
+        if self.finished && self.traced_broken != self.broken {
+            self.trace();
         }
         self.work += work;
         self.progress()
@@ -408,7 +434,7 @@ mod tests {
         let p = MudParams { columns: 10, rows: 8, ..MudParams::default() };
         let m = p.memory().unwrap();
         assert_eq!(m.scalars, 80 * 2 + 240 * 2);
-        assert_eq!(m.words, 240 * 2 + 2 * 256 + 240);
+        assert_eq!(m.words, 240 * 3 + 160 + 2 * 256 + 240);
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         assert!(Mud::new(&p, &mut s[..m.scalars - 1], &mut w).is_err());
         assert_eq!(
@@ -423,28 +449,45 @@ mod tests {
     }
 
     #[test]
-    fn cells_are_the_regions_the_drawn_cracks_enclose() {
+    fn cells_are_the_regions_the_cracks_enclose() {
         let p = MudParams { columns: 12, rows: 12, topology: Topology::Square, ..MudParams::default() };
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         let mut mud = Mud::new(&p, &mut s, &mut w).unwrap();
-        let pixels = mud.statistics_pixels();
-        let (mut mask, mut labels) = (vec![0u8; pixels], vec![0u32; pixels]);
-        assert_eq!(mud.statistics(&mut mask, &mut labels).unwrap().cells, 1);
+        mud.trace();
+        // Nothing is cut: one region, which wraps around the torus and has no outline.
+        assert_eq!(mud.statistics().cells, 1);
+        assert_eq!(mud.cell_counts(), CellCounts { rings: 0, points: 0, wrapping: 0 });
         // Cut the periodic square lattice along two columns: springs in direction 0 leaving
-        // columns 2 and 8 in every row. Two bands remain, each half the area.
+        // columns 2 and 8 in every row. Two bands remain, each half the area, each bounded
+        // by two cracks that wrap around the torus.
         for row in 0..12 {
             for column in [2, 8] {
                 mud.break_spring(row * 12 + column);
             }
         }
-        let stats = mud.statistics(&mut mask, &mut labels).unwrap();
-        assert_eq!(stats.cells, 2);
-        assert_eq!(stats.mean_cell_area, 72.0);
-        assert_eq!(
-            mud.statistics(&mut mask[..pixels - 1], &mut labels),
-            Err(MudError::BufferTooSmall { needed: pixels })
-        );
+        mud.trace();
+        let stats = mud.statistics();
+        assert_eq!((stats.cells, stats.mean_cell_area), (2, 72.0));
+        assert_eq!(mud.cell_counts().wrapping, 4);
+        // Cut a row across too: each band becomes a closed 6 × 12 rectangle, a plane
+        // polygon reaching one period past its start.
+        for column in 0..12 {
+            mud.break_spring(144 + 5 * 12 + column);
+        }
+        mud.trace();
+        let counts = mud.cell_counts();
+        assert_eq!((counts.rings, counts.wrapping), (2, 0));
+        let mut rings = vec![CellRing::default(); counts.rings];
+        let mut points = vec![[0.0f32; 2]; counts.points];
+        assert_eq!(mud.cells(&mut rings[..1], &mut points), Err(MudError::BufferTooSmall { needed: 2 }));
+        assert!(rings.iter().all(|r| *r == CellRing::default()), "nothing written on failure");
+        assert_eq!(mud.cells(&mut rings, &mut points), Ok(counts));
+        for ring in &rings {
+            assert!((ring.area - 72.0).abs() < 1e-3, "{ring:?}");
+        }
+        let stats = mud.statistics();
+        assert_eq!((stats.cells, stats.mean_cell_area, stats.cell_area_spread), (2, 72.0, 0.0));
     }
 
     #[test]

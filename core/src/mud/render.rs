@@ -3,7 +3,7 @@
 //! time), and a height map with the cracks as grooves. Periodic lattices give seamless
 //! rasters: strokes wrap around the domain.
 
-use super::{Mud, trace::CrackSegment};
+use super::Mud;
 use crate::raster::{Frame, RasterError, Stroke, StrokeHit, draw_mask, draw_time, for_each_hit, pixel_count};
 use crate::scalar::Scalar;
 
@@ -87,12 +87,12 @@ impl<S: Scalar> Mud<'_, S> {
             ],
             None => render.offset,
         };
-        self.for_each_segment(|s: CrackSegment| {
+        self.for_each_network_piece(|a, b| {
             let stroke = Stroke {
-                start: [s.start[0] - ox, s.start[1] - oy],
-                end: [s.end[0] - ox, s.end[1] - oy],
-                half_width: [half(s.width[0]), half(s.width[1])],
-                value: s.time,
+                start: [a.at[0] - ox, a.at[1] - oy],
+                end: [b.at[0] - ox, b.at[1] - oy],
+                half_width: [half(a.width), half(b.width)],
+                value: [a.time, b.time],
             };
             for_each_hit(&frame, &stroke, &mut visit);
         });

@@ -1,0 +1,312 @@
+//! Cells: the regions the crack network cuts the plate into, as polygons (the faces of the
+//! network, with the plate's border on an open lattice).
+//!
+//! A cell's boundary runs along the separating cracks of the traced network (branches, the
+//! cracks that end inside a region, do not bound it; see [`super::network`]) and, on an open
+//! lattice, along the border. Walking a boundary keeps the cell on the left: an outer ring is
+//! counter-clockwise with y up (positive shoelace area), a hole (an island cut out of a cell)
+//! clockwise. Inside a mesh cell a boundary joins two cut sides' midpoints, or passes through
+//! the centroid where three or more separating cracks meet: each mesh cell's area is split
+//! among its corners' cells, so the rings' signed areas add up to the plate's.
+//!
+//! On a periodic lattice a ring is continuous and may reach past the domain (draw it
+//! wrapped). A region that no crack crosses in one direction wraps around the torus and has
+//! no outline in the plane: it is counted ([`CellCounts::wrapping`]) and not written.
+
+use super::network::TracedCell;
+use super::{Boundary, Mud, MudError};
+use crate::scalar::Scalar;
+
+pub use crate::glass::FragmentRing as CellRing;
+
+/// How many rings and points [`Mud::cells`] writes, and the regions it cannot.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CellCounts {
+    /// Rings: each cell's outer ring, and the holes in cells.
+    pub rings: usize,
+    /// Points of all rings.
+    pub points: usize,
+    /// Boundaries that wrap around a periodic lattice (not written).
+    pub wrapping: usize,
+}
+
+/// Where a boundary walk is.
+#[derive(Clone, Copy)]
+enum At {
+    /// Entered mesh cell `c` through its side `k`.
+    Inside { c: TracedCell, k: usize, wrap: [i32; 2] },
+    /// At corner `i` of mesh cell `c`, on the open border.
+    Border { c: TracedCell, i: usize },
+}
+
+/// How a ring walk ended.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum RingEnd {
+    /// Back at the start, having moved by this many periods.
+    Closed([i32; 2]),
+    /// `visit` asked to stop.
+    Stopped,
+    /// The walk did not come back within its bound (cannot happen on a consistent trace).
+    Broken,
+}
+
+/// The key of the border side `side` of mesh cell `cell`, apart from every [`key`].
+fn border_key(cell: usize, side: usize) -> usize {
+    usize::MAX - key(cell, side)
+}
+
+/// The key of entering mesh cell `cell` by side `side` (or, for a border corner, after all
+/// those): rings are written from their lowest key.
+fn key(cell: usize, side: usize) -> usize {
+    cell * 4 + side
+}
+
+impl<S: Scalar> Mud<'_, S> {
+    /// Walks the ring from `start`, calling `visit(point, key)` with every point and the key
+    /// of each mesh cell it enters (`usize::MAX` for other points); stops if `visit` returns
+    /// false.
+    fn walk_ring(&self, start: At, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
+        let start_key = match start {
+            At::Inside { c, k, .. } => key(c.index, k),
+            At::Border { c, i } => border_key(c.index, i),
+        };
+        let mut at = start;
+        let bound = 8 * self.lattice.cell_count() + 16;
+        for step in 0..bound {
+            let moved = step > 0;
+            at = match at {
+                At::Inside { c, k, wrap } => {
+                    // The first separating side clockwise from k bounds this corner's region.
+                    let n = c.sides();
+                    let j = (1..n).map(|d| (k + n - d) % n).find(|&j| c.separating[j]).unwrap_or(k);
+                    if c.separating_count() >= 3 && !visit(c.centroid(), usize::MAX) {
+                        return RingEnd::Stopped;
+                    }
+                    match self.across(&c, j, wrap) {
+                        Some((next, side, wrap)) => {
+                            if !visit(c.midpoint(j), key(next, side)) {
+                                return RingEnd::Stopped;
+                            }
+                            if key(next, side) == start_key {
+                                return RingEnd::Closed(wrap);
+                            }
+                            let Some(c) = self.traced_cell(next, wrap) else { return RingEnd::Broken };
+                            At::Inside { c, k: side, wrap }
+                        }
+                        None => {
+                            let i = (j + 1) % n;
+                            if !visit(c.midpoint(j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
+                                return RingEnd::Stopped;
+                            }
+                            At::Border { c, i }
+                        }
+                    }
+                }
+                At::Border { c, i } => {
+                    // The side leaving corner i counter-clockwise: on the border, or turn about
+                    // the corner into the next mesh cell.
+                    match self.across(&c, i, [0, 0]) {
+                        Some((next, side, _)) => {
+                            let Some(n) = self.traced_cell(next, [0, 0]) else { return RingEnd::Broken };
+                            At::Border { c: n, i: (side + 1) % n.sides() }
+                        }
+                        None => {
+                            if moved && border_key(c.index, i) == start_key {
+                                return RingEnd::Closed([0, 0]);
+                            }
+                            if c.separating[i] {
+                                if !visit(c.midpoint(i), key(c.index, i)) {
+                                    return RingEnd::Stopped;
+                                }
+                                if key(c.index, i) == start_key {
+                                    return RingEnd::Closed([0, 0]);
+                                }
+                                At::Inside { c, k: i, wrap: [0, 0] }
+                            } else {
+                                let i = (i + 1) % c.sides();
+                                if !visit(c.corner[i], usize::MAX) {
+                                    return RingEnd::Stopped;
+                                }
+                                At::Border { c, i }
+                            }
+                        }
+                    }
+                }
+            };
+        }
+        RingEnd::Broken
+    }
+
+    /// Calls `ring(start)` with the start of every ring that closes in the plane, in a fixed
+    /// order (by the lowest mesh cell and side it enters), and returns the number of rings
+    /// that wrap around a periodic lattice.
+    fn for_each_ring(&self, mut ring: impl FnMut(At)) -> usize {
+        let mut wrapping = 0;
+        let mut border_touched = false;
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            for k in (0..c.sides()).filter(|&k| c.separating[k]) {
+                border_touched |= self.is_border_side(&c, k);
+                let start = At::Inside { c, k, wrap: [0, 0] };
+                let first = key(cell, k);
+                let mut lowest = true;
+                let end = self.walk_ring(start, |_, entered| {
+                    lowest = entered == usize::MAX || entered >= first;
+                    lowest
+                });
+                match end {
+                    RingEnd::Closed([0, 0]) => ring(start),
+                    RingEnd::Closed(_) => wrapping += 1,
+                    RingEnd::Stopped | RingEnd::Broken => {}
+                }
+            }
+        }
+        // An open plate whose border no crack reaches: the border is a ring of its own.
+        if self.params.boundary == Boundary::Open && !border_touched {
+            let first_border = (0..self.lattice.cell_count()).find_map(|cell| {
+                let c = self.traced_cell(cell, [0, 0])?;
+                (0..c.sides()).find(|&k| self.is_border_side(&c, k)).map(|k| At::Border { c, i: k })
+            });
+            if let Some(start) = first_border {
+                ring(start);
+            }
+        }
+        wrapping
+    }
+
+    /// The signed area and point count of the ring from `start` (lattice units²).
+    fn ring_shape(&self, start: At) -> (f64, usize) {
+        let (mut twice, mut count, mut previous) = (0.0f64, 0usize, None::<[f32; 2]>);
+        let mut first = None;
+        self.walk_ring(start, |p, _| {
+            if let Some(q) = previous {
+                twice += f64::from(q[0]) * f64::from(p[1]) - f64::from(p[0]) * f64::from(q[1]);
+            }
+            first.get_or_insert(p);
+            previous = Some(p);
+            count += 1;
+            true
+        });
+        if let (Some(q), Some(p)) = (previous, first) {
+            twice += f64::from(q[0]) * f64::from(p[1]) - f64::from(p[0]) * f64::from(q[1]);
+        }
+        (twice * 0.5, count)
+    }
+
+    /// How many rings and points [`Mud::cells`] writes.
+    pub fn cell_counts(&self) -> CellCounts {
+        let mut counts = CellCounts::default();
+        counts.wrapping = self.for_each_ring(|start| {
+            counts.rings += 1;
+            counts.points += self.ring_shape(start).1;
+        });
+        counts
+    }
+
+    /// Writes the cells of the traced network: one record per ring into `rings` (outer rings
+    /// with positive area, holes with negative area naming the ring of the cell they are in),
+    /// their points (lattice units) into `points`, and returns the counts. Nothing is written
+    /// if a buffer is shorter than [`Mud::cell_counts`] says.
+    pub fn cells(&self, rings: &mut [CellRing], points: &mut [[f32; 2]]) -> Result<CellCounts, MudError> {
+        let counts = self.cell_counts();
+        for (have, needed) in [(rings.len(), counts.rings), (points.len(), counts.points)] {
+            if have < needed {
+                return Err(MudError::BufferTooSmall { needed });
+            }
+        }
+        let (mut r, mut p) = (0, 0);
+        self.for_each_ring(|start| {
+            let first = p;
+            self.walk_ring(start, |q, _| {
+                points[p] = q;
+                p += 1;
+                true
+            });
+            let (area, _) = self.ring_shape(start);
+            rings[r] = CellRing { area, first_point: first as u32, point_count: (p - first) as u32, hole_of: u32::MAX };
+            r += 1;
+        });
+        let rings = &mut rings[..r];
+        let points = &points[..p];
+        for i in 0..r {
+            if rings[i].area < 0.0 {
+                rings[i].hole_of = self.ring_around(rings, points, i);
+            }
+        }
+        Ok(counts)
+    }
+
+    /// The smallest outer ring around hole `hole` (tried at every periodic shift), or
+    /// `u32::MAX`.
+    fn ring_around(&self, rings: &[CellRing], points: &[[f32; 2]], hole: usize) -> u32 {
+        let outline = |ring: &CellRing| &points[ring.first_point as usize..][..ring.point_count as usize];
+        let q = outline(&rings[hole])[0];
+        let (_, deep) = self.factors();
+        let [w, h] = self.lattice.extent().map(|e| e * deep.to_f32());
+        let shifts: &[[f32; 2]] = match self.params.boundary {
+            Boundary::Open => &[[0.0, 0.0]],
+            Boundary::Periodic => &[
+                [0.0, 0.0],
+                [-1.0, -1.0],
+                [0.0, -1.0],
+                [1.0, -1.0],
+                [-1.0, 0.0],
+                [1.0, 0.0],
+                [-1.0, 1.0],
+                [0.0, 1.0],
+                [1.0, 1.0],
+            ],
+        };
+        let mut best = (u32::MAX, f64::INFINITY);
+        for (j, candidate) in rings.iter().enumerate() {
+            if candidate.area <= 0.0 || candidate.area >= best.1 {
+                continue;
+            }
+            let ring = outline(candidate);
+            for s in shifts {
+                let p = [q[0] + s[0] * w, q[1] + s[1] * h];
+                let crossings = ring
+                    .iter()
+                    .zip(ring.iter().cycle().skip(1))
+                    .filter(|(a, b)| crate::geom::crosses_ray(**a, **b, p))
+                    .count();
+                if crossings % 2 == 1 && !ring.contains(&p) {
+                    best = (j as u32, candidate.area);
+                    break;
+                }
+            }
+        }
+        best.0
+    }
+
+    /// Sums over the net areas of the cells that close in the plane (outer ring less its
+    /// holes), and the number of cells, wrapping ones included.
+    pub(super) fn cell_areas(&self) -> (super::statistics::AreaSums, u32) {
+        let (mut count, mut sum, mut sum_squares, mut holes) = (0usize, 0.0f64, 0.0f64, 0.0f64);
+        let mut wrapping_regions = 0;
+        let wrapping = self.for_each_ring(|start| {
+            let (area, _) = self.ring_shape(start);
+            if area > 0.0 {
+                count += 1;
+                sum += area;
+                sum_squares += area * area;
+            } else {
+                holes += area;
+            }
+        });
+        // Holes are rare (an island inside a cell): their cells' areas are corrected by
+        // spreading the holes' area evenly, so only the spread is approximate then.
+        if count > 0 && holes != 0.0 {
+            let per = holes / count as f64;
+            sum_squares += 2.0 * per * sum + count as f64 * per * per;
+            sum += holes;
+        }
+        // A region that wraps is bounded by wrapping boundaries only; with none at all the
+        // whole plate is one region.
+        if wrapping > 0 || count == 0 {
+            wrapping_regions = if wrapping > 0 { (wrapping / 2).max(1) } else { 1 };
+        }
+        let sums = super::statistics::AreaSums { count, sum, sum_squares };
+        (sums, (count + wrapping_regions) as u32)
+    }
+}

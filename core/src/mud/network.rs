@@ -1,0 +1,563 @@
+//! The crack network: one line per physical crack, as a plane graph.
+//!
+//! The paper's Fig. 5 tracing (see [`super::trace`]) draws a straight crack on the lattice as
+//! dashes. A crack perpendicular to one spring family breaks that family only; the springs
+//! that bridge it at 60° are stretched by about half the opening, stay below their break
+//! stretch, and each mesh cell they cross holds one broken side: a dead end. On the default
+//! run the broken springs alone leave every node in one piece and no cell closes.
+//!
+//! The network is traced from the physics instead, by one rule and its consequence:
+//!
+//! 1. **A crack tip continues across a separated side.** A mesh cell with exactly one cut
+//!    side holds a crack tip. Of its intact sides, the one whose nodes have moved apart most,
+//!    relative to what that spring can bridge, is cut too if they have moved apart by more:
+//!    if |x_j − x_i − l·e_ij| > (κ_ij − 1)·l, with l the rest length now and e_ij the spring's
+//!    direction. This is the paper's break rule (Eq. 5, l > κ·l) applied to the separation
+//!    vector rather than to its component along the spring: the material between the two
+//!    nodes has opened by more than it can stretch, though the opening runs across the
+//!    spring. The cell on the other side of a newly cut spring may now hold a tip, and the rule
+//!    repeats until no tip can continue. A continued crack takes the break time of the tip it
+//!    continues.
+//! 2. **Cracks that end inside a region do not cut it.** For the cells (faces), branches are
+//!    pruned: a mesh cell with exactly one separating side has a dead end in it, that side is
+//!    marked a branch, and so on back to the junction. Branches stay in the network; they do
+//!    not bound a cell.
+//!
+//! The network's points are the cut springs' midpoints and the centroids of the mesh cells
+//! where cracks end (one cut side) or meet (three or more); Fig. 5's rule draws the pieces
+//! between them. Its vertices are those centroids, and, on open lattices, the midpoints of
+//! cut springs on the plate's border; its edges are the chains of points between vertices.
+//! The opening (width) at a point is the separation |x_j − x_i − l·e_ij| of its spring.
+
+use super::lattice::Cell;
+use super::{INTACT, Mud};
+use crate::scalar::Scalar;
+
+/// Marks a cut spring on a branch: its crack ends inside a region, so it does not separate
+/// cells (bit 31 of the trace word, whose other bits hold an `f32` time ≥ 0).
+pub(super) const BRANCH: u32 = 1 << 31;
+
+/// No vertex: the ends of a closed crack with no junction on it.
+pub const NO_VERTEX: u32 = u32::MAX;
+
+/// A junction or an end of the crack network.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct NetworkVertex {
+    /// Position (x, y) on the deformed surface, lattice units.
+    pub at: [f32; 2],
+    /// Edges meeting here: 1 at a crack's end, 3 or more at a junction.
+    pub degree: u32,
+    /// 1 where a crack reaches the plate's open border (an end that is not a dead end), else 0.
+    pub on_border: u32,
+}
+
+/// A point of a network edge's polyline.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct NetworkPoint {
+    /// Position (x, y), lattice units (multiply by `element_size` for cm). On periodic
+    /// lattices an edge is continuous and may reach past the domain: draw it wrapped.
+    pub at: [f32; 2],
+    /// Opening of the crack here [lattice units]: the separation of the spring it crosses;
+    /// 0 at a dead end.
+    pub width: f32,
+    /// Break time here, in long steps T.
+    pub time: f32,
+}
+
+/// A crack between two vertices, as a polyline.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct NetworkEdge {
+    /// The vertex it starts at, or [`NO_VERTEX`] for a closed crack with no junction.
+    pub from: u32,
+    /// The vertex it ends at, or [`NO_VERTEX`].
+    pub to: u32,
+    /// Index of its first point in the point buffer.
+    pub first_point: u32,
+    /// Points in its polyline, both ends included (a closed crack repeats its first point).
+    pub point_count: u32,
+}
+
+/// How many vertices, edges and points [`Mud::network`] writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NetworkCounts {
+    /// Vertices (junctions and ends).
+    pub vertices: usize,
+    /// Edges (cracks between vertices, and closed cracks).
+    pub edges: usize,
+    /// Points of all edges' polylines.
+    pub points: usize,
+}
+
+/// A mesh cell as the network sees it: where its corners are now (in one continuous frame)
+/// and which of its sides are cut.
+#[derive(Clone, Copy)]
+pub(super) struct TracedCell {
+    pub(super) index: usize,
+    pub(super) cell: Cell,
+    /// Corner positions, deformed, in the frame shifted by `wrap` periods.
+    pub(super) corner: [[f32; 2]; 4],
+    /// Cut sides (branches included).
+    pub(super) cut: [bool; 4],
+    /// Sides that separate cells (cut, not a branch).
+    pub(super) separating: [bool; 4],
+}
+
+impl TracedCell {
+    pub(super) fn sides(&self) -> usize {
+        self.cell.corners
+    }
+
+    pub(super) fn cut_count(&self) -> usize {
+        self.cut[..self.sides()].iter().filter(|&&c| c).count()
+    }
+
+    pub(super) fn separating_count(&self) -> usize {
+        self.separating[..self.sides()].iter().filter(|&&c| c).count()
+    }
+
+    /// The midpoint of side `k`.
+    pub(super) fn midpoint(&self, k: usize) -> [f32; 2] {
+        let (p, q) = (self.corner[k], self.corner[(k + 1) % self.sides()]);
+        [(p[0] + q[0]) * 0.5, (p[1] + q[1]) * 0.5]
+    }
+
+    /// The centroid of the corners.
+    pub(super) fn centroid(&self) -> [f32; 2] {
+        let n = self.sides();
+        let sum = self.corner[..n].iter().fold([0.0f32; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
+        [sum[0] / n as f32, sum[1] / n as f32]
+    }
+}
+
+/// Where a walk along the network ends: a vertex, and the side of its cell it arrived by.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Arrival {
+    vertex: u32,
+    side: usize,
+}
+
+impl<S: Scalar> Mud<'_, S> {
+    /// Whether `spring` is cut in the traced network (branches included).
+    pub(super) fn is_cut(&self, spring: usize) -> bool {
+        self.trace[spring] != INTACT
+    }
+
+    /// Whether `spring` separates two cells (cut and not a branch).
+    pub(super) fn separates(&self, spring: usize) -> bool {
+        self.trace[spring] != INTACT && self.trace[spring] & BRANCH == 0
+    }
+
+    /// The break time of a cut spring, long steps.
+    fn cut_time(&self, spring: usize) -> f32 {
+        f32::from_bits(self.trace[spring] & !BRANCH)
+    }
+
+    /// The separation of `spring`'s nodes from their rest arrangement,
+    /// |x_j − x_i − l·e_ij|, lattice units (see the module docs).
+    pub(super) fn separation(&self, spring: usize) -> f32 {
+        let Some((a, b)) = self.lattice.spring_nodes(spring) else {
+            return 0.0;
+        };
+        let e = self.lattice.direction_vector(self.lattice.spring_origin(spring).1);
+        let (rest, deep) = self.factors();
+        let (rest, deep) = (rest.to_f32(), deep.to_f32());
+        let (ax, ay) = self.displacement(a);
+        let (bx, by) = self.displacement(b);
+        let dx = e[0] * (deep - rest) + (bx - ax).to_f32();
+        let dy = e[1] * (deep - rest) + (by - ay).to_f32();
+        libm::hypotf(dx, dy)
+    }
+
+    /// How far `spring` has separated relative to what it can bridge: separation over
+    /// (κ − 1)·l.
+    fn separation_ratio(&self, spring: usize) -> f32 {
+        let (rest, _) = self.factors();
+        let margin = (self.break_stretch[spring].to_f32() - 1.0) * rest.to_f32();
+        if margin <= 0.0 { f32::INFINITY } else { self.separation(spring) / margin }
+    }
+
+    /// Cut sides of mesh cell `cell` (0 if it does not exist).
+    fn cuts_in(&self, cell: usize, separating_only: bool) -> usize {
+        let Some(c) = self.lattice.cell(cell) else {
+            return 0;
+        };
+        let counted = |s: u32| if separating_only { self.separates(s as usize) } else { self.is_cut(s as usize) };
+        c.sides[..c.corners].iter().filter(|&&s| counted(s)).count()
+    }
+
+    /// Traces the network of the cracks as they stand (see the module docs). [`Mud::step`]
+    /// traces when the run ends; call this to see the network of an unfinished run. The
+    /// network, the cells and the rasters describe the state last traced. Work: a few passes
+    /// over the springs and mesh cells.
+    pub fn trace(&mut self) {
+        let cells = self.lattice.cell_count();
+        // Break times are ≥ 0 (−0 at the very start, whose sign bit is cleared here).
+        for (cut, &time) in self.trace.iter_mut().zip(self.break_time.iter()) {
+            *cut = if time == INTACT { INTACT } else { time & !BRANCH };
+        }
+        // 1. Tips continue across separated sides. Counts only grow, so a mesh cell reaches
+        //    one cut side at most once and the stack holds each cell at most once.
+        let mut top = 0;
+        for cell in 0..cells {
+            if self.cuts_in(cell, false) == 1 {
+                self.stack[top] = cell as u32;
+                top += 1;
+            }
+        }
+        while top > 0 {
+            top -= 1;
+            let cell = self.stack[top] as usize;
+            let Some(c) = self.lattice.cell(cell) else { continue };
+            let sides = &c.sides[..c.corners];
+            if sides.iter().filter(|&&s| self.is_cut(s as usize)).count() != 1 {
+                continue;
+            }
+            let tip = sides.iter().map(|&s| s as usize).find(|&s| self.is_cut(s)).unwrap_or(0);
+            let mut best: Option<(f32, usize)> = None;
+            for &s in sides {
+                let s = s as usize;
+                if !self.is_cut(s) {
+                    let ratio = self.separation_ratio(s);
+                    if best.is_none_or(|(b, _)| ratio > b) {
+                        best = Some((ratio, s));
+                    }
+                }
+            }
+            let Some((ratio, spring)) = best else { continue };
+            if ratio <= 1.0 {
+                continue;
+            }
+            self.trace[spring] = self.trace[tip];
+            for (other, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
+                if other != cell && self.cuts_in(other, false) == 1 {
+                    self.stack[top] = other as u32;
+                    top += 1;
+                }
+            }
+        }
+        // 2. Branches: counts only fall, so again each cell is stacked at most once.
+        for cell in 0..cells {
+            if self.cuts_in(cell, true) == 1 {
+                self.stack[top] = cell as u32;
+                top += 1;
+            }
+        }
+        while top > 0 {
+            top -= 1;
+            let cell = self.stack[top] as usize;
+            let Some(c) = self.lattice.cell(cell) else { continue };
+            let mut separating = c.sides[..c.corners].iter().map(|&s| s as usize).filter(|&s| self.separates(s));
+            let (Some(spring), None) = (separating.next(), separating.next()) else { continue };
+            self.trace[spring] |= BRANCH;
+            for (other, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
+                if other != cell && self.cuts_in(other, true) == 1 {
+                    self.stack[top] = other as u32;
+                    top += 1;
+                }
+            }
+        }
+        // 3. Vertex numbering: each cell's first vertex index (its centroid if cracks end or
+        //    meet there, then the cut sides of it on the border), so vertices are numbered
+        //    in cell order.
+        let mut next = 0u32;
+        for cell in 0..cells {
+            self.stack[cell] = next;
+            next += self.vertices_in(cell) as u32;
+        }
+        self.vertex_total = next;
+        self.traced_broken = self.broken;
+    }
+
+    /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut, and each cut
+    /// side on the border.
+    fn vertices_in(&self, cell: usize) -> usize {
+        let Some(c) = self.traced_cell(cell, [0, 0]) else {
+            return 0;
+        };
+        let centroid = usize::from(matches!(c.cut_count(), 1) || c.cut_count() >= 3);
+        centroid + (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)).count()
+    }
+
+    /// Whether side `k` of a cell is on the open border (no cell on its other side).
+    pub(super) fn is_border_side(&self, c: &TracedCell, k: usize) -> bool {
+        self.lattice.cells_of_spring(c.cell.sides[k] as usize).into_iter().flatten().count() < 2
+    }
+
+    /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
+    pub(super) fn traced_cell(&self, cell: usize, wrap: [i32; 2]) -> Option<TracedCell> {
+        let c = self.lattice.cell(cell)?;
+        let (_, deep) = self.factors();
+        let deep = deep.to_f32();
+        let [w, h] = self.lattice.extent();
+        let shift = [wrap[0] as f32 * w, wrap[1] as f32 * h];
+        let mut t = TracedCell { index: cell, cell: c, corner: [[0.0; 2]; 4], cut: [false; 4], separating: [false; 4] };
+        for k in 0..c.corners {
+            let (dx, dy) = self.displacement(c.nodes[k] as usize);
+            t.corner[k] = [
+                (c.reference[k][0] + shift[0]) * deep + dx.to_f32(),
+                (c.reference[k][1] + shift[1]) * deep + dy.to_f32(),
+            ];
+            t.cut[k] = self.is_cut(c.sides[k] as usize);
+            t.separating[k] = self.separates(c.sides[k] as usize);
+        }
+        Some(t)
+    }
+
+    /// The cell across side `k` of `from`, the side the spring is in it, and the wrap that
+    /// keeps the two cells' positions continuous; `None` at an open border.
+    pub(super) fn across(&self, from: &TracedCell, k: usize, wrap: [i32; 2]) -> Option<(usize, usize, [i32; 2])> {
+        let spring = from.cell.sides[k] as usize;
+        let [a, b] = self.lattice.cells_of_spring(spring);
+        let (cell, side) = [a, b].into_iter().flatten().find(|&(c, _)| c != from.index)?;
+        let to = self.lattice.cell(cell)?;
+        // The spring's midpoint in the two cells' reference frames differs by whole periods.
+        let n = (from.cell.corners, to.corners);
+        let mid = |r: &[[f32; 2]; 4], k: usize, n: usize| {
+            [(r[k][0] + r[(k + 1) % n][0]) * 0.5, (r[k][1] + r[(k + 1) % n][1]) * 0.5]
+        };
+        let (p, q) = (mid(&from.cell.reference, k, n.0), mid(&to.reference, side, n.1));
+        let [w, h] = self.lattice.extent();
+        let periods = [libm::roundf((p[0] - q[0]) / w) as i32, libm::roundf((p[1] - q[1]) / h) as i32];
+        Some((cell, side, [wrap[0] + periods[0], wrap[1] + periods[1]]))
+    }
+
+    /// The network point at the midpoint of side `k`.
+    fn side_point(&self, c: &TracedCell, k: usize) -> NetworkPoint {
+        let spring = c.cell.sides[k] as usize;
+        NetworkPoint { at: c.midpoint(k), width: self.separation(spring), time: self.cut_time(spring) }
+    }
+
+    /// The network point at a cell's centroid: a dead end (width 0) or a junction (the mean
+    /// width and the earliest time of the cracks meeting there).
+    fn centroid_point(&self, c: &TracedCell) -> NetworkPoint {
+        let (mut width, mut time, mut n) = (0.0f32, f32::INFINITY, 0);
+        for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+            let p = self.side_point(c, k);
+            width += p.width;
+            time = time.min(p.time);
+            n += 1;
+        }
+        let width = if n >= 2 { width / n as f32 } else { 0.0 };
+        NetworkPoint { at: c.centroid(), width, time }
+    }
+
+    /// Whether a cell's centroid is a vertex (a crack ends or cracks meet there).
+    fn centroid_is_vertex(c: &TracedCell) -> bool {
+        c.cut_count() == 1 || c.cut_count() >= 3
+    }
+
+    /// The vertex index of the border point on side `k` of `c`.
+    fn border_vertex(&self, c: &TracedCell, k: usize) -> u32 {
+        let before = (0..k).filter(|&j| c.cut[j] && self.is_border_side(c, j)).count();
+        self.stack[c.index] + u32::from(Self::centroid_is_vertex(c)) + before as u32
+    }
+
+    /// Walks the network from the point on side `k` of `c` (already visited) into `c`,
+    /// calling `visit` with each further point and the spring it sits on (`usize::MAX` at a
+    /// centroid), to the vertex where it ends. `None` if it comes back to `start` without
+    /// meeting one (a closed crack: the last point visited is the first again), or if `visit`
+    /// returns false.
+    fn walk(
+        &self,
+        start: (usize, usize),
+        mut c: TracedCell,
+        mut k: usize,
+        mut wrap: [i32; 2],
+        mut visit: impl FnMut(NetworkPoint, usize) -> bool,
+    ) -> Option<Arrival> {
+        for _ in 0..=self.lattice.cell_count() {
+            if Self::centroid_is_vertex(&c) {
+                visit(self.centroid_point(&c), usize::MAX);
+                return Some(Arrival { vertex: self.stack[c.index], side: k });
+            }
+            // Two cut sides: leave by the other one.
+            let out = (0..c.sides()).find(|&j| j != k && c.cut[j]).unwrap_or(k);
+            if !visit(self.side_point(&c, out), c.cell.sides[out] as usize) {
+                return None;
+            }
+            let Some((next, side, next_wrap)) = self.across(&c, out, wrap) else {
+                return Some(Arrival { vertex: self.border_vertex(&c, out), side: out });
+            };
+            if (next, side) == start {
+                return None;
+            }
+            wrap = next_wrap;
+            c = self.traced_cell(next, wrap)?;
+            k = side;
+        }
+        None
+    }
+
+    /// Calls `edge(from, to, points)` for every edge of the network, in a fixed order: by
+    /// the vertex and side it starts from, then the closed cracks by their lowest spring.
+    /// `points` calls its argument with the edge's points in order.
+    fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint)))) {
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let centroid = Self::centroid_is_vertex(&c);
+            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+                for start in [Start::Centroid, Start::Border] {
+                    let from = match start {
+                        Start::Centroid if centroid => self.stack[cell],
+                        Start::Border if self.is_border_side(&c, k) => self.border_vertex(&c, k),
+                        _ => continue,
+                    };
+                    let walk = |visit: &mut dyn FnMut(NetworkPoint)| -> Option<Arrival> {
+                        if start == Start::Centroid {
+                            visit(self.centroid_point(&c));
+                        }
+                        visit(self.side_point(&c, k));
+                        match start {
+                            Start::Centroid => {
+                                let Some((next, side, wrap)) = self.across(&c, k, [0, 0]) else {
+                                    return Some(Arrival { vertex: self.border_vertex(&c, k), side: k });
+                                };
+                                let n = self.traced_cell(next, wrap)?;
+                                self.walk((cell, k), n, side, wrap, |p, _| {
+                                    visit(p);
+                                    true
+                                })
+                            }
+                            Start::Border if centroid => {
+                                visit(self.centroid_point(&c));
+                                Some(Arrival { vertex: self.stack[cell], side: k })
+                            }
+                            Start::Border => self.walk((cell, k), c, k, [0, 0], |p, _| {
+                                visit(p);
+                                true
+                            }),
+                        }
+                    };
+                    // Each edge is found from both ends: keep the walk from the lower end (an
+                    // edge from a vertex back to itself by the same side is a border point's
+                    // stub into its own cell, found once).
+                    let Some(end) = walk(&mut |_| {}) else { continue };
+                    if end < (Arrival { vertex: from, side: k }) {
+                        continue;
+                    }
+                    edge(from, end.vertex, &|visit| {
+                        walk(visit);
+                    });
+                }
+            }
+        }
+        // Closed cracks: every cell on them has two cut sides; each is found from its lowest
+        // spring, in the cell on that spring's left.
+        for spring in (0..self.lattice.spring_count()).filter(|&s| self.is_cut(s)) {
+            let [Some((cell, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { continue };
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            if Self::centroid_is_vertex(&c) {
+                continue;
+            }
+            // Closed if the walk comes back without a vertex; found here if no spring on it
+            // is lower (the walk stops at the first lower one).
+            let mut lowest = true;
+            let end = self.walk((cell, side), c, side, [0, 0], |_, s| {
+                lowest = s >= spring;
+                lowest
+            });
+            if end.is_some() || !lowest {
+                continue;
+            }
+            edge(NO_VERTEX, NO_VERTEX, &|visit| {
+                visit(self.side_point(&c, side));
+                self.walk((cell, side), c, side, [0, 0], |p, _| {
+                    visit(p);
+                    true
+                });
+            });
+        }
+    }
+
+    /// Calls `visit` with every vertex, in index order.
+    pub(super) fn for_each_vertex(&self, mut visit: impl FnMut(NetworkVertex)) {
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            if Self::centroid_is_vertex(&c) {
+                visit(NetworkVertex { at: c.centroid(), degree: c.cut_count() as u32, on_border: 0 });
+            }
+            for k in (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)) {
+                visit(NetworkVertex { at: c.midpoint(k), degree: 1, on_border: 1 });
+            }
+        }
+    }
+
+    /// How many vertices, edges and points [`Mud::network`] writes.
+    pub fn network_counts(&self) -> NetworkCounts {
+        let mut counts = NetworkCounts { vertices: self.vertex_total as usize, ..NetworkCounts::default() };
+        self.for_each_edge(|_, _, points| {
+            counts.edges += 1;
+            points(&mut |_| counts.points += 1);
+        });
+        counts
+    }
+
+    /// Writes the traced network: its vertices, its edges and their points, and returns the
+    /// counts. Nothing is written if a buffer is shorter than [`Mud::network_counts`] says.
+    pub fn network(
+        &self,
+        vertices: &mut [NetworkVertex],
+        edges: &mut [NetworkEdge],
+        points: &mut [NetworkPoint],
+    ) -> Result<NetworkCounts, super::MudError> {
+        let counts = self.network_counts();
+        for (have, needed) in
+            [(vertices.len(), counts.vertices), (edges.len(), counts.edges), (points.len(), counts.points)]
+        {
+            if have < needed {
+                return Err(super::MudError::BufferTooSmall { needed });
+            }
+        }
+        let mut v = 0;
+        self.for_each_vertex(|vertex| {
+            vertices[v] = vertex;
+            v += 1;
+        });
+        let (mut e, mut p) = (0, 0);
+        self.for_each_edge(|from, to, walk| {
+            let first = p;
+            walk(&mut |point| {
+                points[p] = point;
+                p += 1;
+            });
+            edges[e] = NetworkEdge { from, to, first_point: first as u32, point_count: (p - first) as u32 };
+            e += 1;
+        });
+        Ok(counts)
+    }
+
+    /// Calls `emit(start, end)` for every straight piece of the traced network (Fig. 5's rule
+    /// on the cut springs), cell by cell: what the rasters draw.
+    pub(super) fn for_each_network_piece(&self, mut emit: impl FnMut(NetworkPoint, NetworkPoint)) {
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let (mut cut, mut n) = ([0usize; 4], 0);
+            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+                cut[n] = k;
+                n += 1;
+            }
+            match cut[..n] {
+                [] => {}
+                [a, b] => emit(self.side_point(&c, a), self.side_point(&c, b)),
+                ref sides => {
+                    let centre = self.centroid_point(&c);
+                    for &k in sides {
+                        emit(self.side_point(&c, k), centre);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Where an edge walk starts.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Start {
+    /// At a cell's centroid, out through a side.
+    Centroid,
+    /// At a border point, into its cell.
+    Border,
+}
