@@ -200,13 +200,7 @@ impl<S: Scalar> Mud<'_, S> {
         }
         // 1. Tips continue across separated sides. Counts only grow, so a mesh cell reaches
         //    one cut side at most once and the stack holds each cell at most once.
-        let mut top = 0;
-        for cell in 0..cells {
-            if self.cuts_in(cell, false) == 1 {
-                self.stack[top] = cell as u32;
-                top += 1;
-            }
-        }
+        let mut top = self.stack_single_cuts(0..cells, usize::MAX, 0, false);
         while top > 0 {
             top -= 1;
             let cell = self.stack[top] as usize;
@@ -231,20 +225,10 @@ impl<S: Scalar> Mud<'_, S> {
                 continue;
             }
             self.trace[spring] = self.trace[tip];
-            for (other, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
-                if other != cell && self.cuts_in(other, false) == 1 {
-                    self.stack[top] = other as u32;
-                    top += 1;
-                }
-            }
+            top = self.stack_single_cuts(self.neighbours_across(spring), cell, top, false);
         }
         // 2. Branches: counts only fall, so again each cell is stacked at most once.
-        for cell in 0..cells {
-            if self.cuts_in(cell, true) == 1 {
-                self.stack[top] = cell as u32;
-                top += 1;
-            }
-        }
+        top = self.stack_single_cuts(0..cells, usize::MAX, top, true);
         while top > 0 {
             top -= 1;
             let cell = self.stack[top] as usize;
@@ -252,12 +236,7 @@ impl<S: Scalar> Mud<'_, S> {
             let mut separating = c.sides[..c.corners].iter().map(|&s| s as usize).filter(|&s| self.separates(s));
             let (Some(spring), None) = (separating.next(), separating.next()) else { continue };
             self.trace[spring] |= BRANCH;
-            for (other, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
-                if other != cell && self.cuts_in(other, true) == 1 {
-                    self.stack[top] = other as u32;
-                    top += 1;
-                }
-            }
+            top = self.stack_single_cuts(self.neighbours_across(spring), cell, top, true);
         }
         // 3. Vertex numbering: each cell's first vertex index (its centroid if cracks end or
         //    meet there, then the cut sides of it on the border), so vertices are numbered
@@ -269,6 +248,29 @@ impl<S: Scalar> Mud<'_, S> {
         }
         self.vertex_total = next;
         self.traced_broken = self.broken;
+    }
+
+    /// Pushes onto the tracing stack (whose top is `top`) each of `cells` other than `except`
+    /// with exactly one cut side (separating sides only, if asked); returns the new top.
+    fn stack_single_cuts(
+        &mut self,
+        cells: impl Iterator<Item = usize>,
+        except: usize,
+        mut top: usize,
+        separating_only: bool,
+    ) -> usize {
+        for cell in cells {
+            if cell != except && self.cuts_in(cell, separating_only) == 1 {
+                self.stack[top] = cell as u32;
+                top += 1;
+            }
+        }
+        top
+    }
+
+    /// The mesh cells on either side of `spring`.
+    fn neighbours_across(&self, spring: usize) -> impl Iterator<Item = usize> + use<S> {
+        self.lattice.cells_of_spring(spring).into_iter().flatten().map(|(cell, _)| cell)
     }
 
     /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut, and each cut
@@ -469,6 +471,37 @@ impl<S: Scalar> Mud<'_, S> {
                     true
                 });
             });
+        }
+    }
+
+    /// Calls `arms(directions)` for every junction (a mesh cell where three or more cracks
+    /// meet) with the direction of each crack leaving it, taken from the junction to the
+    /// crack's point `reach` lattice units further along it (or its far end, if nearer): the
+    /// crack's course, not the mesh cell's own geometry.
+    pub(super) fn for_each_junction(&self, reach: f32, mut arms: impl FnMut(&[[f32; 2]])) {
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            if c.cut_count() < 3 {
+                continue;
+            }
+            let centre = c.centroid();
+            let (mut directions, mut n) = ([[0.0f32; 2]; 4], 0);
+            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+                let mut last = c.midpoint(k);
+                let mut length = libm::hypotf(last[0] - centre[0], last[1] - centre[1]);
+                if let Some((next, side, wrap)) = self.across(&c, k, [0, 0])
+                    && let Some(t) = self.traced_cell(next, wrap)
+                {
+                    self.walk((cell, k), t, side, wrap, |p, _| {
+                        length += libm::hypotf(p.at[0] - last[0], p.at[1] - last[1]);
+                        last = p.at;
+                        length < reach
+                    });
+                }
+                directions[n] = [last[0] - centre[0], last[1] - centre[1]];
+                n += 1;
+            }
+            arms(&directions[..n]);
         }
     }
 

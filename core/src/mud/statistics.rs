@@ -4,6 +4,27 @@
 use super::Mud;
 use crate::scalar::Scalar;
 
+/// How far along each crack its course from a junction is measured [lattice spacings]: far
+/// enough that a crack's zigzag through the mesh cells averages out.
+pub const JUNCTION_REACH: f32 = 3.0;
+
+/// The widest angle between neighbouring directions of `arms` (at most four), in degrees.
+fn widest_angle(arms: &[[f32; 2]]) -> f32 {
+    let mut angles = [0.0f32; 4];
+    let n = arms.len().min(4);
+    for (angle, arm) in angles.iter_mut().zip(arms) {
+        *angle = libm::atan2f(arm[1], arm[0]);
+    }
+    let angles = &mut angles[..n];
+    angles.sort_unstable_by(f32::total_cmp);
+    let mut widest = 0.0f32;
+    for i in 0..n {
+        let next = if i + 1 < n { angles[i + 1] } else { angles[0] + core::f32::consts::TAU };
+        widest = widest.max(next - angles[i]);
+    }
+    widest.to_degrees()
+}
+
 /// Crack statistics of a run's traced network.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CrackStatistics {
@@ -19,6 +40,13 @@ pub struct CrackStatistics {
     pub cell_area_spread: f32,
     /// Junctions: network vertices where three or more cracks meet.
     pub junctions: u32,
+    /// T junctions: those where one crack runs on and another meets it, i.e. two of the
+    /// cracks' courses (see [`JUNCTION_REACH`]) are within 30° of a straight line (the widest
+    /// angle between neighbouring courses is at least 150°). The rest are Y junctions.
+    pub t_junctions: u32,
+    /// The mean over junctions of the widest angle between neighbouring cracks' courses
+    /// [degrees]: 180 for a perfect T, 120 for a symmetric Y.
+    pub mean_widest_junction_angle: f32,
     /// Dead ends: cracks that end inside a cell (vertices of degree 1 off the border).
     pub dead_ends: u32,
 }
@@ -39,6 +67,15 @@ impl<S: Scalar> Mud<'_, S> {
             d if d >= 3 => junctions += 1,
             _ => {}
         });
+        let (mut t_junctions, mut widest_sum, mut measured) = (0u32, 0.0f64, 0u32);
+        self.for_each_junction(JUNCTION_REACH, |arms| {
+            let widest = widest_angle(arms);
+            measured += 1;
+            widest_sum += f64::from(widest);
+            if widest >= 150.0 {
+                t_junctions += 1;
+            }
+        });
         let (areas, cells) = self.cell_areas();
         let cm2 = f64::from(w) * f64::from(w);
         let mean = plate / f64::from(cells.max(1));
@@ -54,6 +91,8 @@ impl<S: Scalar> Mud<'_, S> {
             mean_cell_area: (mean * cm2) as f32,
             cell_area_spread: (spread * cm2) as f32,
             junctions,
+            t_junctions,
+            mean_widest_junction_angle: if measured > 0 { (widest_sum / f64::from(measured)) as f32 } else { 0.0 },
             dead_ends,
         }
     }
@@ -69,4 +108,20 @@ pub(super) struct AreaSums {
     pub(super) count: usize,
     pub(super) sum: f64,
     pub(super) sum_squares: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn widest_angles_tell_t_from_y() {
+        let t = widest_angle(&[[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0]]);
+        assert!((t - 180.0).abs() < 1e-3, "{t}");
+        let y = widest_angle(&[[1.0, 0.0], [-0.5, 0.866_025_4], [-0.5, -0.866_025_4]]);
+        assert!((y - 120.0).abs() < 1e-3, "{y}");
+        // Order does not matter, and the gap across ±180° counts.
+        let wrapped = widest_angle(&[[-1.0, 0.01], [-1.0, -0.01], [1.0, 0.0]]);
+        assert!((wrapped - 180.0).abs() < 1.0, "{wrapped}");
+    }
 }
