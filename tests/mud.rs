@@ -463,3 +463,90 @@ fn open_plates_have_cells_bounded_by_the_border() {
         assert!(total < f64::from(mesh) && total > 0.95 * f64::from(mesh), "{topology:?}: {total} vs {mesh}");
     }
 }
+
+#[test]
+fn statistics_are_those_of_the_network_and_its_cells() {
+    let p = MudParams { seed: 3, ..params(96) };
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    mud.run();
+    let stats = mud.statistics();
+    let n = network(&p);
+    let (counts, rings, _, [w, h]) = cells(&p);
+    let outer: Vec<f64> = rings.iter().filter(|r| r.area > 0.0).map(|r| r.area).collect();
+    assert_eq!(stats.cells as usize, outer.len() + counts.wrapping);
+    assert!((stats.mean_cell_area - w * h / outer.len() as f32).abs() < 1e-3 * stats.mean_cell_area);
+    let mean = outer.iter().sum::<f64>() / outer.len() as f64;
+    let spread = (outer.iter().map(|a| (a - mean) * (a - mean)).sum::<f64>() / outer.len() as f64).sqrt();
+    assert!((f64::from(stats.cell_area_spread) - spread).abs() < 1e-3 * spread, "{stats:?} vs {spread}");
+    assert_eq!(stats.junctions as usize, n.vertices.iter().filter(|v| v.degree >= 3).count());
+    assert_eq!(stats.dead_ends as usize, n.vertices.iter().filter(|v| v.degree == 1 && v.on_border == 0).count());
+    let length: f32 = n.edges.iter().map(|e| n.length(e)).sum();
+    assert!((stats.crack_density - length / (w * h)).abs() < 1e-3 * stats.crack_density, "{stats:?} vs {length}");
+    assert!(stats.t_junctions > 0 && stats.t_junctions <= stats.junctions);
+    println!("{stats:?}");
+    // Drawing changes nothing: the statistics after rendering at any stroke width are the same.
+    let mut mask = vec![0u8; 256 * 256];
+    for min_width in [0.5, 4.0] {
+        let render = MudRender { width: 256, height: 256, min_width, ..MudRender::default() };
+        mud.render_mask(&render, &mut mask).unwrap();
+        assert_eq!(mud.statistics(), stats);
+    }
+}
+
+/// Labels the 8-connected pieces of `on` pixels on a wrapping `size`² raster; returns each
+/// piece's pixel count.
+fn pieces_8_connected(on: &[bool], size: usize) -> Vec<usize> {
+    let mut seen = vec![false; on.len()];
+    let mut pieces = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..on.len() {
+        if !on[start] || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut count = 0;
+        while let Some(i) = stack.pop() {
+            count += 1;
+            let (x, y) = ((i % size) as isize, (i / size) as isize);
+            for (dx, dy) in [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)] {
+                let (nx, ny) = ((x + dx).rem_euclid(size as isize), (y + dy).rem_euclid(size as isize));
+                let j = ny as usize * size + nx as usize;
+                if on[j] && !seen[j] {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        pieces.push(count);
+    }
+    pieces
+}
+
+#[test]
+fn the_default_mask_shows_thin_connected_cracks() {
+    // What `hibi mud --layer mask --size 512` draws: the default run, 4 px per spacing, the
+    // CLI's default narrowest stroke (0.8 px rounds up to 1 px).
+    let p = MudParams::default();
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    mud.run();
+    let render = MudRender { width: 512, height: 512, ..MudRender::default() };
+    let mut mask = vec![0u8; 512 * 512];
+    mud.render_mask(&render, &mut mask).unwrap();
+    let on: Vec<bool> = mask.iter().map(|&v| v >= 128).collect();
+    let cracked = on.iter().filter(|&&c| c).count();
+    let pieces = pieces_8_connected(&on, 512);
+    let largest = pieces.iter().copied().max().unwrap_or(0);
+    let share = cracked as f32 / on.len() as f32;
+    println!(
+        "crack pixels {:.1} %, largest 8-connected piece {:.1} %",
+        100.0 * share,
+        100.0 * largest as f32 / cracked as f32
+    );
+    assert!(share <= 0.12, "{share}");
+    assert!(largest as f32 >= 0.95 * cracked as f32, "{largest} of {cracked}");
+}
