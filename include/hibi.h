@@ -89,6 +89,11 @@
 #define HIBI_MUD_LAYER_TIME 2
 
 /**
+ * `hibi_mud_network_edge.from` and `.to` of a closed crack, which has no vertex on it.
+ */
+#define HIBI_MUD_NO_VERTEX UINT32_MAX
+
+/**
  * `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
  */
 #define HIBI_SPREAD_UNIFORM 0
@@ -560,22 +565,105 @@ typedef struct hibi_mud_segment {
 } hibi_mud_segment;
 
 /**
- * Crack statistics of the traced network: density and the cells it encloses.
+ * Crack statistics of the traced network: density, the cells it encloses, and its vertices.
  */
 typedef struct hibi_mud_statistics {
   /**
-   * Crack length per area [1/cm].
+   * Crack length per area [1/cm]: the network's length (branches included) over the
+   * plate's area.
    */
   float crack_density;
   /**
-   * Cells the network's separating cracks enclose.
+   * Cells the network's separating cracks enclose (outer rings), wrapping ones included.
    */
   uint32_t cells;
   /**
-   * Mean cell area [cm²].
+   * Mean cell area [cm²]: the plate's area over `cells`.
    */
   float mean_cell_area;
+  /**
+   * Standard deviation of the cells' areas [cm²] (each outer ring less its holes; cells
+   * that wrap around a periodic lattice are left out).
+   */
+  float cell_area_spread;
+  /**
+   * Network vertices where three or more cracks meet.
+   */
+  uint32_t junctions;
+  /**
+   * Cracks that end inside a cell (vertices of degree 1 off the border).
+   */
+  uint32_t dead_ends;
 } hibi_mud_statistics;
+
+/**
+ * A vertex of the crack network: a junction, or an end of a crack.
+ */
+typedef struct hibi_mud_network_vertex {
+  /**
+   * Position (x, y) on the deformed surface, lattice units (× element_size for cm).
+   */
+  float at[2];
+  /**
+   * Edges meeting here: 1 at a crack's end, 3 or more at a junction.
+   */
+  uint32_t degree;
+  /**
+   * 1 where a crack reaches the plate's open border (an end that is not a dead end), else 0.
+   */
+  uint32_t on_border;
+} hibi_mud_network_vertex;
+
+/**
+ * An edge of the crack network: a crack between two vertices, as the polyline of
+ * `point_count` points from `first_point` on in the point buffer.
+ */
+typedef struct hibi_mud_network_edge {
+  /**
+   * The vertex it starts at, or `HIBI_MUD_NO_VERTEX` for a closed crack with no junction.
+   */
+  uint32_t from;
+  /**
+   * The vertex it ends at, or `HIBI_MUD_NO_VERTEX`.
+   */
+  uint32_t to;
+  /**
+   * Index of its first point in the point buffer.
+   */
+  uint32_t first_point;
+  /**
+   * Points in its polyline, both ends included (a closed crack repeats its first point).
+   */
+  uint32_t point_count;
+} hibi_mud_network_edge;
+
+/**
+ * A point of a network edge's polyline.
+ */
+typedef struct hibi_mud_network_point {
+  /**
+   * Position (x, y), lattice units (× element_size for cm). On periodic lattices an edge is
+   * continuous and may reach past the domain: draw it wrapped.
+   */
+  float at[2];
+  /**
+   * Opening of the crack here [lattice units]; 0 at a dead end.
+   */
+  float width;
+  /**
+   * Break time here [long steps].
+   */
+  float time;
+} hibi_mud_network_point;
+
+/**
+ * One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
+ * points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
+ * outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
+ * outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
+ * lattice units (× element_size for cm), not pixels.
+ */
+typedef struct hibi_glass_fragment_ring hibi_mud_cell_ring;
 
 /**
  * How to draw a raster: its size and the stroke widths. Defaults from
@@ -1418,13 +1506,85 @@ hibi_status hibi_mud_segments(const struct hibi_mud *mud,
                               size_t *written);
 
 /**
- * Crack density and the cells of the traced crack network (the statistics the tests compare
- * solvers and meshes by), measured on the network itself, not on a drawing.
+ * Crack density, the cells of the traced crack network (count, mean and spread of area) and
+ * its junctions and dead ends (the statistics the tests compare solvers and meshes by),
+ * measured on the network itself, not on a drawing.
  *
  * # Safety
  * `mud` must be NULL or a live run; `out` NULL or writable.
  */
 hibi_status hibi_mud_measure(const struct hibi_mud *mud, struct hibi_mud_statistics *out);
+
+/**
+ * Writes how many vertices, edges and points `hibi_mud_network` will write for the network
+ * as last traced (the run's end).
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL or writable.
+ */
+hibi_status hibi_mud_network_counts(const struct hibi_mud *mud,
+                                    size_t *vertices,
+                                    size_t *edges,
+                                    size_t *points);
+
+/**
+ * Writes the traced crack network, one line per physical crack, as a plane graph: its
+ * vertices (junctions and ends) into `vertices[0..vertices_len]`, its edges (the cracks
+ * between them) into `edges[0..edges_len]`, the edges' polyline points into
+ * `points[0..points_len]`, and the counts into `*vertices_written`, `*edges_written` and
+ * `*points_written`. If a buffer is too small (see `hibi_mud_network_counts`), nothing is
+ * written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL (only with length
+ * 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL or
+ * writable.
+ */
+hibi_status hibi_mud_network(const struct hibi_mud *mud,
+                             struct hibi_mud_network_vertex *vertices,
+                             size_t vertices_len,
+                             struct hibi_mud_network_edge *edges,
+                             size_t edges_len,
+                             struct hibi_mud_network_point *points,
+                             size_t points_len,
+                             size_t *vertices_written,
+                             size_t *edges_written,
+                             size_t *points_written);
+
+/**
+ * Writes how many rings and ring points `hibi_mud_cells` will write for the network as last
+ * traced, and into `*wrapping` the number of cell boundaries that wrap around a periodic
+ * lattice (which have no outline in the plane and are not written).
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `rings`, `points` and `wrapping` NULL or writable.
+ */
+hibi_status hibi_mud_cell_counts(const struct hibi_mud *mud,
+                                 size_t *rings,
+                                 size_t *points,
+                                 size_t *wrapping);
+
+/**
+ * Writes the cells the separating cracks cut the plate into, as polygons: one record per
+ * ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
+ * and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
+ * do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
+ * signed areas add up to the plate's (less the regions that wrap, see
+ * `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
+ * `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
+ * writable for their lengths, not overlapping; `rings_written` and `points_written` NULL or
+ * writable.
+ */
+hibi_status hibi_mud_cells(const struct hibi_mud *mud,
+                           hibi_mud_cell_ring *rings,
+                           size_t rings_len,
+                           struct hibi_vec2 *points,
+                           size_t points_len,
+                           size_t *rings_written,
+                           size_t *points_written);
 
 /**
  * Default drawing: 512 × 512, true crack widths, 1-pixel minimum stroke, groove depth 1.

@@ -185,9 +185,10 @@ fn cpp17_example_links_shared_library() {
     check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Shared));
 }
 
-/// The mud example's mask, as Rust draws it for the same parameters.
-fn expected_mud_mask() -> Vec<u8> {
-    use hibi_core::mud::{Mud, MudParams, MudRender};
+/// What the mud example computes, as Rust computes it for the same parameters: the mask,
+/// the network's counts, and the cells' counts and summed ring area.
+fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::CellCounts, f64) {
+    use hibi_core::mud::{CellRing, Mud, MudParams, MudRender};
     let params = MudParams { columns: 96, rows: 96, seed: 7, ..MudParams::default() };
     let memory = params.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
@@ -196,7 +197,12 @@ fn expected_mud_mask() -> Vec<u8> {
     let render = MudRender { width: 384, height: 384, ..MudRender::default() };
     let mut mask = vec![0u8; 384 * 384];
     mud.render_mask(&render, &mut mask).unwrap();
-    mask.iter().map(|v| 255 - v).collect()
+    let cells = mud.cell_counts();
+    let (mut rings, mut points) = (vec![CellRing::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
+    mud.cells(&mut rings, &mut points).unwrap();
+    // Summed in ring order, as the C program sums them.
+    let area = rings.iter().fold(0.0f64, |sum, ring| sum + ring.area);
+    (mask.iter().map(|v| 255 - v).collect(), mud.network_counts(), cells, area)
 }
 
 fn check_mud(linkage: Linkage) {
@@ -215,11 +221,26 @@ fn check_mud(linkage: Linkage) {
         line(&output, "short pixel buffer:"),
         "short pixel buffer: status 3, a buffer is smaller than the call needs"
     );
+    let (mask, network, cells, area) = expected_mud();
+    assert_eq!(
+        line(&output, "network:"),
+        format!("network: {} vertices, {} edges, {} points", network.vertices, network.edges, network.points)
+    );
+    assert_eq!(
+        line(&output, "cells into a short buffer:"),
+        "cells into a short buffer: status 3, a buffer is smaller than the call needs; nothing written: yes"
+    );
+    // The statistics line also starts "cells: "; this one names its rings.
+    let cells_line = output
+        .lines()
+        .find(|l| l.starts_with("cells: ") && l.contains(" rings, "))
+        .unwrap_or_else(|| panic!("no cells line with rings in:\n{output}"));
+    assert_eq!(cells_line, format!("cells: {} rings, {} points, area {area:.1}", cells.rings, cells.points));
     assert_eq!(line(&output, "caller memory"), "caller memory, same bytes: yes");
     let bytes = std::fs::read(&pgm).expect("the example wrote its PGM");
     let header = b"P5\n384 384\n255\n";
     assert_eq!(&bytes[..header.len()], header);
-    assert!(bytes[header.len()..] == expected_mud_mask()[..], "the C program's picture differs from Rust's");
+    assert!(bytes[header.len()..] == mask[..], "the C program's picture differs from Rust's");
 }
 
 #[test]

@@ -8,6 +8,10 @@
 //! hibi_mud_progress progress;
 //! do { hibi_mud_step(mud, 1000000, &progress); } while (!progress.finished);
 //! hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, width * height);
+//! size_t rings, points, wrapping;
+//! hibi_mud_cell_counts(mud, &rings, &points, &wrapping);
+//! /* allocate rings and points, then */
+//! hibi_mud_cells(mud, ring_buffer, rings, point_buffer, points, &rings, &points);
 //! hibi_mud_destroy(mud);
 //! ```
 //!
@@ -17,9 +21,14 @@
 use core::ffi::c_void;
 use core::mem::{align_of, size_of};
 
-use hibi_core::mud::{Boundary, CrackSegment, Drive, Mud, MudError, MudLayer, MudParams, MudRender, Solver, Topology};
+use hibi_core::glass::FragmentRing;
+use hibi_core::mud::{
+    Boundary, CellRing, CrackSegment, Drive, Mud, MudError, MudLayer, MudParams, MudRender, NO_VERTEX, NetworkEdge,
+    NetworkPoint, NetworkVertex, Solver, Topology,
+};
 use hibi_core::raster::RasterError;
 
+use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
 use crate::guard::{buffer, check_pointer, guard, object, write_out};
 use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
 use crate::status::{
@@ -158,17 +167,104 @@ pub struct hibi_mud_segment {
     pub time: [f32; 2],
 }
 
-/// Crack statistics of the traced network: density and the cells it encloses.
+/// Crack statistics of the traced network: density, the cells it encloses, and its vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct hibi_mud_statistics {
-    /// Crack length per area [1/cm].
+    /// Crack length per area [1/cm]: the network's length (branches included) over the
+    /// plate's area.
     pub crack_density: f32,
-    /// Cells the network's separating cracks enclose.
+    /// Cells the network's separating cracks enclose (outer rings), wrapping ones included.
     pub cells: u32,
-    /// Mean cell area [cm²].
+    /// Mean cell area [cm²]: the plate's area over `cells`.
     pub mean_cell_area: f32,
+    /// Standard deviation of the cells' areas [cm²] (each outer ring less its holes; cells
+    /// that wrap around a periodic lattice are left out).
+    pub cell_area_spread: f32,
+    /// Network vertices where three or more cracks meet.
+    pub junctions: u32,
+    /// Cracks that end inside a cell (vertices of degree 1 off the border).
+    pub dead_ends: u32,
 }
+
+/// `hibi_mud_network_edge.from` and `.to` of a closed crack, which has no vertex on it.
+pub const HIBI_MUD_NO_VERTEX: u32 = u32::MAX;
+
+const _: () = assert!(HIBI_MUD_NO_VERTEX == NO_VERTEX);
+
+/// A vertex of the crack network: a junction, or an end of a crack.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_mud_network_vertex {
+    /// Position (x, y) on the deformed surface, lattice units (× element_size for cm).
+    pub at: [f32; 2],
+    /// Edges meeting here: 1 at a crack's end, 3 or more at a junction.
+    pub degree: u32,
+    /// 1 where a crack reaches the plate's open border (an end that is not a dead end), else 0.
+    pub on_border: u32,
+}
+
+/// An edge of the crack network: a crack between two vertices, as the polyline of
+/// `point_count` points from `first_point` on in the point buffer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_mud_network_edge {
+    /// The vertex it starts at, or `HIBI_MUD_NO_VERTEX` for a closed crack with no junction.
+    pub from: u32,
+    /// The vertex it ends at, or `HIBI_MUD_NO_VERTEX`.
+    pub to: u32,
+    /// Index of its first point in the point buffer.
+    pub first_point: u32,
+    /// Points in its polyline, both ends included (a closed crack repeats its first point).
+    pub point_count: u32,
+}
+
+/// A point of a network edge's polyline.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct hibi_mud_network_point {
+    /// Position (x, y), lattice units (× element_size for cm). On periodic lattices an edge is
+    /// continuous and may reach past the domain: draw it wrapped.
+    pub at: [f32; 2],
+    /// Opening of the crack here [lattice units]; 0 at a dead end.
+    pub width: f32,
+    /// Break time here [long steps].
+    pub time: f32,
+}
+
+/// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
+/// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
+/// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
+/// outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
+/// lattice units (× element_size for cm), not pixels.
+pub type hibi_mud_cell_ring = hibi_glass_fragment_ring;
+
+// The C structs are laid out as the core's, so caller buffers are handed to the core as they
+// are; the cell ring is glass's fragment ring, whose layout glass asserts.
+const _: () = {
+    use core::mem::offset_of;
+    assert!(size_of::<hibi_mud_network_vertex>() == size_of::<NetworkVertex>());
+    assert!(align_of::<hibi_mud_network_vertex>() == align_of::<NetworkVertex>());
+    assert!(offset_of!(hibi_mud_network_vertex, at) == offset_of!(NetworkVertex, at));
+    assert!(offset_of!(hibi_mud_network_vertex, degree) == offset_of!(NetworkVertex, degree));
+    assert!(offset_of!(hibi_mud_network_vertex, on_border) == offset_of!(NetworkVertex, on_border));
+    assert!(size_of::<hibi_mud_network_edge>() == size_of::<NetworkEdge>());
+    assert!(align_of::<hibi_mud_network_edge>() == align_of::<NetworkEdge>());
+    assert!(offset_of!(hibi_mud_network_edge, from) == offset_of!(NetworkEdge, from));
+    assert!(offset_of!(hibi_mud_network_edge, to) == offset_of!(NetworkEdge, to));
+    assert!(offset_of!(hibi_mud_network_edge, first_point) == offset_of!(NetworkEdge, first_point));
+    assert!(offset_of!(hibi_mud_network_edge, point_count) == offset_of!(NetworkEdge, point_count));
+    assert!(size_of::<hibi_mud_network_point>() == size_of::<NetworkPoint>());
+    assert!(align_of::<hibi_mud_network_point>() == align_of::<NetworkPoint>());
+    assert!(offset_of!(hibi_mud_network_point, at) == offset_of!(NetworkPoint, at));
+    assert!(offset_of!(hibi_mud_network_point, width) == offset_of!(NetworkPoint, width));
+    assert!(offset_of!(hibi_mud_network_point, time) == offset_of!(NetworkPoint, time));
+    assert!(size_of::<hibi_mud_cell_ring>() == size_of::<CellRing>());
+    assert!(align_of::<hibi_mud_cell_ring>() == align_of::<CellRing>());
+};
+
+/// The core's cell ring is glass's fragment ring (this fails to compile if it stops being so).
+const _: fn(CellRing) -> FragmentRing = |ring| ring;
 
 /// How to draw a raster: its size and the stroke widths. Defaults from
 /// `hibi_mud_render_params_default`.
@@ -528,8 +624,9 @@ pub unsafe extern "C" fn hibi_mud_segments(
     })
 }
 
-/// Crack density and the cells of the traced crack network (the statistics the tests compare
-/// solvers and meshes by), measured on the network itself, not on a drawing.
+/// Crack density, the cells of the traced crack network (count, mean and spread of area) and
+/// its junctions and dead ends (the statistics the tests compare solvers and meshes by),
+/// measured on the network itself, not on a drawing.
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `out` NULL or writable.
@@ -540,10 +637,169 @@ pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_m
         let mud = unsafe { object(mud.cast_mut()) }?;
         check_pointer(out)?;
         let s = mud.mud.statistics();
-        let value =
-            hibi_mud_statistics { crack_density: s.crack_density, cells: s.cells, mean_cell_area: s.mean_cell_area };
+        let value = hibi_mud_statistics {
+            crack_density: s.crack_density,
+            cells: s.cells,
+            mean_cell_area: s.mean_cell_area,
+            cell_area_spread: s.cell_area_spread,
+            junctions: s.junctions,
+            dead_ends: s.dead_ends,
+        };
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, value) }
+    })
+}
+
+/// The status of a core error from writing an output: only a short buffer can happen.
+fn output_status(error: MudError) -> hibi_status {
+    match error {
+        MudError::Param(p) => mud_param_status(p),
+        MudError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
+    }
+}
+
+/// Writes how many vertices, edges and points `hibi_mud_network` will write for the network
+/// as last traced (the run's end).
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_network_counts(
+    mud: *const hibi_mud,
+    vertices: *mut usize,
+    edges: *mut usize,
+    points: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let mud = unsafe { object(mud.cast_mut()) }?;
+        check_pointer(vertices)?;
+        check_pointer(edges)?;
+        check_pointer(points)?;
+        let counts = mud.mud.network_counts();
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(vertices, counts.vertices) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(edges, counts.edges) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points, counts.points) }
+    })
+}
+
+/// Writes the traced crack network, one line per physical crack, as a plane graph: its
+/// vertices (junctions and ends) into `vertices[0..vertices_len]`, its edges (the cracks
+/// between them) into `edges[0..edges_len]`, the edges' polyline points into
+/// `points[0..points_len]`, and the counts into `*vertices_written`, `*edges_written` and
+/// `*points_written`. If a buffer is too small (see `hibi_mud_network_counts`), nothing is
+/// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL (only with length
+/// 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL or
+/// writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn hibi_mud_network(
+    mud: *const hibi_mud,
+    vertices: *mut hibi_mud_network_vertex,
+    vertices_len: usize,
+    edges: *mut hibi_mud_network_edge,
+    edges_len: usize,
+    points: *mut hibi_mud_network_point,
+    points_len: usize,
+    vertices_written: *mut usize,
+    edges_written: *mut usize,
+    points_written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let mud = unsafe { object(mud.cast_mut()) }?;
+        check_pointer(vertices_written)?;
+        check_pointer(edges_written)?;
+        check_pointer(points_written)?;
+        // SAFETY: the caller's contract; the C structs are laid out as the core's (asserted
+        // above).
+        let vertex_out = unsafe { buffer(vertices.cast::<NetworkVertex>(), vertices_len) }?;
+        // SAFETY: as above.
+        let edge_out = unsafe { buffer(edges.cast::<NetworkEdge>(), edges_len) }?;
+        // SAFETY: as above.
+        let point_out = unsafe { buffer(points.cast::<NetworkPoint>(), points_len) }?;
+        let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(output_status)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(vertices_written, counts.vertices) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(edges_written, counts.edges) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points_written, counts.points) }
+    })
+}
+
+/// Writes how many rings and ring points `hibi_mud_cells` will write for the network as last
+/// traced, and into `*wrapping` the number of cell boundaries that wrap around a periodic
+/// lattice (which have no outline in the plane and are not written).
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `rings`, `points` and `wrapping` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_cell_counts(
+    mud: *const hibi_mud,
+    rings: *mut usize,
+    points: *mut usize,
+    wrapping: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let mud = unsafe { object(mud.cast_mut()) }?;
+        check_pointer(rings)?;
+        check_pointer(points)?;
+        check_pointer(wrapping)?;
+        let counts = mud.mud.cell_counts();
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(rings, counts.rings) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points, counts.points) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(wrapping, counts.wrapping) }
+    })
+}
+
+/// Writes the cells the separating cracks cut the plate into, as polygons: one record per
+/// ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
+/// and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
+/// do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
+/// signed areas add up to the plate's (less the regions that wrap, see
+/// `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
+/// `HIBI_ERROR_BUFFER_TOO_SMALL`.
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
+/// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL or
+/// writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_cells(
+    mud: *const hibi_mud,
+    rings: *mut hibi_mud_cell_ring,
+    rings_len: usize,
+    points: *mut hibi_vec2,
+    points_len: usize,
+    rings_written: *mut usize,
+    points_written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let mud = unsafe { object(mud.cast_mut()) }?;
+        check_pointer(rings_written)?;
+        check_pointer(points_written)?;
+        // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
+        // hibi_vec2 as [f32; 2] (asserted above and in glass).
+        let ring_out = unsafe { buffer(rings.cast::<CellRing>(), rings_len) }?;
+        // SAFETY: as above.
+        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
+        let counts = mud.mud.cells(ring_out, point_out).map_err(output_status)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(rings_written, counts.rings) }?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(points_written, counts.points) }
     })
 }
 
@@ -721,6 +977,180 @@ mod tests {
             assert_eq!(hibi_mud_measure(mud, &mut stats), HIBI_OK);
             assert!(stats.crack_density > 0.0);
             hibi_mud_destroy(mud);
+        }
+    }
+
+    /// A finished run of `params` in library memory, and the same run made through the core.
+    fn finished(params: &hibi_mud_params) -> (*mut hibi_mud, Vec<f32>, Vec<u32>) {
+        let mut mud = null_mut();
+        // SAFETY: valid pointers.
+        unsafe {
+            assert_eq!(hibi_mud_create(params, &mut mud), HIBI_OK);
+            assert_eq!(hibi_mud_step(mud, u64::MAX, null_mut()), HIBI_OK);
+        }
+        let core = core_params(params).unwrap();
+        let memory = core.memory().unwrap();
+        (mud, vec![0.0; memory.scalars], vec![0; memory.words])
+    }
+
+    const VERTEX: hibi_mud_network_vertex = hibi_mud_network_vertex { at: [-7.0; 2], degree: 77, on_border: 77 };
+    const EDGE: hibi_mud_network_edge = hibi_mud_network_edge { from: 77, to: 77, first_point: 77, point_count: 77 };
+    const POINT: hibi_mud_network_point = hibi_mud_network_point { at: [-7.0; 2], width: -7.0, time: -7.0 };
+    const RING: hibi_mud_cell_ring = hibi_mud_cell_ring { area: -7.0, first_point: 77, point_count: 77, hole_of: 77 };
+    const VEC: hibi_vec2 = hibi_vec2 { x: -7.0, y: -7.0 };
+
+    #[test]
+    fn the_network_comes_in_counted_buffers_and_short_ones_are_left_alone() {
+        let mut p = small();
+        p.boundary = HIBI_MUD_OPEN;
+        let (mud, mut scalars, mut words) = finished(&p);
+        let mut core = Mud::new(&core_params(&p).unwrap(), &mut scalars, &mut words).unwrap();
+        core.run();
+        let expected = core.network_counts();
+        assert!(expected.vertices > 0 && expected.edges > 0 && expected.points > expected.edges);
+        let (nv, ne, np) = (expected.vertices, expected.edges, expected.points);
+        // One element more than needed: it must keep its sentinel.
+        let (mut vertices, mut edges, mut points) = (vec![VERTEX; nv + 1], vec![EDGE; ne + 1], vec![POINT; np + 1]);
+        let untouched = |v: &[hibi_mud_network_vertex], e: &[hibi_mud_network_edge], q: &[hibi_mud_network_point]| {
+            v.iter().all(|x| *x == VERTEX) && e.iter().all(|x| *x == EDGE) && q.iter().all(|x| *x == POINT)
+        };
+        let (mut wv, mut we, mut wp) = (5usize, 5usize, 5usize);
+        let (v, e, q) = (vertices.as_mut_ptr(), edges.as_mut_ptr(), points.as_mut_ptr());
+        // SAFETY: valid pointers and lengths throughout; failing calls write nothing.
+        unsafe {
+            // Counts: a NULL run or any NULL out-pointer is an error, and nothing is written.
+            let (mut cv, mut ce, mut cp) = (5usize, 5usize, 5usize);
+            assert_eq!(hibi_mud_network_counts(null(), &mut cv, &mut ce, &mut cp), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_network_counts(mud, null_mut(), &mut ce, &mut cp), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_network_counts(mud, &mut cv, null_mut(), &mut cp), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_network_counts(mud, &mut cv, &mut ce, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!((cv, ce, cp), (5, 5, 5));
+            assert_eq!(hibi_mud_network_counts(mud, &mut cv, &mut ce, &mut cp), HIBI_OK);
+            assert_eq!((cv, ce, cp), (nv, ne, np));
+
+            let network = |mud: *const hibi_mud, lens: [usize; 3], out: [*mut usize; 3]| {
+                hibi_mud_network(mud, v, lens[0], e, lens[1], q, lens[2], out[0], out[1], out[2])
+            };
+            let written = [&raw mut wv, &raw mut we, &raw mut wp];
+            let full = [nv, ne, np];
+            assert_eq!(network(null(), full, written), HIBI_ERROR_NULL_POINTER);
+            for i in 0..3 {
+                let mut out = written;
+                out[i] = null_mut();
+                assert_eq!(network(mud, full, out), HIBI_ERROR_NULL_POINTER, "written pointer {i}");
+                // Each buffer one short, or NULL with length 0.
+                let mut short = full;
+                short[i] -= 1;
+                assert_eq!(network(mud, short, written), HIBI_ERROR_BUFFER_TOO_SMALL, "buffer {i}");
+                let mut empty = full;
+                empty[i] = 0;
+                let status = match i {
+                    0 => hibi_mud_network(mud, null_mut(), 0, e, ne, q, np, written[0], written[1], written[2]),
+                    1 => hibi_mud_network(mud, v, nv, null_mut(), 0, q, np, written[0], written[1], written[2]),
+                    _ => hibi_mud_network(mud, v, nv, e, ne, null_mut(), 0, written[0], written[1], written[2]),
+                };
+                assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "NULL buffer {i}");
+                assert_eq!(network(mud, empty, written), HIBI_ERROR_BUFFER_TOO_SMALL, "empty buffer {i}");
+                let status = match i {
+                    0 => hibi_mud_network(mud, null_mut(), nv, e, ne, q, np, written[0], written[1], written[2]),
+                    1 => hibi_mud_network(mud, v, nv, null_mut(), ne, q, np, written[0], written[1], written[2]),
+                    _ => hibi_mud_network(mud, v, nv, e, ne, null_mut(), np, written[0], written[1], written[2]),
+                };
+                assert_eq!(status, HIBI_ERROR_NULL_POINTER, "NULL buffer {i} with a length");
+            }
+            assert_eq!((wv, we, wp), (5, 5, 5));
+            assert!(untouched(&vertices, &edges, &points));
+
+            assert_eq!(network(mud, full, written), HIBI_OK);
+            assert_eq!((wv, we, wp), (nv, ne, np));
+            assert!(untouched(&vertices[nv..], &edges[ne..], &points[np..]), "written past the counts");
+        }
+        // What C got is what the core writes, field by field.
+        let mut want = (vec![NetworkVertex::default(); nv], vec![NetworkEdge::default(); ne]);
+        let mut want_points = vec![NetworkPoint::default(); np];
+        assert_eq!(core.network(&mut want.0, &mut want.1, &mut want_points), Ok(expected));
+        for (c, r) in vertices.iter().zip(&want.0) {
+            assert_eq!((c.at, c.degree, c.on_border), (r.at, r.degree, r.on_border));
+        }
+        for (c, r) in edges.iter().zip(&want.1) {
+            assert_eq!((c.from, c.to, c.first_point, c.point_count), (r.from, r.to, r.first_point, r.point_count));
+        }
+        for (c, r) in points.iter().zip(&want_points) {
+            assert_eq!((c.at, c.width, c.time), (r.at, r.width, r.time));
+        }
+        assert!(vertices.iter().take(nv).any(|v| v.on_border == 1), "an open plate has border vertices");
+        // SAFETY: a live run, not used afterwards.
+        unsafe { hibi_mud_destroy(mud) };
+    }
+
+    #[test]
+    fn cells_come_in_counted_buffers_and_short_ones_are_left_alone() {
+        for boundary in [HIBI_MUD_OPEN, HIBI_MUD_PERIODIC] {
+            let mut p = small();
+            p.boundary = boundary;
+            p.columns = 24;
+            p.rows = 24;
+            let (mud, mut scalars, mut words) = finished(&p);
+            let mut core = Mud::new(&core_params(&p).unwrap(), &mut scalars, &mut words).unwrap();
+            core.run();
+            let expected = core.cell_counts();
+            let (nr, np) = (expected.rings, expected.points);
+            assert!(nr > 1 && np > 3 * nr, "{boundary}: {expected:?}");
+            let (mut rings, mut points) = (vec![RING; nr + 1], vec![VEC; np + 1]);
+            let untouched =
+                |r: &[hibi_mud_cell_ring], q: &[hibi_vec2]| r.iter().all(|x| *x == RING) && q.iter().all(|x| *x == VEC);
+            let (r, q) = (rings.as_mut_ptr(), points.as_mut_ptr());
+            let (mut wr, mut wp) = (5usize, 5usize);
+            // SAFETY: valid pointers and lengths throughout; failing calls write nothing.
+            unsafe {
+                let (mut cr, mut cp, mut cw) = (5usize, 5usize, 5usize);
+                assert_eq!(hibi_mud_cell_counts(null(), &mut cr, &mut cp, &mut cw), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cell_counts(mud, null_mut(), &mut cp, &mut cw), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cell_counts(mud, &mut cr, null_mut(), &mut cw), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cell_counts(mud, &mut cr, &mut cp, null_mut()), HIBI_ERROR_NULL_POINTER);
+                assert_eq!((cr, cp, cw), (5, 5, 5));
+                assert_eq!(hibi_mud_cell_counts(mud, &mut cr, &mut cp, &mut cw), HIBI_OK);
+                assert_eq!((cr, cp, cw), (nr, np, expected.wrapping));
+
+                assert_eq!(hibi_mud_cells(null(), r, nr, q, np, &mut wr, &mut wp), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cells(mud, r, nr, q, np, null_mut(), &mut wp), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cells(mud, r, nr, q, np, &mut wr, null_mut()), HIBI_ERROR_NULL_POINTER);
+                assert_eq!(hibi_mud_cells(mud, null_mut(), nr, q, np, &mut wr, &mut wp), HIBI_ERROR_NULL_POINTER);
+                for (rl, pl) in [(nr - 1, np), (nr, np - 1), (0, np), (nr, 0)] {
+                    assert_eq!(hibi_mud_cells(mud, r, rl, q, pl, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);
+                }
+                assert_eq!(hibi_mud_cells(mud, null_mut(), 0, q, np, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);
+                assert_eq!(hibi_mud_cells(mud, r, nr, null_mut(), 0, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);
+                assert_eq!((wr, wp), (5, 5));
+                assert!(untouched(&rings, &points));
+
+                assert_eq!(hibi_mud_cells(mud, r, nr, q, np, &mut wr, &mut wp), HIBI_OK);
+                assert_eq!((wr, wp), (nr, np));
+                assert!(untouched(&rings[nr..], &points[np..]), "written past the counts");
+            }
+            let (mut want, mut want_points) = (vec![CellRing::default(); nr], vec![[0.0f32; 2]; np]);
+            assert_eq!(core.cells(&mut want, &mut want_points), Ok(expected));
+            for (c, w) in rings.iter().zip(&want) {
+                assert_eq!(
+                    (c.area, c.first_point, c.point_count, c.hole_of),
+                    (w.area, w.first_point, w.point_count, w.hole_of)
+                );
+            }
+            assert!(points.iter().zip(&want_points).all(|(c, w)| [c.x, c.y] == *w));
+            assert_eq!(rings[..nr].iter().map(|x| x.point_count as usize).sum::<usize>(), np);
+            // The statistics C sees are the core's.
+            let mut stats = hibi_mud_statistics::default();
+            // SAFETY: a live run and a writable struct.
+            assert_eq!(unsafe { hibi_mud_measure(mud, &mut stats) }, HIBI_OK);
+            let s = core.statistics();
+            assert_eq!(
+                (stats.crack_density, stats.cells, stats.mean_cell_area, stats.cell_area_spread),
+                (s.crack_density, s.cells, s.mean_cell_area, s.cell_area_spread)
+            );
+            assert_eq!((stats.junctions, stats.dead_ends), (s.junctions, s.dead_ends));
+            assert!(stats.junctions > 0, "{boundary}: {stats:?}");
+            // SAFETY: a live run, not used afterwards.
+            unsafe { hibi_mud_destroy(mud) };
         }
     }
 }
