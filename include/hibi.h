@@ -594,6 +594,16 @@ typedef struct hibi_mud_statistics {
    * Cracks that end inside a cell (vertices of degree 1 off the border).
    */
   uint32_t dead_ends;
+  /**
+   * T junctions: one crack runs on and another meets it (the widest angle between
+   * neighbouring cracks' courses, taken 3 spacings out, is at least 150°); the rest are Y.
+   */
+  uint32_t t_junctions;
+  /**
+   * Mean over junctions of the widest angle between neighbouring cracks' courses
+   * [degrees]: 180 for a perfect T, 120 for a symmetric Y.
+   */
+  float mean_widest_junction_angle;
 } hibi_mud_statistics;
 
 /**

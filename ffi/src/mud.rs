@@ -185,6 +185,12 @@ pub struct hibi_mud_statistics {
     pub junctions: u32,
     /// Cracks that end inside a cell (vertices of degree 1 off the border).
     pub dead_ends: u32,
+    /// T junctions: one crack runs on and another meets it (the widest angle between
+    /// neighbouring cracks' courses, taken 3 spacings out, is at least 150°); the rest are Y.
+    pub t_junctions: u32,
+    /// Mean over junctions of the widest angle between neighbouring cracks' courses
+    /// [degrees]: 180 for a perfect T, 120 for a symmetric Y.
+    pub mean_widest_junction_angle: f32,
 }
 
 /// `hibi_mud_network_edge.from` and `.to` of a closed crack, which has no vertex on it.
@@ -644,6 +650,8 @@ pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_m
             cell_area_spread: s.cell_area_spread,
             junctions: s.junctions,
             dead_ends: s.dead_ends,
+            t_junctions: s.t_junctions,
+            mean_widest_junction_angle: s.mean_widest_junction_angle,
         };
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, value) }
@@ -1148,6 +1156,10 @@ mod tests {
                 (s.crack_density, s.cells, s.mean_cell_area, s.cell_area_spread)
             );
             assert_eq!((stats.junctions, stats.dead_ends), (s.junctions, s.dead_ends));
+            assert_eq!(
+                (stats.t_junctions, stats.mean_widest_junction_angle),
+                (s.t_junctions, s.mean_widest_junction_angle)
+            );
             assert!(stats.junctions > 0, "{boundary}: {stats:?}");
             // SAFETY: a live run, not used afterwards.
             unsafe { hibi_mud_destroy(mud) };

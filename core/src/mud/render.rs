@@ -74,11 +74,18 @@ impl<S: Scalar> Mud<'_, S> {
         }
     }
 
-    /// Calls `visit` for every pixel of every crack stroke.
-    fn draw(&self, render: &MudRender, mut visit: impl FnMut(StrokeHit)) {
+    /// Pixels per lattice unit (the mean of the two axes').
+    fn pixels_per_unit(&self, render: &MudRender) -> f32 {
         let frame = self.frame(render);
-        let pixels_per_unit = 0.5 * (frame.scale[0] + frame.scale[1]);
-        let half = |w: f32| 0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width);
+        0.5 * (frame.scale[0] + frame.scale[1])
+    }
+
+    /// Calls `visit` for every pixel of every crack stroke, each widened on either side by
+    /// `margin` pixels.
+    fn draw(&self, render: &MudRender, margin: f32, mut visit: impl FnMut(StrokeHit)) {
+        let frame = self.frame(render);
+        let pixels_per_unit = self.pixels_per_unit(render);
+        let half = |w: f32| 0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width) + margin;
         // On a periodic lattice the view wraps: reduce the offset to one period.
         let [ox, oy] = match frame.period {
             Some([w, h]) => [
@@ -101,33 +108,43 @@ impl<S: Scalar> Mud<'_, S> {
     /// The crack mask, 0 (none) to 255, row-major `width × height`. Nothing is written on
     /// failure.
     pub fn render_mask(&self, render: &MudRender, out: &mut [u8]) -> Result<(), RasterError> {
-        draw_mask(render.validate()?, out, |visit| self.draw(render, visit))
+        draw_mask(render.validate()?, out, |visit| self.draw(render, 0.0, visit))
     }
 
     /// The break-time map: for each pixel the earliest break time (long steps) of the cracks
     /// covering at least half of it; +∞ where none does. Nothing is written on failure.
     pub fn render_time(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
-        draw_time(render.validate()?, out, |visit| self.draw(render, visit))
+        draw_time(render.validate()?, out, |visit| self.draw(render, 0.0, visit))
     }
 
-    /// The height map: 1 on the surface; each crack a parabolic groove whose depth is
-    /// `groove_depth` times its width over the widest crack's. Nothing is written on failure.
+    /// The height map: 1 on a cell's surface. Each cell's edge rounds off over
+    /// [`BEVEL`] spacings into its crack, whose floor lies `groove_depth` times
+    /// (½ + ½ · its width over the widest crack's) below the surface: raised cells between
+    /// grooves, older (wider) cracks deeper. Nothing is written on failure.
     pub fn render_height(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
         let pixels = render.validate()?;
         if out.len() < pixels {
             return Err(RasterError::BufferTooSmall { needed: pixels });
         }
         let mut widest = 0.0f32;
-        self.draw(render, |hit| widest = widest.max(hit.half_width));
+        self.draw(render, 0.0, |hit| widest = widest.max(hit.half_width));
         out[..pixels].fill(1.0);
         if widest <= 0.0 {
             return Ok(());
         }
-        self.draw(render, |hit| {
-            let across = hit.depth.min(1.0);
-            let groove = render.groove_depth * (hit.half_width / widest) * (1.0 - across * across) * hit.coverage;
+        let bevel = BEVEL * self.pixels_per_unit(render);
+        self.draw(render, bevel, |hit| {
+            let crack = hit.half_width - bevel;
+            let from_axis = hit.depth * hit.half_width;
+            // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
+            let edge = if from_axis <= crack { 1.0 } else { (1.0 - (from_axis - crack) / bevel).max(0.0) };
+            let floor = render.groove_depth * (0.5 + 0.5 * crack / widest);
+            let groove = floor * edge * edge * hit.coverage;
             out[hit.pixel] = out[hit.pixel].min(1.0 - groove);
         });
         Ok(())
     }
 }
+
+/// How far a cell's edge rounds off into its crack in the height map [lattice spacings].
+pub const BEVEL: f32 = 0.6;

@@ -45,7 +45,7 @@ pub struct CrackStatistics {
     /// angle between neighbouring courses is at least 150°). The rest are Y junctions.
     pub t_junctions: u32,
     /// The mean over junctions of the widest angle between neighbouring cracks' courses
-    /// [degrees]: 180 for a perfect T, 120 for a symmetric Y.
+    /// \[degrees\]: 180 for a perfect T, 120 for a symmetric Y.
     pub mean_widest_junction_angle: f32,
     /// Dead ends: cracks that end inside a cell (vertices of degree 1 off the border).
     pub dead_ends: u32,
