@@ -554,3 +554,26 @@ fn the_default_mask_shows_thin_connected_cracks() {
     assert!(share <= 0.12, "{share}");
     assert!(largest as f32 >= 0.95 * cracked as f32, "{largest} of {cracked}");
 }
+
+/// Paper Fig. 6 b: square elements carry no in-plane shear, and their network is a maze of
+/// short axis-aligned cracks meeting at right angles: nearly every junction is a T (a crack
+/// runs on straight, another meets it square), the cells are small, and no crack ends
+/// inside a cell. The hexagonal lattice's junctions are T's less often, and its cells larger.
+#[test]
+fn the_square_lattice_gives_a_maze_of_short_cracks_meeting_square() {
+    let stats = |name: &str| {
+        let p = hibi_core::mud::preset(name).expect("a preset");
+        let memory = p.memory().unwrap();
+        let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+        let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+        mud.run();
+        mud.statistics()
+    };
+    let (square, hexagonal) = (stats("fig6b"), stats("fig6a"));
+    println!("fig6b {square:?}\nfig6a {hexagonal:?}");
+    let t_share = |s: &hibi_core::mud::CrackStatistics| s.t_junctions as f32 / s.junctions as f32;
+    assert!(t_share(&square) > 0.75 && square.mean_widest_junction_angle > 170.0, "{square:?}");
+    assert!(t_share(&hexagonal) < t_share(&square) - 0.05, "{hexagonal:?}");
+    assert!(square.dead_ends as f32 <= 0.05 * square.junctions as f32, "{square:?}");
+    assert!(square.mean_cell_area < hexagonal.mean_cell_area, "{square:?} vs {hexagonal:?}");
+}

@@ -375,6 +375,11 @@ pub fn round_to_i64(x: f64) -> i64 {
     t + i64::from(rest >= 0.5) - i64::from(rest <= -0.5)
 }
 
+/// Twice the signed area of the triangle (0, a, b): one shoelace term.
+pub fn shoelace(a: [f32; 2], b: [f32; 2]) -> f64 {
+    f64::from(a[0]) * f64::from(b[1]) - f64::from(b[0]) * f64::from(a[1])
+}
+
 /// Whether a ray from `p` towards +x crosses the edge a–b (half-open in y, so a ray through a
 /// vertex counts once). An odd number of crossings puts `p` inside.
 pub fn crosses_ray(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> bool {

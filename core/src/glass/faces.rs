@@ -10,7 +10,7 @@
 
 use super::grid::NONE;
 use super::{CrackEnd, Edge, Glass, Vertex};
-use crate::geom::{crosses_ray, pseudo_angle};
+use crate::geom::{crosses_ray, pseudo_angle, shoelace};
 
 impl Edge {
     /// A segment of crack `crack` from vertex `from` to `to`, not yet chained or linked.
@@ -84,11 +84,6 @@ pub(super) struct FaceShape {
     /// Smallest and largest x and y of its vertices.
     pub(super) min: [f32; 2],
     pub(super) max: [f32; 2],
-}
-
-/// Twice the signed area of the triangle (0, a, b): one shoelace term.
-pub(super) fn shoelace(a: [f32; 2], b: [f32; 2]) -> f64 {
-    f64::from(a[0]) * f64::from(b[1]) - f64::from(b[0]) * f64::from(a[1])
 }
 
 /// The shape of the face left of `start` (None if the walk is broken).

@@ -9,11 +9,11 @@
 //! signed areas add up to the plate's area, and each point of the plate lies in exactly one
 //! fragment.
 
-use super::faces::{CrackGraph, HalfEdge, PlaneGraph, shoelace, walk_face};
+use super::faces::{CrackGraph, HalfEdge, PlaneGraph, walk_face};
 use super::grid::NONE;
 use super::{Glass, GlassError, take};
-use crate::geom::crosses_ray;
 use crate::geom::pseudo_angle;
+use crate::geom::{crosses_ray, shoelace};
 
 /// One ring of a fragment's outline, in [`Glass::fragments`]' point buffer.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

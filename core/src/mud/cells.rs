@@ -15,6 +15,7 @@
 
 use super::network::TracedCell;
 use super::{Boundary, Mud, MudError};
+use crate::geom::shoelace;
 use crate::scalar::Scalar;
 
 pub use crate::glass::FragmentRing as CellRing;
@@ -84,14 +85,13 @@ impl<S: Scalar> Mud<'_, S> {
                     }
                     match self.across(&c, j, wrap) {
                         Some((next, side, wrap)) => {
-                            if !visit(c.midpoint(j), key(next, side)) {
+                            if !visit(c.midpoint(j), key(next.index, side)) {
                                 return RingEnd::Stopped;
                             }
-                            if key(next, side) == start_key {
+                            if key(next.index, side) == start_key {
                                 return RingEnd::Closed(wrap);
                             }
-                            let Some(c) = self.traced_cell(next, wrap) else { return RingEnd::Broken };
-                            At::Inside { c, k: side, wrap }
+                            At::Inside { c: next, k: side, wrap }
                         }
                         None => {
                             let i = (j + 1) % n;
@@ -106,10 +106,7 @@ impl<S: Scalar> Mud<'_, S> {
                     // The side leaving corner i counter-clockwise: on the border, or turn about
                     // the corner into the next mesh cell.
                     match self.across(&c, i, [0, 0]) {
-                        Some((next, side, _)) => {
-                            let Some(n) = self.traced_cell(next, [0, 0]) else { return RingEnd::Broken };
-                            At::Border { c: n, i: (side + 1) % n.sides() }
-                        }
+                        Some((next, side, _)) => At::Border { c: next, i: (side + 1) % next.sides() },
                         None => {
                             if moved && border_key(c.index, i) == start_key {
                                 return RingEnd::Closed([0, 0]);
@@ -176,19 +173,19 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// The signed area and point count of the ring from `start` (lattice units²).
     fn ring_shape(&self, start: At) -> (f64, usize) {
-        let (mut twice, mut count, mut previous) = (0.0f64, 0usize, None::<[f32; 2]>);
-        let mut first = None;
+        let (mut twice, mut count, mut previous, mut first) = (0.0f64, 0usize, [0.0f32; 2], None);
         self.walk_ring(start, |p, _| {
-            if let Some(q) = previous {
-                twice += f64::from(q[0]) * f64::from(p[1]) - f64::from(p[0]) * f64::from(q[1]);
+            if first.is_some() {
+                twice += shoelace(previous, p);
+            } else {
+                first = Some(p);
             }
-            first.get_or_insert(p);
-            previous = Some(p);
+            previous = p;
             count += 1;
             true
         });
-        if let (Some(q), Some(p)) = (previous, first) {
-            twice += f64::from(q[0]) * f64::from(p[1]) - f64::from(p[0]) * f64::from(q[1]);
+        if let Some(p) = first {
+            twice += shoelace(previous, p);
         }
         (twice * 0.5, count)
     }
@@ -222,7 +219,9 @@ impl<S: Scalar> Mud<'_, S> {
                 p += 1;
                 true
             });
-            let (area, _) = self.ring_shape(start);
+            let ring = &points[first..p];
+            let twice: f64 = ring.iter().zip(ring.iter().cycle().skip(1)).map(|(a, b)| shoelace(*a, *b)).sum();
+            let area = 0.5 * twice;
             rings[r] = CellRing { area, first_point: first as u32, point_count: (p - first) as u32, hole_of: u32::MAX };
             r += 1;
         });

@@ -236,7 +236,10 @@ impl Lattice {
     /// (an open edge).
     pub fn cells_of_spring(&self, spring: usize) -> [Option<(usize, usize)>; 2] {
         let (node, d) = self.spring_origin(spring);
-        let exists = |cell: Option<usize>, side: usize| cell.filter(|&c| self.cell(c).is_some()).map(|c| (c, side));
+        // On a periodic lattice every cell exists; at open edges a cell exists if its sides do.
+        let periodic = self.boundary == Boundary::Periodic;
+        let exists =
+            |cell: Option<usize>, side: usize| cell.filter(|&c| periodic || self.cell(c).is_some()).map(|c| (c, side));
         match (self.topology, d) {
             // Square cell b has sides [b→right, right→up-right, up→up-right, b→up], the last
             // two running clockwise; the side index says which.

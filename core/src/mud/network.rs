@@ -290,7 +290,11 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
     pub(super) fn traced_cell(&self, cell: usize, wrap: [i32; 2]) -> Option<TracedCell> {
-        let c = self.lattice.cell(cell)?;
+        self.lattice.cell(cell).map(|c| self.traced(cell, c, wrap))
+    }
+
+    /// Mesh cell `c` (index `cell`) as the network sees it, shifted by `wrap` periods.
+    fn traced(&self, cell: usize, c: Cell, wrap: [i32; 2]) -> TracedCell {
         let (_, deep) = self.factors();
         let deep = deep.to_f32();
         let [w, h] = self.lattice.extent();
@@ -305,12 +309,12 @@ impl<S: Scalar> Mud<'_, S> {
             t.cut[k] = self.is_cut(c.sides[k] as usize);
             t.separating[k] = self.separates(c.sides[k] as usize);
         }
-        Some(t)
+        t
     }
 
-    /// The cell across side `k` of `from`, the side the spring is in it, and the wrap that
-    /// keeps the two cells' positions continuous; `None` at an open border.
-    pub(super) fn across(&self, from: &TracedCell, k: usize, wrap: [i32; 2]) -> Option<(usize, usize, [i32; 2])> {
+    /// The mesh cell across side `k` of `from`, the side the spring is in it, and the wrap
+    /// that keeps the two cells' positions continuous; `None` at an open border.
+    pub(super) fn across(&self, from: &TracedCell, k: usize, wrap: [i32; 2]) -> Option<(TracedCell, usize, [i32; 2])> {
         let spring = from.cell.sides[k] as usize;
         let [a, b] = self.lattice.cells_of_spring(spring);
         let (cell, side) = [a, b].into_iter().flatten().find(|&(c, _)| c != from.index)?;
@@ -323,7 +327,8 @@ impl<S: Scalar> Mud<'_, S> {
         let (p, q) = (mid(&from.cell.reference, k, n.0), mid(&to.reference, side, n.1));
         let [w, h] = self.lattice.extent();
         let periods = [libm::roundf((p[0] - q[0]) / w) as i32, libm::roundf((p[1] - q[1]) / h) as i32];
-        Some((cell, side, [wrap[0] + periods[0], wrap[1] + periods[1]]))
+        let wrap = [wrap[0] + periods[0], wrap[1] + periods[1]];
+        Some((self.traced(cell, to, wrap), side, wrap))
     }
 
     /// The network point at the midpoint of side `k`.
@@ -383,11 +388,11 @@ impl<S: Scalar> Mud<'_, S> {
             let Some((next, side, next_wrap)) = self.across(&c, out, wrap) else {
                 return Some(Arrival { vertex: self.border_vertex(&c, out), side: out });
             };
-            if (next, side) == start {
+            if (next.index, side) == start {
                 return None;
             }
             wrap = next_wrap;
-            c = self.traced_cell(next, wrap)?;
+            c = next;
             k = side;
         }
         None
@@ -414,10 +419,9 @@ impl<S: Scalar> Mud<'_, S> {
                         visit(self.side_point(&c, k));
                         match start {
                             Start::Centroid => {
-                                let Some((next, side, wrap)) = self.across(&c, k, [0, 0]) else {
+                                let Some((n, side, wrap)) = self.across(&c, k, [0, 0]) else {
                                     return Some(Arrival { vertex: self.border_vertex(&c, k), side: k });
                                 };
-                                let n = self.traced_cell(next, wrap)?;
                                 self.walk((cell, k), n, side, wrap, |p, _| {
                                     visit(p);
                                     true
@@ -489,9 +493,7 @@ impl<S: Scalar> Mud<'_, S> {
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
                 let mut last = c.midpoint(k);
                 let mut length = libm::hypotf(last[0] - centre[0], last[1] - centre[1]);
-                if let Some((next, side, wrap)) = self.across(&c, k, [0, 0])
-                    && let Some(t) = self.traced_cell(next, wrap)
-                {
+                if let Some((t, side, wrap)) = self.across(&c, k, [0, 0]) {
                     self.walk((cell, k), t, side, wrap, |p, _| {
                         length += libm::hypotf(p.at[0] - last[0], p.at[1] - last[1]);
                         last = p.at;
