@@ -581,3 +581,36 @@ fn the_square_lattice_gives_a_maze_of_short_cracks_meeting_square() {
     assert!(square.dead_ends as f32 <= 0.05 * square.junctions as f32, "{square:?}");
     assert!(square.mean_cell_area < hexagonal.mean_cell_area, "{square:?} vs {hexagonal:?}");
 }
+
+#[test]
+fn network_and_cells_refuse_short_buffers_and_write_nothing() {
+    use hibi_core::mud::{CellRing, MudError, NetworkEdge, NetworkPoint, NetworkVertex};
+    let p = params(48);
+    let memory = p.memory().unwrap();
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    mud.run();
+    let n = mud.network_counts();
+    let sentinel_vertex = NetworkVertex { degree: 77, ..Default::default() };
+    let sentinel_edge = NetworkEdge { from: 77, ..Default::default() };
+    let sentinel_point = NetworkPoint { width: 77.0, ..Default::default() };
+    let (mut v, mut e, mut q) =
+        (vec![sentinel_vertex; n.vertices], vec![sentinel_edge; n.edges], vec![sentinel_point; n.points]);
+    for (short, needed) in [(0, n.vertices), (1, n.edges), (2, n.points)] {
+        let result = match short {
+            0 => mud.network(&mut v[..n.vertices - 1], &mut e, &mut q),
+            1 => mud.network(&mut v, &mut e[..n.edges - 1], &mut q),
+            _ => mud.network(&mut v, &mut e, &mut q[..n.points - 1]),
+        };
+        assert_eq!(result, Err(MudError::BufferTooSmall { needed }));
+        assert!(v.iter().all(|x| *x == sentinel_vertex) && e.iter().all(|x| *x == sentinel_edge));
+        assert!(q.iter().all(|x| *x == sentinel_point));
+    }
+    assert_eq!(mud.network(&mut v, &mut e, &mut q), Ok(n));
+    let c = mud.cell_counts();
+    let sentinel_ring = CellRing { hole_of: 77, ..Default::default() };
+    let (mut rings, mut points) = (vec![sentinel_ring; c.rings], vec![[77.0f32; 2]; c.points]);
+    assert_eq!(mud.cells(&mut rings, &mut points[..c.points - 1]), Err(MudError::BufferTooSmall { needed: c.points }));
+    assert!(rings.iter().all(|r| *r == sentinel_ring) && points.iter().all(|p| *p == [77.0; 2]));
+    assert_eq!(mud.cells(&mut rings, &mut points), Ok(c));
+}
