@@ -348,13 +348,14 @@ typedef struct hibi_glass_point {
 } hibi_glass_point;
 
 /**
- * One ring of a fragment's outline: `point_count` points from `first_point` on in the point
- * buffer, counter-clockwise with y up for a fragment's outer ring (positive `area`), clockwise
- * for a hole (negative `area`, and `hole_of` names the outer ring it lies in).
+ * One ring of a fragment's outline (glass) or of a cell's (mud, as `hibi_mud_cell_ring`):
+ * `point_count` points from `first_point` on in the point buffer, counter-clockwise with y up
+ * for an outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of`
+ * names the outer ring it lies in).
  */
 typedef struct hibi_glass_fragment_ring {
   /**
-   * Signed area [px²].
+   * Signed area: [px²] for glass, [lattice units²] for mud.
    */
   double area;
   /**

@@ -19,7 +19,8 @@ use crate::geom::{crosses_ray, shoelace};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct FragmentRing {
-    /// Signed area \[px²\]: positive for an outer ring, negative for a hole.
+    /// Signed area (glass: \[px²\]; mud's cells: \[lattice units²\]): positive for an outer
+    /// ring, negative for a hole.
     pub area: f64,
     /// Index of the ring's first point.
     pub first_point: u32,
