@@ -583,8 +583,9 @@ typedef struct hibi_mud_statistics {
    */
   float mean_cell_area;
   /**
-   * Standard deviation of the cells' areas [cm²] (each outer ring less its holes; cells
-   * that wrap around a periodic lattice are left out).
+   * Standard deviation of the cells' areas [cm²] over their outer rings; holes (islands,
+   * rare) are taken off all cells evenly, and cells that wrap around a periodic lattice
+   * are left out.
    */
   float cell_area_spread;
   /**

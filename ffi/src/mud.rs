@@ -178,8 +178,9 @@ pub struct hibi_mud_statistics {
     pub cells: u32,
     /// Mean cell area [cm²]: the plate's area over `cells`.
     pub mean_cell_area: f32,
-    /// Standard deviation of the cells' areas [cm²] (each outer ring less its holes; cells
-    /// that wrap around a periodic lattice are left out).
+    /// Standard deviation of the cells' areas [cm²] over their outer rings; holes (islands,
+    /// rare) are taken off all cells evenly, and cells that wrap around a periodic lattice
+    /// are left out.
     pub cell_area_spread: f32,
     /// Network vertices where three or more cracks meet.
     pub junctions: u32,

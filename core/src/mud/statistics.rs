@@ -35,8 +35,9 @@ pub struct CrackStatistics {
     pub cells: u32,
     /// Mean area of a cell \[cm²\]: the plate's area over the number of cells.
     pub mean_cell_area: f32,
-    /// Standard deviation of the cells' areas \[cm²\] (each cell's outer ring less its holes;
-    /// cells that wrap around a periodic lattice are left out).
+    /// Standard deviation of the cells' areas \[cm²\] over their outer rings; holes (islands,
+    /// rare) are taken off all cells evenly, and cells that wrap around a periodic lattice
+    /// are left out.
     pub cell_area_spread: f32,
     /// Junctions: network vertices where three or more cracks meet.
     pub junctions: u32,
