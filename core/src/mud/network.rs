@@ -214,7 +214,7 @@ impl<S: Scalar> Mud<'_, S> {
             if sides.iter().filter(|&&s| self.is_cut(s as usize)).count() != 1 {
                 continue;
             }
-            let tip = sides.iter().map(|&s| s as usize).find(|&s| self.is_cut(s)).unwrap_or(0);
+            let Some(tip) = sides.iter().map(|&s| s as usize).find(|&s| self.is_cut(s)) else { continue };
             let mut best: Option<(f32, usize)> = None;
             for &s in sides {
                 let s = s as usize;
