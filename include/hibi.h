@@ -44,6 +44,13 @@
 #define HIBI_MUD_HEXAGONAL 1
 
 /**
+ * Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
+ * its own length and face; cracks run in any direction. Quasi-static solver only; periodic
+ * lattices need columns >= 8 and an even rows >= 8.
+ */
+#define HIBI_MUD_IRREGULAR 2
+
+/**
  * Free edges.
  */
 #define HIBI_MUD_OPEN 0
@@ -490,6 +497,12 @@ typedef struct hibi_mud_params {
    * σ, break stretch spread per unit area [1/cm] (paper: 0.001).
    */
   float break_stretch_spread;
+  /**
+   * Beyond the paper: κ̄ − 1 is scaled by (1 cm / element_size)^x, for mesh-scale
+   * independence; 0 (default) is the paper's rule, 0.25 keeps crack density and cell size
+   * within 15 % from W = 2 to 1 to 0.5 cm. Within [0, 1].
+   */
+  float break_stretch_size_exponent;
   /**
    * Direction cracks prefer [radians] (default 0).
    */
@@ -1019,6 +1032,16 @@ typedef struct hibi_skin_cell {
  * Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
  */
 #define HIBI_ERROR_MUD_SCALE 532
+
+/**
+ * Mud parameters: `solver` explicit needs `topology` square or hexagonal (irregular is quasi-static only).
+ */
+#define HIBI_ERROR_MUD_SOLVER 533
+
+/**
+ * Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 534
 
 /**
  * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).

@@ -12,8 +12,9 @@ use hibi_tests::fnv1a64;
 const SEED: u64 = 2026;
 
 /// The first four 32-bit outputs of each stream for seed 2026, in `Stream::ALL` order.
-const FIRST_OUTPUTS: [(Stream, [u32; 4]); 9] = [
+const FIRST_OUTPUTS: [(Stream, [u32; 4]); 10] = [
     (Stream::BreakStretch, [1427003102, 2937897310, 2427765056, 1693374040]),
+    (Stream::LatticeJitter, [954381491, 385118382, 373506146, 1222866654]),
     (Stream::RadialCount, [4086243937, 3633856879, 768297860, 2570844062]),
     (Stream::CrackSpeed, [1383952818, 2442216126, 3090181330, 251949910]),
     (Stream::RingRadius, [3449750040, 3083511762, 616720071, 1265029083]),

@@ -115,25 +115,29 @@ fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts()
 
 /// Paper §4.2 (Fig. 9): the same physical parameters meshed finer give cells of about the
 /// same size in cm, so a coarse mesh previews a fine one. The plate is the `fig9a`–`fig9c`
-/// presets' square 64 cm one, meshed at W = 2, 1 and 0.5 cm; mean cell areas are averaged
-/// over 16 seeds, since one plate holds only 35–70 cells.
-///
-/// Measured on the traced network (issue 21) this fails: 42.5, 20.6 and 12.7 cm² over seeds
-/// 1-16. It held (96.5, 91.9, 71.6 cm²) only on a mask drawn 0.6 spacing wide, which merged
-/// the finer meshes' cells. Open until mesh-scale independence is restored.
+/// presets' square 64 cm one, meshed at W = 2, 1 and 0.5 cm, measured on the traced network
+/// over 16 seeds. The paper's rule (κ̄ at every W) does not keep it: 0.39 / 0.54 / 0.68 cracks
+/// per cm and 42.5 / 20.6 / 12.7 cm² cells. The presets scale the break margin to the element
+/// size (`break_stretch_size_exponent` 0.25), which does.
 #[test]
-#[ignore = "issue 21: the network's cells shrink with the mesh (42.5 / 20.6 / 12.7 cm²)"]
-fn halving_the_element_size_keeps_the_mean_cell_area() {
-    let areas = ["fig9a", "fig9b", "fig9c"].map(|name| {
+fn halving_the_element_size_keeps_crack_density_and_cell_area() {
+    let figures = ["fig9a", "fig9b", "fig9c"].map(|name| {
         let base = hibi_core::mud::preset(name).expect("a preset");
-        let per_seed: Vec<f32> =
-            (1..=16).map(|seed| run::<f32>(&MudParams { seed, ..base }).0.mean_cell_area).collect();
-        println!("{name}, seeds 1-16: {per_seed:.1?} cm²");
-        mean(per_seed.into_iter())
+        assert_eq!(base.break_stretch_size_exponent, 0.25);
+        let runs: Vec<CrackStatistics> = (1..=16).map(|seed| run::<f32>(&MudParams { seed, ..base }).0).collect();
+        let density = mean(runs.iter().map(|s| s.crack_density));
+        let area = mean(runs.iter().map(|s| s.mean_cell_area));
+        println!(
+            "{name} (W = {} cm), seeds 1-16: {density:.3} cracks per cm, cells of {area:.1} cm²",
+            base.element_size
+        );
+        (density, area)
     });
-    println!("mean cell area at W = 2, 1, 0.5 cm: {areas:.1?} cm²");
-    assert!(within(areas[0], areas[1], 0.30), "W = 2 vs 1 cm: {areas:?}");
-    assert!(within(areas[1], areas[2], 0.30), "W = 1 vs 0.5 cm: {areas:?}");
+    for k in 0..2 {
+        let (a, b) = (figures[k], figures[k + 1]);
+        assert!(within(a.0, b.0, 0.15), "crack density, step {k}: {figures:?}");
+        assert!(within(a.1, b.1, 0.15), "mean cell area, step {k}: {figures:?}");
+    }
 }
 
 #[test]
@@ -192,6 +196,9 @@ fn golden_segments() {
     let p = params(64);
     assert_eq!(run::<f32>(&p).1, 18393408140972356417, "the f32 scene changed");
     assert_eq!(run::<Q16>(&p).1, 12157041380417967923, "the Q16.16 scene changed");
+    let irregular = MudParams { topology: Topology::Irregular, ..p };
+    assert_eq!(run::<f32>(&irregular).1, 16239589052247046685, "the irregular f32 scene changed");
+    assert_eq!(run::<Q16>(&irregular).1, 6814286017895616463, "the irregular Q16.16 scene changed");
 }
 
 /// The share of crack length within 30° of `direction`.
@@ -382,20 +389,24 @@ impl Network {
 
 #[test]
 fn the_network_is_one_connected_thing() {
-    for seed in 1..=8 {
-        let n = network(&MudParams { seed, ..MudParams::default() });
+    for (topology, seed) in
+        [Topology::Hexagonal, Topology::Irregular].into_iter().flat_map(|t| (1..=8).map(move |s| (t, s)))
+    {
+        let n = network(&MudParams { seed, topology, ..MudParams::default() });
         let (share, dead) = (n.largest_piece_share(), n.dead_end_share());
         println!(
-            "seed {seed}: {} vertices, {} edges; largest piece {:.1} % of crack length, dead ends {:.1} %",
+            "{topology:?} seed {seed}: {} vertices, {} edges; largest piece {:.1} % of crack length, dead ends {:.1} %",
             n.vertices.len(),
             n.edges.len(),
             100.0 * share,
             100.0 * dead
         );
-        assert!(share >= 0.90, "seed {seed}: {share}");
-        // Issue 21 asks for at most 10 %; the tip rule leaves 14-16 % (the README says so).
-        // This bound guards against a regression towards the dashes (which gave 85 %).
-        assert!(dead <= 0.20, "seed {seed}: {dead}");
+        assert!(share >= 0.90, "{topology:?} seed {seed}: {share}");
+        // Issue 21 asks for at most 10 %; the tip rule leaves 13-15 % on the hexagonal
+        // lattice and 25-27 % on the irregular one (the README says so). These bounds guard
+        // against a regression towards the dashes (which gave 85 %).
+        let bound = if topology == Topology::Hexagonal { 0.20 } else { 0.30 };
+        assert!(dead <= bound, "{topology:?} seed {seed}: {dead}");
         // Every edge joins its vertices: its first and last points are theirs.
         for e in &n.edges {
             let p = n.polyline(e);
@@ -421,8 +432,10 @@ fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud:
 
 #[test]
 fn cells_are_polygons_whose_areas_add_up_to_the_plate() {
-    for seed in 1..=8 {
-        let (counts, rings, points, [w, h]) = cells(&MudParams { seed, ..MudParams::default() });
+    for (topology, seed) in
+        [Topology::Hexagonal, Topology::Irregular].into_iter().flat_map(|t| (1..=8).map(move |s| (t, s)))
+    {
+        let (counts, rings, points, [w, h]) = cells(&MudParams { seed, topology, ..MudParams::default() });
         let total: f64 = rings.iter().map(|r| r.area).sum();
         let outer = rings.iter().filter(|r| r.area > 0.0).count();
         println!(
@@ -434,9 +447,11 @@ fn cells_are_polygons_whose_areas_add_up_to_the_plate() {
         );
         assert_eq!(counts.wrapping, 0, "seed {seed}");
         assert!((total - f64::from(w * h)).abs() < 1e-3 * f64::from(w * h), "seed {seed}: {total}");
-        // No crumbs: every cell is larger than one element (√3/2 spacing²).
+        // No crumbs: every cell is larger than one element (√3/2 spacing²; the irregular
+        // lattice's smallest Voronoi cells are a third of that, so two of them make 0.5).
         let smallest = rings.iter().filter(|r| r.area > 0.0).map(|r| r.area).fold(f64::INFINITY, f64::min);
-        assert!(smallest > 0.87, "seed {seed}: a cell of {smallest}");
+        let element = if topology == Topology::Hexagonal { 0.87 } else { 0.5 };
+        assert!(smallest > element, "{topology:?} seed {seed}: a cell of {smallest}");
         // Holes name an outer ring; every ring has at least three points.
         for r in &rings {
             assert!(r.point_count >= 3);
@@ -446,6 +461,40 @@ fn cells_are_polygons_whose_areas_add_up_to_the_plate() {
         }
         assert_eq!(rings.iter().map(|r| r.point_count as usize).sum::<usize>(), points.len());
     }
+}
+
+/// Length-weighted crack orientations of the network, in 12 bins over 180°, each as a
+/// share of the flat distribution (1 everywhere when flat).
+fn orientation_bins(n: &Network) -> [f64; 12] {
+    let mut bins = [0.0f64; 12];
+    for e in &n.edges {
+        for w in n.polyline(e).windows(2) {
+            let (dx, dy) = (f64::from(w[1].at[0] - w[0].at[0]), f64::from(w[1].at[1] - w[0].at[1]));
+            let angle = dy.atan2(dx).rem_euclid(std::f64::consts::PI);
+            bins[((angle / std::f64::consts::PI * 12.0) as usize).min(11)] += dx.hypot(dy);
+        }
+    }
+    let total: f64 = bins.iter().sum();
+    bins.map(|b| b / total * 12.0)
+}
+
+#[test]
+fn the_irregular_lattice_cracks_in_every_direction() {
+    let mut shares = [[0.0f64; 12]; 2];
+    for (t, topology) in [Topology::Hexagonal, Topology::Irregular].into_iter().enumerate() {
+        for seed in 1..=8 {
+            let bins = orientation_bins(&network(&MudParams { seed, topology, ..MudParams::default() }));
+            for (share, b) in shares[t].iter_mut().zip(bins) {
+                *share += b / 8.0;
+            }
+        }
+        let (low, high) = shares[t].iter().fold((f64::MAX, 0.0f64), |(a, b), &s| (a.min(s), b.max(s)));
+        println!("{topology:?}: crack length per 15° bin over flat {low:.2}..{high:.2}: {:.2?}", shares[t]);
+    }
+    // The irregular lattice: every bin within ±20 % of flat.
+    assert!(shares[1].iter().all(|s| (s - 1.0).abs() <= 0.2), "{:?}", shares[1]);
+    // The hexagonal lattice's cracks follow its three directions: bins of ±50 %.
+    assert!(shares[0].iter().any(|s| (s - 1.0).abs() > 0.3), "{:?}", shares[0]);
 }
 
 #[test]
@@ -462,6 +511,7 @@ fn open_plates_have_cells_bounded_by_the_border() {
         let mesh = match topology {
             Topology::Hexagonal => (w - 0.5) * (h - h / 48.0),
             Topology::Square => (w - 1.0) * (h - 1.0),
+            Topology::Irregular => unreachable!(),
         };
         assert!(total < f64::from(mesh) && total > 0.95 * f64::from(mesh), "{topology:?}: {total} vs {mesh}");
     }

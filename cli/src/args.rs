@@ -143,6 +143,9 @@ pub enum TopologyArg {
     Hex,
     /// Square elements (4 neighbours): axis-aligned, short, fine cracks.
     Square,
+    /// Jittered nodes joined by their Delaunay triangulation (beyond the paper): cracks run in
+    /// any direction. Quasi-static solver only.
+    Irregular,
 }
 
 /// Lattice edges.
@@ -230,6 +233,11 @@ pub struct MudOptions {
     /// σ: spread of the break stretch per unit area [1/cm] [default: 0.001].
     #[arg(long, value_name = "SIGMA")]
     pub break_stretch_spread: Option<f32>,
+    /// Beyond the paper, for mesh-scale independence: κ̄ − 1 is scaled by (1 cm / W)^X, so
+    /// finer meshes get stronger springs; 0.25 keeps cell size within 15 % from W = 2 to
+    /// 0.5 cm [default: 0, the paper's rule].
+    #[arg(long, value_name = "X")]
+    pub break_stretch_size_exponent: Option<f32>,
     /// φ: the direction cracks prefer to run along [degrees from the x axis towards y; y runs
     /// down the picture] [default: 0].
     #[arg(long, value_name = "DEGREES")]

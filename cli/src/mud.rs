@@ -14,6 +14,7 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &MudOptions) -> MudPar
         p.topology = match v {
             TopologyArg::Hex => Topology::Hexagonal,
             TopologyArg::Square => Topology::Square,
+            TopologyArg::Irregular => Topology::Irregular,
         };
     }
     if let Some(v) = o.boundary {
@@ -54,6 +55,7 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &MudOptions) -> MudPar
     set(&mut p.shear_modulus, o.shear_modulus);
     set(&mut p.break_stretch_mean, o.break_stretch_mean);
     set(&mut p.break_stretch_spread, o.break_stretch_spread);
+    set(&mut p.break_stretch_size_exponent, o.break_stretch_size_exponent);
     set(&mut p.anisotropy_direction, o.anisotropy_direction.map(f32::to_radians));
     set(&mut p.anisotropy_ratio, o.anisotropy_ratio);
     set(&mut p.stiffness_anisotropy_ratio, o.stiffness_anisotropy_ratio);
@@ -119,6 +121,8 @@ fn option(e: MudParamError) -> &'static str {
         TargetCrackDensity => "--target-crack-density",
         SizeOverflow => "--columns/--rows",
         Scale => "--young-modulus/--shear-modulus/--element-size/--layer-thickness/--density/--long-step",
+        Solver => "--solver/--topology",
+        BreakStretchSizeExponent => "--break-stretch-size-exponent",
     }
 }
 
@@ -208,6 +212,7 @@ pub fn options(p: &MudParams, r: &MudRender) -> Vec<(&'static str, String)> {
     let topology = match p.topology {
         Topology::Hexagonal => "hex",
         Topology::Square => "square",
+        Topology::Irregular => "irregular",
     };
     let boundary = match p.boundary {
         Boundary::Open => "open",
@@ -242,6 +247,7 @@ pub fn options(p: &MudParams, r: &MudRender) -> Vec<(&'static str, String)> {
         ("--shear-modulus", p.shear_modulus.to_string()),
         ("--break-stretch-mean", p.break_stretch_mean.to_string()),
         ("--break-stretch-spread", p.break_stretch_spread.to_string()),
+        ("--break-stretch-size-exponent", p.break_stretch_size_exponent.to_string()),
         ("--anisotropy-direction", degrees(p.anisotropy_direction)),
         ("--anisotropy-ratio", p.anisotropy_ratio.to_string()),
         ("--stiffness-anisotropy-ratio", p.stiffness_anisotropy_ratio.to_string()),

@@ -22,6 +22,8 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 pub enum Stream {
     /// Model A: per-spring break stretch κ_i = κ̄ + σ/√A_i·N(0,1).
     BreakStretch = 1,
+    /// Model A: node jitter of the irregular lattice.
+    LatticeJitter = 2,
     /// Model B: the number of radial cracks, M = Poisson_Rand(M_ave).
     RadialCount = 16,
     /// Model B: crack speeds V1, V2, V3 (`Rand`).
@@ -42,8 +44,9 @@ pub enum Stream {
 
 impl Stream {
     /// Every stream, in discriminant order.
-    pub const ALL: [Stream; 9] = [
+    pub const ALL: [Stream; 10] = [
         Stream::BreakStretch,
+        Stream::LatticeJitter,
         Stream::RadialCount,
         Stream::CrackSpeed,
         Stream::RingRadius,
@@ -263,7 +266,7 @@ mod tests {
 
     #[test]
     fn streams_are_distinct_and_repeatable() {
-        let first: [u32; 9] = Stream::ALL.map(|s| Rng::new(7, s).next_u32());
+        let first: [u32; 10] = Stream::ALL.map(|s| Rng::new(7, s).next_u32());
         for (i, a) in first.iter().enumerate() {
             for b in &first[i + 1..] {
                 assert_ne!(a, b);

@@ -40,6 +40,10 @@ use crate::status::{
 pub const HIBI_MUD_SQUARE: u32 = 0;
 /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
 pub const HIBI_MUD_HEXAGONAL: u32 = 1;
+/// Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
+/// its own length and face; cracks run in any direction. Quasi-static solver only; periodic
+/// lattices need columns >= 8 and an even rows >= 8.
+pub const HIBI_MUD_IRREGULAR: u32 = 2;
 /// Free edges.
 pub const HIBI_MUD_OPEN: u32 = 0;
 /// The lattice wraps around: tileable patterns.
@@ -62,6 +66,7 @@ pub const HIBI_MUD_LAYER_TIME: u32 = 2;
 const _: () = assert!(
     HIBI_MUD_SQUARE == Topology::Square as u32
         && HIBI_MUD_HEXAGONAL == Topology::Hexagonal as u32
+        && HIBI_MUD_IRREGULAR == Topology::Irregular as u32
         && HIBI_MUD_OPEN == Boundary::Open as u32
         && HIBI_MUD_PERIODIC == Boundary::Periodic as u32
         && HIBI_MUD_EXPLICIT == Solver::Explicit as u32
@@ -122,6 +127,10 @@ pub struct hibi_mud_params {
     pub break_stretch_mean: f32,
     /// σ, break stretch spread per unit area [1/cm] (paper: 0.001).
     pub break_stretch_spread: f32,
+    /// Beyond the paper: κ̄ − 1 is scaled by (1 cm / element_size)^x, for mesh-scale
+    /// independence; 0 (default) is the paper's rule, 0.25 keeps crack density and cell size
+    /// within 15 % from W = 2 to 1 to 0.5 cm. Within [0, 1].
+    pub break_stretch_size_exponent: f32,
     /// Direction cracks prefer [radians] (default 0).
     pub anisotropy_direction: f32,
     /// How much weaker springs across that direction are (1 = isotropic, default).
@@ -334,7 +343,7 @@ const BLOCK_ALIGN: usize = if align_of::<hibi_mud>() > 8 { align_of::<hibi_mud>(
 /// Bytes of the header before the arrays.
 const HEADER: usize = round_up(size_of::<hibi_mud>(), BLOCK_ALIGN);
 
-fn enumeration<T>(value: u32, choices: [T; 2]) -> Result<T, hibi_status> {
+fn enumeration<T, const N: usize>(value: u32, choices: [T; N]) -> Result<T, hibi_status> {
     choices.into_iter().nth(value as usize).ok_or(HIBI_ERROR_MUD_ENUM)
 }
 
@@ -344,7 +353,7 @@ fn core_params(p: &hibi_mud_params) -> Result<MudParams, hibi_status> {
         return Err(HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED);
     }
     let params = MudParams {
-        topology: enumeration(p.topology, [Topology::Square, Topology::Hexagonal])?,
+        topology: enumeration(p.topology, [Topology::Square, Topology::Hexagonal, Topology::Irregular])?,
         boundary: enumeration(p.boundary, [Boundary::Open, Boundary::Periodic])?,
         solver: enumeration(p.solver, [Solver::Explicit, Solver::QuasiStatic])?,
         drive: enumeration(p.drive, [Drive::Shrink, Drive::Growth])?,
@@ -363,6 +372,7 @@ fn core_params(p: &hibi_mud_params) -> Result<MudParams, hibi_status> {
         shear_modulus: p.shear_modulus,
         break_stretch_mean: p.break_stretch_mean,
         break_stretch_spread: p.break_stretch_spread,
+        break_stretch_size_exponent: p.break_stretch_size_exponent,
         anisotropy_direction: p.anisotropy_direction,
         anisotropy_ratio: p.anisotropy_ratio,
         stiffness_anisotropy_ratio: p.stiffness_anisotropy_ratio,
@@ -449,6 +459,7 @@ fn hibi_mud_params_default_values() -> hibi_mud_params {
         shear_modulus: p.shear_modulus,
         break_stretch_mean: p.break_stretch_mean,
         break_stretch_spread: p.break_stretch_spread,
+        break_stretch_size_exponent: p.break_stretch_size_exponent,
         anisotropy_direction: p.anisotropy_direction,
         anisotropy_ratio: p.anisotropy_ratio,
         stiffness_anisotropy_ratio: p.stiffness_anisotropy_ratio,
@@ -888,7 +899,7 @@ mod tests {
         type Spoil = fn(&mut hibi_mud_params);
         let cases: [(Spoil, hibi_status); 8] = [
             (|p| p.cookie = 0, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED),
-            (|p| p.topology = 2, HIBI_ERROR_MUD_ENUM),
+            (|p| p.topology = 3, HIBI_ERROR_MUD_ENUM),
             (|p| p.solver = 7, HIBI_ERROR_MUD_ENUM),
             (|p| p.young_modulus = f32::NAN, HIBI_ERROR_MUD_YOUNG_MODULUS),
             (|p| p.break_stretch_mean = 0.9, HIBI_ERROR_MUD_BREAK_STRETCH_MEAN),

@@ -8,14 +8,16 @@
 //! stored direction by direction: spring `d·nodes + node` leaves `node` in direction `d`
 //! (so a row's springs of one direction are contiguous); at an open edge it is absent.
 
+use super::irregular::{self, Mesh};
 use super::params::{Boundary, Topology};
 
 /// √3/2: the row pitch of the triangular lattice.
 pub const ROW_PITCH_HEX: f32 = 0.866_025_4;
 
-/// The shape of a lattice: topology, edges and size.
+/// The shape of a lattice: topology, edges and size, and for the irregular topology the
+/// tables of its mesh (built with the run, see [`irregular`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Lattice {
+pub struct Lattice<'a> {
     /// Square or hexagonal elements.
     pub topology: Topology,
     /// Open or periodic edges.
@@ -24,6 +26,9 @@ pub struct Lattice {
     pub columns: u32,
     /// Rows of nodes.
     pub rows: u32,
+    /// The irregular lattice's mesh; `None` for the regular topologies (and for an irregular
+    /// lattice's shape before its run builds it).
+    pub(crate) mesh: Option<Mesh<'a>>,
 }
 
 /// A mesh cell (a square, or a triangle of the hexagonal model) for crack tracing: its
@@ -41,12 +46,22 @@ pub struct Cell {
     pub reference: [[f32; 2]; 4],
 }
 
-impl Lattice {
-    /// Springs leaving each node: 2 (square) or 3 (hexagonal).
+impl<'a> Lattice<'a> {
+    /// A square or hexagonal lattice, or an irregular one's shape (before its run builds its mesh).
+    pub const fn new(topology: Topology, boundary: Boundary, columns: u32, rows: u32) -> Self {
+        Lattice { topology, boundary, columns, rows, mesh: None }
+    }
+
+    /// The irregular lattice's mesh, if this is one and its run has built it.
+    pub fn mesh(&self) -> Option<&Mesh<'a>> {
+        self.mesh.as_ref()
+    }
+
+    /// Spring slots per node: 2 (square) or 3 (hexagonal, irregular).
     pub const fn directions(&self) -> usize {
         match self.topology {
             Topology::Square => 2,
-            Topology::Hexagonal => 3,
+            Topology::Hexagonal | Topology::Irregular => 3,
         }
     }
 
@@ -64,15 +79,16 @@ impl Lattice {
     pub const fn cells_per_node(&self) -> usize {
         match self.topology {
             Topology::Square => 1,
-            Topology::Hexagonal => 2,
+            Topology::Hexagonal | Topology::Irregular => 2,
         }
     }
 
-    /// The spacing between rows.
+    /// The spacing between rows (of the irregular lattice's sites: √3/2 to 1/1024).
     pub const fn row_pitch(&self) -> f32 {
         match self.topology {
             Topology::Square => 1.0,
             Topology::Hexagonal => ROW_PITCH_HEX,
+            Topology::Irregular => irregular::PITCH as f32 / irregular::UNIT as f32,
         }
     }
 
@@ -81,37 +97,57 @@ impl Lattice {
         [self.columns as f32, self.rows as f32 * self.row_pitch()]
     }
 
-    /// The element's area in the plane (B/W²): 1 or √3/2.
+    /// The element's area in the plane (B/W²): 1 or √3/2 (the irregular lattice's mean).
     pub const fn element_area(&self) -> f32 {
-        match self.topology {
-            Topology::Square => 1.0,
-            Topology::Hexagonal => ROW_PITCH_HEX,
-        }
+        self.row_pitch()
     }
 
-    /// Length of the element face a spring crosses (per W): 1 or 1/√3.
+    /// Length of the element face a spring crosses (per W): 1 or 1/√3 (the irregular
+    /// lattice's springs each have their own, [`Lattice::face`]).
     pub const fn face_length(&self) -> f32 {
         match self.topology {
             Topology::Square => 1.0,
-            Topology::Hexagonal => 0.577_350_26,
+            Topology::Hexagonal | Topology::Irregular => 0.577_350_26,
         }
     }
 
-    /// Unit vector of direction `d`.
+    /// Unit vector of direction `d` of a regular lattice (the irregular lattice's springs
+    /// each have their own, [`Lattice::spring_vector`]).
     pub const fn direction_vector(&self, d: usize) -> [f32; 2] {
         match (self.topology, d) {
             (Topology::Square, 0) => [1.0, 0.0],
             (Topology::Square, _) => [0.0, 1.0],
-            (Topology::Hexagonal, 0) => [1.0, 0.0],
-            (Topology::Hexagonal, 1) => [0.5, ROW_PITCH_HEX],
-            (Topology::Hexagonal, _) => [-0.5, ROW_PITCH_HEX],
+            (_, 0) => [1.0, 0.0],
+            (_, 1) => [0.5, ROW_PITCH_HEX],
+            (_, _) => [-0.5, ROW_PITCH_HEX],
         }
+    }
+
+    /// Unit vector of `spring`, from its origin towards the node it reaches (deep layer).
+    pub fn spring_vector(&self, spring: usize) -> [f32; 2] {
+        match &self.mesh {
+            Some(m) => m.direction(spring),
+            None => self.direction_vector(self.spring_origin(spring).1),
+        }
+    }
+
+    /// Rest length l0 of `spring`, element sizes (1 on the regular lattices).
+    pub fn rest_length(&self, spring: usize) -> f32 {
+        self.mesh.as_ref().map_or(1.0, |m| m.rest_length(spring))
+    }
+
+    /// The element face `spring` crosses, element sizes.
+    pub fn face(&self, spring: usize) -> f32 {
+        self.mesh.as_ref().map_or(self.face_length(), |m| m.face(spring))
     }
 
     /// Reference (deep-layer) position of a node, lattice units.
     pub fn reference(&self, node: usize) -> [f32; 2] {
+        if let Some(m) = &self.mesh {
+            return m.position(node);
+        }
         let (i, j) = (node % self.columns as usize, node / self.columns as usize);
-        let shift = if self.topology == Topology::Hexagonal && j % 2 == 1 { 0.5 } else { 0.0 };
+        let shift = if self.topology != Topology::Square && j % 2 == 1 { 0.5 } else { 0.0 };
         [i as f32 + shift, j as f32 * self.row_pitch()]
     }
 
@@ -142,9 +178,9 @@ impl Lattice {
         match (self.topology, d) {
             (Topology::Square, 0) => (1, 0),
             (Topology::Square, _) => (0, 1),
-            (Topology::Hexagonal, 0) => (1, 0),
-            (Topology::Hexagonal, 1) => (odd, 1),
-            (Topology::Hexagonal, _) => (odd - 1, 1),
+            (_, 0) => (1, 0),
+            (_, 1) => (odd, 1),
+            (_, _) => (odd - 1, 1),
         }
     }
 
@@ -169,6 +205,9 @@ impl Lattice {
 
     /// The two nodes of a spring, if it exists.
     pub fn spring_nodes(&self, spring: usize) -> Option<(usize, usize)> {
+        if let Some(m) = &self.mesh {
+            return m.ends(spring);
+        }
         let (node, d) = self.spring_origin(spring);
         self.neighbour(node, d).map(|other| (node, other))
     }
@@ -176,7 +215,12 @@ impl Lattice {
     /// Calls `visit(spring, other_node, direction, sign)` for every existing spring at `node`,
     /// in a fixed order: outgoing springs (sign +1: the spring points away from `node`), then
     /// incoming ones (sign −1).
+    /// The irregular lattice's springs come in spring order, each with direction 0.
     pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, usize, f32)) {
+        if let Some(m) = &self.mesh {
+            m.for_each_spring_at(node, |spring, other, sign| visit(spring, other, 0, sign));
+            return;
+        }
         let dirs = self.directions();
         let n = self.node_count();
         let c = self.columns as usize;
@@ -190,7 +234,7 @@ impl Lattice {
                     visit(node - 1, node - 1, 0, -1.0);
                     visit(n + node - c, node - c, 1, -1.0);
                 }
-                Topology::Hexagonal => {
+                _ => {
                     let odd = j % 2;
                     let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
                     let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
@@ -226,7 +270,7 @@ impl Lattice {
     pub const fn sides_per_cell(&self) -> usize {
         match self.topology {
             Topology::Square => 4,
-            Topology::Hexagonal => 3,
+            _ => 3,
         }
     }
 
@@ -235,6 +279,9 @@ impl Lattice {
     /// reaches) first, then the one to its right. A cell is `None` where it does not exist
     /// (an open edge).
     pub fn cells_of_spring(&self, spring: usize) -> [Option<(usize, usize)>; 2] {
+        if let Some(m) = &self.mesh {
+            return m.cells_of_spring(spring);
+        }
         let (node, d) = self.spring_origin(spring);
         // On a periodic lattice every cell exists; at open edges a cell exists if its sides do.
         let periodic = self.boundary == Boundary::Periodic;
@@ -245,18 +292,34 @@ impl Lattice {
             // two running clockwise; the side index says which.
             (Topology::Square, 0) => [exists(Some(node), 0), exists(self.back_neighbour(node, 1), 2)],
             (Topology::Square, _) => [exists(self.back_neighbour(node, 0), 1), exists(Some(node), 3)],
-            (Topology::Hexagonal, 0) => {
-                [exists(Some(2 * node), 0), exists(self.back_neighbour(node, 2).map(|b| 2 * b + 1), 1)]
-            }
-            (Topology::Hexagonal, 1) => [exists(Some(2 * node + 1), 0), exists(Some(2 * node), 2)],
-            (Topology::Hexagonal, _) => {
-                [exists(self.back_neighbour(node, 0).map(|b| 2 * b), 1), exists(Some(2 * node + 1), 2)]
-            }
+            (_, 0) => [exists(Some(2 * node), 0), exists(self.back_neighbour(node, 2).map(|b| 2 * b + 1), 1)],
+            (_, 1) => [exists(Some(2 * node + 1), 0), exists(Some(2 * node), 2)],
+            (_, _) => [exists(self.back_neighbour(node, 0).map(|b| 2 * b), 1), exists(Some(2 * node + 1), 2)],
         }
     }
 
     /// Mesh cell `cell` (`node·cells_per_node + k`), if all its sides exist.
     pub fn cell(&self, cell: usize) -> Option<Cell> {
+        if let Some(m) = &self.mesh {
+            let (nodes, sides) = m.cell(cell)?;
+            let at = m.position(nodes[0] as usize);
+            let [w, h] = self.extent();
+            let periodic = self.boundary == Boundary::Periodic;
+            let near = |n: u32| {
+                let p = m.position(n as usize);
+                if !periodic {
+                    return p;
+                }
+                let wrap = |d: f32, period: f32| d - period * libm::roundf(d / period);
+                [at[0] + wrap(p[0] - at[0], w), at[1] + wrap(p[1] - at[1], h)]
+            };
+            return Some(Cell {
+                nodes: [nodes[0], nodes[1], nodes[2], 0],
+                corners: 3,
+                sides: [sides[0], sides[1], sides[2], 0],
+                reference: [at, near(nodes[1]), near(nodes[2]), [0.0; 2]],
+            });
+        }
         let per = self.cells_per_node();
         let (base, k) = (cell / per, cell % per);
         let at = self.reference(base);
@@ -281,7 +344,7 @@ impl Lattice {
                     reference: [at, offset(0), [at[0] + 1.0, at[1] + 1.0], offset(1)],
                 })
             }
-            (Topology::Hexagonal, 0) => {
+            (_, 0) => {
                 // Upward triangle: base, right, up-right.
                 let right = self.neighbour(base, 0)?;
                 let upper = self.neighbour(base, 1)?;
@@ -293,7 +356,7 @@ impl Lattice {
                     reference: [at, offset(0), offset(1), [0.0; 2]],
                 })
             }
-            (Topology::Hexagonal, _) => {
+            (_, _) => {
                 // Downward-pointing triangle above the base: base, up-right, up-left.
                 let upper_right = self.neighbour(base, 1)?;
                 let upper_left = self.neighbour(base, 2)?;
@@ -318,8 +381,8 @@ impl Lattice {
 mod tests {
     use super::*;
 
-    fn lattice(topology: Topology, boundary: Boundary, columns: u32, rows: u32) -> Lattice {
-        Lattice { topology, boundary, columns, rows }
+    fn lattice(topology: Topology, boundary: Boundary, columns: u32, rows: u32) -> Lattice<'static> {
+        Lattice::new(topology, boundary, columns, rows)
     }
 
     #[test]

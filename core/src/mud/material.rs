@@ -39,10 +39,14 @@ pub struct Material<S> {
     pub force_tolerance: S,
     /// Spread of κ_i: σ/√A_i (A_i in cm²).
     pub break_stretch_spread: f32,
+    /// h per unit node area (G/E)·(W/H)²: the irregular lattice's h = B_i·this.
+    pub shear_per_area: f32,
+    /// σ/√(W·H): the irregular lattice's spread of κ_i is this over √face.
+    pub spread_per_root_face: f32,
 }
 
 /// cos²(θ − φ) + sin²(θ − φ)/ratio: the anisotropy factor of a spring at angle θ.
-fn anisotropy(direction: [f32; 2], preferred: f32, ratio: f32) -> f32 {
+pub(super) fn anisotropy(direction: [f32; 2], preferred: f32, ratio: f32) -> f32 {
     let (sin, cos) = (libm::sinf(preferred), libm::cosf(preferred));
     let along = direction[0] * cos + direction[1] * sin;
     let across = direction[1] * cos - direction[0] * sin;
@@ -88,6 +92,8 @@ impl<S: Scalar> Material<S> {
             short_step: S::from_f32(short_step),
             force_tolerance: S::from_f32(force_tolerance),
             break_stretch_spread: spread,
+            shear_per_area: shear / area,
+            spread_per_root_face: p.break_stretch_spread / libm::sqrtf(w * h_layer),
         })
     }
 }
@@ -97,8 +103,8 @@ mod tests {
     use super::*;
     use crate::mud::params::{Boundary, Topology};
 
-    fn lattice(topology: Topology) -> Lattice {
-        Lattice { topology, boundary: Boundary::Periodic, columns: 8, rows: 8 }
+    fn lattice(topology: Topology) -> Lattice<'static> {
+        Lattice::new(topology, Boundary::Periodic, 8, 8)
     }
 
     #[test]

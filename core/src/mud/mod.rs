@@ -24,6 +24,7 @@
 
 pub mod cells;
 mod explicit;
+pub mod irregular;
 pub mod lattice;
 pub mod material;
 pub mod network;
@@ -69,9 +70,14 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // In u128 nothing below can overflow; the result is checked against the address space.
     let dirs: u128 = match topology {
         Topology::Square => 2,
-        Topology::Hexagonal => 3,
+        Topology::Hexagonal | Topology::Irregular => 3,
     };
     let nodes = columns as u128 * rows as u128;
+    // The irregular lattice keeps its mesh's tables (see `irregular`).
+    let mesh = match topology {
+        Topology::Irregular => irregular::words_for(nodes),
+        _ => 0,
+    };
     let springs = nodes * dirs;
     // Per node: displacement (x, y); explicit adds velocity and force (x, y).
     // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
@@ -82,10 +88,10 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // of relaxed nodes (3 per node).
     let cells = nodes * (dirs - 1);
     let (scalars, words) = match solver {
-        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + cells),
+        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + cells + mesh),
         Solver::QuasiStatic => {
             let leaves = if springs <= 1 { 1 } else { 1u128 << (128 - (springs - 1).leading_zeros()) };
-            (2 * nodes + 2 * springs, 3 * springs + cells + 2 * leaves + 3 * nodes)
+            (2 * nodes + 2 * springs, 3 * springs + cells + 2 * leaves + 3 * nodes + mesh)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -107,9 +113,10 @@ impl MudParams {
         Ok(memory)
     }
 
-    /// The lattice these parameters describe.
-    pub const fn lattice(&self) -> Lattice {
-        Lattice { topology: self.topology, boundary: self.boundary, columns: self.columns, rows: self.rows }
+    /// The shape of the lattice these parameters describe (an irregular lattice's mesh is
+    /// built by its run: [`Mud::lattice`]).
+    pub const fn lattice(&self) -> Lattice<'static> {
+        Lattice::new(self.topology, self.boundary, self.columns, self.rows)
     }
 }
 
@@ -179,7 +186,7 @@ pub struct Progress {
 /// A drying-mud run over caller memory.
 pub struct Mud<'a, S: Scalar> {
     params: MudParams,
-    lattice: Lattice,
+    lattice: Lattice<'a>,
     material: Material<S>,
     /// Displacement of each surface node from its deep node (x, y). The quasi-static solver
     /// keeps the displacement per unit misfit here instead.
@@ -200,6 +207,8 @@ pub struct Mud<'a, S: Scalar> {
     vertex_total: u32,
     /// Springs broken when the network was last traced.
     traced_broken: u32,
+    /// The faces of the broken springs, summed (the irregular lattice's crack length).
+    broken_face: f32,
     solver: SolverState<'a, S>,
     /// Long steps taken (explicit) and the misfit now.
     long_steps: u32,
@@ -234,30 +243,57 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if words.len() < memory.words {
             return Err(MudError::BufferTooSmall { needed: memory.words });
         }
-        let lattice = params.lattice();
-        let material = Material::new(params, &lattice)?;
-        let (nodes, springs) = (lattice.node_count(), lattice.spring_count());
+        let shape = params.lattice();
+        let material = Material::new(params, &shape)?;
+        let (nodes, springs) = (shape.node_count(), shape.spring_count());
         let mut scalars = scalars;
         let mut words = words;
+        let mesh_words = match params.topology {
+            Topology::Irregular => take(&mut words, irregular::words_for(nodes as u128) as usize),
+            _ => &mut [],
+        };
         let ux = take(&mut scalars, nodes);
         let uy = take(&mut scalars, nodes);
         let break_stretch = take(&mut scalars, springs);
         let other = take(&mut words, springs);
         let break_time = take(&mut words, springs);
         let trace = take(&mut words, springs);
-        let stack = take(&mut words, lattice.cell_count());
+        let stack = take(&mut words, shape.cell_count());
+        let lattice = match params.topology {
+            Topology::Irregular => {
+                let scratch = irregular::Scratch {
+                    node_cell: &mut *stack,
+                    pending: &mut *trace,
+                    queued: &mut *break_time,
+                    degree: &mut *other,
+                };
+                Lattice { mesh: Some(irregular::build(&shape, params, mesh_words, scratch)), ..shape }
+            }
+            _ => shape,
+        };
         trace.fill(INTACT);
         stack.fill(0);
         ux.fill(S::ZERO);
         uy.fill(S::ZERO);
         break_time.fill(INTACT);
         let mut rng = Rng::new(params.seed, Stream::BreakStretch);
+        // κ̄ − 1, scaled to the element size when asked (mesh-scale independence, §4.2).
+        let x = params.break_stretch_size_exponent;
+        let scale = if x == 0.0 { 1.0 } else { libm::powf(1.0 / params.element_size, x) };
+        let margin = (params.break_stretch_mean - 1.0) * scale;
         for spring in 0..springs {
             other[spring] = lattice.spring_nodes(spring).map_or(ABSENT, |(_, b)| b as u32);
             // κ_i = κ̄ + σ/√A_i·N(0,1); anisotropy scales the margin κ_i − 1 (Fig. 7). The
             // draw is made for absent springs too, so a spring's κ does not depend on edges.
-            let kappa = params.break_stretch_mean + material.break_stretch_spread * rng.normal_f32();
-            let factor = material.margin_factor[lattice.spring_origin(spring).1];
+            // The irregular lattice's springs each have their own face and direction.
+            let (spread, factor) = match lattice.mesh() {
+                Some(m) => (
+                    material.spread_per_root_face / libm::sqrtf(m.face(spring)),
+                    material::anisotropy(m.direction(spring), params.anisotropy_direction, params.anisotropy_ratio),
+                ),
+                None => (material.break_stretch_spread, material.margin_factor[lattice.spring_origin(spring).1]),
+            };
+            let kappa = 1.0 + margin + spread * rng.normal_f32();
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
         }
         let solver = match params.solver {
@@ -281,6 +317,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             stack,
             vertex_total: 0,
             traced_broken: 0,
+            broken_face: 0.0,
             solver,
             long_steps: 0,
             misfit: S::ZERO,
@@ -338,7 +375,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// The lattice of the run.
-    pub fn lattice(&self) -> &Lattice {
+    pub fn lattice(&self) -> &Lattice<'a> {
         &self.lattice
     }
 
@@ -346,7 +383,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
     pub fn crack_density(&self) -> f32 {
         let l = &self.lattice;
         let area = l.node_count() as f32 * l.element_area();
-        self.broken as f32 * l.face_length() / (area * self.params.element_size)
+        let length = if l.mesh().is_some() { self.broken_face } else { self.broken as f32 * l.face_length() };
+        length / (area * self.params.element_size)
     }
 
     /// Whether spring `spring` exists and is broken.
@@ -409,8 +447,19 @@ impl<'a, S: Scalar> Mud<'a, S> {
     fn break_spring(&mut self, spring: usize) {
         self.break_time[spring] = self.time_now().to_bits();
         self.broken += 1;
+        if self.lattice.mesh().is_some() {
+            self.broken_face += self.lattice.face(spring);
+        }
         if self.density_reached() {
             self.finished = true;
+        }
+    }
+
+    /// The node `spring` leaves.
+    fn origin(&self, spring: usize) -> usize {
+        match self.lattice.mesh() {
+            Some(m) => m.ends(spring).map_or(0, |(a, _)| a),
+            None => self.lattice.spring_origin(spring).0,
         }
     }
 

@@ -166,9 +166,10 @@ impl<S: Scalar> Mud<'_, S> {
         let Some((a, b)) = self.lattice.spring_nodes(spring) else {
             return 0.0;
         };
-        let e = self.lattice.direction_vector(self.lattice.spring_origin(spring).1);
+        let e = self.lattice.spring_vector(spring);
         let (rest, deep) = self.factors();
-        let (rest, deep) = (rest.to_f32(), deep.to_f32());
+        let l0 = self.lattice.rest_length(spring);
+        let (rest, deep) = (rest.to_f32() * l0, deep.to_f32() * l0);
         let (ax, ay) = self.displacement(a);
         let (bx, by) = self.displacement(b);
         let dx = e[0] * (deep - rest) + (bx - ax).to_f32();
@@ -180,7 +181,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// (κ − 1)·l.
     fn separation_ratio(&self, spring: usize) -> f32 {
         let (rest, _) = self.factors();
-        let margin = (self.break_stretch[spring].to_f32() - 1.0) * rest.to_f32();
+        let margin = (self.break_stretch[spring].to_f32() - 1.0) * rest.to_f32() * self.lattice.rest_length(spring);
         if margin <= 0.0 { f32::INFINITY } else { self.separation(spring) / margin }
     }
 

@@ -9,6 +9,10 @@ pub enum Topology {
     Square = 0,
     /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours; isotropic cracks.
     Hexagonal = 1,
+    /// Beyond the paper: the triangular lattice's nodes jittered and joined by their Delaunay
+    /// triangulation, each spring with its own length and face (its Voronoi edge), so cracks
+    /// run in any direction (see `mud::irregular`). Periodic: columns ≥ 8, rows even and ≥ 8.
+    Irregular = 2,
 }
 
 /// What happens at the lattice's edges.
@@ -91,6 +95,15 @@ pub struct MudParams {
     /// σ: spread of the break stretch per unit area [1/cm]; κ_i = κ̄ + σ/√A_i·N(0,1).
     /// Paper: 0.001.
     pub break_stretch_spread: f32,
+    /// Beyond the paper, for mesh-scale independence (§4.2): the break margin κ̄ − 1 is
+    /// scaled by (1 cm / W)^x, so finer meshes get stronger springs. 0 (the default) is the
+    /// paper's rule, κ̄ at every W. The paper's rule breaks more springs on finer meshes
+    /// (crack density 0.39 / 0.54 / 0.68 per cm at W = 2, 1, 0.5 cm); x = 0.25 keeps density
+    /// and mean cell area within 15 % from step to step (`tests/mud.rs`). 0.5 would keep a
+    /// crack tip's load (a strain ∝ √(a/W) one spring ahead) at the same far-field strain, but
+    /// new cracks start under uniform strain, which does not depend on W (x = 0); the measured
+    /// exponent lies between. Within [0, 1].
+    pub break_stretch_size_exponent: f32,
 
     /// φ: the direction cracks prefer to run along [radians from the x axis] (paper Fig. 7).
     pub anisotropy_direction: f32,
@@ -129,6 +142,7 @@ impl Default for MudParams {
             shear_modulus: 2.0e5,
             break_stretch_mean: 1.02,
             break_stretch_spread: 0.001,
+            break_stretch_size_exponent: 0.0,
             anisotropy_direction: 0.0,
             anisotropy_ratio: 1.0,
             stiffness_anisotropy_ratio: 1.0,
@@ -142,9 +156,9 @@ impl Default for MudParams {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(u32)]
 pub enum MudParamError {
-    /// `columns` must be ≥ 2 (≥ 3 when periodic).
+    /// `columns` must be ≥ 2 (≥ 3 when periodic, ≥ 8 periodic irregular).
     Columns = 0,
-    /// `rows` must be ≥ 2 (≥ 4 and even for a periodic hexagonal lattice, ≥ 3 periodic square).
+    /// `rows` must be ≥ 2 (periodic: ≥ 3 square, even and ≥ 4 hexagonal, even and ≥ 8 irregular).
     Rows = 1,
     /// `layer_thickness` (H) must be finite and > 0.
     LayerThickness = 2,
@@ -185,11 +199,16 @@ pub enum MudParamError {
     /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
     /// sizes and time steps put a derived constant outside (1e-6, 1e6).
     Scale = 20,
+    /// `solver`: the explicit solver runs on the square and hexagonal lattices only; the
+    /// irregular lattice takes the quasi-static solver.
+    Solver = 21,
+    /// `break_stretch_size_exponent` must be within [0, 1].
+    BreakStretchSizeExponent = 22,
 }
 
 impl MudParamError {
     /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
-    pub const ALL: [MudParamError; 21] = [
+    pub const ALL: [MudParamError; 23] = [
         MudParamError::Columns,
         MudParamError::Rows,
         MudParamError::LayerThickness,
@@ -211,14 +230,16 @@ impl MudParamError {
         MudParamError::TargetCrackDensity,
         MudParamError::SizeOverflow,
         MudParamError::Scale,
+        MudParamError::Solver,
+        MudParamError::BreakStretchSizeExponent,
     ];
 
     /// The field's name and its constraint, NUL-terminated for C.
     pub const fn message(self) -> &'static core::ffi::CStr {
         use MudParamError::*;
         match self {
-            Columns => c"mud: columns must be >= 2 (>= 3 when periodic)",
-            Rows => c"mud: rows must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal)",
+            Columns => c"mud: columns must be >= 2 (>= 3 when periodic, >= 8 periodic irregular)",
+            Rows => c"mud: rows must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even and >= 8 irregular)",
             LayerThickness => c"mud: layer_thickness (H) must be finite and > 0",
             ElementSize => c"mud: element_size (W) must be finite and > 0",
             LongStep => c"mud: long_step (T) must be finite and > 0",
@@ -238,6 +259,8 @@ impl MudParamError {
             TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
             SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
             Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
+            BreakStretchSizeExponent => c"mud: break_stretch_size_exponent must be within [0, 1]",
+            Solver => c"mud: solver explicit needs topology square or hexagonal (irregular is quasi-static only)",
         }
     }
 }
@@ -258,7 +281,11 @@ impl MudParams {
     pub fn validate(&self) -> Result<(), MudParamError> {
         use MudParamError::*;
         let periodic = self.boundary == Boundary::Periodic;
-        let min_columns = if periodic { 3 } else { 2 };
+        let min_columns = match (periodic, self.topology) {
+            (false, _) => 2,
+            (true, Topology::Irregular) => 8,
+            (true, _) => 3,
+        };
         if self.columns < min_columns {
             return Err(Columns);
         }
@@ -266,9 +293,13 @@ impl MudParams {
             (Boundary::Open, _) => self.rows >= 2,
             (Boundary::Periodic, Topology::Square) => self.rows >= 3,
             (Boundary::Periodic, Topology::Hexagonal) => self.rows >= 4 && self.rows.is_multiple_of(2),
+            (Boundary::Periodic, Topology::Irregular) => self.rows >= 8 && self.rows.is_multiple_of(2),
         };
         if !rows_ok {
             return Err(Rows);
+        }
+        if self.topology == Topology::Irregular && self.solver == crate::mud::Solver::Explicit {
+            return Err(MudParamError::Solver);
         }
         let checks = [
             (positive(self.layer_thickness), LayerThickness),
@@ -283,6 +314,7 @@ impl MudParams {
             (positive(self.shear_modulus), ShearModulus),
             (self.break_stretch_mean.is_finite() && self.break_stretch_mean > 1.0, BreakStretchMean),
             (self.break_stretch_spread.is_finite() && self.break_stretch_spread >= 0.0, BreakStretchSpread),
+            ((0.0..=1.0).contains(&self.break_stretch_size_exponent), BreakStretchSizeExponent),
             (self.anisotropy_direction.is_finite(), AnisotropyDirection),
             (self.anisotropy_ratio.is_finite() && self.anisotropy_ratio >= 1.0, AnisotropyRatio),
             (
@@ -326,7 +358,7 @@ mod tests {
     fn every_bad_field_is_named() {
         let base = MudParams::default();
         type Spoil = fn(&mut MudParams);
-        let cases: [(Spoil, MudParamError); 20] = [
+        let cases: [(Spoil, MudParamError); 22] = [
             (|p| p.columns = 1, MudParamError::Columns),
             (|p| p.rows = 5, MudParamError::Rows),
             (|p| p.layer_thickness = 0.0, MudParamError::LayerThickness),
@@ -342,11 +374,19 @@ mod tests {
             (|p| p.shear_modulus = -1.0, MudParamError::ShearModulus),
             (|p| p.break_stretch_mean = 1.0, MudParamError::BreakStretchMean),
             (|p| p.break_stretch_spread = -0.001, MudParamError::BreakStretchSpread),
+            (|p| p.break_stretch_size_exponent = f32::NAN, MudParamError::BreakStretchSizeExponent),
             (|p| p.anisotropy_direction = f32::NAN, MudParamError::AnisotropyDirection),
             (|p| p.anisotropy_ratio = 0.5, MudParamError::AnisotropyRatio),
             (|p| p.stiffness_anisotropy_ratio = f32::NAN, MudParamError::StiffnessAnisotropyRatio),
             (|p| p.target_shrink = 1.0, MudParamError::TargetShrink),
             (|p| p.target_crack_density = -1.0, MudParamError::TargetCrackDensity),
+            (
+                |p| {
+                    p.topology = Topology::Irregular;
+                    p.solver = Solver::Explicit
+                },
+                MudParamError::Solver,
+            ),
         ];
         for (spoil, error) in cases {
             let mut p = base;

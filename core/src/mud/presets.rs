@@ -15,7 +15,7 @@
 //! | `fig6d` | Fig. 6 d | E/G = 20 (G a quarter): coarser still |
 //! | `fig7a` | Fig. 7 | break stretch weaker across x (ratio 2): cracks run along x |
 //! | `fig7b` | Fig. 7 | the same at 60°, with stiffness anisotropy too |
-//! | `fig9a` | Fig. 9 | one 64 cm plate meshed at W = 2 cm (32 columns) |
+//! | `fig9a` | Fig. 9 | one 64 cm plate meshed at W = 2 cm (32 columns); like fig9b–c, κ̄ − 1 scaled by (1 cm/W)^0.25 (`break_stretch_size_exponent`) |
 //! | `fig9b` | Fig. 9 | the same plate at W = 1 cm (64 columns) |
 //! | `fig9c` | Fig. 9 | the same plate at W = 0.5 cm (128 columns) |
 //! | `fig10` | Fig. 10 | the growth process: `fig6a`'s run, drawn at increasing times |
@@ -77,9 +77,10 @@ pub fn preset(name: &str) -> Option<MudParams> {
         "fig7a" => anisotropic(0.0, 2.0),
         "fig7b" => MudParams { stiffness_anisotropy_ratio: 2.0, ..anisotropic(core::f32::consts::FRAC_PI_3, 2.0) },
         // One 64 cm plate, three meshes (§4.2, mesh-scale independence).
-        "fig9a" => MudParams { element_size: 2.0, ..hexagonal(32) },
-        "fig9b" => MudParams { element_size: 1.0, ..hexagonal(64) },
-        "fig9c" => MudParams { element_size: 0.5, ..hexagonal(128) },
+        // Mesh-scale independence needs the break margin scaled to W (MudParams docs).
+        "fig9a" => MudParams { element_size: 2.0, break_stretch_size_exponent: 0.25, ..hexagonal(32) },
+        "fig9b" => MudParams { element_size: 1.0, break_stretch_size_exponent: 0.25, ..hexagonal(64) },
+        "fig9c" => MudParams { element_size: 0.5, break_stretch_size_exponent: 0.25, ..hexagonal(128) },
         _ => return None,
     };
     Some(p)

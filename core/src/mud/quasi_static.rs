@@ -126,10 +126,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if j == ABSENT || self.break_time[spring] != INTACT {
             return S::MAX;
         }
-        let (i, d) = self.lattice.spring_origin(spring);
-        let j = j as usize;
-        let e = self.lattice.direction_vector(d).map(S::from_f32);
-        let opening = e[0] * (self.ux[j] - self.ux[i]) + e[1] * (self.uy[j] - self.uy[i]);
+        let (i, j) = (self.origin(spring), j as usize);
+        let e = self.lattice.spring_vector(spring).map(S::from_f32);
+        let mut opening = e[0] * (self.ux[j] - self.ux[i]) + e[1] * (self.uy[j] - self.uy[i]);
+        if self.lattice.mesh().is_some() {
+            // The strain: e·(u_j − u_i)/l0 (l0 = 1 on the regular lattices).
+            opening /= S::from_f32(self.lattice.rest_length(spring));
+        }
         let kappa = self.break_stretch[spring];
         let (denominator, limit) = match self.params.drive {
             Drive::Shrink => (opening + kappa, S::from_f32(0.99)),
@@ -166,7 +169,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         for slot in (1..r.leaves).rev() {
             r.tree[slot] = r.winner(r.tree[2 * slot], r.tree[2 * slot + 1]);
         }
-        if self.params.boundary == super::Boundary::Open {
+        // The irregular lattice is not in equilibrium at u = 0 either: its springs differ.
+        if self.params.boundary == super::Boundary::Open || self.lattice.mesh().is_some() {
             for node in 0..self.lattice.node_count() {
                 self.relaxation().push(node);
             }
@@ -179,25 +183,32 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// The tolerance is the paper's δx: displacements are s·u, so u needs resolving to
     /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse).
     fn relax(&mut self, node: usize) -> u64 {
-        let h = self.material.shear;
+        let mesh = self.lattice.mesh().copied();
+        let h = match &mesh {
+            Some(m) => S::from_f32(m.area(node) * self.material.shear_per_area),
+            None => self.material.shear,
+        };
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
         // The node's intact springs: (spring, other node, e towards the other node).
-        let mut intact = [(0usize, 0usize, S::ZERO, S::ZERO); 6];
+        let mut intact = [(0usize, 0usize, S::ZERO, S::ZERO); super::irregular::MAX_DEGREE];
         let mut count = 0;
         self.lattice.for_each_spring_at(node, |spring, other, d, sign| {
             visited += 1;
             if self.break_time[spring] != INTACT {
                 return;
             }
-            let v = self.lattice.direction_vector(d);
+            // The spring's law: e (towards the other node), k and l0 (Eq. 2, linearised).
+            let (v, k, rest) = match &mesh {
+                Some(m) => (m.direction(spring), S::from_f32(m.stiffness(spring)), S::from_f32(m.rest_length(spring))),
+                None => (self.lattice.direction_vector(d), self.material.stiffness[d], S::ONE),
+            };
             let (ex, ey) = (S::from_f32(v[0] * sign), S::from_f32(v[1] * sign));
-            let k = self.material.stiffness[d];
             a00 += k * ex * ex;
             a01 += k * ex * ey;
             a11 += k * ey * ey;
-            let pull = k * (S::ONE + ex * self.ux[other] + ey * self.uy[other]);
+            let pull = k * (rest + ex * self.ux[other] + ey * self.uy[other]);
             b0 += pull * ex;
             b1 += pull * ey;
             intact[count] = (spring, other, ex, ey);
@@ -215,8 +226,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let misfit = self.misfit;
         for &(spring, other, ex, ey) in &intact[..count] {
             // A spring that is past its limit on the way to equilibrium breaks now:
-            // s_break ≤ s, i.e. κ − 1 ≤ s·(e·(u_j − u_i) + a + κ·b), without the division.
-            let opening = ex * (self.ux[other] - x) + ey * (self.uy[other] - y);
+            // s_break ≤ s, i.e. κ − 1 ≤ s·(e·(u_j − u_i)/l0 + a + κ·b), without the division.
+            let mut opening = ex * (self.ux[other] - x) + ey * (self.uy[other] - y);
+            if let Some(m) = &mesh {
+                opening /= S::from_f32(m.rest_length(spring));
+            }
             let kappa = self.break_stretch[spring];
             let denominator = match self.params.drive {
                 Drive::Shrink => opening + kappa,
@@ -284,7 +298,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Breaks `spring`, retires it from the tree, and queues its two nodes for relaxation.
     fn break_and_relax(&mut self, spring: usize) {
         self.break_spring(spring);
-        let (a, b) = (self.lattice.spring_origin(spring).0, self.other[spring] as usize);
+        let (a, b) = (self.origin(spring), self.other[spring] as usize);
         let r = self.relaxation();
         r.break_misfit[spring] = S::MAX;
         r.update(spring);
