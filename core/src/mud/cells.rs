@@ -62,6 +62,13 @@ fn key(cell: usize, side: usize) -> usize {
     cell * 4 + side
 }
 
+/// Ring-start word bits of a mesh cell: side k starts a ring that closes in the plane.
+const STARTS: u32 = 0;
+/// Side k starts a ring that wraps around the torus.
+const WRAPS: u32 = 4;
+/// Side k lies on a ring already walked (while the starts are found).
+const WALKED: u32 = 8;
+
 impl<S: Scalar> Mud<'_, S> {
     /// Walks the ring from `start`, calling `visit(point, key)` with every point and the key
     /// of each mesh cell it enters (`usize::MAX` for other points); stops if `visit` returns
@@ -134,6 +141,36 @@ impl<S: Scalar> Mud<'_, S> {
         RingEnd::Broken
     }
 
+    /// Finds where each ring starts (its lowest key) and whether it wraps, walking each ring
+    /// once: part of [`Mud::trace`].
+    pub(super) fn find_ring_starts(&mut self) {
+        let starts = core::mem::take(&mut self.ring_starts);
+        starts.fill(0);
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.cut_cell(cell) else { continue };
+            for k in (0..c.sides()).filter(|&k| c.separating[k]) {
+                if starts[cell] & 1 << (WALKED + k as u32) != 0 {
+                    continue;
+                }
+                let mut lowest = key(cell, k);
+                let end = self.walk_ring(At::Inside { c, k, wrap: [0, 0] }, |_, entered| {
+                    if entered != usize::MAX {
+                        starts[entered / 4] |= 1 << (WALKED + (entered % 4) as u32);
+                        lowest = lowest.min(entered);
+                    }
+                    true
+                });
+                let bit = match end {
+                    RingEnd::Closed([0, 0]) => STARTS,
+                    RingEnd::Closed(_) => WRAPS,
+                    RingEnd::Stopped | RingEnd::Broken => continue,
+                };
+                starts[lowest / 4] |= 1 << (bit + (lowest % 4) as u32);
+            }
+        }
+        self.ring_starts = starts;
+    }
+
     /// Calls `ring(start)` with the start of every ring that closes in the plane, in a fixed
     /// order (by the lowest mesh cell and side it enters), and returns the number of rings
     /// that wrap around a periodic lattice.
@@ -141,20 +178,14 @@ impl<S: Scalar> Mud<'_, S> {
         let mut wrapping = 0;
         let mut border_touched = false;
         for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let Some(c) = self.cut_cell(cell) else { continue };
             for k in (0..c.sides()).filter(|&k| c.separating[k]) {
                 border_touched |= self.is_border_side(&c, k);
-                let start = At::Inside { c, k, wrap: [0, 0] };
-                let first = key(cell, k);
-                let mut lowest = true;
-                let end = self.walk_ring(start, |_, entered| {
-                    lowest = entered == usize::MAX || entered >= first;
-                    lowest
-                });
-                match end {
-                    RingEnd::Closed([0, 0]) => ring(start),
-                    RingEnd::Closed(_) => wrapping += 1,
-                    RingEnd::Stopped | RingEnd::Broken => {}
+                let flags = self.ring_starts[cell] >> k;
+                if flags & 1 << STARTS != 0 {
+                    ring(At::Inside { c, k, wrap: [0, 0] });
+                } else if flags & 1 << WRAPS != 0 {
+                    wrapping += 1;
                 }
             }
         }

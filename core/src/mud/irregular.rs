@@ -146,6 +146,7 @@ impl<'a> Mesh<'a> {
     }
 
     /// Calls `visit(spring, other, sign)` for each spring at `node` (sign −1 where it arrives).
+    #[inline(always)]
     pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, f32)) {
         for &entry in &self.star[self.offsets[node] as usize..self.offsets[node + 1] as usize] {
             let spring = (entry & !(1 << 31)) as usize;

@@ -216,6 +216,7 @@ impl<'a> Lattice<'a> {
     /// in a fixed order: outgoing springs (sign +1: the spring points away from `node`), then
     /// incoming ones (sign −1).
     /// The irregular lattice's springs come in spring order, each with direction 0.
+    #[inline(always)]
     pub fn for_each_spring_at(&self, node: usize, mut visit: impl FnMut(usize, usize, usize, f32)) {
         if let Some(m) = &self.mesh {
             m.for_each_spring_at(node, |spring, other, sign| visit(spring, other, 0, sign));
@@ -225,38 +226,52 @@ impl<'a> Lattice<'a> {
         let n = self.node_count();
         let c = self.columns as usize;
         let (i, j) = (node % c, node / c);
+        // The springs are listed first and visited in one loop, so `visit` is inlined once.
+        let mut list = [(0usize, 0usize, 0usize, 0.0f32); 6];
+        let mut count = 0;
         if i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize {
             // Interior node: neighbours are fixed offsets (no wrapping, no edges).
             match self.topology {
                 Topology::Square => {
-                    visit(node, node + 1, 0, 1.0);
-                    visit(n + node, node + c, 1, 1.0);
-                    visit(node - 1, node - 1, 0, -1.0);
-                    visit(n + node - c, node - c, 1, -1.0);
+                    list[..4].copy_from_slice(&[
+                        (node, node + 1, 0, 1.0),
+                        (n + node, node + c, 1, 1.0),
+                        (node - 1, node - 1, 0, -1.0),
+                        (n + node - c, node - c, 1, -1.0),
+                    ]);
+                    count = 4;
                 }
                 _ => {
                     let odd = j % 2;
                     let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
                     let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
-                    visit(node, node + 1, 0, 1.0);
-                    visit(n + node, up_right, 1, 1.0);
-                    visit(2 * n + node, up_left, 2, 1.0);
-                    visit(node - 1, node - 1, 0, -1.0);
-                    visit(n + down_left, down_left, 1, -1.0);
-                    visit(2 * n + down_right, down_right, 2, -1.0);
+                    list = [
+                        (node, node + 1, 0, 1.0),
+                        (n + node, up_right, 1, 1.0),
+                        (2 * n + node, up_left, 2, 1.0),
+                        (node - 1, node - 1, 0, -1.0),
+                        (n + down_left, down_left, 1, -1.0),
+                        (2 * n + down_right, down_right, 2, -1.0),
+                    ];
+                    count = 6;
                 }
             }
-            return;
-        }
-        for d in 0..dirs {
-            if let Some(other) = self.neighbour(node, d) {
-                visit(self.spring(node, d), other, d, 1.0);
+        } else {
+            for d in 0..dirs {
+                if let Some(other) = self.neighbour(node, d) {
+                    list[count] = (self.spring(node, d), other, d, 1.0);
+                    count += 1;
+                }
+            }
+            for d in 0..dirs {
+                if let Some(other) = self.back_neighbour(node, d) {
+                    list[count] = (self.spring(other, d), other, d, -1.0);
+                    count += 1;
+                }
             }
         }
-        for d in 0..dirs {
-            if let Some(other) = self.back_neighbour(node, d) {
-                visit(self.spring(other, d), other, d, -1.0);
-            }
+        for &(spring, other, d, sign) in &list[..count] {
+            visit(spring, other, d, sign);
         }
     }
 

@@ -83,15 +83,17 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
     // solver's break misfit.
     // Words per spring: the other node, the break time and the traced network's cut; per
-    // mesh cell (1 square, 2 triangles per node) one word for tracing. Quasi-static adds a tournament
-    // tree over springs (2·P, P the next power of two), a work queue, node flags and a list
-    // of relaxed nodes (3 per node).
+    // mesh cell (1 square, 2 triangles per node) one word for tracing and one for the cells'
+    // ring starts. Quasi-static adds a tournament tree over blocks of 32 springs (2·P, P the
+    // next power of two of the blocks), a work queue, node flags and a list of relaxed nodes
+    // (3 per node).
     let cells = nodes * (dirs - 1);
     let (scalars, words) = match solver {
-        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + cells + mesh),
+        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + 2 * cells + mesh),
         Solver::QuasiStatic => {
-            let leaves = if springs <= 1 { 1 } else { 1u128 << (128 - (springs - 1).leading_zeros()) };
-            (2 * nodes + 2 * springs, 3 * springs + cells + 2 * leaves + 3 * nodes + mesh)
+            let blocks = springs.div_ceil(quasi_static::BLOCK as u128);
+            let leaves = if blocks <= 1 { 1 } else { 1u128 << (128 - (blocks - 1).leading_zeros()) };
+            (2 * nodes + 2 * springs, 3 * springs + 2 * cells + 2 * leaves + 3 * nodes + mesh)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -203,6 +205,8 @@ pub struct Mud<'a, S: Scalar> {
     trace: &'a mut [u32],
     /// Per mesh cell: the tracing's stack, then the index of the cell's first network vertex.
     stack: &'a mut [u32],
+    /// Per mesh cell: which of its sides start a ring of the cells (see `cells`).
+    ring_starts: &'a mut [u32],
     /// Network vertices of the last trace.
     vertex_total: u32,
     /// Springs broken when the network was last traced.
@@ -259,6 +263,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let break_time = take(&mut words, springs);
         let trace = take(&mut words, springs);
         let stack = take(&mut words, shape.cell_count());
+        let ring_starts = take(&mut words, shape.cell_count());
+        ring_starts.fill(0);
         let lattice = match params.topology {
             Topology::Irregular => {
                 let scratch = irregular::Scratch {
@@ -315,6 +321,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             break_time,
             trace,
             stack,
+            ring_starts,
             vertex_total: 0,
             traced_broken: 0,
             broken_face: 0.0,
@@ -483,7 +490,9 @@ mod tests {
         let p = MudParams { columns: 10, rows: 8, ..MudParams::default() };
         let m = p.memory().unwrap();
         assert_eq!(m.scalars, 80 * 2 + 240 * 2);
-        assert_eq!(m.words, 240 * 3 + 160 + 2 * 256 + 240);
+        // Springs: other, break time, cut; cells: stack and ring starts; a tree over 8 blocks
+        // of 32 springs; queue, flags and touched list per node.
+        assert_eq!(m.words, 240 * 3 + 2 * 160 + 2 * 8 + 240);
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         assert!(Mud::new(&p, &mut s[..m.scalars - 1], &mut w).is_err());
         assert_eq!(

@@ -270,6 +270,8 @@ impl<S: Scalar> Mud<'_, S> {
             next += self.vertices_in(cell) as u32;
         }
         self.vertex_total = next;
+        // 5. The cells' rings: where each one starts (see `cells`).
+        self.find_ring_starts();
         self.traced_broken = self.broken;
     }
 
@@ -299,7 +301,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut, and each cut
     /// side on the border.
     fn vertices_in(&self, cell: usize) -> usize {
-        let Some(c) = self.traced_cell(cell, [0, 0]) else {
+        let Some(c) = self.cut_cell(cell) else {
             return 0;
         };
         let centroid = usize::from(matches!(c.cut_count(), 1) || c.cut_count() >= 3);
@@ -309,6 +311,13 @@ impl<S: Scalar> Mud<'_, S> {
     /// Whether side `k` of a cell is on the open border (no cell on its other side).
     pub(super) fn is_border_side(&self, c: &TracedCell, k: usize) -> bool {
         self.lattice.cells_of_spring(c.cell.sides[k] as usize).into_iter().flatten().count() < 2
+    }
+
+    /// Mesh cell `cell` as the network sees it, if a side of it is cut (most cells have none,
+    /// and are passed over without working out their positions).
+    pub(super) fn cut_cell(&self, cell: usize) -> Option<TracedCell> {
+        let c = self.lattice.cell(cell)?;
+        c.sides[..c.corners].iter().any(|&s| self.is_cut(s as usize)).then(|| self.traced(cell, c, [0, 0]))
     }
 
     /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
@@ -426,7 +435,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// `points` calls its argument with the edge's points in order.
     fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint)))) {
         for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let Some(c) = self.cut_cell(cell) else { continue };
             let centroid = Self::centroid_is_vertex(&c);
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
                 for start in [Start::Centroid, Start::Border] {
@@ -507,7 +516,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// crack's course, not the mesh cell's own geometry.
     pub(super) fn for_each_junction(&self, reach: f32, mut arms: impl FnMut(&[[f32; 2]])) {
         for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let Some(c) = self.cut_cell(cell) else { continue };
             if c.cut_count() < 3 {
                 continue;
             }
@@ -533,7 +542,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// Calls `visit` with every vertex, in index order.
     pub(super) fn for_each_vertex(&self, mut visit: impl FnMut(NetworkVertex)) {
         for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let Some(c) = self.cut_cell(cell) else { continue };
             if Self::centroid_is_vertex(&c) {
                 visit(NetworkVertex { at: c.centroid(), degree: c.cut_count() as u32, on_border: 0 });
             }
@@ -591,7 +600,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// on the cut springs), cell by cell: what the rasters draw.
     pub(super) fn for_each_network_piece(&self, mut emit: impl FnMut(NetworkPoint, NetworkPoint)) {
         for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
+            let Some(c) = self.cut_cell(cell) else { continue };
             let (mut cut, mut n) = ([0usize; 4], 0);
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
                 cut[n] = k;

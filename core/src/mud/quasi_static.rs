@@ -21,13 +21,18 @@
 //! the equilibrium would not; on the traced network the two solvers' mean cell areas were
 //! then 19 % apart over 8 seeds (48²), and without it they agree within 15 %. When the queue is empty, springs whose
 //! s_break is below the misfit break first, smallest s_break first (the most overstrained).
-//! A tournament tree over springs keeps the smallest s_break in O(log n).
+//! A tournament tree over blocks of springs keeps the smallest s_break in O(log n).
 
 use super::{ABSENT, Drive, INTACT, Mud, SolverState, take};
 use crate::scalar::Scalar;
 
 /// No index (empty tree slot, empty queue flag).
 const NONE: u32 = u32::MAX;
+
+/// Springs per leaf of the tournament tree: a leaf holds its block's winner, so most updates
+/// (a spring that neither wins nor held the win) end at the leaf, and the tree stays small
+/// enough to stay in cache.
+pub(super) const BLOCK: usize = 32;
 
 /// The smallest misfit the relaxation tolerance is scaled by (see [`Mud::relax`]).
 const TOLERANCE_MISFIT_FLOOR: f32 = 0.005;
@@ -36,8 +41,9 @@ const TOLERANCE_MISFIT_FLOOR: f32 = 0.005;
 pub(super) struct Relaxation<'a, S> {
     /// Per spring: the misfit at which it breaks (S::MAX: never, broken or absent).
     break_misfit: &'a mut [S],
-    /// Tournament tree over springs: `tree[leaves + s]` holds spring s; each inner slot the
-    /// winner (smallest break misfit, then lowest index) of its two children; `tree[1]` wins.
+    /// Tournament tree over blocks of springs: `tree[leaves + b]` holds the winner (smallest
+    /// break misfit, then lowest index) of springs `BLOCK·b..BLOCK·(b + 1)`; each inner slot
+    /// the winner of its two children; `tree[1]` wins.
     tree: &'a mut [u32],
     leaves: usize,
     /// FIFO ring of nodes to relax.
@@ -58,7 +64,7 @@ const TOUCHED: u32 = 2;
 
 impl<'a, S: Scalar> Relaxation<'a, S> {
     pub(super) fn new(scalars: &mut &'a mut [S], words: &mut &'a mut [u32], nodes: usize, springs: usize) -> Self {
-        let leaves = springs.next_power_of_two();
+        let leaves = springs.div_ceil(BLOCK).next_power_of_two();
         let break_misfit = take(scalars, springs);
         let tree = take(words, 2 * leaves);
         let queue = take(words, nodes);
@@ -78,14 +84,39 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         }
     }
 
-    /// Re-decides the path from spring `s`'s leaf to the root after its value changed. Stops
-    /// early where a slot keeps a winner other than `s`: nothing above it can change.
+    /// The winner of block `b` (the lowest index among equal misfits).
+    fn block_winner(&self, b: usize) -> u32 {
+        let end = (BLOCK * (b + 1)).min(self.break_misfit.len());
+        let mut best = BLOCK * b;
+        for s in BLOCK * b + 1..end {
+            if self.break_misfit[s] < self.break_misfit[best] {
+                best = s;
+            }
+        }
+        best as u32
+    }
+
+    /// Re-decides spring `s`'s leaf, and the path from it to the root, after its value
+    /// changed. Stops early where a slot keeps a winner other than `s` and the leaf's former
+    /// winner: nothing above it can change.
     fn update(&mut self, s: usize) {
-        let mut slot = (self.leaves + s) / 2;
+        let leaf = self.leaves + s / BLOCK;
+        let held = self.tree[leaf];
+        let winner = if held == s as u32 {
+            self.block_winner(s / BLOCK)
+        } else if self.break_misfit[s] < self.break_misfit[held as usize]
+            || self.break_misfit[s] == self.break_misfit[held as usize] && (s as u32) < held
+        {
+            s as u32
+        } else {
+            return; // the leaf keeps its winner, whose value did not change
+        };
+        self.tree[leaf] = winner;
+        let mut slot = leaf / 2;
         while slot >= 1 {
             let before = self.tree[slot];
             let after = self.winner(self.tree[2 * slot], self.tree[2 * slot + 1]);
-            if after == before && after != s as u32 {
+            if after == before && after != s as u32 && after != held {
                 return;
             }
             self.tree[slot] = after;
@@ -96,8 +127,10 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
     fn push(&mut self, node: usize) {
         if self.flags[node] & QUEUED == 0 {
             self.flags[node] |= QUEUED;
+            // The ring's tail, wrapped without a division (head and len are below capacity).
             let capacity = self.queue.len();
-            self.queue[(self.head + self.len) % capacity] = node as u32;
+            let tail = self.head + self.len;
+            self.queue[if tail >= capacity { tail - capacity } else { tail }] = node as u32;
             self.len += 1;
         }
     }
@@ -107,7 +140,10 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             return None;
         }
         let node = self.queue[self.head] as usize;
-        self.head = (self.head + 1) % self.queue.len();
+        self.head += 1;
+        if self.head == self.queue.len() {
+            self.head = 0;
+        }
         self.len -= 1;
         self.flags[node] &= !QUEUED;
         if self.flags[node] & TOUCHED == 0 {
@@ -163,8 +199,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
         let r = self.relaxation();
         r.tree.fill(NONE);
-        for s in 0..springs {
-            r.tree[r.leaves + s] = s as u32;
+        for b in 0..springs.div_ceil(BLOCK) {
+            r.tree[r.leaves + b] = r.block_winner(b);
         }
         for slot in (1..r.leaves).rev() {
             r.tree[slot] = r.winner(r.tree[2 * slot], r.tree[2 * slot + 1]);
@@ -183,6 +219,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// The tolerance is the paper's δx: displacements are s·u, so u needs resolving to
     /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse).
     fn relax(&mut self, node: usize) -> u64 {
+        match self.lattice.mesh() {
+            // At most six springs on the regular lattices: a smaller list to set up.
+            None => self.relax_with::<6>(node),
+            Some(_) => self.relax_with::<{ super::irregular::MAX_DEGREE }>(node),
+        }
+    }
+
+    /// [`Mud::relax`] with room for `DEGREE` springs at the node.
+    fn relax_with<const DEGREE: usize>(&mut self, node: usize) -> u64 {
         let mesh = self.lattice.mesh().copied();
         let h = match &mesh {
             Some(m) => S::from_f32(m.area(node) * self.material.shear_per_area),
@@ -192,7 +237,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
         // The node's intact springs: (spring, other node, e towards the other node).
-        let mut intact = [(0usize, 0usize, S::ZERO, S::ZERO); super::irregular::MAX_DEGREE];
+        let mut intact = [(0u32, 0u32, S::ZERO, S::ZERO, S::ZERO); DEGREE];
         let mut count = 0;
         self.lattice.for_each_spring_at(node, |spring, other, d, sign| {
             visited += 1;
@@ -211,20 +256,23 @@ impl<'a, S: Scalar> Mud<'a, S> {
             let pull = k * (rest + ex * self.ux[other] + ey * self.uy[other]);
             b0 += pull * ex;
             b1 += pull * ey;
-            intact[count] = (spring, other, ex, ey);
+            intact[count] = (spring as u32, other as u32, ex, ey, k);
             count += 1;
         });
         let det = a00 * a11 - a01 * a01;
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
         let x = (a11 * b0 - a01 * b1) / det;
         let y = (a00 * b1 - a01 * b0) / det;
-        let moved = (x - old_x).abs().max((y - old_y).abs());
+        let (dx, dy) = (x - old_x, y - old_y);
+        // A neighbour moves by about k·e·Δu over its own diagonal, about this node's.
+        let diagonal = (a00 + a11) * S::from_f32(0.5);
         self.ux[node] = x;
         self.uy[node] = y;
         let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
         let tolerance = S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
         let misfit = self.misfit;
-        for &(spring, other, ex, ey) in &intact[..count] {
+        for &(spring, other, ex, ey, k) in &intact[..count] {
+            let (spring, other) = (spring as usize, other as usize);
             // A spring that is past its limit on the way to equilibrium breaks now:
             // s_break ≤ s, i.e. κ − 1 ≤ s·(e·(u_j − u_i)/l0 + a + κ·b), without the division.
             let mut opening = ex * (self.ux[other] - x) + ey * (self.uy[other] - y);
@@ -238,7 +286,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             };
             if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
                 self.break_and_relax(spring);
-            } else if moved > tolerance {
+            } else if k * (ex * dx + ey * dy).abs() > tolerance * diagonal {
                 self.relaxation().push(other);
             }
         }
@@ -251,9 +299,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let count = self.relaxation().touched_len;
         for t in 0..count {
             let node = self.relaxation().touched[t] as usize;
-            self.relaxation().flags[node] &= !TOUCHED;
-            lattice.for_each_spring_at(node, |spring, _, _, _| {
-                if self.break_time[spring] != INTACT {
+            lattice.for_each_spring_at(node, |spring, other, _, sign| {
+                // A spring between two touched nodes is brought up to date once, from its
+                // origin (the tree's result does not depend on the order of updates).
+                let shared = sign < 0.0 && self.relaxation().flags[other] & TOUCHED != 0;
+                if shared || self.break_time[spring] != INTACT {
                     return;
                 }
                 let value = self.break_misfit_of(spring);
@@ -263,6 +313,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     r.update(spring);
                 }
             });
+        }
+        for t in 0..count {
+            let node = self.relaxation().touched[t] as usize;
+            self.relaxation().flags[node] &= !TOUCHED;
         }
         self.relaxation().touched_len = 0;
     }
