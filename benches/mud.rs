@@ -66,10 +66,10 @@ fn main() {
             println!("| {size}² | explicit / quasi-static | {:.1}× | | | | |", explicit.seconds / fast.seconds);
         }
     }
-    if let (Some(&(a, ta)), Some(&(b, tb))) = (times.first(), times.last()) {
-        if b > a {
-            let exponent = (tb / ta).ln() / ((f64::from(b) / f64::from(a)).powi(2)).ln();
-            println!("\ncost grows as nodes^{exponent:.2} from {a}² to {b}²");
-        }
+    if let (Some(&(a, ta)), Some(&(b, tb))) = (times.first(), times.last())
+        && b > a
+    {
+        let exponent = (tb / ta).ln() / ((f64::from(b) / f64::from(a)).powi(2)).ln();
+        println!("\ncost grows as nodes^{exponent:.2} from {a}² to {b}²");
     }
 }

@@ -45,8 +45,8 @@
 
 /**
  * Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
- * its own length and face; cracks run in any direction. Quasi-static solver only; periodic
- * lattices need columns >= 8 and an even rows >= 8.
+ * its own length and face; cracks run in any direction. Periodic lattices need columns >= 8
+ * and an even rows >= 8.
  */
 #define HIBI_MUD_IRREGULAR 2
 
@@ -1034,14 +1034,9 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SCALE 532
 
 /**
- * Mud parameters: `solver` explicit needs `topology` square or hexagonal (irregular is quasi-static only).
- */
-#define HIBI_ERROR_MUD_SOLVER 533
-
-/**
  * Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
  */
-#define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 534
+#define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 533
 
 /**
  * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).

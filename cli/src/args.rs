@@ -144,7 +144,7 @@ pub enum TopologyArg {
     /// Square elements (4 neighbours): axis-aligned, short, fine cracks.
     Square,
     /// Jittered nodes joined by their Delaunay triangulation (beyond the paper): cracks run in
-    /// any direction. Quasi-static solver only.
+    /// any direction.
     Irregular,
 }
 

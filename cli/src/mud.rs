@@ -121,7 +121,6 @@ fn option(e: MudParamError) -> &'static str {
         TargetCrackDensity => "--target-crack-density",
         SizeOverflow => "--columns/--rows",
         Scale => "--young-modulus/--shear-modulus/--element-size/--layer-thickness/--density/--long-step",
-        Solver => "--solver/--topology",
         BreakStretchSizeExponent => "--break-stretch-size-exponent",
     }
 }

@@ -41,8 +41,8 @@ pub const HIBI_MUD_SQUARE: u32 = 0;
 /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
 pub const HIBI_MUD_HEXAGONAL: u32 = 1;
 /// Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
-/// its own length and face; cracks run in any direction. Quasi-static solver only; periodic
-/// lattices need columns >= 8 and an even rows >= 8.
+/// its own length and face; cracks run in any direction. Periodic lattices need columns >= 8
+/// and an even rows >= 8.
 pub const HIBI_MUD_IRREGULAR: u32 = 2;
 /// Free edges.
 pub const HIBI_MUD_OPEN: u32 = 0;

@@ -78,10 +78,8 @@ pub const HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: hibi_status = 530;
 pub const HIBI_ERROR_MUD_SIZE_OVERFLOW: hibi_status = 531;
 /// Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
 pub const HIBI_ERROR_MUD_SCALE: hibi_status = 532;
-/// Mud parameters: `solver` explicit needs `topology` square or hexagonal (irregular is quasi-static only).
-pub const HIBI_ERROR_MUD_SOLVER: hibi_status = 533;
 /// Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
-pub const HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: hibi_status = 534;
+pub const HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: hibi_status = 533;
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
@@ -123,7 +121,6 @@ const _: () = {
     assert!(HIBI_ERROR_MUD_TARGET_CRACK_DENSITY == 512 + MudParamError::TargetCrackDensity as u32);
     assert!(HIBI_ERROR_MUD_SIZE_OVERFLOW == 512 + MudParamError::SizeOverflow as u32);
     assert!(HIBI_ERROR_MUD_SCALE == 512 + MudParamError::Scale as u32);
-    assert!(HIBI_ERROR_MUD_SOLVER == 512 + MudParamError::Solver as u32);
     assert!(HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT == 512 + MudParamError::BreakStretchSizeExponent as u32);
 };
 

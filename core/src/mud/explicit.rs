@@ -47,7 +47,13 @@ pub(super) struct Dynamics<'a, S> {
     inverse_damping: S,
     /// τ/c.
     step_over_damping: S,
+    /// The irregular lattice's nodes each have their own mass, damping and force tolerance:
+    /// per node, the four constants above in that order, then δF = k_min·δx.
+    node_constants: &'a mut [S],
 }
+
+/// Constants per node of the irregular lattice's explicit run.
+pub(super) const NODE_CONSTANTS: usize = 5;
 
 /// The `limit` of a broken or absent spring.
 fn broken<S: Scalar>() -> S {
@@ -55,10 +61,42 @@ fn broken<S: Scalar>() -> S {
 }
 
 impl<'a, S: Scalar> Dynamics<'a, S> {
-    pub(super) fn new(scalars: &mut &'a mut [S], lattice: &Lattice, other: &[u32], material: &Material<S>) -> Self {
+    pub(super) fn new(
+        scalars: &mut &'a mut [S],
+        lattice: &Lattice,
+        other: &[u32],
+        material: &Material<S>,
+        (tolerance_length, alpha): (f32, f32),
+    ) -> Self {
         let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
         let limit = take(scalars, lattice.spring_count());
+        let node_constants = take(scalars, if lattice.mesh().is_some() { NODE_CONSTANTS * nodes } else { 0 });
+        if let Some(mesh) = lattice.mesh() {
+            // Per node (paper §2): m = ρ·B·H and c = 2·√(k_max·m)·α, with B the node's Voronoi
+            // area and k_max over its springs and its shear spring; in lattice units m = B.
+            // δF = k_min·δx with k_min over the same springs.
+            let tau = material.short_step;
+            for node in 0..nodes {
+                let mass = mesh.area(node);
+                let shear = mass * material.shear_per_area;
+                let (mut k_max, mut k_low) = (shear, shear);
+                mesh.for_each_spring_at(node, |spring, _, _| {
+                    k_max = k_max.max(mesh.stiffness(spring));
+                    k_low = k_low.min(mesh.stiffness(spring));
+                });
+                let (m, c) = (S::from_f32(mass), S::from_f32(2.0 * libm::sqrtf(k_max * mass) * alpha));
+                let decay = (-(c * tau / m)).exp() - S::ONE;
+                let tolerance = S::from_f32(k_low * tolerance_length);
+                node_constants[NODE_CONSTANTS * node..NODE_CONSTANTS * (node + 1)].copy_from_slice(&[
+                    decay,
+                    -(m / c) * decay,
+                    S::ONE / c,
+                    tau / c,
+                    tolerance,
+                ]);
+            }
+        }
         vx.fill(S::ZERO);
         vy.fill(S::ZERO);
         // Intact springs get their limits at the first step.
@@ -78,6 +116,7 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             drift: -(m / c) * decay,
             inverse_damping: S::ONE / c,
             step_over_damping: tau / c,
+            node_constants,
         }
     }
 
@@ -527,9 +566,72 @@ fn move_nodes<S: Scalar>(
 }
 
 impl<S: Scalar> Mud<'_, S> {
+    /// One short step of the irregular lattice, spring by spring: Eq. 5 then Eq. 2 (the
+    /// shear spring first, then each intact spring in spring order), the stability test
+    /// (Eq. 3) and the exact damped move (Eq. 4) with each node's own constants. Returns
+    /// (springs newly broken, stable).
+    fn irregular_forces_and_move(&mut self) -> (u32, bool) {
+        let (rest, deep) = self.factors();
+        let time = (self.long_steps as f32).to_bits();
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
+        let Some(mesh) = self.lattice.mesh().copied() else { unreachable!("a regular lattice") };
+        let (ux, uy) = (&mut *self.ux, &mut *self.uy);
+        let shear_per_area = S::from_f32(self.material.shear_per_area);
+        for node in 0..ux.len() {
+            let h = S::from_f32(mesh.area(node)) * shear_per_area;
+            d.fx[node] = -(h * ux[node]);
+            d.fy[node] = -(h * uy[node]);
+        }
+        let mut newly_broken = 0;
+        for spring in 0..self.break_time.len() {
+            let Some((a, b)) = mesh.ends(spring) else { continue };
+            if self.break_time[spring] != super::INTACT {
+                continue;
+            }
+            let e = mesh.direction(spring);
+            let l0 = S::from_f32(mesh.rest_length(spring));
+            let dx = S::from_f32(e[0]) * l0 * deep + ux[b] - ux[a];
+            let dy = S::from_f32(e[1]) * l0 * deep + uy[b] - uy[a];
+            let squared = dx * dx + dy * dy;
+            let limit = self.break_stretch[spring] * l0 * rest;
+            if squared > limit * limit {
+                self.break_time[spring] = time;
+                self.broken_face += mesh.face(spring);
+                newly_broken += 1;
+                continue;
+            }
+            // k·(l − l0·r)/l = k·(1 − l0·r/l).
+            let pull = S::from_f32(mesh.stiffness(spring)) * (S::ONE - l0 * rest * squared.inverse_sqrt());
+            d.fx[a] += pull * dx;
+            d.fy[a] += pull * dy;
+            d.fx[b] -= pull * dx;
+            d.fy[b] -= pull * dy;
+        }
+        let constants = &d.node_constants;
+        let stable = (0..ux.len()).all(|n| below(d.fx[n], d.fy[n], constants[NODE_CONSTANTS * n + 4]));
+        if !stable {
+            for node in 0..ux.len() {
+                let [decay, drift, inverse_damping, step_over_damping] =
+                    [0, 1, 2, 3].map(|k| d.node_constants[NODE_CONSTANTS * node + k]);
+                let qx = d.vx[node] - d.fx[node] * inverse_damping;
+                let qy = d.vy[node] - d.fy[node] * inverse_damping;
+                d.vx[node] += qx * decay;
+                d.vy[node] += qy * decay;
+                ux[node] += qx * drift + d.fx[node] * step_over_damping;
+                uy[node] += qy * drift + d.fy[node] * step_over_damping;
+            }
+        }
+        (newly_broken, stable)
+    }
+
     /// One short step: forces and breaks, then either a long step (stable) or a move.
     /// Returns the work done (spring slots visited).
     pub(super) fn explicit_step(&mut self) -> u64 {
+        if self.lattice.mesh().is_some() {
+            let (newly_broken, stable) = self.irregular_forces_and_move();
+            self.after_short_step(newly_broken, stable);
+            return self.lattice.spring_count() as u64;
+        }
         let (rest, deep) = self.factors();
         let time = (self.long_steps as f32).to_bits();
         let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
@@ -613,6 +715,12 @@ impl<S: Scalar> Mud<'_, S> {
             let constants = [d.decay, d.drift, d.inverse_damping, d.step_over_damping];
             move_nodes(constants, d.vx, d.vy, d.fx, d.fy, ux, uy);
         }
+        self.after_short_step(newly_broken, stable);
+        lattice.spring_count() as u64
+    }
+
+    /// Counts the springs a short step broke, and takes a long step (Eq. 1) if it was stable.
+    fn after_short_step(&mut self, newly_broken: u32, stable: bool) {
         self.broken += newly_broken;
         if newly_broken > 0 && self.density_reached() {
             self.finished = true;
@@ -627,6 +735,5 @@ impl<S: Scalar> Mud<'_, S> {
                 self.misfit = self.misfit_at(self.long_steps);
             }
         }
-        lattice.spring_count() as u64
     }
 }

@@ -89,7 +89,11 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // (3 per node).
     let cells = nodes * (dirs - 1);
     let (scalars, words) = match solver {
-        Solver::Explicit => (6 * nodes + 2 * springs, 3 * springs + 2 * cells + mesh),
+        // The irregular lattice's explicit run keeps five constants per node.
+        Solver::Explicit => {
+            let constants = if mesh > 0 { explicit::NODE_CONSTANTS as u128 * nodes } else { 0 };
+            (6 * nodes + 2 * springs + constants, 3 * springs + 2 * cells + mesh)
+        }
         Solver::QuasiStatic => {
             let blocks = springs.div_ceil(quasi_static::BLOCK as u128);
             let leaves = if blocks <= 1 { 1 } else { 1u128 << (128 - (blocks - 1).leading_zeros()) };
@@ -304,7 +308,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
         let solver = match params.solver {
             Solver::Explicit => {
-                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &lattice, other, &material))
+                let constants = (params.displacement_tolerance / params.element_size, params.damping_factor);
+                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &lattice, other, &material, constants))
             }
             Solver::QuasiStatic => {
                 SolverState::QuasiStatic(quasi_static::Relaxation::new(&mut scalars, &mut words, nodes, springs))

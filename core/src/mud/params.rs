@@ -12,6 +12,8 @@ pub enum Topology {
     /// Beyond the paper: the triangular lattice's nodes jittered and joined by their Delaunay
     /// triangulation, each spring with its own length and face (its Voronoi edge), so cracks
     /// run in any direction (see `mud::irregular`). Periodic: columns ≥ 8, rows even and ≥ 8.
+    /// Both solvers run on it (the explicit one spring by spring, without the regular
+    /// lattices' vectorised rows).
     Irregular = 2,
 }
 
@@ -199,16 +201,13 @@ pub enum MudParamError {
     /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
     /// sizes and time steps put a derived constant outside (1e-6, 1e6).
     Scale = 20,
-    /// `solver`: the explicit solver runs on the square and hexagonal lattices only; the
-    /// irregular lattice takes the quasi-static solver.
-    Solver = 21,
     /// `break_stretch_size_exponent` must be within [0, 1].
-    BreakStretchSizeExponent = 22,
+    BreakStretchSizeExponent = 21,
 }
 
 impl MudParamError {
     /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
-    pub const ALL: [MudParamError; 23] = [
+    pub const ALL: [MudParamError; 22] = [
         MudParamError::Columns,
         MudParamError::Rows,
         MudParamError::LayerThickness,
@@ -230,7 +229,6 @@ impl MudParamError {
         MudParamError::TargetCrackDensity,
         MudParamError::SizeOverflow,
         MudParamError::Scale,
-        MudParamError::Solver,
         MudParamError::BreakStretchSizeExponent,
     ];
 
@@ -260,7 +258,6 @@ impl MudParamError {
             SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
             Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
             BreakStretchSizeExponent => c"mud: break_stretch_size_exponent must be within [0, 1]",
-            Solver => c"mud: solver explicit needs topology square or hexagonal (irregular is quasi-static only)",
         }
     }
 }
@@ -297,9 +294,6 @@ impl MudParams {
         };
         if !rows_ok {
             return Err(Rows);
-        }
-        if self.topology == Topology::Irregular && self.solver == crate::mud::Solver::Explicit {
-            return Err(MudParamError::Solver);
         }
         let checks = [
             (positive(self.layer_thickness), LayerThickness),
@@ -358,7 +352,7 @@ mod tests {
     fn every_bad_field_is_named() {
         let base = MudParams::default();
         type Spoil = fn(&mut MudParams);
-        let cases: [(Spoil, MudParamError); 22] = [
+        let cases: [(Spoil, MudParamError); 21] = [
             (|p| p.columns = 1, MudParamError::Columns),
             (|p| p.rows = 5, MudParamError::Rows),
             (|p| p.layer_thickness = 0.0, MudParamError::LayerThickness),
@@ -380,13 +374,6 @@ mod tests {
             (|p| p.stiffness_anisotropy_ratio = f32::NAN, MudParamError::StiffnessAnisotropyRatio),
             (|p| p.target_shrink = 1.0, MudParamError::TargetShrink),
             (|p| p.target_crack_density = -1.0, MudParamError::TargetCrackDensity),
-            (
-                |p| {
-                    p.topology = Topology::Irregular;
-                    p.solver = Solver::Explicit
-                },
-                MudParamError::Solver,
-            ),
         ];
         for (spoil, error) in cases {
             let mut p = base;
