@@ -218,7 +218,7 @@ typedef struct hibi_glass_params {
    */
   float spread_ratio;
   /**
-   * θ_th, the largest turn per step [radians] (paper: 30°).
+   * θ_th, the largest turn per update (at most 10 px) [radians] (paper: 30°).
    */
   float turn_limit;
   /**
@@ -238,7 +238,7 @@ typedef struct hibi_glass_params {
    */
   float forces[2];
   /**
-   * Spread of F3's direction [radians] (default 15°).
+   * Spread of F3's direction per 10 px of growth [radians] (default 22°).
    */
   float wander;
   /**
