@@ -690,3 +690,4 @@ fn step_budgets_bound_the_work() {
     assert_eq!(hash(1), hash(u64::MAX));
     assert_eq!(hash(37), hash(u64::MAX));
 }
+

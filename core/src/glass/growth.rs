@@ -136,15 +136,54 @@ impl Glass<'_> {
 
     /// Calls `visit` once with every segment filed in the grid cells covering the box
     /// [x0, x1] × [y0, y1] (a segment in several cells is visited once, by its stamp).
-    fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, mut visit: impl FnMut(&Self, u32)) {
+    fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, visit: impl FnMut(&Self, u32)) {
+        self.segments_in(x0, y0, x1, y1, None, visit);
+    }
+
+    /// As [`Self::segments_near`], skipping the cells that lie wholly outside the sector S of
+    /// a tip at `sector.0` heading `sector.1` (outside its disc, or beyond one side of its
+    /// wedge when φ ≤ 180°): no point of theirs is in S.
+    fn segments_in(
+        &mut self,
+        x0: f32,
+        y0: f32,
+        x1: f32,
+        y1: f32,
+        sector: Option<([f32; 2], [f32; 2])>,
+        mut visit: impl FnMut(&Self, u32),
+    ) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.stamps.fill(0);
             self.stamp = 1;
         }
         let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
+        let cell = self.grid.cell;
+        let (c, s, b) = (self.sector_cosine, self.sector_sine, self.params.sector_radius);
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
+                if let Some((w, [dx, dy])) = sector {
+                    // The cell's corners relative to the apex.
+                    let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
+                    let (bx, by) = (ax + cell, ay + cell);
+                    // Outside the disc: its nearest point is farther than B.
+                    let nx = if ax > 0.0 { ax } else if bx < 0.0 { bx } else { 0.0 };
+                    let ny = if ay > 0.0 { ay } else if by < 0.0 { by } else { 0.0 };
+                    if nx * nx + ny * ny > b * b {
+                        continue;
+                    }
+                    if c >= 0.0 {
+                        // Beyond a side of the wedge: every corner on the outer side of it.
+                        let left = [dx * c - dy * s, dx * s + dy * c];
+                        let right = [dx * c + dy * s, -dx * s + dy * c];
+                        let corners = [[ax, ay], [bx, ay], [ax, by], [bx, by]];
+                        let outside_right = corners.iter().all(|q| right[0] * q[1] - right[1] * q[0] < 0.0);
+                        let outside_left = corners.iter().all(|q| left[0] * q[1] - left[1] * q[0] > 0.0);
+                        if outside_right || outside_left {
+                            continue;
+                        }
+                    }
+                }
                 let mut entry = self.segments.heads[cy * self.grid.columns + cx];
                 while entry != NONE {
                     self.work += 1;
@@ -255,7 +294,7 @@ impl Glass<'_> {
         let crack = i as u32;
         let mut extra = [0.0f32; 2];
         let now = self.time as f32;
-        self.segments_near(x0, y0, x1, y1, |glass, e| {
+        self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
             let edge = glass.edges[e as usize];
             let owner = edge.crack;
             // Not its own crack, nor pieces other tips grew earlier in this time step (all
