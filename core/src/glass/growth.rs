@@ -167,8 +167,20 @@ impl Glass<'_> {
                     let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
                     let (bx, by) = (ax + cell, ay + cell);
                     // Outside the disc: its nearest point is farther than B.
-                    let nx = if ax > 0.0 { ax } else if bx < 0.0 { bx } else { 0.0 };
-                    let ny = if ay > 0.0 { ay } else if by < 0.0 { by } else { 0.0 };
+                    let nx = if ax > 0.0 {
+                        ax
+                    } else if bx < 0.0 {
+                        bx
+                    } else {
+                        0.0
+                    };
+                    let ny = if ay > 0.0 {
+                        ay
+                    } else if by < 0.0 {
+                        by
+                    } else {
+                        0.0
+                    };
                     if nx * nx + ny * ny > b * b {
                         continue;
                     }
