@@ -340,7 +340,7 @@ pub struct GlassOptions {
     /// Rand(x) normal or uniform [default: normal].
     #[arg(long, value_enum)]
     pub spread: Option<SpreadArg>,
-    /// θ_th: the largest turn per step [degrees] [default: 30].
+    /// θ_th: the largest turn per update (at most 10 px) [degrees] [default: 30].
     #[arg(long, value_name = "DEGREES")]
     pub turn_limit: Option<f32>,
     /// T in weight(t) = 1 − exp(−t/T) [steps] [default: 10].

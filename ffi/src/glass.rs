@@ -471,7 +471,9 @@ fn progress_of(glass: &Glass) -> hibi_glass_progress {
     }
 }
 
-/// Advances growth by at most `budget` tip steps (at least one); writes where it stands to
+/// Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
+/// a query examines, or a crack the step loop looks at; a call overruns by at most one tip
+/// update's queries, and the plate does not depend on the budgets); writes where it stands to
 /// `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
 /// once a capacity has run out; the plate then stays as it was drawn, usable.
 ///
