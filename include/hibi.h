@@ -225,7 +225,7 @@ typedef struct hibi_glass_params {
    */
   float spread_ratio;
   /**
-   * θ_th, the largest turn per step [radians] (paper: 30°).
+   * θ_th, the largest turn per update (at most 10 px) [radians] (paper: 30°).
    */
   float turn_limit;
   /**
@@ -245,7 +245,7 @@ typedef struct hibi_glass_params {
    */
   float forces[2];
   /**
-   * Spread of F3's direction [radians] (default 15°).
+   * Spread of F3's direction per 10 px of growth [radians] (default 22°).
    */
   float wander;
   /**
@@ -1360,7 +1360,9 @@ hibi_status hibi_glass_impact(struct hibi_glass *glass,
                               struct hibi_glass_counts *counts);
 
 /**
- * Advances growth by at most `budget` tip steps (at least one); writes where it stands to
+ * Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
+ * a query examines, or a crack the step loop looks at; a call overruns by at most one tip
+ * update's queries, and the plate does not depend on the budgets); writes where it stands to
  * `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
  * once a capacity has run out; the plate then stays as it was drawn, usable.
  *

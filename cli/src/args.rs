@@ -348,7 +348,7 @@ pub struct GlassOptions {
     /// Rand(x) normal or uniform [default: normal].
     #[arg(long, value_enum)]
     pub spread: Option<SpreadArg>,
-    /// θ_th: the largest turn per step [degrees] [default: 30].
+    /// θ_th: the largest turn per update (at most 10 px) [degrees] [default: 30].
     #[arg(long, value_name = "DEGREES")]
     pub turn_limit: Option<f32>,
     /// T in weight(t) = 1 − exp(−t/T) [steps] [default: 10].
@@ -366,7 +366,7 @@ pub struct GlassOptions {
     /// k2 of F2, the pull towards cracks and edges [px²] [default: 400].
     #[arg(long, value_name = "K2")]
     pub crack_attraction: Option<f32>,
-    /// Standard deviation of F3's direction [degrees] [default: 15].
+    /// Standard deviation of F3's direction per 10 px of growth [degrees] [default: 22].
     #[arg(long, value_name = "DEGREES")]
     pub wander: Option<f32>,
     /// How hard a ring crack keeps to its circle [default: 2].

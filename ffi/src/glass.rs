@@ -67,7 +67,7 @@ pub struct hibi_glass_params {
     pub speeds: [f32; 3],
     /// z of Rand(x) (paper: 0.3).
     pub spread_ratio: f32,
-    /// θ_th, the largest turn per step [radians] (paper: 30°).
+    /// θ_th, the largest turn per update (at most 10 px) [radians] (paper: 30°).
     pub turn_limit: f32,
     /// T in weight(t) = 1 − exp(−t/T) (paper: 10).
     pub turn_delay: f32,
@@ -77,7 +77,7 @@ pub struct hibi_glass_params {
     pub sector_radius: f32,
     /// k1 of F1, k2 of F2 [px²] (default 400, 400).
     pub forces: [f32; 2],
-    /// Spread of F3's direction [radians] (default 15°).
+    /// Spread of F3's direction per 10 px of growth [radians] (default 22°).
     pub wander: f32,
     /// How hard ring cracks keep to their circle (default 2).
     pub ring_adherence: f32,
@@ -471,7 +471,9 @@ fn progress_of(glass: &Glass) -> hibi_glass_progress {
     }
 }
 
-/// Advances growth by at most `budget` tip steps (at least one); writes where it stands to
+/// Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
+/// a query examines, or a crack the step loop looks at; a call overruns by at most one tip
+/// update's queries, and the plate does not depend on the budgets); writes where it stands to
 /// `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
 /// once a capacity has run out; the plate then stays as it was drawn, usable.
 ///

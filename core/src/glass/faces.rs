@@ -15,7 +15,7 @@ use crate::geom::{crosses_ray, pseudo_angle, shoelace};
 impl Edge {
     /// A segment of crack `crack` from vertex `from` to `to`, not yet chained or linked.
     pub(super) fn new(from: u32, to: u32, crack: u32, time: [f32; 2]) -> Edge {
-        Edge { from, to, crack, next: NONE, time, links: [NONE; 2], angles: [0.0; 2] }
+        Edge { from, to, crack, next: NONE, time, links: [NONE; 2], angles: [0.0; 2], ends: [0.0; 4] }
     }
 
     /// Sets the pseudo-angles of the edge's two directions from its ends' positions.

@@ -203,8 +203,11 @@ impl Glass<'_> {
                 n += 1;
             }
         }
+        // (Only the crack vertices are compared: a corner added here is no crack vertex, and
+        // its index lies past them.)
+        let ends = n;
         for (k, corner) in corners.iter().enumerate() {
-            if !s.border[..n].iter().any(|&v| self.vertices[v as usize].at == *corner) {
+            if !s.border[..ends].iter().any(|&v| self.vertices[v as usize].at == *corner) {
                 s.border[n] = (vertices + k) as u32;
                 n += 1;
             }

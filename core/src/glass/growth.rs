@@ -4,6 +4,18 @@ use super::grid::NONE;
 use super::{CrackEnd, CrackKind, Edge, Glass, GlassProgress, wrap};
 use crate::geom::{Intersection, Point, Segment};
 
+/// The longest update \[px\]: a time step is cut into equal updates (dt) no longer than
+/// this, the length the paper measured its cracks' turning over (Fig. 5), so that a tip turns
+/// (Eqs. 12–16) at least every 10 px whatever its speed.
+pub(super) const UPDATE_LENGTH: f32 = 10.0;
+
+/// An update is cut to this share of the distance to the nearest crack or edge in S that the
+/// tip is closing in on, so that F2 turns it several times before it meets it (rule 8).
+const APPROACH_SHARE: f32 = 0.25;
+
+/// The shortest update \[px\] near a crack or edge.
+const MIN_UPDATE: f32 = 0.5;
+
 /// What a step ran into.
 enum Hit {
     /// Nothing: the tip moves the whole step.
@@ -15,29 +27,43 @@ enum Hit {
 }
 
 impl Glass<'_> {
-    /// Advances growth by at most `budget` tip steps (at least one, unless finished).
-    /// A time step advances every growing tip once, in crack order.
+    /// Advances growth by about `budget` units of work (at least one). A unit is a grid entry
+    /// examined by a distance or crossing query (a segment or a tip), or a crack looked at by
+    /// the step loop. The budget is checked before every update of a tip, so a call overruns
+    /// it by at most one update's queries, whatever the parameters (speeds, forces, plate
+    /// size); generation resumes exactly where it stopped, so the result does not depend on
+    /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
+    /// in updates of at most 10 px.
     pub fn step(&mut self, budget: u64) -> GlassProgress {
-        let mut work = 0u64;
-        while !self.finished && work < budget.max(1) {
-            if self.cursor == 0 && !self.rebuild_tips() {
-                self.finish();
-                break;
+        let start = self.work;
+        while !self.finished && self.work - start < budget.max(1) {
+            if self.cursor == 0 && !self.stepping {
+                self.work += self.crack_count as u64 + 1;
+                if !self.rebuild_tips() {
+                    self.finish();
+                    break;
+                }
+                self.stepping = true;
             }
             if self.cursor < self.crack_count {
+                self.work += 1;
                 let c = self.cracks[self.cursor];
                 if c.growing && self.time >= c.wake {
-                    self.advance(self.cursor);
-                    work += 1;
+                    if self.update(self.cursor) {
+                        self.cursor += 1;
+                    }
                     if self.capacity_reached {
                         self.finish();
                     }
+                } else {
+                    self.cursor += 1;
                 }
-                self.cursor += 1;
                 continue;
             }
             self.cursor = 0;
+            self.stepping = false;
             self.time += 1;
+            self.work += self.crack_count as u64;
             // Generation ends when every large and ring crack of this impact has stopped.
             let impact = self.impacts - 1;
             let driving = self.cracks[..self.crack_count]
@@ -50,10 +76,18 @@ impl Glass<'_> {
         self.progress()
     }
 
+    /// Units of work done so far, as [`Glass::step`] counts them.
+    pub fn work(&self) -> u64 {
+        self.work
+    }
+
     /// Puts every growing tip into the tip grid; false if it is full.
     fn rebuild_tips(&mut self) -> bool {
         self.tips.clear();
         for i in 0..self.crack_count {
+            let c = &mut self.cracks[i];
+            c.before = c.tip;
+            c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
             let c = self.cracks[i];
             if c.growing {
                 let (cx, cy, _, _) = self.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
@@ -102,17 +136,69 @@ impl Glass<'_> {
 
     /// Calls `visit` once with every segment filed in the grid cells covering the box
     /// [x0, x1] × [y0, y1] (a segment in several cells is visited once, by its stamp).
-    fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, mut visit: impl FnMut(&Self, u32)) {
+    fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, visit: impl FnMut(&Self, u32)) {
+        self.segments_in(x0, y0, x1, y1, None, visit);
+    }
+
+    /// As [`Self::segments_near`], skipping the cells that lie wholly outside the sector S of
+    /// a tip at `sector.0` heading `sector.1` (outside its disc, or beyond one side of its
+    /// wedge when φ ≤ 180°): no point of theirs is in S.
+    fn segments_in(
+        &mut self,
+        x0: f32,
+        y0: f32,
+        x1: f32,
+        y1: f32,
+        sector: Option<([f32; 2], [f32; 2])>,
+        mut visit: impl FnMut(&Self, u32),
+    ) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.stamps.fill(0);
             self.stamp = 1;
         }
         let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
+        let cell = self.grid.cell;
+        let (c, s, b) = (self.sector_cosine, self.sector_sine, self.params.sector_radius);
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
+                if let Some((w, [dx, dy])) = sector {
+                    // The cell's corners relative to the apex.
+                    let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
+                    let (bx, by) = (ax + cell, ay + cell);
+                    // Outside the disc: its nearest point is farther than B.
+                    let nx = if ax > 0.0 {
+                        ax
+                    } else if bx < 0.0 {
+                        bx
+                    } else {
+                        0.0
+                    };
+                    let ny = if ay > 0.0 {
+                        ay
+                    } else if by < 0.0 {
+                        by
+                    } else {
+                        0.0
+                    };
+                    if nx * nx + ny * ny > b * b {
+                        continue;
+                    }
+                    if c >= 0.0 {
+                        // Beyond a side of the wedge: every corner on the outer side of it.
+                        let left = [dx * c - dy * s, dx * s + dy * c];
+                        let right = [dx * c + dy * s, -dx * s + dy * c];
+                        let corners = [[ax, ay], [bx, ay], [ax, by], [bx, by]];
+                        let outside_right = corners.iter().all(|q| right[0] * q[1] - right[1] * q[0] < 0.0);
+                        let outside_left = corners.iter().all(|q| left[0] * q[1] - left[1] * q[0] > 0.0);
+                        if outside_right || outside_left {
+                            continue;
+                        }
+                    }
+                }
                 let mut entry = self.segments.heads[cy * self.grid.columns + cx];
                 while entry != NONE {
+                    self.work += 1;
                     let e = self.segments.item[entry as usize];
                     if self.stamps[e as usize] != self.stamp {
                         self.stamps[e as usize] = self.stamp;
@@ -126,27 +212,82 @@ impl Glass<'_> {
 
     /// The endpoints of edge `e`.
     fn edge_points(&self, e: u32) -> ([f32; 2], [f32; 2]) {
-        let edge = self.edges[e as usize];
-        (self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at)
+        let ends = self.edges[e as usize].ends;
+        ([ends[0], ends[1]], [ends[2], ends[3]])
     }
 
-    /// The sum F1 + F2 + F3 (+ the ring's pull to its circle) on crack `i`'s tip.
-    fn force(&mut self, i: usize) -> [f32; 2] {
+    /// The point of segment `a`–`z` inside the sector S ahead of a tip at `w` heading
+    /// `direction` that is nearest the tip: its offset from `w` and its distance (the paper's
+    /// "shortest distance" from the tip to a crack or edge in S). The segment is clipped to the
+    /// sector's wedge first, so a crack that only crosses a corner of S is seen there.
+    fn nearest_in_sector(&self, w: [f32; 2], direction: [f32; 2], a: [f32; 2], z: [f32; 2]) -> Option<([f32; 2], f32)> {
+        let (c, s) = (self.sector_cosine, self.sector_sine);
+        let (ea, ez) = ([a[0] - w[0], a[1] - w[1]], [z[0] - w[0], z[1] - w[1]]);
+        let d = [ez[0] - ea[0], ez[1] - ea[1]];
+        let (mut t0, mut t1) = (0.0f32, 1.0f32);
+        if c >= 0.0 {
+            // A wedge of half-angle ≤ 90°: inside both boundary rays' half-planes.
+            let [dx, dy] = direction;
+            let left = [dx * c - dy * s, dx * s + dy * c];
+            let right = [dx * c + dy * s, -dx * s + dy * c];
+            let planes = [(right, 1.0f32), (left, -1.0f32)];
+            for (ray, sign) in planes {
+                let f0 = sign * (ray[0] * ea[1] - ray[1] * ea[0]);
+                let f1 = sign * (ray[0] * ez[1] - ray[1] * ez[0]);
+                if f0 < 0.0 && f1 < 0.0 {
+                    return None;
+                }
+                if f0 < 0.0 {
+                    t0 = t0.max(f0 / (f0 - f1));
+                } else if f1 < 0.0 {
+                    t1 = t1.min(f0 / (f0 - f1));
+                }
+            }
+            if t0 > t1 {
+                return None;
+            }
+        }
+        let length2 = d[0] * d[0] + d[1] * d[1];
+        let t = if length2 > 0.0 { (-(ea[0] * d[0] + ea[1] * d[1]) / length2).clamp(t0, t1) } else { t0 };
+        let e = [ea[0] + d[0] * t, ea[1] + d[1] * t];
+        let distance = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
+        if !(distance > 0.0 && distance <= self.params.sector_radius) {
+            return None;
+        }
+        // A wider wedge is not convex: keep the nearest point only if it lies in it.
+        if c < 0.0 && (e[0] * direction[0] + e[1] * direction[1]) < c * distance {
+            return None;
+        }
+        Some((e, distance))
+    }
+
+    /// The sum F1 + F2 + F3 on crack `i`'s tip heading `heading` (its course for a ring
+    /// crack, with the ring's pull along it added).
+    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], f32) {
         let c = self.cracks[i];
         let p = self.params;
         let w = c.tip;
-        let direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
+        let direction = [libm::cosf(heading), libm::sinf(heading)];
         let mut f = [0.0f32; 2];
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
-        // F1: away from every other tip in S, ∝ 1/r².
+        // F1: away from every other tip in S, |F1| = k1/r².
         let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
+        let mut work = 0u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 self.tips.for_each(cy * self.grid.columns + cx, |j| {
+                    work += 1;
                     if j as usize == i {
                         return;
                     }
-                    if let Some((e, r)) = self.in_sector(w, direction, self.cracks[j as usize].tip) {
+                    let other = self.cracks[j as usize];
+                    if let Some((e, r)) = self.in_sector(w, direction, other.before) {
+                        // Only a tip growing towards this one pushes it (two tips closing in
+                        // turn apart); one running away from it, as the radial cracks of an
+                        // impact do, does not.
+                        if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0 {
+                            return;
+                        }
                         let k = p.tip_repulsion / (r * r * r);
                         f[0] -= k * e[0];
                         f[1] -= k * e[1];
@@ -154,11 +295,23 @@ impl Glass<'_> {
                 });
             }
         }
-        // F2: towards every crack in S, along its normal (to meet it at a right angle), ∝ 1/d².
+        self.work += work;
+        // F2: for every crack in S, one pull along its normal at its nearest point in S (to
+        // cross it at a right angle), |F2| = k2/d² with d that shortest distance. A crack's
+        // pieces are folded into one entry per crack (the nearest); past NEAR cracks the rest
+        // each pull on their own.
+        const NEAR: usize = 16;
+        let mut near = [(NONE, f32::INFINITY, [0.0f32; 2]); NEAR];
+        let mut count = 0usize;
         let crack = i as u32;
-        let mut pull = [0.0f32; 2];
-        self.segments_near(x0, y0, x1, y1, |glass, e| {
-            if glass.edges[e as usize].crack == crack {
+        let mut extra = [0.0f32; 2];
+        let now = self.time as f32;
+        self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
+            let edge = glass.edges[e as usize];
+            let owner = edge.crack;
+            // Not its own crack, nor pieces other tips grew earlier in this time step (all
+            // tips move at once).
+            if owner == crack || edge.time[0] >= now {
                 return;
             }
             let (a, z) = glass.edge_points(e);
@@ -166,85 +319,182 @@ impl Glass<'_> {
             if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
                 return;
             }
-            let q = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1])).closest_point(Point::new(w[0], w[1]));
-            if let Some((v, d)) = glass.in_sector(w, direction, [q.x, q.y]) {
-                let k = p.crack_attraction / (d * d * d);
-                pull[0] += k * v[0];
-                pull[1] += k * v[1];
+            let Some((v, d)) = glass.nearest_in_sector(w, direction, a, z) else { return };
+            let normal = glass.normal_towards(a, z, v, d);
+            // Only a crack the tip is closing in on can be met; one it runs alongside or away
+            // from (a neighbour from the same impact, diverging) does not pull.
+            if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
+                return;
+            }
+            match near[..count].iter_mut().find(|n| n.0 == owner) {
+                Some(n) if d < n.1 => *n = (owner, d, normal),
+                Some(_) => {}
+                None if count < NEAR => {
+                    near[count] = (owner, d, normal);
+                    count += 1;
+                }
+                None => {
+                    let k = p.crack_attraction / (d * d);
+                    extra[0] += k * normal[0];
+                    extra[1] += k * normal[1];
+                }
             }
         });
-        f[0] += pull[0];
-        f[1] += pull[1];
+        let mut nearest = f32::INFINITY;
+        for &(_, d, normal) in &near[..count] {
+            nearest = nearest.min(d);
+            let k = p.crack_attraction / (d * d);
+            f[0] += k * normal[0];
+            f[1] += k * normal[1];
+        }
+        f[0] += extra[0];
+        f[1] += extra[1];
         // F2 for the plate's edges.
-        for q in [[0.0, w[1]], [p.width, w[1]], [w[0], 0.0], [w[0], p.height]] {
-            if let Some((v, d)) = self.in_sector(w, direction, q) {
-                let k = p.crack_attraction / (d * d * d);
-                f[0] += k * v[0];
-                f[1] += k * v[1];
+        let corners = [[0.0, 0.0], [p.width, 0.0], [p.width, p.height], [0.0, p.height]];
+        for k in 0..4 {
+            let (a, z) = (corners[k], corners[(k + 1) % 4]);
+            if let Some((v, d)) = self.nearest_in_sector(w, direction, a, z) {
+                let normal = self.normal_towards(a, z, v, d);
+                nearest = nearest.min(d);
+                let k = p.crack_attraction / (d * d);
+                f[0] += k * normal[0];
+                f[1] += k * normal[1];
             }
         }
-        // F3: a unit force whose direction is a normal draw around the heading.
-        let angle = c.heading + p.wander * self.forces.normal_f32();
-        f[0] += libm::cosf(angle);
-        f[1] += libm::sinf(angle);
-        // Ring cracks keep to their circle: along it, plus back towards radius d.
+        // Rule 5: a ring crack's course runs along its circle; it pulls with ring_adherence.
         if matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise) {
-            let (centre, radius) = c.ring;
-            let rel = [w[0] - centre[0], w[1] - centre[1]];
-            let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-6);
-            let out = [rel[0] / r, rel[1] / r];
-            let along = if c.kind == CrackKind::RingCounterClockwise { [-out[1], out[0]] } else { [out[1], -out[0]] };
-            let back = (radius - r) / p.sector_radius;
-            f[0] += p.ring_adherence * (along[0] + back * out[0]);
-            f[1] += p.ring_adherence * (along[1] + back * out[1]);
+            f[0] += p.ring_adherence * direction[0];
+            f[1] += p.ring_adherence * direction[1];
         }
-        f
+        (f, nearest)
     }
 
-    /// One step of crack `i` (Eqs. 12–17), stopping exactly on a crack or the edge.
-    fn advance(&mut self, i: usize) {
+    /// The unit normal of segment `a`–`z` pointing from the tip towards it; `v` is the offset
+    /// from the tip to its nearest point, at distance `d`.
+    fn normal_towards(&self, a: [f32; 2], z: [f32; 2], v: [f32; 2], d: f32) -> [f32; 2] {
+        let t = [z[0] - a[0], z[1] - a[1]];
+        let length = libm::sqrtf(t[0] * t[0] + t[1] * t[1]);
+        if !(length > 0.0) {
+            return [v[0] / d, v[1] / d];
+        }
+        let n = [-t[1] / length, t[0] / length];
+        // The side of the segment's line the tip is on (a and z in the tip's frame: v lies on
+        // the segment, so its offset along n is the tip's distance from the line).
+        let side = n[0] * v[0] + n[1] * v[1];
+        if side > 0.0 {
+            n
+        } else if side < 0.0 {
+            [-n[0], -n[1]]
+        } else {
+            [v[0] / d, v[1] / d]
+        }
+    }
+
+    /// The course of ring crack `c` (rule 5: ring cracks grow along their circle): the
+    /// direction of the chord of the circle through its tip (about the impact) that spans one
+    /// full update, |v| cut into pieces of at most 10 px, turned towards radius d_i by up to a
+    /// quarter of that chord's angle. The course is thus always turned inwards from the
+    /// tangent, so that a ring crack turns at least as much as the arc it runs along, and
+    /// returns to its circle without ever turning outwards.
+    fn ring_course(c: &super::Crack) -> f32 {
+        let (centre, radius) = c.ring;
+        let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
+        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
+        let angle = libm::atan2f(rel[1], rel[0]);
+        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        let update = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
+        // Half the angle the chord of length `update` subtends.
+        let half = libm::asinf((0.5 * update / r).min(1.0));
+        let pull = ((r - radius) / update).clamp(-0.5, 0.5) * half;
+        angle + sense * (core::f32::consts::FRAC_PI_2 + half + pull)
+    }
+
+    /// One update of crack `i` (Eqs. 12–17); true when its time step is complete (or it
+    /// stopped). A time step moves the tip |v|·dt with dt = 1 in updates of at most
+    /// UPDATE_LENGTH; an update is cut shorter while a crack or edge the tip is closing in on
+    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE), so that F2 can turn
+    /// the tip to meet it at a right angle (rule 8). The tip stops exactly on a crack or the
+    /// edge.
+    fn update(&mut self, i: usize) -> bool {
         let p = self.params;
-        let f = self.force(i);
         let c = self.cracks[i];
+        let left = if c.left > 0.0 { c.left } else { c.speed };
+        let done = c.speed - left;
+        // Eq. 13: θ_w, the direction of v(t); a ring crack's v runs along its circle (rule 5).
+        let ring = matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise);
+        let course = if ring { Self::ring_course(&c) } else { c.heading };
+        let (mut f, closing) = self.force(i, course);
+        let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
+        let planned = full.min(left);
+        let length = (APPROACH_SHARE * closing).max(MIN_UPDATE).min(planned);
+        // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
+        // per 10 px (scaled by the square root of the update's length, so that the random
+        // turning per unit length does not depend on how a step is cut), around the direction
+        // the crack started in (a radial crack keeps its course on the whole: adjacent large
+        // cracks stay at nearly equal angles) or, for a ring crack, around its course.
+        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH);
+        let mean = if ring { course } else { c.start_heading };
+        let angle = mean + spread * self.forces.normal_f32();
+        f[0] += libm::cosf(angle);
+        f[1] += libm::sinf(angle);
         // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
-        let difference = wrap(libm::atan2f(f[1], f[0]) - c.heading).clamp(-p.turn_limit, p.turn_limit);
-        let weight = 1.0 - libm::expf(-(c.age as f32) / p.turn_delay);
-        let heading = wrap(c.heading + difference * weight);
-        // Eqs. 16–17: move by v·dt with dt = 1 step.
+        let difference = wrap(libm::atan2f(f[1], f[0]) - course).clamp(-p.turn_limit, p.turn_limit);
+        let age = c.age as f32 + done / c.speed;
+        let weight = 1.0 - libm::expf(-age / p.turn_delay);
+        let heading = wrap(course + difference * weight);
+        // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
+        let stopped = self.move_tip(i, heading, length, done);
+        let left = left - length;
+        let c = &mut self.cracks[i];
+        if stopped || left <= 1e-3 * c.speed {
+            c.left = 0.0;
+            c.age += 1;
+            true
+        } else {
+            c.left = left;
+            false
+        }
+    }
+
+    /// Moves crack `i`'s tip `length` along `heading` (`done` of its step already covered),
+    /// stopping exactly on a crack or the edge; true when it stopped.
+    fn move_tip(&mut self, i: usize, heading: f32, length: f32, done: f32) -> bool {
+        let c = self.cracks[i];
         let w = c.tip;
-        let next = [w[0] + c.speed * libm::cosf(heading), w[1] + c.speed * libm::sinf(heading)];
+        let next = [w[0] + length * libm::cosf(heading), w[1] + length * libm::sinf(heading)];
         let tip_vertex = if c.last_segment == NONE { c.start_vertex } else { self.edges[c.last_segment as usize].to };
         let (hit, along) = self.first_hit(i, w, next);
-        let time = self.time as f32;
+        let time = self.time as f32 + done / c.speed;
         let (end, stop) = match hit {
             Hit::Nothing => (self.add_vertex(next), CrackEnd::Growing),
             Hit::Edge(at) => (self.add_vertex(at), CrackEnd::Edge),
             Hit::Crack { edge, at, along } => (self.meeting_vertex(edge, at, along), CrackEnd::Crack),
         };
         if end == NONE {
-            return; // capacity reached; the caller finishes
+            return true; // capacity reached; the caller finishes
         }
         if end == tip_vertex {
             // Met a crack exactly at its own tip (a rounding tie): it stops there.
             let c = &mut self.cracks[i];
             c.growing = false;
             c.end = CrackEnd::Crack;
-            return;
+            return true;
         }
-        let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along]);
-        let Some(e) = self.add_edge(segment) else { return };
+        let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along * length / c.speed]);
+        let Some(e) = self.add_edge(segment) else { return true };
         let closes_cycle = self.join(tip_vertex, end);
         let c = &mut self.cracks[i];
         c.tip = self.vertices[end as usize].at;
         c.heading = heading;
-        c.age += 1;
-        if stop != CrackEnd::Growing {
+        let stopped = stop != CrackEnd::Growing;
+        if stopped {
             c.growing = false;
             c.end = stop;
         }
         if closes_cycle {
             self.enclose(2 * e);
         }
+        stopped || !self.cracks[i].growing
     }
 
     /// The vertex where a tip meets edge `e` at point `at` (parameter `along` on the edge): one
@@ -336,6 +586,9 @@ impl Glass<'_> {
         head.time[1] = time;
         head.links[1] = self.vertices[v as usize].first_edge;
         head.orient(self.vertices[old.from as usize].at, self.vertices[v as usize].at);
+        let at = self.vertices[v as usize].at;
+        head.ends[2] = at[0];
+        head.ends[3] = at[1];
         self.vertices[v as usize].first_edge = e;
         self.join(v, old.from);
         let owner = &mut self.cracks[old.crack as usize];
@@ -388,7 +641,9 @@ impl Glass<'_> {
         }
         let e = self.edge_count as u32;
         edge.links = [self.vertices[edge.from as usize].first_edge, self.vertices[edge.to as usize].first_edge];
-        edge.orient(self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at);
+        let (a, z) = (self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at);
+        edge.orient(a, z);
+        edge.ends = [a[0], a[1], z[0], z[1]];
         self.vertices[edge.from as usize].first_edge = e;
         self.vertices[edge.to as usize].first_edge = e;
         self.edges[self.edge_count] = edge;

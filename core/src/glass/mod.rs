@@ -95,6 +95,15 @@ pub struct Crack {
     last_segment: u32,
     /// The crack's start vertex.
     start_vertex: u32,
+    /// The tip at the start of the current time step: what other tips' F1 sees, so that all
+    /// tips move at once (Eq. 17) whatever order they are advanced in.
+    before: [f32; 2],
+    /// Its direction at the start of the current time step (unit vector).
+    before_direction: [f32; 2],
+    /// The direction the crack started in: F3's mean for a radial crack.
+    start_heading: f32,
+    /// What is left of the current time step's move (0 between steps) \[px\].
+    left: f32,
 }
 
 /// A crack vertex. Where cracks meet, both share the vertex.
@@ -120,6 +129,8 @@ pub struct Edge {
     /// The pseudo-angle of the edge's direction leaving `from` and leaving `to`, for ordering
     /// edges around a vertex.
     angles: [f32; 2],
+    /// The positions of `from` and `to` (x, y, x, y), kept beside the edge for the queries.
+    ends: [f32; 4],
 }
 
 /// How much caller memory a plate needs.
@@ -196,6 +207,10 @@ pub struct ImpactCounts {
     pub rings: u32,
 }
 
+/// Side of a grid cell \[px\]: longer than any segment (updates are at most 10 px), so a
+/// segment touches at most four cells.
+const GRID_CELL: f32 = 16.0;
+
 /// Grid entries per vertex: a segment is at most one cell long, so it touches at most four
 /// cells; splitting adds a segment per hit.
 const ENTRIES_PER_VERTEX: usize = 5;
@@ -204,7 +219,7 @@ impl GlassParams {
     /// Validates the parameters and returns the memory a plate needs.
     pub fn memory(&self) -> Result<GlassMemory, GlassParamError> {
         self.validate()?;
-        let grid = Grid::new(self.width, self.height, self.sector_radius);
+        let grid = Grid::new(self.width, self.height, GRID_CELL);
         let (cracks, vertices) = (self.max_cracks as usize, self.max_vertices as usize);
         // Segment grid: heads, entry item and next; tip grid: heads, entry item and next;
         // one stamp per edge (to visit each segment once per query); per vertex a face mark
@@ -258,6 +273,11 @@ pub struct Glass<'a> {
     sector_cosine: f32,
     /// sin(φ/2).
     sector_sine: f32,
+    /// Units of work done so far (grid entries examined, cracks looked at): what
+    /// [`Glass::step`]'s budget counts.
+    work: u64,
+    /// A time step is under way (its tips' positions were filed).
+    stepping: bool,
 }
 
 /// Cuts the first `n` elements off a buffer.
@@ -291,7 +311,7 @@ impl<'a> Glass<'a> {
         if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
             return Err(GlassError::BufferTooSmall { needed });
         }
-        let grid = Grid::new(params.width, params.height, params.sector_radius);
+        let grid = Grid::new(params.width, params.height, GRID_CELL);
         let mut words = buffers.words;
         let vertices = params.max_vertices as usize;
         let cracks = params.max_cracks as usize;
@@ -342,6 +362,8 @@ impl<'a> Glass<'a> {
             fragments,
             sector_cosine: libm::cosf(0.5 * params.sector_angle),
             sector_sine: libm::sinf(0.5 * params.sector_angle),
+            work: 0,
+            stepping: false,
         };
         glass.impact(params.impact)?;
         Ok(glass)
@@ -370,6 +392,7 @@ impl<'a> Glass<'a> {
         self.impacts += 1;
         self.time = 0;
         self.cursor = 0;
+        self.stepping = false;
         self.finished = false;
         // Long enough to cross the plate twice at the slowest speed Rand can draw.
         let slowest = p.large_speed.min(p.radial_speed).min(p.ring_speed) * (1.0 - p.spread_ratio);
@@ -453,6 +476,10 @@ impl<'a> Glass<'a> {
             first_segment: NONE,
             last_segment: NONE,
             start_vertex: start,
+            before: self.vertices[start as usize].at,
+            before_direction: [libm::cosf(heading), libm::sinf(heading)],
+            start_heading: heading,
+            left: 0.0,
         };
         self.crack_count += 1;
     }
