@@ -374,7 +374,7 @@ impl Glass<'_> {
     fn normal_towards(&self, a: [f32; 2], z: [f32; 2], v: [f32; 2], d: f32) -> [f32; 2] {
         let t = [z[0] - a[0], z[1] - a[1]];
         let length = libm::sqrtf(t[0] * t[0] + t[1] * t[1]);
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             return [v[0] / d, v[1] / d];
         }
         let n = [-t[1] / length, t[0] / length];
