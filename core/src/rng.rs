@@ -106,6 +106,8 @@ impl core::fmt::Display for RngError {
     }
 }
 
+impl core::error::Error for RngError {}
+
 /// A deterministic random stream: Xoshiro128++ seeded through SplitMix64.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rng {

@@ -178,6 +178,25 @@ impl From<GlassParamError> for GlassError {
     }
 }
 
+impl core::fmt::Display for GlassError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            GlassError::Param(e) => e.fmt(f),
+            GlassError::BufferTooSmall { needed } => write!(f, "glass: a caller buffer is too small ({needed} needed)"),
+            GlassError::Impact => f.write_str("glass: the impact point must lie inside the plate"),
+        }
+    }
+}
+
+impl core::error::Error for GlassError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            GlassError::Param(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
 /// Where generation stands, as [`Glass::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GlassProgress {

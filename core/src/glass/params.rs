@@ -122,81 +122,36 @@ impl Default for GlassParams {
     }
 }
 
-/// A parameter out of its range; each names the field and its constraint.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum GlassParamError {
-    /// `width` and `height` must be finite and >= 1.
-    Size = 0,
-    /// `impact` must lie inside the plate (strictly).
-    Impact = 1,
-    /// `radial_mean` must be finite and within [0, 10000].
-    RadialMean = 2,
-    /// `ring_threshold` must be finite.
-    RingThreshold = 3,
-    /// `large_slope`, `large_offset`, `ring_slope`, `ring_offset` must be finite and >= 0.
-    CountFormula = 4,
-    /// `ring_radius_slope`, `ring_radius_offset` must be finite and >= 0.
-    RingRadius = 5,
-    /// `large_speed`, `radial_speed`, `ring_speed` must be finite and > 0.
-    Speed = 6,
-    /// `spread_ratio` (z) must be within [0, 1).
-    SpreadRatio = 7,
-    /// `turn_limit` must be within [0, π].
-    TurnLimit = 8,
-    /// `turn_delay` (T) must be finite and > 0.
-    TurnDelay = 9,
-    /// `sector_angle` must be within (0, 2π] and `sector_radius` finite and > 0.
-    Sector = 10,
-    /// `tip_repulsion`, `crack_attraction`, `ring_adherence` must be finite and >= 0, `wander`
-    /// finite and >= 0.
-    Forces = 11,
-    /// `max_cracks` must be >= 1 and `max_vertices` >= 2; their memory must fit.
-    Capacity = 12,
-}
-
-impl GlassParamError {
-    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
-    pub const ALL: [GlassParamError; 13] = [
-        GlassParamError::Size,
-        GlassParamError::Impact,
-        GlassParamError::RadialMean,
-        GlassParamError::RingThreshold,
-        GlassParamError::CountFormula,
-        GlassParamError::RingRadius,
-        GlassParamError::Speed,
-        GlassParamError::SpreadRatio,
-        GlassParamError::TurnLimit,
-        GlassParamError::TurnDelay,
-        GlassParamError::Sector,
-        GlassParamError::Forces,
-        GlassParamError::Capacity,
-    ];
-
-    /// The field's name and its constraint, NUL-terminated for C.
-    pub const fn message(self) -> &'static core::ffi::CStr {
-        use GlassParamError::*;
-        match self {
-            Size => c"glass: width and height must be finite and >= 1",
-            Impact => c"glass: impact must lie inside the plate",
-            RadialMean => c"glass: radial_mean must be finite and within [0, 10000]",
-            RingThreshold => c"glass: ring_threshold must be finite",
-            CountFormula => c"glass: large_slope, large_offset, ring_slope, ring_offset must be finite and >= 0",
-            RingRadius => c"glass: ring_radius_slope and ring_radius_offset must be finite and >= 0",
-            Speed => c"glass: large_speed, radial_speed, ring_speed must be finite and > 0",
-            SpreadRatio => c"glass: spread_ratio (z) must be within [0, 1)",
-            TurnLimit => c"glass: turn_limit must be within [0, pi]",
-            TurnDelay => c"glass: turn_delay (T) must be finite and > 0",
-            Sector => c"glass: sector_angle must be within (0, 2 pi] and sector_radius finite and > 0",
-            Forces => c"glass: tip_repulsion, crack_attraction, ring_adherence, wander must be finite and >= 0",
-            Capacity => c"glass: max_cracks must be >= 1 and max_vertices >= 2, within memory",
-        }
-    }
-}
-
-impl core::fmt::Display for GlassParamError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.message().to_str().unwrap_or("glass parameter error"))
+crate::error::error_list! {
+    /// A parameter out of its range; each names the field and its constraint.
+    pub enum GlassParamError {
+        /// `width` and `height` must be finite and >= 1.
+        Size => c"glass: width and height must be finite and >= 1",
+        /// `impact` must lie inside the plate (strictly).
+        Impact => c"glass: impact must lie inside the plate",
+        /// `radial_mean` must be finite and within [0, 10000].
+        RadialMean => c"glass: radial_mean must be finite and within [0, 10000]",
+        /// `ring_threshold` must be finite.
+        RingThreshold => c"glass: ring_threshold must be finite",
+        /// `large_slope`, `large_offset`, `ring_slope`, `ring_offset` must be finite and >= 0.
+        CountFormula => c"glass: large_slope, large_offset, ring_slope, ring_offset must be finite and >= 0",
+        /// `ring_radius_slope`, `ring_radius_offset` must be finite and >= 0.
+        RingRadius => c"glass: ring_radius_slope and ring_radius_offset must be finite and >= 0",
+        /// `large_speed`, `radial_speed`, `ring_speed` must be finite and > 0.
+        Speed => c"glass: large_speed, radial_speed, ring_speed must be finite and > 0",
+        /// `spread_ratio` (z) must be within [0, 1).
+        SpreadRatio => c"glass: spread_ratio (z) must be within [0, 1)",
+        /// `turn_limit` must be within [0, π].
+        TurnLimit => c"glass: turn_limit must be within [0, pi]",
+        /// `turn_delay` (T) must be finite and > 0.
+        TurnDelay => c"glass: turn_delay (T) must be finite and > 0",
+        /// `sector_angle` must be within (0, 2π] and `sector_radius` finite and > 0.
+        Sector => c"glass: sector_angle must be within (0, 2 pi] and sector_radius finite and > 0",
+        /// `tip_repulsion`, `crack_attraction`, `ring_adherence` must be finite and >= 0, `wander`
+        /// finite and >= 0.
+        Forces => c"glass: tip_repulsion, crack_attraction, ring_adherence, wander must be finite and >= 0",
+        /// `max_cracks` must be >= 1 and `max_vertices` >= 2; their memory must fit.
+        Capacity => c"glass: max_cracks must be >= 1 and max_vertices >= 2, within memory",
     }
 }
 
@@ -257,13 +212,6 @@ impl GlassParams {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn all_errors_are_listed_in_number_order() {
-        for (i, e) in GlassParamError::ALL.iter().enumerate() {
-            assert_eq!(*e as usize, i, "{e:?}");
-        }
-    }
 
     #[test]
     fn defaults_are_the_papers_and_valid() {

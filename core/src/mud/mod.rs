@@ -172,6 +172,24 @@ impl From<MudParamError> for MudError {
     }
 }
 
+impl core::fmt::Display for MudError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            MudError::Param(e) => e.fmt(f),
+            MudError::BufferTooSmall { needed } => write!(f, "mud: a caller buffer is too small ({needed} needed)"),
+        }
+    }
+}
+
+impl core::error::Error for MudError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            MudError::Param(e) => Some(e),
+            MudError::BufferTooSmall { .. } => None,
+        }
+    }
+}
+
 /// Where a run stands, as [`Mud::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Progress {

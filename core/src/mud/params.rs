@@ -154,117 +154,54 @@ impl Default for MudParams {
     }
 }
 
-/// A parameter that is out of its range; each names the field and its constraint.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum MudParamError {
-    /// `columns` must be ≥ 2 (≥ 3 when periodic, ≥ 8 periodic irregular).
-    Columns = 0,
-    /// `rows` must be ≥ 2 (periodic: ≥ 3 square, even and ≥ 4 hexagonal, even and ≥ 8 irregular).
-    Rows = 1,
-    /// `layer_thickness` (H) must be finite and > 0.
-    LayerThickness = 2,
-    /// `element_size` (W) must be finite and > 0.
-    ElementSize = 3,
-    /// `long_step` (T) must be finite and > 0.
-    LongStep = 4,
-    /// `short_step` (τ) must be finite and > 0.
-    ShortStep = 5,
-    /// `shrink_ratio` (γ) must be within (0, 1].
-    ShrinkRatio = 6,
-    /// `displacement_tolerance` (δx) must be finite and > 0.
-    DisplacementTolerance = 7,
-    /// `damping_factor` (α) must be finite and > 0.
-    DampingFactor = 8,
-    /// `density` (ρ) must be finite and > 0.
-    Density = 9,
-    /// `young_modulus` (E) must be finite and > 0.
-    YoungModulus = 10,
-    /// `shear_modulus` (G) must be finite and > 0.
-    ShearModulus = 11,
-    /// `break_stretch_mean` (κ̄) must be finite and > 1.
-    BreakStretchMean = 12,
-    /// `break_stretch_spread` (σ) must be finite and ≥ 0.
-    BreakStretchSpread = 13,
-    /// `anisotropy_direction` (φ) must be finite.
-    AnisotropyDirection = 14,
-    /// `anisotropy_ratio` must be finite and ≥ 1.
-    AnisotropyRatio = 15,
-    /// `stiffness_anisotropy_ratio` must be finite and ≥ 1.
-    StiffnessAnisotropyRatio = 16,
-    /// `target_shrink` must be finite and within [0, 1).
-    TargetShrink = 17,
-    /// `target_crack_density` must be finite and ≥ 0.
-    TargetCrackDensity = 18,
-    /// The lattice is too large: its memory size overflows the address space.
-    SizeOverflow = 19,
-    /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
-    /// sizes and time steps put a derived constant outside (1e-6, 1e6).
-    Scale = 20,
-    /// `break_stretch_size_exponent` must be within [0, 1].
-    BreakStretchSizeExponent = 21,
-}
-
-impl MudParamError {
-    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
-    pub const ALL: [MudParamError; 22] = [
-        MudParamError::Columns,
-        MudParamError::Rows,
-        MudParamError::LayerThickness,
-        MudParamError::ElementSize,
-        MudParamError::LongStep,
-        MudParamError::ShortStep,
-        MudParamError::ShrinkRatio,
-        MudParamError::DisplacementTolerance,
-        MudParamError::DampingFactor,
-        MudParamError::Density,
-        MudParamError::YoungModulus,
-        MudParamError::ShearModulus,
-        MudParamError::BreakStretchMean,
-        MudParamError::BreakStretchSpread,
-        MudParamError::AnisotropyDirection,
-        MudParamError::AnisotropyRatio,
-        MudParamError::StiffnessAnisotropyRatio,
-        MudParamError::TargetShrink,
-        MudParamError::TargetCrackDensity,
-        MudParamError::SizeOverflow,
-        MudParamError::Scale,
-        MudParamError::BreakStretchSizeExponent,
-    ];
-
-    /// The field's name and its constraint, NUL-terminated for C.
-    pub const fn message(self) -> &'static core::ffi::CStr {
-        use MudParamError::*;
-        match self {
-            Columns => c"mud: columns must be >= 2 (>= 3 when periodic, >= 8 periodic irregular)",
-            Rows => c"mud: rows must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even and >= 8 irregular)",
-            LayerThickness => c"mud: layer_thickness (H) must be finite and > 0",
-            ElementSize => c"mud: element_size (W) must be finite and > 0",
-            LongStep => c"mud: long_step (T) must be finite and > 0",
-            ShortStep => c"mud: short_step (tau) must be finite and > 0",
-            ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1]",
-            DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
-            DampingFactor => c"mud: damping_factor (alpha) must be finite and > 0",
-            Density => c"mud: density (rho) must be finite and > 0",
-            YoungModulus => c"mud: young_modulus (E) must be finite and > 0",
-            ShearModulus => c"mud: shear_modulus (G) must be finite and > 0",
-            BreakStretchMean => c"mud: break_stretch_mean (kappa) must be finite and > 1",
-            BreakStretchSpread => c"mud: break_stretch_spread (sigma) must be finite and >= 0",
-            AnisotropyDirection => c"mud: anisotropy_direction must be finite",
-            AnisotropyRatio => c"mud: anisotropy_ratio must be finite and >= 1",
-            StiffnessAnisotropyRatio => c"mud: stiffness_anisotropy_ratio must be finite and >= 1",
-            TargetShrink => c"mud: target_shrink must be finite and within [0, 1)",
-            TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
-            SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
-            Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
-            BreakStretchSizeExponent => c"mud: break_stretch_size_exponent must be within [0, 1]",
-        }
-    }
-}
-
-impl core::fmt::Display for MudParamError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.message().to_str().unwrap_or("mud parameter error"))
+crate::error::error_list! {
+    /// A parameter that is out of its range; each names the field and its constraint.
+    pub enum MudParamError {
+        /// `columns` must be ≥ 2 (≥ 3 when periodic, ≥ 8 periodic irregular).
+        Columns => c"mud: columns must be >= 2 (>= 3 when periodic, >= 8 periodic irregular)",
+        /// `rows` must be ≥ 2 (periodic: ≥ 3 square, even and ≥ 4 hexagonal, even and ≥ 8 irregular).
+        Rows => c"mud: rows must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even and >= 8 irregular)",
+        /// `layer_thickness` (H) must be finite and > 0.
+        LayerThickness => c"mud: layer_thickness (H) must be finite and > 0",
+        /// `element_size` (W) must be finite and > 0.
+        ElementSize => c"mud: element_size (W) must be finite and > 0",
+        /// `long_step` (T) must be finite and > 0.
+        LongStep => c"mud: long_step (T) must be finite and > 0",
+        /// `short_step` (τ) must be finite and > 0.
+        ShortStep => c"mud: short_step (tau) must be finite and > 0",
+        /// `shrink_ratio` (γ) must be within (0, 1].
+        ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1]",
+        /// `displacement_tolerance` (δx) must be finite and > 0.
+        DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
+        /// `damping_factor` (α) must be finite and > 0.
+        DampingFactor => c"mud: damping_factor (alpha) must be finite and > 0",
+        /// `density` (ρ) must be finite and > 0.
+        Density => c"mud: density (rho) must be finite and > 0",
+        /// `young_modulus` (E) must be finite and > 0.
+        YoungModulus => c"mud: young_modulus (E) must be finite and > 0",
+        /// `shear_modulus` (G) must be finite and > 0.
+        ShearModulus => c"mud: shear_modulus (G) must be finite and > 0",
+        /// `break_stretch_mean` (κ̄) must be finite and > 1.
+        BreakStretchMean => c"mud: break_stretch_mean (kappa) must be finite and > 1",
+        /// `break_stretch_spread` (σ) must be finite and ≥ 0.
+        BreakStretchSpread => c"mud: break_stretch_spread (sigma) must be finite and >= 0",
+        /// `anisotropy_direction` (φ) must be finite.
+        AnisotropyDirection => c"mud: anisotropy_direction must be finite",
+        /// `anisotropy_ratio` must be finite and ≥ 1.
+        AnisotropyRatio => c"mud: anisotropy_ratio must be finite and >= 1",
+        /// `stiffness_anisotropy_ratio` must be finite and ≥ 1.
+        StiffnessAnisotropyRatio => c"mud: stiffness_anisotropy_ratio must be finite and >= 1",
+        /// `target_shrink` must be finite and within [0, 1).
+        TargetShrink => c"mud: target_shrink must be finite and within [0, 1)",
+        /// `target_crack_density` must be finite and ≥ 0.
+        TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
+        /// The lattice is too large: its memory size overflows the address space.
+        SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
+        /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
+        /// sizes and time steps put a derived constant outside (1e-6, 1e6).
+        Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
+        /// `break_stretch_size_exponent` must be within [0, 1].
+        BreakStretchSizeExponent => c"mud: break_stretch_size_exponent must be within [0, 1]",
     }
 }
 
@@ -328,13 +265,6 @@ impl MudParams {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn all_errors_are_listed_in_number_order() {
-        for (i, e) in MudParamError::ALL.iter().enumerate() {
-            assert_eq!(*e as usize, i, "{e:?}");
-        }
-    }
 
     #[test]
     fn defaults_are_valid_and_the_papers() {

@@ -49,6 +49,19 @@ impl RasterError {
     }
 }
 
+impl core::fmt::Display for RasterError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RasterError::BufferTooSmall { needed } => {
+                write!(f, "render: the pixel buffer is smaller than width x height ({needed} needed)")
+            }
+            e => f.write_str(e.message().to_str().unwrap_or("render error")),
+        }
+    }
+}
+
+impl core::error::Error for RasterError {}
+
 /// The number of pixels of a `width` × `height` raster, checked.
 pub fn pixel_count(width: u32, height: u32) -> Result<usize, RasterError> {
     if width == 0 || height == 0 {

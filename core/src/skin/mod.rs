@@ -137,6 +137,30 @@ impl From<SkinParamError> for SkinError {
     }
 }
 
+impl core::fmt::Display for SkinError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            SkinError::Param(e) => e.fmt(f),
+            SkinError::BufferTooSmall { needed } => write!(f, "skin: a caller buffer is too small ({needed} needed)"),
+            SkinError::Capacity => f.write_str(
+                "skin: a cell outline or a parent's centre points outgrew their capacity (lower perturbation_depth or the spacing ratio)",
+            ),
+            SkinError::Level => f.write_str("skin: the cell-map level must be below levels"),
+            SkinError::Shade(e) => e.fmt(f),
+        }
+    }
+}
+
+impl core::error::Error for SkinError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            SkinError::Param(e) => Some(e),
+            SkinError::Shade(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
 impl SkinParams {
     /// The lattice index range of level 0 (inclusive) that can reach the surface.
     fn level0_indices(&self, lattice: &Lattice) -> [i64; 4] {

@@ -153,66 +153,32 @@ impl Default for SkinParams {
     }
 }
 
-/// A parameter out of range: the field is named.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SkinParamError {
-    /// `width` or `height` is 0 or above 32768.
-    Size,
-    /// `jitter_ratio` is not in [0, 1].
-    JitterRatio,
-    /// `levels` is 0 or above [`MAX_LEVELS`].
-    Levels,
-    /// A level's `spacing` is not finite and at least 1 px.
-    Spacing,
-    /// A level's `perturbation` or `perturbation_decay` is negative or not finite.
-    Perturbation,
-    /// A level's `perturbation_depth` is above [`MAX_PERTURBATION_DEPTH`].
-    PerturbationDepth,
-    /// A level's `stretch` is not finite and positive.
-    Stretch,
-    /// A level's profile has 0 or more than [`MAX_SEGMENTS`] segments.
-    ProfileSegments,
-    /// A profile point is not finite, does not start at x' = 0, or its x' decreases (x'(t)
-    /// must be monotone), or it ends at x' = 0.
-    ProfilePoints,
-    /// A level's `roundness` is not in [0, 1].
-    Roundness,
-    /// The surface needs more memory than the address space allows.
-    Capacity,
-}
-
-impl SkinParamError {
-    /// Every error, in the order of their numbers (`ALL[e as usize] == e`).
-    pub const ALL: [SkinParamError; 11] = [
-        SkinParamError::Size,
-        SkinParamError::JitterRatio,
-        SkinParamError::Levels,
-        SkinParamError::Spacing,
-        SkinParamError::Perturbation,
-        SkinParamError::PerturbationDepth,
-        SkinParamError::Stretch,
-        SkinParamError::ProfileSegments,
-        SkinParamError::ProfilePoints,
-        SkinParamError::Roundness,
-        SkinParamError::Capacity,
-    ];
-
-    /// A message naming the field.
-    pub const fn message(self) -> &'static core::ffi::CStr {
-        use SkinParamError::*;
-        match self {
-            Size => c"skin: width and height must be in 1..=32768",
-            JitterRatio => c"skin: jitter_ratio must be in [0, 1]",
-            Levels => c"skin: levels must be in 1..=4",
-            Spacing => c"skin: a level's spacing must be finite and >= 1 px",
-            Perturbation => c"skin: a level's perturbation and perturbation_decay must be finite and >= 0",
-            PerturbationDepth => c"skin: a level's perturbation_depth must be <= 5",
-            Stretch => c"skin: a level's stretch must be finite and > 0",
-            ProfileSegments => c"skin: a profile must have 1..=4 Bezier segments",
-            ProfilePoints => c"skin: profile points must be finite, start at x' = 0 and never decrease in x'",
-            Roundness => c"skin: a level's roundness must be in [0, 1]",
-            Capacity => c"skin: the surface is too large for memory",
-        }
+crate::error::error_list! {
+    /// A parameter out of range: the field is named.
+    pub enum SkinParamError {
+        /// `width` or `height` is 0 or above 32768.
+        Size => c"skin: width and height must be in 1..=32768",
+        /// `jitter_ratio` is not in [0, 1].
+        JitterRatio => c"skin: jitter_ratio must be in [0, 1]",
+        /// `levels` is 0 or above [`MAX_LEVELS`].
+        Levels => c"skin: levels must be in 1..=4",
+        /// A level's `spacing` is not finite and at least 1 px.
+        Spacing => c"skin: a level's spacing must be finite and >= 1 px",
+        /// A level's `perturbation` or `perturbation_decay` is negative or not finite.
+        Perturbation => c"skin: a level's perturbation and perturbation_decay must be finite and >= 0",
+        /// A level's `perturbation_depth` is above [`MAX_PERTURBATION_DEPTH`].
+        PerturbationDepth => c"skin: a level's perturbation_depth must be <= 5",
+        /// A level's `stretch` is not finite and positive.
+        Stretch => c"skin: a level's stretch must be finite and > 0",
+        /// A level's profile has 0 or more than [`MAX_SEGMENTS`] segments.
+        ProfileSegments => c"skin: a profile must have 1..=4 Bezier segments",
+        /// A profile point is not finite, does not start at x' = 0, or its x' decreases (x'(t)
+        /// must be monotone), or it ends at x' = 0.
+        ProfilePoints => c"skin: profile points must be finite, start at x' = 0 and never decrease in x'",
+        /// A level's `roundness` is not in [0, 1].
+        Roundness => c"skin: a level's roundness must be in [0, 1]",
+        /// The surface needs more memory than the address space allows.
+        Capacity => c"skin: the surface is too large for memory",
     }
 }
 
@@ -264,13 +230,6 @@ impl SkinParams {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn all_errors_are_listed_in_number_order() {
-        for (i, e) in SkinParamError::ALL.iter().enumerate() {
-            assert_eq!(*e as usize, i, "{e:?}");
-        }
-    }
 
     #[test]
     fn defaults_are_valid_and_every_bad_field_is_named() {
