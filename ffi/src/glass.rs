@@ -20,7 +20,7 @@ use hibi_core::glass::{
     Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex,
 };
 
-use crate::guard::{Outcome, buffer, check_pointer, guard, object, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
@@ -510,7 +510,7 @@ pub unsafe extern "C" fn hibi_glass_step(
 pub unsafe extern "C" fn hibi_glass_crack_count(glass: *const hibi_glass, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass.cast_mut()) }?;
+        let glass = unsafe { object_ref(glass) }?;
         // SAFETY: the caller's contract.
         unsafe { write_out(count, glass.glass.crack_count()) }
     })
@@ -528,7 +528,7 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass.cast_mut()) }?;
+        let glass = unsafe { object_ref(glass) }?;
         check_pointer(crack)?;
         let c = glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
         let value = hibi_glass_crack {
@@ -558,7 +558,7 @@ pub unsafe extern "C" fn hibi_glass_points(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass.cast_mut()) }?;
+        let glass = unsafe { object_ref(glass) }?;
         check_pointer(written)?;
         glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
         // SAFETY: the caller's contract.
@@ -704,7 +704,7 @@ pub unsafe extern "C" fn hibi_glass_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass.cast_mut()) }?;
+        let glass = unsafe { object_ref(glass) }?;
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let r = unsafe { *render };

@@ -88,6 +88,18 @@ pub(crate) unsafe fn object<'a, T>(ptr: *mut T) -> Result<&'a mut T, hibi_status
     Ok(unsafe { &mut *ptr })
 }
 
+/// The object behind a `const` handle passed in by C, for the read-only functions: a shared
+/// reference, so that threads may call them on one object at once.
+///
+/// # Safety
+/// A non-null, aligned `ptr` must point to a live `T` that nothing mutates during the call.
+pub(crate) unsafe fn object_ref<'a, T>(ptr: *const T) -> Result<&'a T, hibi_status> {
+    check_pointer(ptr)?;
+    // SAFETY: non-null and aligned (checked); liveness and no concurrent mutation are the
+    // caller's contract.
+    Ok(unsafe { &*ptr })
+}
+
 /// Writes `value` through an out-parameter. Call it only once everything else succeeded, so
 /// that nothing is written on failure.
 ///

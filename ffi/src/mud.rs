@@ -29,7 +29,7 @@ use hibi_core::mud::{
 use hibi_core::raster::RasterError;
 
 use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
-use crate::guard::{buffer, check_pointer, guard, object, write_out};
+use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_RENDER_LAYER,
@@ -602,7 +602,7 @@ pub unsafe extern "C" fn hibi_mud_step(
 pub unsafe extern "C" fn hibi_mud_segment_count(mud: *const hibi_mud, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         // SAFETY: the caller's contract.
         unsafe { write_out(count, mud.mud.segment_count()) }
     })
@@ -624,7 +624,7 @@ pub unsafe extern "C" fn hibi_mud_segments(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(written)?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(segments, len) }?;
@@ -652,7 +652,7 @@ pub unsafe extern "C" fn hibi_mud_segments(
 pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_mud_statistics) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(out)?;
         let s = mud.mud.statistics();
         let value = hibi_mud_statistics {
@@ -692,7 +692,7 @@ pub unsafe extern "C" fn hibi_mud_network_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(vertices)?;
         check_pointer(edges)?;
         check_pointer(points)?;
@@ -733,7 +733,7 @@ pub unsafe extern "C" fn hibi_mud_network(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(vertices_written)?;
         check_pointer(edges_written)?;
         check_pointer(points_written)?;
@@ -769,7 +769,7 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(rings)?;
         check_pointer(points)?;
         check_pointer(wrapping)?;
@@ -807,7 +807,7 @@ pub unsafe extern "C" fn hibi_mud_cells(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(rings_written)?;
         check_pointer(points_written)?;
         // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
@@ -856,7 +856,7 @@ pub unsafe extern "C" fn hibi_mud_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud.cast_mut()) }?;
+        let mud = unsafe { object_ref(mud) }?;
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let r = unsafe { *render };

@@ -25,7 +25,7 @@ use hibi_core::skin::{
     shade,
 };
 
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out};
 use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -545,7 +545,7 @@ pub unsafe extern "C" fn hibi_skin_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin.cast_mut()) }?;
+        let skin = unsafe { object_ref(skin) }?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
         // and a trailing partial pixel of `normal` is not used.
         let layers = unsafe {
@@ -613,7 +613,7 @@ pub unsafe extern "C" fn hibi_skin_shade(
 pub unsafe extern "C" fn hibi_skin_cell_count(skin: *const hibi_skin, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin.cast_mut()) }?;
+        let skin = unsafe { object_ref(skin) }?;
         // SAFETY: the caller's contract.
         unsafe { write_out(count, skin.skin.cells().len()) }
     })
@@ -632,7 +632,7 @@ pub unsafe extern "C" fn hibi_skin_cell_info(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin.cast_mut()) }?;
+        let skin = unsafe { object_ref(skin) }?;
         check_pointer(cell)?;
         let c = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
         let unit = pixels_per_unit(&skin.skin);
@@ -668,7 +668,7 @@ pub unsafe extern "C" fn hibi_skin_outline(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin.cast_mut()) }?;
+        let skin = unsafe { object_ref(skin) }?;
         check_pointer(written)?;
         let cell = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
         // SAFETY: the caller's contract.
