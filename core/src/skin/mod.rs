@@ -1,5 +1,6 @@
 //! Model C: skin surface texture from hierarchical Voronoi cells (Ishii, Yasuda, Yokoi,
-//! Toriwaki, "Human skin rendering based on the surface microstructures"; MODELS.md §C).
+//! Toriwaki, "Human skin rendering based on the surface microstructures"; `docs/models.md`,
+//! Model C).
 //!
 //! Furrows form a net; the ridges they enclose rise from their base polygon's edges towards
 //! its centre point. The base polygons are Voronoi cells of jittered lattice points, their
