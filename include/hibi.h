@@ -1049,6 +1049,11 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_ENUM 576
 
 /**
+ * `hibi_mud_params_preset`: no preset has that name.
+ */
+#define HIBI_ERROR_MUD_UNKNOWN_PRESET 577
+
+/**
  * Render: width and height must be > 0 and their product must fit in memory.
  */
 #define HIBI_ERROR_RENDER_SIZE 768
@@ -1157,6 +1162,11 @@ typedef struct hibi_skin_cell {
  * Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
  */
 #define HIBI_ERROR_GLASS_ENUM 1088
+
+/**
+ * `hibi_glass_params_preset`: no preset has that name.
+ */
+#define HIBI_ERROR_GLASS_UNKNOWN_PRESET 1093
 
 /**
  * `hibi_glass_impact`: the point is not inside the plate.
@@ -1301,6 +1311,16 @@ const char *hibi_version(void);
  * The paper's parameters (and ours where it gives none), with the cookie set.
  */
 struct hibi_glass_params hibi_glass_params_default(void);
+
+/**
+ * Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's figures,
+ * see the README) to `*out`, with the cookie set; change fields afterwards as with the
+ * defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes nothing.
+ *
+ * # Safety
+ * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+ */
+hibi_status hibi_glass_params_preset(const char *name, struct hibi_glass_params *out);
 
 /**
  * Checks `params` and writes the bytes a plate needs in caller memory (for
@@ -1457,6 +1477,16 @@ hibi_status hibi_glass_render(const struct hibi_glass *glass,
  * The paper's parameters (and ours where it gives none), with the cookie set.
  */
 struct hibi_mud_params hibi_mud_params_default(void);
+
+/**
+ * Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's figures,
+ * see the README) to `*out`, with the cookie set; change fields afterwards as with the
+ * defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes nothing.
+ *
+ * # Safety
+ * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+ */
+hibi_status hibi_mud_params_preset(const char *name, struct hibi_mud_params *out);
 
 /**
  * Checks `params` and writes the bytes a run needs in caller memory (for

@@ -12,20 +12,20 @@
 //!
 //! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
 
-use core::ffi::c_void;
+use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
 use hibi_core::glass::{
-    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex,
+    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex, preset,
 };
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
-    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_RENDER_LAYER,
-    HIBI_ERROR_SIZE_OVERFLOW, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_UNKNOWN_PRESET,
+    HIBI_ERROR_RENDER_LAYER, HIBI_ERROR_SIZE_OVERFLOW, glass_param_status, hibi_status, raster_status,
 };
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -337,6 +337,25 @@ fn glass_status(error: GlassError) -> hibi_status {
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_glass_params_default() -> hibi_glass_params {
     guard(|| to_c(&GlassParams::default()))
+}
+
+/// Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's figures,
+/// see the README) to `*out`, with the cookie set; change fields afterwards as with the
+/// defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes nothing.
+///
+/// # Safety
+/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_params_preset(name: *const c_char, out: *mut hibi_glass_params) -> hibi_status {
+    guard(|| {
+        check_pointer(name)?;
+        check_pointer(out)?;
+        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
+        let name = unsafe { CStr::from_ptr(name) };
+        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_GLASS_UNKNOWN_PRESET)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(out, to_c(&params)) }
+    })
 }
 
 /// Checks `params` and writes the bytes a plate needs in caller memory (for
@@ -728,6 +747,24 @@ mod tests {
     use super::*;
     use crate::status::*;
     use core::ptr::null_mut;
+
+    #[test]
+    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
+        let mut p = hibi_glass_params_default();
+        p.seed = 77;
+        // SAFETY: valid or NULL pointers, NUL-terminated names.
+        unsafe {
+            assert_eq!(hibi_glass_params_preset(c"fig99".as_ptr(), &mut p), HIBI_ERROR_GLASS_UNKNOWN_PRESET);
+            assert_eq!(p.seed, 77, "nothing written");
+            assert_eq!(hibi_glass_params_preset(c"fig15a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_glass_params_preset(core::ptr::null(), &mut p), HIBI_ERROR_NULL_POINTER);
+            for name in hibi_core::glass::PRESETS {
+                let c_name = std::ffi::CString::new(name).unwrap();
+                assert_eq!(hibi_glass_params_preset(c_name.as_ptr(), &mut p), HIBI_OK);
+                assert_eq!(from_c(&p), Ok(preset(name).unwrap()), "{name}");
+            }
+        }
+    }
 
     #[test]
     fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {

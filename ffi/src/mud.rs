@@ -18,13 +18,13 @@
 //! An object is one block: the header, then the model's scalar and word arrays. With
 //! `hibi_mud_memory_size` and `hibi_mud_create_in` the block is the caller's.
 
-use core::ffi::c_void;
+use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
     Boundary, CellRing, CrackSegment, Drive, Mud, MudError, MudLayer, MudParams, MudRender, NO_VERTEX, NetworkEdge,
-    NetworkPoint, NetworkVertex, Solver, Topology,
+    NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
 use hibi_core::raster::RasterError;
 
@@ -32,8 +32,9 @@ use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
 use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_RENDER_LAYER,
-    HIBI_ERROR_SIZE_OVERFLOW, hibi_status, mud_param_status, raster_status,
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
+    HIBI_ERROR_MUD_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, HIBI_ERROR_SIZE_OVERFLOW, hibi_status, mud_param_status,
+    raster_status,
 };
 
 /// Square elements: 4 neighbours, axis-aligned short cracks.
@@ -437,7 +438,30 @@ pub extern "C" fn hibi_mud_params_default() -> hibi_mud_params {
 
 /// The defaults, converted.
 fn hibi_mud_params_default_values() -> hibi_mud_params {
-    let p = MudParams::default();
+    to_c(&MudParams::default())
+}
+
+/// Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's figures,
+/// see the README) to `*out`, with the cookie set; change fields afterwards as with the
+/// defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes nothing.
+///
+/// # Safety
+/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_params_preset(name: *const c_char, out: *mut hibi_mud_params) -> hibi_status {
+    guard(|| {
+        check_pointer(name)?;
+        check_pointer(out)?;
+        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
+        let name = unsafe { CStr::from_ptr(name) };
+        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_MUD_UNKNOWN_PRESET)?;
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(out, to_c(&params)) }
+    })
+}
+
+/// Core parameters as the C struct, with the cookie set.
+fn to_c(p: &MudParams) -> hibi_mud_params {
     hibi_mud_params {
         cookie: PARAMS_COOKIE,
         topology: p.topology as u32,
@@ -886,6 +910,25 @@ mod tests {
     use super::*;
     use crate::status::*;
     use core::ptr::{null, null_mut};
+
+    #[test]
+    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
+        let mut p = hibi_mud_params_default();
+        p.columns = 7;
+        // SAFETY: valid or NULL pointers, NUL-terminated names.
+        unsafe {
+            assert_eq!(hibi_mud_params_preset(c"fig99".as_ptr(), &mut p), HIBI_ERROR_MUD_UNKNOWN_PRESET);
+            assert_eq!(p.columns, 7, "nothing written");
+            assert_eq!(hibi_mud_params_preset(c"fig6a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_params_preset(null(), &mut p), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_params_preset(c"\xff".as_ptr(), &mut p), HIBI_ERROR_MUD_UNKNOWN_PRESET);
+            for name in hibi_core::mud::PRESETS {
+                let c_name = std::ffi::CString::new(name).unwrap();
+                assert_eq!(hibi_mud_params_preset(c_name.as_ptr(), &mut p), HIBI_OK);
+                assert_eq!(core_params(&p), Ok(preset(name).unwrap()), "{name}");
+            }
+        }
+    }
 
     fn small() -> hibi_mud_params {
         let mut p = hibi_mud_params_default();

@@ -84,6 +84,8 @@ pub const HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: hibi_status = 533;
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
 pub const HIBI_ERROR_MUD_ENUM: hibi_status = 576;
+/// `hibi_mud_params_preset`: no preset has that name.
+pub const HIBI_ERROR_MUD_UNKNOWN_PRESET: hibi_status = 577;
 /// Render: width and height must be > 0 and their product must fit in memory.
 pub const HIBI_ERROR_RENDER_SIZE: hibi_status = 768;
 /// Render: `width_scale` must be finite and >= 0.
@@ -154,6 +156,8 @@ pub const HIBI_ERROR_GLASS_CAPACITY_PARAMS: hibi_status = 1036;
 pub const HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED: hibi_status = 1087;
 /// Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
 pub const HIBI_ERROR_GLASS_ENUM: hibi_status = 1088;
+/// `hibi_glass_params_preset`: no preset has that name.
+pub const HIBI_ERROR_GLASS_UNKNOWN_PRESET: hibi_status = 1093;
 /// `hibi_glass_impact`: the point is not inside the plate.
 pub const HIBI_ERROR_GLASS_IMPACT: hibi_status = 1089;
 /// `hibi_glass_step`: `max_cracks`, `max_vertices` or the grid ran out; generation stopped
@@ -305,8 +309,11 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_PANIC => c"internal error: a panic was caught at the C boundary (a bug in hibi)",
         HIBI_ERROR_POISSON_MEAN => RngError::PoissonMean.message(),
         HIBI_ERROR_RAND_ARGUMENT => RngError::RandArgument.message(),
-        HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED => c"mud: the params struct did not come from hibi_mud_params_default",
+        HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED => {
+            c"mud: the params struct did not come from hibi_mud_params_default or hibi_mud_params_preset"
+        }
         HIBI_ERROR_MUD_ENUM => c"mud: topology, boundary, solver or drive is not one of its HIBI_MUD_* constants",
+        HIBI_ERROR_MUD_UNKNOWN_PRESET => c"mud: no preset has that name",
         HIBI_ERROR_RENDER_SIZE => RasterError::Size.message(),
         HIBI_ERROR_RENDER_WIDTH_SCALE => RasterError::WidthScale.message(),
         HIBI_ERROR_RENDER_MIN_WIDTH => RasterError::MinWidth.message(),
@@ -315,9 +322,10 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RENDER_LINE_WIDTH => RasterError::LineWidth.message(),
         HIBI_ERROR_RENDER_LAYER => c"render: layer is not one of the HIBI_MUD_LAYER_* constants",
         HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED => {
-            c"glass: the params struct did not come from hibi_glass_params_default"
+            c"glass: the params struct did not come from hibi_glass_params_default or hibi_glass_params_preset"
         }
         HIBI_ERROR_GLASS_ENUM => c"glass: spread is not HIBI_SPREAD_UNIFORM or HIBI_SPREAD_NORMAL",
+        HIBI_ERROR_GLASS_UNKNOWN_PRESET => c"glass: no preset has that name",
         HIBI_ERROR_GLASS_IMPACT => c"glass: the impact point is not inside the plate",
         HIBI_ERROR_GLASS_CAPACITY => c"glass: max_cracks or max_vertices ran out; generation stopped early",
         HIBI_ERROR_GLASS_CRACK_INDEX => c"glass: crack index out of range",
