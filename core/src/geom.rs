@@ -1,5 +1,6 @@
-//! Points, segments, segment–segment intersection, point–segment distance and polylines,
-//! generic over the [`Scalar`] backend.
+//! The geometry the models share: points and segments with their exact intersection
+//! (generic over the [`Scalar`] backend; glass's growth), and the `f32` helpers of the
+//! outlines (shoelace area, ray crossing, pseudo-angle, rounding).
 //!
 //! The intersection test decides by the signs of cross products (no division), handles
 //! parallel and collinear segments, and returns shared endpoints exactly (the very point, with
@@ -44,42 +45,6 @@ impl<S: Scalar> Point<S> {
     /// Squared length.
     pub fn length_squared(self) -> S {
         self.dot(self)
-    }
-
-    /// Length.
-    pub fn length(self) -> S {
-        self.length_squared().sqrt()
-    }
-
-    /// Distance to another point.
-    pub fn distance(self, other: Self) -> S {
-        (other - self).length()
-    }
-
-    /// The point a fraction `t` of the way to `other`.
-    pub fn lerp(self, other: Self, t: S) -> Self {
-        self + (other - self) * t
-    }
-
-    /// The vector rotated by 90° counter-clockwise.
-    pub fn perpendicular(self) -> Self {
-        Point::new(-self.y, self.x)
-    }
-
-    /// The unit vector at `angle` radians from the x axis.
-    pub fn from_angle(angle: S) -> Self {
-        Point::new(angle.cos(), angle.sin())
-    }
-
-    /// The vector's angle from the x axis, in (−π, π].
-    pub fn angle(self) -> S {
-        self.y.atan2(self.x)
-    }
-
-    /// The vector rotated by `angle` radians counter-clockwise.
-    pub fn rotate(self, angle: S) -> Self {
-        let (sin, cos) = (angle.sin(), angle.cos());
-        Point::new(self.x * cos - self.y * sin, self.x * sin + self.y * cos)
     }
 }
 
@@ -156,27 +121,6 @@ impl<S: Scalar> Segment<S> {
         self.end - self.start
     }
 
-    /// Length.
-    pub fn length(self) -> S {
-        self.direction().length()
-    }
-
-    /// The midpoint.
-    pub fn midpoint(self) -> Point<S> {
-        self.point_at(S::HALF)
-    }
-
-    /// The point at parameter `t` (0 at `start`, 1 at `end`; exact at both).
-    pub fn point_at(self, t: S) -> Point<S> {
-        if t == S::ZERO {
-            self.start
-        } else if t == S::ONE {
-            self.end
-        } else {
-            self.start.lerp(self.end, t)
-        }
-    }
-
     /// The parameter in [0, 1] of the point of the segment closest to `p`.
     pub fn closest_parameter(self, p: Point<S>) -> S {
         let d = self.direction();
@@ -185,16 +129,6 @@ impl<S: Scalar> Segment<S> {
             return S::ZERO;
         }
         ((p - self.start).dot(d) / dd).clamp(S::ZERO, S::ONE)
-    }
-
-    /// The point of the segment closest to `p`.
-    pub fn closest_point(self, p: Point<S>) -> Point<S> {
-        self.point_at(self.closest_parameter(p))
-    }
-
-    /// The distance from `p` to the nearest point of the segment.
-    pub fn distance_to_point(self, p: Point<S>) -> S {
-        self.closest_point(p).distance(p)
     }
 
     /// Whether `p` lies on the segment, decided exactly from the inputs' values.
@@ -290,57 +224,6 @@ impl<S: Scalar> Segment<S> {
         } else {
             Intersection::Overlap { start, end }
         }
-    }
-}
-
-/// A polyline: the segments joining consecutive points of a borrowed slice.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Polyline<'a, S> {
-    points: &'a [Point<S>],
-}
-
-impl<'a, S: Scalar> Polyline<'a, S> {
-    /// The polyline through `points` (fewer than two points make no segment).
-    pub const fn new(points: &'a [Point<S>]) -> Self {
-        Polyline { points }
-    }
-
-    /// Its vertices.
-    pub const fn points(&self) -> &'a [Point<S>] {
-        self.points
-    }
-
-    /// Its segments, in order.
-    pub fn segments(&self) -> impl Iterator<Item = Segment<S>> + 'a {
-        self.points.windows(2).map(|w| Segment::new(w[0], w[1]))
-    }
-
-    /// Total length.
-    pub fn length(&self) -> S {
-        self.segments().fold(S::ZERO, |sum, s| sum + s.length())
-    }
-
-    /// Distance from `p` to the nearest point of the polyline; `None` without segments.
-    pub fn distance_to_point(&self, p: Point<S>) -> Option<S> {
-        self.segments().map(|s| s.distance_to_point(p)).reduce(S::min)
-    }
-
-    /// The first point where `path` meets the polyline, going from `path.start` (ties: the
-    /// earlier segment of the polyline): (segment index, parameter along `path`, point).
-    /// A collinear overlap counts from the end nearer `path.start`.
-    pub fn first_hit(&self, path: Segment<S>) -> Option<(usize, S, Point<S>)> {
-        let mut best: Option<(usize, S, Point<S>)> = None;
-        for (index, segment) in self.segments().enumerate() {
-            let hit = match path.intersect(segment) {
-                Intersection::None => continue,
-                Intersection::Point { point, along_first, .. } => (index, along_first, point),
-                Intersection::Overlap { start, .. } => (index, path.closest_parameter(start), start),
-            };
-            if best.is_none_or(|b| hit.1 < b.1) {
-                best = Some(hit);
-            }
-        }
-        best
     }
 }
 
@@ -533,40 +416,12 @@ mod tests {
     }
 
     #[test]
-    fn point_segment_distance() {
+    fn point_segment_projection() {
         let s = seg((0.0, 0.0), (4.0, 0.0));
-        assert_eq!(s.distance_to_point(p(2.0, 3.0)), 3.0);
-        assert_eq!(s.distance_to_point(p(-3.0, 4.0)), 5.0);
-        assert_eq!(s.distance_to_point(p(7.0, -4.0)), 5.0);
-        assert_eq!(s.distance_to_point(p(1.5, 0.0)), 0.0);
-        assert_eq!(seg((1.0, 1.0), (1.0, 1.0)).distance_to_point(p(4.0, 5.0)), 5.0);
+        assert_eq!(s.closest_parameter(p(2.0, 3.0)), 0.5);
+        assert_eq!(s.closest_parameter(p(-3.0, 4.0)), 0.0);
+        assert_eq!(s.closest_parameter(p(7.0, -4.0)), 1.0);
         assert!(s.contains(p(4.0, 0.0)) && !s.contains(p(4.5, 0.0)) && !s.contains(p(2.0, 0.1)));
-    }
-
-    #[test]
-    fn polyline_length_distance_and_first_hit() {
-        let points = [p(0.0, 0.0), p(3.0, 0.0), p(3.0, 4.0), p(0.0, 4.0)];
-        let line = Polyline::new(&points);
-        assert_eq!(line.length(), 10.0);
-        assert_eq!(line.distance_to_point(p(1.0, 1.0)), Some(1.0));
-        assert_eq!(Polyline::<f32>::new(&points[..1]).distance_to_point(p(0.0, 0.0)), None);
-        // A path crossing two segments reports the one nearer its start.
-        let path = seg((4.0, 3.0), (-1.0, -2.0));
-        let (index, t, point) = line.first_hit(path).unwrap();
-        assert_eq!((index, point), (1, p(3.0, 2.0)));
-        assert_eq!(t, 0.2);
-        // A path that ends exactly on a vertex hits it exactly.
-        let (_, t, point) = line.first_hit(seg((5.0, 4.0), (3.0, 4.0))).unwrap();
-        assert_eq!((t, point), (1.0, p(3.0, 4.0)));
-        assert_eq!(line.first_hit(seg((1.0, 1.0), (2.0, 2.0))), None);
-    }
-
-    #[test]
-    fn rotation_and_angles() {
-        let v = p(1.0, 0.0).rotate(core::f32::consts::FRAC_PI_2);
-        assert!((v.x).abs() < 1e-7 && (v.y - 1.0).abs() < 1e-7);
-        assert!((p(0.0, -2.0).angle() + core::f32::consts::FRAC_PI_2).abs() < 1e-7);
-        assert_eq!(p(1.0, 2.0).perpendicular(), p(-2.0, 1.0));
     }
 
     #[cfg(feature = "fixed")]
@@ -580,7 +435,7 @@ mod tests {
             a.intersect(b),
             Intersection::Point { point: q(1.0, 1.0), along_first: Q16::HALF, along_second: Q16::HALF }
         );
-        assert_eq!(Segment::new(q(0.0, 0.0), q(4.0, 0.0)).distance_to_point(q(2.0, 3.0)), Q16::from_i32(3));
+        assert_eq!(Segment::new(q(0.0, 0.0), q(4.0, 0.0)).closest_parameter(q(2.0, 3.0)), Q16::HALF);
     }
 
     #[test]

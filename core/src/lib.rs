@@ -11,7 +11,6 @@
 //!
 //! - [`rng`]: the deterministic random source (Xoshiro128++, one stream per purpose).
 //! - [`scalar`]: the number type the models compute in (`f32`, `micromath`, Q16.16).
-//! - [`geom`]: points, segments, intersections, polylines.
 //! - [`mud`]: model A, the drying-mud spring lattice.
 //! - [`glass`]: model B, the crack grower for a glass plate hit by a ball.
 //! - [`skin`]: model C, hierarchical Voronoi skin cells.
@@ -21,7 +20,7 @@
 #![deny(missing_docs)]
 
 mod error;
-pub mod geom;
+mod geom;
 pub mod glass;
 pub mod mud;
 pub mod raster;
@@ -29,6 +28,5 @@ pub mod rng;
 pub mod scalar;
 pub mod skin;
 
-pub use geom::{Intersection, Point, Polyline, Segment};
 pub use rng::{Rng, RngError, Spread, Stream};
 pub use scalar::Scalar;
