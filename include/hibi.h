@@ -318,7 +318,7 @@ typedef struct hibi_glass_progress {
 } hibi_glass_progress;
 
 /**
- * One crack: `HIBI_GLASS_LARGE`... kind, why it stopped, its impact and its point count.
+ * One crack: its kind, why it stopped, its impact and its point count.
  */
 typedef struct hibi_glass_crack {
   /**

@@ -117,7 +117,7 @@ pub struct hibi_glass_counts {
     pub rings: u32,
 }
 
-/// One crack: `HIBI_GLASS_LARGE`... kind, why it stopped, its impact and its point count.
+/// One crack: its kind, why it stopped, its impact and its point count.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct hibi_glass_crack {

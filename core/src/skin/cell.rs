@@ -61,7 +61,7 @@ pub(super) struct Frame {
     /// A·2^(−n·h) for subdivision n = 1..=depth (index n − 1), of the perturbation's V.
     amplitude: [f64; MAX_PERTURBATION_DEPTH as usize],
     /// The farthest a perturbed point can move off its edge's line, per unit of the edge's
-    /// length: 3·Σ A·2^(−n·h) over the subdivisions (eq. (2)'s V with Rnd within ±3), and a
+    /// length: 3·Σ A·2^(−n·h) over the subdivisions (parameter 2's V with Rnd within ±3), and a
     /// thousandth more for rounding.
     reach: f64,
     pub(super) depth: u32,
