@@ -1,0 +1,92 @@
+//! Clipping a cell's outline by the bisector with one neighbour (one pass of
+//! Sutherland–Hodgman), which decides which lines bound the Voronoi region.
+
+use super::super::sites::Site;
+use super::{ClipVertex, MAX_OUTLINE, OutlineFull};
+
+/// Keeps the part of the outline `vertices` nearer `a` than `b` (neighbour `j`), into `out`;
+/// returns the new vertex count and the largest squared distance of a kept vertex from `a`,
+/// or None (writing nothing) if the whole outline is already nearer `a`.
+///
+/// The outline is one pass of Sutherland–Hodgman: each vertex on `a`'s side in turn, and
+/// where an edge crosses the bisector, the crossing. Which vertices lie beyond is marked a
+/// bit each first; then the runs between changes of side are copied whole and the crossings
+/// made where they change.
+pub(super) fn clip_by_bisector(
+    vertices: &[ClipVertex],
+    (a, b, j): (&Site, &Site, u32),
+    out: &mut [ClipVertex],
+) -> Result<Option<(usize, f64)>, OutlineFull> {
+    let n = vertices.len();
+    let d = [b.at[0] - a.at[0], b.at[1] - a.at[1]];
+    let m = [0.5 * (a.at[0] + b.at[0]), 0.5 * (a.at[1] + b.at[1])];
+    let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
+    let reach = |p: [f64; 2]| {
+        let r = [p[0] - a.at[0], p[1] - a.at[1]];
+        r[0] * r[0] + r[1] * r[1]
+    };
+    // Bit k of `beyond` for vertex k (an outline has at most MAX_OUTLINE: the clip buffers'
+    // length), and the farthest of the vertices kept.
+    debug_assert!(n <= MAX_OUTLINE);
+    let mut beyond = [0u64; MAX_OUTLINE / 64];
+    let (mut any, mut farthest) = (0u64, 0.0f64);
+    for (word, chunk) in beyond.iter_mut().zip(vertices.chunks(64)) {
+        for (i, v) in chunk.iter().enumerate() {
+            let out = side(v.at) > 0.0;
+            *word |= u64::from(out) << i;
+            // (Zero beyond, by a product: which vertices are beyond follows no pattern a
+            // processor could learn, and a choice here would be compiled to a branch.)
+            let r2 = reach(v.at) * f64::from(u8::from(!out));
+            farthest = if r2 > farthest { r2 } else { farthest };
+        }
+        any |= *word;
+    }
+    if any == 0 {
+        return Ok(None);
+    }
+    let is_beyond = |k: usize| beyond[k / 64] >> (k % 64) & 1 == 1;
+    let mut written = 0;
+    let mut k = 0;
+    while k < n {
+        // The run of vertices k..end on one side.
+        let inside = !is_beyond(k);
+        let end = first_from(&beyond, k, n, inside);
+        if inside {
+            // (A plain loop: runs are short, and a call to copy them would cost more.)
+            let run = out.get_mut(written..written + (end - k)).ok_or(OutlineFull)?;
+            for (o, v) in run.iter_mut().zip(&vertices[k..end]) {
+                *o = *v;
+            }
+            written += end - k;
+        }
+        // Where the edge from its last vertex leaves it (to vertex 0 when it ends the outline).
+        let (cur, following) = (vertices[end - 1], vertices[if end == n { 0 } else { end }]);
+        if end < n || is_beyond(0) == inside {
+            let (sc, sn) = (side(cur.at), side(following.at));
+            let t = sc / (sc - sn);
+            let at = [cur.at[0] + t * (following.at[0] - cur.at[0]), cur.at[1] + t * (following.at[1] - cur.at[1])];
+            let label = if inside { j } else { cur.label };
+            *out.get_mut(written).ok_or(OutlineFull)? = ClipVertex { at, label };
+            written += 1;
+            let r2 = reach(at);
+            farthest = if r2 > farthest { r2 } else { farthest };
+        }
+        k = end;
+    }
+    Ok(Some((written, farthest)))
+}
+
+/// The first k in `from..n` whose bit in `bits` is `set`, or n.
+pub(super) fn first_from(bits: &[u64], from: usize, n: usize, set: bool) -> usize {
+    let flip = if set { 0 } else { u64::MAX };
+    let mut w = from / 64;
+    let mut word = (bits[w] ^ flip) >> (from % 64) << (from % 64);
+    while word == 0 {
+        w += 1;
+        if w * 64 >= n {
+            return n;
+        }
+        word = bits[w] ^ flip;
+    }
+    (w * 64 + word.trailing_zeros() as usize).min(n)
+}

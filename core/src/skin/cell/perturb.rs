@@ -1,0 +1,208 @@
+//! The cell edges' perturbation (Ishii et al. §4.2, parameter 2): where the parent's outline
+//! crosses a bisector edge, and the midpoint displacement of each piece, drawn and judged so
+//! that both cells sharing the edge get the same points.
+
+use super::super::params::MAX_PERTURBATION_DEPTH;
+use super::super::sites::Site;
+use super::frame::{Corner, Frame, bisector_meets_edge, sorted2};
+use super::{MAX_CROSSINGS, Nearby, next};
+use crate::rng::{Rng, Stream};
+
+/// Exact orientation of the fixed-point triangle (a, b, c).
+pub(super) fn orient_fixed(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i128 {
+    i128::from(b[0] - a[0]) * i128::from(c[1] - a[1]) - i128::from(b[1] - a[1]) * i128::from(c[0] - a[0])
+}
+
+/// The corners where the parent's outline properly crosses the bisector edge of `a` and `b`
+/// from `start` to `end`, in order from `start`, written from `out[1]` on; returns how many.
+/// Each is computed as the sibling computes the same corner (the bisector meeting that
+/// parent edge), so both cells get the same pieces.
+pub(super) fn crossings(
+    f: &Frame,
+    a: &Site,
+    b: &Site,
+    (start, end): (&Corner, &Corner),
+    nearby: &Nearby,
+    out: &mut [Corner],
+) -> usize {
+    let (x, y) = (start.fixed, end.fixed);
+    let (low, high) = ([x[0].min(y[0]), x[1].min(y[1])], [x[0].max(y[0]), x[1].max(y[1])]);
+    let parent = nearby.parent.outline;
+    let m = parent.len();
+    let mut found = 0;
+    let mut along = [0i128; MAX_CROSSINGS + 2];
+    nearby.edges_near((low, high), 0, |e| {
+        let (p, q) = (parent[e], parent[next(e, m)]);
+        let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
+        let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
+        let proper = ((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0));
+        if !proper || found == MAX_CROSSINGS {
+            return false;
+        }
+        let c = bisector_meets_edge(f, a, b, p, q);
+        // Order by position along start → end.
+        let t = i128::from(c.fixed[0] - x[0]) * i128::from(y[0] - x[0])
+            + i128::from(c.fixed[1] - x[1]) * i128::from(y[1] - x[1]);
+        let mut i = found + 1;
+        while i > 1 && along[i - 1] > t {
+            out[i] = out[i - 1];
+            along[i] = along[i - 1];
+            i -= 1;
+        }
+        out[i] = c;
+        along[i] = t;
+        found += 1;
+        false
+    });
+    found
+}
+
+/// Orientation of the triangle (a, b, c): positive counter-clockwise.
+pub(super) fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Whether `p` lies in the triangle (a, b, c), boundary included.
+pub(super) fn in_triangle(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    let (x, y, z) = (orient(a, b, p), orient(b, c, p), orient(c, a, p));
+    (x >= 0.0 && y >= 0.0 && z >= 0.0) || (x <= 0.0 && y <= 0.0 && z <= 0.0)
+}
+
+/// Whether the open segments p–q and r–s cross.
+pub(super) fn cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let (d1, d2) = (orient(p, q, r), orient(p, q, s));
+    let (d3, d4) = (orient(r, s, p), orient(r, s, q));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
+}
+
+/// The inner points of the edge between `a`'s and `b`'s cells from corner `start` to `end`
+/// (as `a` runs it), by midpoint displacement V = A·2^(−n·h)·Rnd·L (paper §4.2 (2)), written
+/// from `points[1]` on; returns 2^depth, or 1 (no inner points) where the wiggle would leave
+/// the edge's diamond (the triangles it forms with the two centre points, which no other
+/// edge enters) or its parent cell. Drawn from
+/// the edge's own stream in the direction the lower id runs it, and judged on data both
+/// cells share, so both cells get the same points.
+pub(super) fn perturb(
+    f: &Frame,
+    a: &Site,
+    b: &Site,
+    (start, end): (&Corner, &Corner),
+    nearby: &Nearby,
+    points: &mut [[i64; 2]],
+) -> usize {
+    let (lo, hi) = sorted2(a, b);
+    let forward = (a.id, a.image) == (lo.id, lo.image);
+    let (from, to) = if forward { (start, end) } else { (end, start) };
+    // Both ends in `lo`'s frame.
+    let place = |c: &Corner| {
+        let d = [c.image[0] - lo.image[0], c.image[1] - lo.image[1]];
+        [c.at[0] + f64::from(d[0]) * f.period[0], c.at[1] + f64::from(d[1]) * f.period[1]]
+    };
+    let (p0, p1) = (place(from), place(to));
+    let length = libm::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
+    let pieces = 1usize << f.depth;
+    let mut line = [[0.0f64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
+    line[0] = p0;
+    line[pieces] = p1;
+    if length > 0.0 {
+        let normal = [-(p1[1] - p0[1]) / length, (p1[0] - p0[0]) / length];
+        let offset = [hi.image[0] - lo.image[0], hi.image[1] - lo.image[1]];
+        let key = Stream::EdgePerturbation.key()
+            ^ (u64::from(f.level) << 58)
+            ^ (u64::from(lo.id) << 29)
+            ^ u64::from(hi.id)
+            ^ ((offset[0] as u64 & 0xF) << 50)
+            ^ ((offset[1] as u64 & 0xF) << 54);
+        // The piece's own ends (an edge split at its parent's outline has several pieces).
+        // (relative to `lo`'s image, the same for every periodic copy).
+        let local = |p: [i64; 2]| [0, 1].map(|k| p[k] - i64::from(lo.image[k]) * f.world_period[k]);
+        let ends = [local(from.fixed), local(to.fixed)]
+            .as_flattened()
+            .iter()
+            .fold(0u64, |h, &v| (h ^ v as u64).wrapping_mul(0x0000_0100_0000_01B3).rotate_left(29));
+        let mut rng = Rng::from_key(f.seed, key ^ ends);
+        // Rnd: standard normal, both values of each polar step in turn, redrawn beyond ±3 so
+        // that no wiggle runs away.
+        let mut spare = None;
+        let mut rnd = || loop {
+            let v = spare.take().unwrap_or_else(|| {
+                let [first, second] = rng.normal_pair();
+                spare = Some(second);
+                first
+            });
+            if v.abs() <= 3.0 {
+                break v;
+            }
+        };
+        let mut step = pieces;
+        for level in 1..=f.depth {
+            let amplitude = f.amplitude[level as usize - 1] * length;
+            let half = step / 2;
+            let mut i = 0;
+            while i < pieces {
+                let rnd = rnd();
+                let v = amplitude * rnd;
+                let (x, y) = (line[i], line[i + step]);
+                line[i + half] = [0.5 * (x[0] + y[0]) + v * normal[0], 0.5 * (x[1] + y[1]) + v * normal[1]];
+                i += step;
+            }
+            step = half;
+        }
+    }
+    let line = &line[..=pieces];
+    let (x, y) = (lo.base, f.relative(hi, lo));
+    if !line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1)) {
+        return 1;
+    }
+    // The diamond's outline: no piece between points inside it can cross it where it is
+    // convex.
+    let diamond = [x, p0, y, p1];
+    let turns = [orient(x, p0, y), orient(p0, y, p1), orient(y, p1, x), orient(p1, x, p0)];
+    let convex = turns.iter().all(|&t| t > 0.0) || turns.iter().all(|&t| t < 0.0);
+    let mut blocked = false;
+    if !convex {
+        for w in line.windows(2) {
+            for k in 0..4 {
+                let (r, s) = (diamond[k], diamond[(k + 1) % 4]);
+                blocked |= cross(w[0], w[1], r, s);
+            }
+        }
+    }
+    // A child's edge must stay inside its parent: not cross the parent's outline anywhere,
+    // and (near it) keep every point inside. The parent is the same for both cells that
+    // share the edge, so they judge alike. (Level 0's "parent" is the surface or a box of
+    // the cell's own; its edges may leave it.)
+    if f.level > 0 && !blocked && !nearby.is_empty() {
+        let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for q in line {
+            low = [low[0].min(q[0]), low[1].min(q[1])];
+            high = [high[0].max(q[0]), high[1].max(q[1])];
+        }
+        let (low, high) = (f.fixed(low, lo), f.fixed(high, lo));
+        let slack = f.inside_slack();
+        let parent = nearby.parent.outline;
+        let m = parent.len();
+        let mut near = false;
+        nearby.edges_near((low, high), slack, |e| {
+            near = true;
+            let (r, s) = (f.unfixed(parent[e], lo), f.unfixed(parent[next(e, m)], lo));
+            blocked = line.windows(2).any(|w| cross(w[0], w[1], r, s));
+            blocked
+        });
+        // With no crossing, only a first or last piece leaving from an end on the outline
+        // can lie outside: its inner end tells.
+        if near && !blocked {
+            // (One point when the edge has two pieces.)
+            let ends: &[usize] = if pieces == 2 { &[1] } else { &[1, pieces - 1] };
+            blocked = ends.iter().any(|&k| !nearby.parent.contains(f.fixed(line[k], lo)));
+        }
+    }
+    if blocked {
+        return 1;
+    }
+    for (k, at) in line.iter().enumerate().take(pieces).skip(1) {
+        let index = if forward { k } else { pieces - k };
+        points[index] = f.fixed(*at, lo);
+    }
+    pieces
+}
