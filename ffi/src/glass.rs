@@ -12,7 +12,7 @@
 //!
 //! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
 
-use core::ffi::{CStr, c_char, c_void};
+use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
@@ -20,7 +20,7 @@ use hibi_core::glass::{
     Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex, preset,
 };
 
-use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
 use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
@@ -347,15 +347,8 @@ pub extern "C" fn hibi_glass_params_default() -> hibi_glass_params {
 /// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_params_preset(name: *const c_char, out: *mut hibi_glass_params) -> hibi_status {
-    guard(|| {
-        check_pointer(name)?;
-        check_pointer(out)?;
-        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
-        let name = unsafe { CStr::from_ptr(name) };
-        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_GLASS_UNKNOWN_PRESET)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, to_c(&params)) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_GLASS_UNKNOWN_PRESET) })
 }
 
 /// Checks `params` and writes the bytes a plate needs in caller memory (for

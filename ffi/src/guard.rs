@@ -100,6 +100,27 @@ pub(crate) unsafe fn object_ref<'a, T>(ptr: *const T) -> Result<&'a T, hibi_stat
     Ok(unsafe { &*ptr })
 }
 
+/// The body of the `hibi_*_params_preset` functions: looks `name` up with `preset` and writes
+/// its C form to `*out`; an unknown name gives `unknown` and writes nothing.
+///
+/// # Safety
+/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+pub(crate) unsafe fn write_preset<P, C>(
+    name: *const core::ffi::c_char,
+    out: *mut C,
+    preset: impl FnOnce(&str) -> Option<P>,
+    to_c: impl FnOnce(&P) -> C,
+    unknown: hibi_status,
+) -> Result<(), hibi_status> {
+    check_pointer(name)?;
+    check_pointer(out)?;
+    // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
+    let name = unsafe { core::ffi::CStr::from_ptr(name) };
+    let params = name.to_str().ok().and_then(preset).ok_or(unknown)?;
+    // SAFETY: checked; the caller's contract.
+    unsafe { write_out(out, to_c(&params)) }
+}
+
 /// Writes `value` through an out-parameter. Call it only once everything else succeeded, so
 /// that nothing is written on failure.
 ///

@@ -18,7 +18,7 @@
 //! An object is one block: the header, then the model's scalar and word arrays. With
 //! `hibi_mud_memory_size` and `hibi_mud_create_in` the block is the caller's.
 
-use core::ffi::{CStr, c_char, c_void};
+use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::FragmentRing;
@@ -29,7 +29,7 @@ use hibi_core::mud::{
 use hibi_core::raster::RasterError;
 
 use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
-use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out};
+use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
 use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
@@ -449,15 +449,8 @@ fn hibi_mud_params_default_values() -> hibi_mud_params {
 /// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_params_preset(name: *const c_char, out: *mut hibi_mud_params) -> hibi_status {
-    guard(|| {
-        check_pointer(name)?;
-        check_pointer(out)?;
-        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
-        let name = unsafe { CStr::from_ptr(name) };
-        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_MUD_UNKNOWN_PRESET)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, to_c(&params)) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_MUD_UNKNOWN_PRESET) })
 }
 
 /// Core parameters as the C struct, with the cookie set.

@@ -15,7 +15,7 @@
 //! Every cell outline is built by `hibi_skin_create`; rendering only reads them. An object is
 //! one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
 
-use core::ffi::{CStr, c_char, c_void};
+use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
@@ -25,7 +25,7 @@ use hibi_core::skin::{
     shade,
 };
 
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out, write_preset};
 use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -399,15 +399,8 @@ pub extern "C" fn hibi_skin_params_default() -> hibi_skin_params {
 /// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_params_preset(name: *const c_char, out: *mut hibi_skin_params) -> hibi_status {
-    guard(|| {
-        check_pointer(name)?;
-        check_pointer(out)?;
-        // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
-        let name = unsafe { CStr::from_ptr(name) };
-        let params = name.to_str().ok().and_then(preset).ok_or(HIBI_ERROR_SKIN_UNKNOWN_PRESET)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, to_c(&params)) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_SKIN_UNKNOWN_PRESET) })
 }
 
 /// Checks `params` and writes the bytes a skin needs in caller memory (for
@@ -752,7 +745,7 @@ mod tests {
     fn every_skin_status_has_its_own_message() {
         let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1353).collect();
         // SAFETY: hibi_status_string returns static NUL-terminated strings.
-        let text = |code| unsafe { CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
+        let text = |code| unsafe { core::ffi::CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
         for (i, a) in codes.iter().enumerate() {
             assert!(text(*a).starts_with("skin: "), "{a}: {}", text(*a));
             for b in &codes[i + 1..] {
