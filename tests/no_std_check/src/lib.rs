@@ -1,8 +1,8 @@
 //! Links hibi-core into a binary that has no std and no allocator (see Cargo.toml).
 #![no_std]
 
-use hibi_core::scalar::Q16;
 use hibi_core::mud::MudParams;
+use hibi_core::scalar::Q16;
 use hibi_core::{Rng, Scalar, Stream};
 
 #[panic_handler]
