@@ -428,6 +428,25 @@ fn the_network_is_one_connected_thing() {
     }
 }
 
+/// At the default end (2.2 % shrink) the network is still growing: run on, its tips join up
+/// and the dead ends fall below issue 21's 10 %, while the cells shrink (the README's
+/// figures; seeds 1-8).
+#[test]
+fn dead_ends_join_up_as_the_network_grows() {
+    let figures = [0.022f32, 0.024, 0.025].map(|target_shrink| {
+        let (mut dead, mut area) = (0.0, 0.0);
+        for seed in 1..=8 {
+            let p = MudParams { seed, target_shrink, ..MudParams::default() };
+            dead += network(&p).dead_end_share() / 8.0;
+            area += run::<f32>(&p).0.mean_cell_area / 8.0;
+        }
+        println!("end shrink {target_shrink}: dead ends {:.1} %, cells of {area:.1} cm²", 100.0 * dead);
+        (dead, area)
+    });
+    assert!(figures[0].0 > 0.10 && figures[2].0 < 0.10, "{figures:?}");
+    assert!(figures.windows(2).all(|w| w[1].0 < w[0].0 && w[1].1 < w[0].1), "{figures:?}");
+}
+
 /// The cells of a finished run: rings and their points, and the lattice's extent.
 fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud::CellRing>, Vec<[f32; 2]>, [f32; 2]) {
     let memory = params.memory().expect("valid parameters");

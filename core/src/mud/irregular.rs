@@ -26,6 +26,7 @@
 use super::lattice::Lattice;
 use super::material::anisotropy;
 use super::params::{Boundary, MudParams, Topology};
+use super::take;
 use crate::rng::{Rng, Stream};
 
 /// Positions are integer multiples of 1/UNIT of the element size.
@@ -82,11 +83,6 @@ impl core::fmt::Debug for Mesh<'_> {
 pub const fn words_for(nodes: u128) -> u128 {
     let (springs, cells) = (3 * nodes, 2 * nodes);
     nodes * 4 + 1 + springs * (2 + SHAPE as u128 + 2 + 2) + cells * 6
-}
-
-/// Cuts the first `n` words off a buffer.
-fn take<'a>(buffer: &mut &'a mut [u32], n: usize) -> &'a mut [u32] {
-    super::take(buffer, n)
 }
 
 impl<'a> Mesh<'a> {
@@ -470,14 +466,6 @@ pub(super) fn build<'a>(
     let cell_words: &'a [u32] = cell_words;
     let mut mesh = Mesh { position, area: &[], ends, shape: &[], sides_of, cells: cell_words, offsets: &[], star: &[] };
     // Geometry: e, l0, face, k per spring; the Voronoi area per node.
-    let extent = [hex.columns as f32, hex.rows as f32 * PITCH as f32 / UNIT as f32];
-    let unwrap = |from: [f32; 2], p: [f32; 2]| {
-        if !periodic {
-            return p;
-        }
-        let w = |d: f32, period: f32| d - period * libm::roundf(d / period);
-        [from[0] + w(p[0] - from[0], extent[0]), from[1] + w(p[1] - from[1], extent[1])]
-    };
     area.fill(0.0f32.to_bits());
     for spring in 0..springs {
         let Some((a, b)) = mesh.ends(spring) else {
@@ -485,7 +473,7 @@ pub(super) fn build<'a>(
             continue;
         };
         let pa = mesh.position(a);
-        let pb = unwrap(pa, mesh.position(b));
+        let pb = shape.nearest_image(pa, mesh.position(b));
         let d = [pb[0] - pa[0], pb[1] - pa[1]];
         let l0 = libm::sqrtf(d[0] * d[0] + d[1] * d[1]);
         let e = [d[0] / l0, d[1] / l0];
@@ -497,7 +485,7 @@ pub(super) fn build<'a>(
             let Some((cell, _)) = side else { continue };
             let (corners, _) = mesh.cell(cell).unwrap_or(([a as u32; 3], [0; 3]));
             let third = corners.into_iter().find(|&n| n as usize != a && n as usize != b).unwrap_or(a as u32);
-            let pc = unwrap(pa, mesh.position(third as usize));
+            let pc = shape.nearest_image(pa, mesh.position(third as usize));
             let centre = circumcentre(pa, pb, pc);
             let along = (centre[0] - middle[0]) * normal[0] + (centre[1] - middle[1]) * normal[1];
             reach[k] = if k == 0 { along } else { -along };

@@ -141,6 +141,16 @@ impl<'a> Lattice<'a> {
         self.mesh.as_ref().map_or(self.face_length(), |m| m.face(spring))
     }
 
+    /// The periodic image of `p` nearest `from` (`p` itself on an open lattice).
+    pub fn nearest_image(&self, from: [f32; 2], p: [f32; 2]) -> [f32; 2] {
+        if self.boundary == Boundary::Open {
+            return p;
+        }
+        let [w, h] = self.extent();
+        let wrap = |d: f32, period: f32| d - period * libm::roundf(d / period);
+        [from[0] + wrap(p[0] - from[0], w), from[1] + wrap(p[1] - from[1], h)]
+    }
+
     /// Reference (deep-layer) position of a node, lattice units.
     pub fn reference(&self, node: usize) -> [f32; 2] {
         if let Some(m) = &self.mesh {
@@ -318,16 +328,7 @@ impl<'a> Lattice<'a> {
         if let Some(m) = &self.mesh {
             let (nodes, sides) = m.cell(cell)?;
             let at = m.position(nodes[0] as usize);
-            let [w, h] = self.extent();
-            let periodic = self.boundary == Boundary::Periodic;
-            let near = |n: u32| {
-                let p = m.position(n as usize);
-                if !periodic {
-                    return p;
-                }
-                let wrap = |d: f32, period: f32| d - period * libm::roundf(d / period);
-                [at[0] + wrap(p[0] - at[0], w), at[1] + wrap(p[1] - at[1], h)]
-            };
+            let near = |n: u32| self.nearest_image(at, m.position(n as usize));
             return Some(Cell {
                 nodes: [nodes[0], nodes[1], nodes[2], 0],
                 corners: 3,
