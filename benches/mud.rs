@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use hibi_core::mud::{CellRing, CrackStatistics, Mud, MudParams, Solver, Topology};
+use hibi_core::mud::{CellRing, CrackStatistics, Mud, MudBuffers, MudParams, Solver, Topology};
 
 struct Run {
     seconds: f64,
@@ -23,7 +23,7 @@ fn run(size: u32, solver: Solver, topology: Topology) -> Run {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let start = Instant::now();
-    let mut mud = Mud::new(&params, &mut scalars, &mut words).expect("memory suffices");
+    let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     let progress = mud.run();
     let counts = mud.cell_counts();
     let (mut rings, mut points) = (vec![CellRing::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);

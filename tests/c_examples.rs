@@ -188,11 +188,11 @@ fn cpp17_example_links_shared_library() {
 /// What the mud example computes, as Rust computes it for the same parameters: the mask,
 /// the network's counts, and the cells' counts and summed ring area.
 fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::CellCounts, f64) {
-    use hibi_core::mud::{CellRing, Mud, MudParams, MudRender};
+    use hibi_core::mud::{CellRing, Mud, MudBuffers, MudParams, MudRender};
     let params = MudParams { columns: 96, rows: 96, seed: 7, ..MudParams::default() };
     let memory = params.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&params, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     let render = MudRender { width: 384, height: 384, ..MudRender::default() };
     let mut mask = vec![0u8; 384 * 384];

@@ -1,7 +1,7 @@
 //! Model A against the paper's claims (Hirota et al.), the acceptance list, and the
 //! golden snapshots. These run the model at size; hibi-core is optimised in every profile.
 
-use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudParams, MudRender, Solver, Topology};
+use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudBuffers, MudParams, MudRender, Solver, Topology};
 use hibi_core::scalar::{Q16, Scalar};
 use hibi_tests::fnv1a64;
 
@@ -9,7 +9,7 @@ use hibi_tests::fnv1a64;
 fn run<S: Scalar>(params: &MudParams) -> (CrackStatistics, u64, Vec<hibi_core::mud::CrackSegment>) {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory suffices");
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     assert!(mud.run().finished);
     let stats = mud.statistics();
     let mut segments = vec![Default::default(); mud.segment_count()];
@@ -157,7 +157,7 @@ fn periodic_rasters_are_seamless() {
     let p = params(64);
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     let [w, h] = mud.lattice().extent();
     let render = MudRender { width: 256, height: 256, ..MudRender::default() };
@@ -181,7 +181,7 @@ fn periodic_rasters_are_seamless() {
     let open = MudParams { boundary: Boundary::Open, ..p };
     let memory = open.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&open, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&open, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     mud.render_mask(&render, &mut tile).unwrap();
     mud.render_mask(&MudRender { offset: [w / 2.0, h / 2.0], ..render }, &mut panned).unwrap();
@@ -255,7 +255,7 @@ fn step_does_bounded_work_and_resumes_to_the_same_result() {
         let p = MudParams { solver, target_shrink: 0.018, ..params(24) };
         let memory = p.memory().unwrap();
         let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-        let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
         // One indivisible piece is at most one pass over the springs.
         let piece = mud.lattice().spring_count() as u64;
         let budget = 5_000;
@@ -289,7 +289,7 @@ fn a_run_can_end_at_a_target_crack_density() {
     let p = MudParams { target_shrink: 0.0, target_crack_density: 0.2, ..params(48) };
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     let end = mud.run();
     assert!(end.finished && end.crack_density >= 0.2 && end.crack_density < 0.25, "{end:?}");
     assert!(end.shrink < 0.022, "{end:?}");
@@ -300,7 +300,7 @@ fn the_time_map_dates_every_crack_pixel_and_only_those() {
     let p = params(48);
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     let end = mud.run();
     let render = MudRender { width: 192, height: 192, ..MudRender::default() };
     let (mut mask, mut time, mut height) = (vec![0u8; 192 * 192], vec![0.0f32; 192 * 192], vec![0.0f32; 192 * 192]);
@@ -336,7 +336,7 @@ struct Network {
 fn network(params: &MudParams) -> Network {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory suffices");
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     assert!(mud.run().finished);
     let counts = mud.network_counts();
     let mut n = Network {
@@ -451,7 +451,7 @@ fn dead_ends_join_up_as_the_network_grows() {
 fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud::CellRing>, Vec<[f32; 2]>, [f32; 2]) {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory suffices");
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     assert!(mud.run().finished);
     let counts = mud.cell_counts();
     let (mut rings, mut points) = (vec![Default::default(); counts.rings], vec![[0.0; 2]; counts.points]);
@@ -551,7 +551,7 @@ fn statistics_are_those_of_the_network_and_its_cells() {
     let p = MudParams { seed: 3, ..params(96) };
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     let stats = mud.statistics();
     let n = network(&p);
@@ -607,7 +607,7 @@ fn the_default_mask_shows_thin_connected_cracks() {
     let p = MudParams::default();
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     let render = MudRender { width: 512, height: 512, ..MudRender::default() };
     let mut mask = vec![0u8; 512 * 512];
@@ -636,7 +636,7 @@ fn the_square_lattice_gives_a_maze_of_short_cracks_meeting_square() {
         let p = hibi_core::mud::preset(name).expect("a preset");
         let memory = p.memory().unwrap();
         let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-        let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
         mud.run();
         mud.statistics()
     };
@@ -655,7 +655,7 @@ fn network_and_cells_refuse_short_buffers_and_write_nothing() {
     let p = params(48);
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(&p, &mut scalars, &mut words).unwrap();
+    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
     let n = mud.network_counts();
     let sentinel_vertex = NetworkVertex { degree: 77, ..Default::default() };

@@ -1,6 +1,8 @@
 //! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
 
-use hibi_core::mud::{Boundary, CrackStatistics, Drive, Mud, MudParamError, MudParams, MudRender, Solver, Topology};
+use hibi_core::mud::{
+    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudParamError, MudParams, MudRender, Solver, Topology,
+};
 
 use crate::Failure;
 use crate::args::{BoundaryArg, DriveArg, MudOptions, SolverArg, TopologyArg};
@@ -174,7 +176,8 @@ fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
 pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> MudRun {
     let memory = params.memory().expect("checked parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(params, &mut scalars, &mut words).expect("memory of the size asked for");
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words })
+        .expect("memory of the size asked for");
     loop {
         let p = mud.step(2_000_000);
         progress.set_fraction(fraction(params, p.shrink, p.crack_density));

@@ -17,15 +17,15 @@ use core::mem::{align_of, size_of};
 
 use hibi_core::Spread;
 use hibi_core::glass::{
-    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, GlassRender, Vertex, preset,
+    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassMemory, GlassParams, GlassRender, preset,
 };
 
 use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
-use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
+use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
     HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_UNKNOWN_PRESET,
-    HIBI_ERROR_RENDER_LAYER, HIBI_ERROR_SIZE_OVERFLOW, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
 };
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -182,20 +182,6 @@ pub struct hibi_glass {
     origin: Origin,
 }
 
-/// Alignment of a plate's block.
-const BLOCK_ALIGN: usize = {
-    let mut a = 8;
-    let aligns = [align_of::<hibi_glass>(), align_of::<Crack>(), align_of::<Vertex>(), align_of::<Edge>()];
-    let mut i = 0;
-    while i < aligns.len() {
-        if aligns[i] > a {
-            a = aligns[i];
-        }
-        i += 1;
-    }
-    a
-};
-
 /// The C view of core parameters.
 fn to_c(p: &GlassParams) -> hibi_glass_params {
     hibi_glass_params {
@@ -264,64 +250,35 @@ fn from_c(p: &hibi_glass_params) -> Result<GlassParams, hibi_status> {
     })
 }
 
-/// A plate's block: where each array starts, and the total size.
-struct Layout {
-    params: GlassParams,
-    counts: hibi_core::glass::GlassMemory,
-    cracks: usize,
-    vertices: usize,
-    edges: usize,
-    words: usize,
-    bytes: usize,
-}
+impl Object for hibi_glass {
+    type Input = *const hibi_glass_params;
+    type Plan = (GlassParams, GlassMemory);
+    type Arrays = GlassBuffers<'static>;
 
-/// Validates `params` and lays out its block.
-///
-/// # Safety
-/// `params` must be NULL or readable.
-unsafe fn plan(params: *const hibi_glass_params) -> Result<Layout, hibi_status> {
-    check_pointer(params)?;
-    // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-    let params = from_c(unsafe { &*params })?;
-    let counts = params.memory().map_err(glass_param_status)?;
-    let layout = (|| {
-        let (cracks, end) = place(size_of::<hibi_glass>(), align_of::<Crack>(), counts.cracks, size_of::<Crack>())?;
-        let (vertices, end) = place(end, align_of::<Vertex>(), counts.vertices, size_of::<Vertex>())?;
-        let (edges, end) = place(end, align_of::<Edge>(), counts.edges, size_of::<Edge>())?;
-        let (words, end) = place(end, align_of::<u32>(), counts.words, size_of::<u32>())?;
-        (end <= isize::MAX as usize / 2).then_some(Layout {
-            params,
-            counts,
-            cracks,
-            vertices,
-            edges,
-            words,
-            bytes: end,
-        })
-    })();
-    layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
-}
+    unsafe fn plan(params: *const hibi_glass_params) -> Result<Self::Plan, hibi_status> {
+        check_pointer(params)?;
+        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
+        let params = from_c(unsafe { &*params })?;
+        let memory = params.memory().map_err(glass_param_status)?;
+        Ok((params, memory))
+    }
 
-/// Builds a plate in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).
-///
-/// # Safety
-/// `block` must be valid for writes of `layout.bytes` and outlive the plate.
-unsafe fn build(block: *mut u8, layout: Layout, origin: Origin) -> Result<*mut hibi_glass, hibi_status> {
-    let c = layout.counts;
-    // SAFETY: the layout places each array inside the block, aligned, without overlap.
-    let buffers = unsafe {
+    fn arrays((_, m): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
         GlassBuffers {
-            cracks: array(block, layout.cracks, c.cracks),
-            vertices: array(block, layout.vertices, c.vertices),
-            edges: array(block, layout.edges, c.edges),
-            words: array(block, layout.words, c.words),
+            cracks: arena.take(m.cracks),
+            vertices: arena.take(m.vertices),
+            edges: arena.take(m.edges),
+            words: arena.take(m.words),
         }
-    };
-    let glass = Glass::new(&layout.params, buffers).map_err(glass_status)?;
-    let ptr = block.cast::<hibi_glass>();
-    // SAFETY: the header fits at the block's start, aligned.
-    unsafe { ptr.write(hibi_glass { glass, origin }) };
-    Ok(ptr)
+    }
+
+    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_glass { glass: Glass::new(params, buffers).map_err(glass_status)?, origin })
+    }
+
+    fn origin(&self) -> Origin {
+        self.origin
+    }
 }
 
 /// The status of a core glass error.
@@ -358,12 +315,8 @@ pub unsafe extern "C" fn hibi_glass_params_preset(name: *const c_char, out: *mut
 /// `params` must be NULL or readable; `size` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_memory_size(params: *const hibi_glass_params, size: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(size, layout.bytes) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::memory_size::<hibi_glass>(params, size) })
 }
 
 /// Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have.
@@ -379,22 +332,8 @@ pub extern "C" fn hibi_glass_memory_align() -> usize {
 /// `params` must be NULL or readable; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_create(params: *const hibi_glass_params, out: *mut *mut hibi_glass) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        let (block, origin) = library_block(layout.bytes, BLOCK_ALIGN)?;
-        // SAFETY: a fresh block of the planned size and alignment.
-        match unsafe { build(block, layout, origin) } {
-            // SAFETY: checked above; the caller's contract.
-            Ok(glass) => unsafe { write_out(out, glass) },
-            Err(status) => {
-                // SAFETY: allocated above, never handed out.
-                unsafe { release_block(block, origin) };
-                Err(status)
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create(params, out) })
 }
 
 /// Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes aligned to
@@ -411,16 +350,8 @@ pub unsafe extern "C" fn hibi_glass_create_in(
     memory_len: usize,
     out: *mut *mut hibi_glass,
 ) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        let block = caller_block(memory, memory_len, layout.bytes, BLOCK_ALIGN)?;
-        // SAFETY: checked to hold the planned size, aligned; the caller's contract.
-        let glass = unsafe { build(block, layout, Origin::Caller) }?;
-        // SAFETY: checked above; the caller's contract.
-        unsafe { write_out(out, glass) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
 }
 
 /// Destroys a plate; frees its memory if `hibi_glass_create` allocated it. NULL is ignored.
@@ -429,17 +360,8 @@ pub unsafe extern "C" fn hibi_glass_create_in(
 /// `glass` must be NULL or a live plate, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_destroy(glass: *mut hibi_glass) {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        if let Ok(live) = unsafe { object(glass) } {
-            let origin = live.origin;
-            // SAFETY: a live plate made by hibi_glass_create or hibi_glass_create_in.
-            unsafe {
-                glass.drop_in_place();
-                release_block(glass.cast(), origin);
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::destroy(glass) })
 }
 
 /// Adds an impact at (x, y): its cracks grow on the next steps and stop where they meet the

@@ -20,8 +20,8 @@ use core::ffi::c_char;
 
 pub mod glass;
 mod guard;
-mod memory;
 pub mod mud;
+mod object;
 pub mod rng;
 pub mod skin;
 pub mod status;

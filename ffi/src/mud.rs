@@ -19,22 +19,20 @@
 //! `hibi_mud_memory_size` and `hibi_mud_create_in` the block is the caller's.
 
 use core::ffi::{c_char, c_void};
-use core::mem::{align_of, size_of};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
-    Boundary, CellRing, CrackSegment, Drive, Mud, MudError, MudLayer, MudParams, MudRender, NO_VERTEX, NetworkEdge,
-    NetworkPoint, NetworkVertex, Solver, Topology, preset,
+    Boundary, CellRing, CrackSegment, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams, MudRender,
+    NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
 use hibi_core::raster::RasterError;
 
 use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
 use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
-use crate::memory::{Origin, caller_block, library_block, release_block, round_up};
+use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
-    HIBI_ERROR_MUD_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, HIBI_ERROR_SIZE_OVERFLOW, hibi_status, mud_param_status,
-    raster_status,
+    HIBI_ERROR_MUD_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status, raster_status,
 };
 
 /// Square elements: 4 neighbours, axis-aligned short cracks.
@@ -339,11 +337,6 @@ pub struct hibi_mud {
     origin: Origin,
 }
 
-/// Alignment of a run's block.
-const BLOCK_ALIGN: usize = if align_of::<hibi_mud>() > 8 { align_of::<hibi_mud>() } else { 8 };
-/// Bytes of the header before the arrays.
-const HEADER: usize = round_up(size_of::<hibi_mud>(), BLOCK_ALIGN);
-
 fn enumeration<T, const N: usize>(value: u32, choices: [T; N]) -> Result<T, hibi_status> {
     choices.into_iter().nth(value as usize).ok_or(HIBI_ERROR_MUD_ENUM)
 }
@@ -383,51 +376,30 @@ fn core_params(p: &hibi_mud_params) -> Result<MudParams, hibi_status> {
     Ok(params)
 }
 
-/// The validated core parameters and the block they need: (params, scalars, words, bytes).
-///
-/// # Safety
-/// `params` must be NULL or point to a readable `hibi_mud_params`.
-unsafe fn plan(params: *const hibi_mud_params) -> Result<(MudParams, usize, usize, usize), hibi_status> {
-    check_pointer(params)?;
-    // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-    let params = core_params(unsafe { &*params })?;
-    let memory = params.memory().map_err(mud_param_status)?;
-    let bytes = memory
-        .scalars
-        .checked_add(memory.words)
-        .and_then(|n| n.checked_mul(4))
-        .and_then(|n| n.checked_add(HEADER))
-        .filter(|&n| n <= isize::MAX as usize)
-        .ok_or(HIBI_ERROR_SIZE_OVERFLOW)?;
-    Ok((params, memory.scalars, memory.words, bytes))
-}
+impl Object for hibi_mud {
+    type Input = *const hibi_mud_params;
+    type Plan = (MudParams, MudMemory);
+    type Arrays = MudBuffers<'static, f32>;
 
-/// Builds a run in `block` (already checked: `bytes` long, aligned to `BLOCK_ALIGN`).
-///
-/// # Safety
-/// `block` must be valid for writes of the planned size and outlive the run.
-unsafe fn build(
-    block: *mut u8,
-    (params, scalars, words, bytes): (MudParams, usize, usize, usize),
-    origin: Origin,
-) -> Result<*mut hibi_mud, hibi_status> {
-    // SAFETY: the block holds `bytes`; zeroing makes every array element a valid value.
-    unsafe { block.add(HEADER).write_bytes(0, bytes - HEADER) };
-    // SAFETY: the arrays lie inside the block, aligned (HEADER is a multiple of 8, elements are
-    // 4 bytes), disjoint, initialised; they live as long as the block, which outlives the run.
-    let (scalars, words) = unsafe {
-        let s = block.add(HEADER).cast::<f32>();
-        let w = block.add(HEADER + scalars * 4).cast::<u32>();
-        (core::slice::from_raw_parts_mut(s, scalars), core::slice::from_raw_parts_mut(w, words))
-    };
-    let mud = Mud::new(&params, scalars, words).map_err(|e| match e {
-        MudError::Param(p) => mud_param_status(p),
-        MudError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
-    })?;
-    let ptr = block.cast::<hibi_mud>();
-    // SAFETY: the header fits at the block's start, aligned.
-    unsafe { ptr.write(hibi_mud { mud, origin }) };
-    Ok(ptr)
+    unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
+        check_pointer(params)?;
+        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
+        let params = core_params(unsafe { &*params })?;
+        let memory = params.memory().map_err(mud_param_status)?;
+        Ok((params, memory))
+    }
+
+    fn arrays((_, memory): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
+        MudBuffers { scalars: arena.take(memory.scalars), words: arena.take(memory.words) }
+    }
+
+    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_mud { mud: Mud::new(params, buffers).map_err(output_status)?, origin })
+    }
+
+    fn origin(&self) -> Origin {
+        self.origin
+    }
 }
 
 /// The paper's parameters (and ours where it gives none), with the cookie set.
@@ -492,12 +464,8 @@ fn to_c(p: &MudParams) -> hibi_mud_params {
 /// `params` must be NULL or readable; `size` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_memory_size(params: *const hibi_mud_params, size: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let (_, _, _, bytes) = unsafe { plan(params) }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(size, bytes) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::memory_size::<hibi_mud>(params, size) })
 }
 
 /// Alignment, in bytes, that caller memory for `hibi_mud_create_in` must have (8).
@@ -513,22 +481,8 @@ pub extern "C" fn hibi_mud_memory_align() -> usize {
 /// `params` must be NULL or readable; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_create(params: *const hibi_mud_params, out: *mut *mut hibi_mud) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let plan = unsafe { plan(params) }?;
-        let (block, origin) = library_block(plan.3, BLOCK_ALIGN)?;
-        // SAFETY: a fresh block of the planned size and alignment.
-        match unsafe { build(block, plan, origin) } {
-            // SAFETY: checked above; the caller's contract.
-            Ok(mud) => unsafe { write_out(out, mud) },
-            Err(status) => {
-                // SAFETY: allocated above, never handed out.
-                unsafe { release_block(block, origin) };
-                Err(status)
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create(params, out) })
 }
 
 /// Creates a run in caller memory of at least `hibi_mud_memory_size` bytes aligned to
@@ -545,16 +499,8 @@ pub unsafe extern "C" fn hibi_mud_create_in(
     memory_len: usize,
     out: *mut *mut hibi_mud,
 ) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let plan = unsafe { plan(params) }?;
-        let block = caller_block(memory, memory_len, plan.3, BLOCK_ALIGN)?;
-        // SAFETY: checked to hold the planned size, aligned; the caller's contract.
-        let mud = unsafe { build(block, plan, Origin::Caller) }?;
-        // SAFETY: checked above; the caller's contract.
-        unsafe { write_out(out, mud) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
 }
 
 /// Destroys a run; frees its memory if `hibi_mud_create` allocated it. NULL is ignored.
@@ -563,19 +509,9 @@ pub unsafe extern "C" fn hibi_mud_create_in(
 /// `mud` must be NULL or a live run, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_destroy(mud: *mut hibi_mud) {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        if let Ok(live) = unsafe { object(mud) } {
-            let origin = live.origin;
-            // SAFETY: a live run made by hibi_mud_create or hibi_mud_create_in.
-            unsafe {
-                mud.drop_in_place();
-                release_block(mud.cast(), origin);
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::destroy(mud) })
 }
-
 /// Advances the run by at most `budget` units of work (one unit: one spring visited), but
 /// always by at least one indivisible piece; writes where it stands to `*progress` unless it
 /// is NULL. Call until `progress.finished`.
@@ -1060,7 +996,8 @@ mod tests {
         let mut p = small();
         p.boundary = HIBI_MUD_OPEN;
         let (mud, mut scalars, mut words) = finished(&p);
-        let mut core = Mud::new(&core_params(&p).unwrap(), &mut scalars, &mut words).unwrap();
+        let mut core =
+            Mud::new(&core_params(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
         core.run();
         let expected = core.network_counts();
         assert!(expected.vertices > 0 && expected.edges > 0 && expected.points > expected.edges);
@@ -1147,7 +1084,8 @@ mod tests {
             p.columns = 24;
             p.rows = 24;
             let (mud, mut scalars, mut words) = finished(&p);
-            let mut core = Mud::new(&core_params(&p).unwrap(), &mut scalars, &mut words).unwrap();
+            let mut core =
+                Mud::new(&core_params(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
             core.run();
             let expected = core.cell_counts();
             let (nr, np) = (expected.rings, expected.points);

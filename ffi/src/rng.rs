@@ -2,12 +2,11 @@
 //! to end and draw numbers that match hibi's own streams bit for bit.
 
 use core::ffi::c_void;
-use core::mem::{align_of, size_of};
 
 use hibi_core::{Rng, Spread};
 
 use crate::guard::{buffer, guard, object, write_out};
-use crate::memory::{Origin, caller_block, library_block, release_block};
+use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, rng_status};
 
 /// `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
@@ -22,16 +21,37 @@ pub struct hibi_rng {
     origin: Origin,
 }
 
+impl Object for hibi_rng {
+    type Input = (u64, u64);
+    type Plan = (u64, u64);
+    type Arrays = ();
+
+    unsafe fn plan(key: (u64, u64)) -> Result<(u64, u64), hibi_status> {
+        Ok(key)
+    }
+
+    fn arrays(_: &(u64, u64), _: &mut Arena) {}
+
+    fn make(&(seed, stream): &(u64, u64), _: (), origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_rng { rng: Rng::from_key(seed, stream), origin })
+    }
+
+    fn origin(&self) -> Origin {
+        self.origin
+    }
+}
+
 /// Bytes a `hibi_rng` needs in caller memory (for `hibi_rng_create_in`).
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_rng_memory_size() -> usize {
-    guard(size_of::<hibi_rng>)
+    // SAFETY: the input holds no pointer.
+    guard(|| unsafe { object::block_size::<hibi_rng>((0, 0)) }.unwrap_or(0))
 }
 
 /// Alignment, in bytes, that caller memory for `hibi_rng_create_in` must have.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_rng_memory_align() -> usize {
-    guard(align_of::<hibi_rng>)
+    guard(|| BLOCK_ALIGN)
 }
 
 /// Creates the stream `stream` of the run seeded with `seed`, in library memory; free it
@@ -41,15 +61,8 @@ pub extern "C" fn hibi_rng_memory_align() -> usize {
 /// `out` must be NULL or valid for writing a pointer.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_rng_create(seed: u64, stream: u64, out: *mut *mut hibi_rng) -> hibi_status {
-    guard(|| {
-        crate::guard::check_pointer(out)?;
-        let (block, origin) = library_block(size_of::<hibi_rng>(), align_of::<hibi_rng>())?;
-        let rng = block.cast::<hibi_rng>();
-        // SAFETY: a fresh block sized and aligned for hibi_rng.
-        unsafe { rng.write(hibi_rng { rng: Rng::from_key(seed, stream), origin }) };
-        // SAFETY: checked above; the caller's contract.
-        unsafe { write_out(out, rng) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create((seed, stream), out) })
 }
 
 /// Creates the stream in caller memory of at least `hibi_rng_memory_size()` bytes aligned to
@@ -67,15 +80,8 @@ pub unsafe extern "C" fn hibi_rng_create_in(
     memory_len: usize,
     out: *mut *mut hibi_rng,
 ) -> hibi_status {
-    guard(|| {
-        crate::guard::check_pointer(out)?;
-        let block = caller_block(memory, memory_len, size_of::<hibi_rng>(), align_of::<hibi_rng>())?;
-        let rng = block.cast::<hibi_rng>();
-        // SAFETY: checked non-null, aligned and long enough; the caller's contract.
-        unsafe { rng.write(hibi_rng { rng: Rng::from_key(seed, stream), origin: Origin::Caller }) };
-        // SAFETY: checked above; the caller's contract.
-        unsafe { write_out(out, rng) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create_in((seed, stream), memory, memory_len, out) })
 }
 
 /// Destroys a stream; frees its memory if `hibi_rng_create` allocated it. NULL is ignored.
@@ -84,17 +90,8 @@ pub unsafe extern "C" fn hibi_rng_create_in(
 /// `rng` must be NULL or a live stream, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_rng_destroy(rng: *mut hibi_rng) {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        if let Ok(live) = unsafe { object(rng) } {
-            let origin = live.origin;
-            // SAFETY: a live object made by hibi_rng_create or hibi_rng_create_in.
-            unsafe {
-                rng.drop_in_place();
-                release_block(rng.cast(), origin);
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::destroy(rng) })
 }
 
 /// The next 32 raw bits of the stream.

@@ -16,20 +16,19 @@
 //! one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
 
 use core::ffi::{c_char, c_void};
-use core::mem::{align_of, size_of};
+use core::mem::size_of;
 
 use hibi_core::Spread;
 use hibi_core::skin::{
-    ClipVertex, LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError,
-    ShadeParams, Site, SiteLayout, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinMemory, SkinParams, preset,
-    shade,
+    LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams,
+    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, preset, shade,
 };
 
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out, write_preset};
-use crate::memory::{Origin, array, caller_block, library_block, place, release_block};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, write_out, write_preset};
+use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SIZE_OVERFLOW, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
-    HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX, HIBI_ERROR_SKIN_ENUM,
+    HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
     HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW, HIBI_ERROR_SKIN_SHADE_RIDGE,
     HIBI_ERROR_SKIN_SHADE_SPECULAR, HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
 };
@@ -196,26 +195,6 @@ pub struct hibi_skin {
     origin: Origin,
 }
 
-/// Alignment of a skin's block.
-const BLOCK_ALIGN: usize = {
-    let mut a = 8;
-    let aligns = [
-        align_of::<hibi_skin>(),
-        align_of::<SkinCell>(),
-        align_of::<[i64; 2]>(),
-        align_of::<Site>(),
-        align_of::<ClipVertex>(),
-    ];
-    let mut i = 0;
-    while i < aligns.len() {
-        if aligns[i] > a {
-            a = aligns[i];
-        }
-        i += 1;
-    }
-    a
-};
-
 /// The C view of a core level.
 fn level_to_c(l: &LevelParams) -> hibi_skin_level {
     hibi_skin_level {
@@ -299,68 +278,36 @@ fn shade_to_c(s: &ShadeParams) -> hibi_skin_shade_params {
     }
 }
 
-/// A skin's block: where each array starts, and the total size.
-struct Layout {
-    params: SkinParams,
-    counts: SkinMemory,
-    cells: usize,
-    vertices: usize,
-    sites: usize,
-    clip: usize,
-    words: usize,
-    bytes: usize,
-}
+impl Object for hibi_skin {
+    type Input = *const hibi_skin_params;
+    type Plan = (SkinParams, SkinMemory);
+    type Arrays = SkinBuffers<'static>;
 
-/// Validates `params` and lays out its block.
-///
-/// # Safety
-/// `params` must be NULL or readable.
-unsafe fn plan(params: *const hibi_skin_params) -> Result<Layout, hibi_status> {
-    check_pointer(params)?;
-    // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-    let params = from_c(unsafe { &*params })?;
-    let counts = params.memory().map_err(skin_param_status)?;
-    let layout = (|| {
-        let (cells, end) = place(size_of::<hibi_skin>(), align_of::<SkinCell>(), counts.cells, size_of::<SkinCell>())?;
-        let (vertices, end) = place(end, align_of::<[i64; 2]>(), counts.vertices, size_of::<[i64; 2]>())?;
-        let (sites, end) = place(end, align_of::<Site>(), counts.sites, size_of::<Site>())?;
-        let (clip, end) = place(end, align_of::<ClipVertex>(), counts.clip, size_of::<ClipVertex>())?;
-        let (words, end) = place(end, align_of::<u32>(), counts.words, size_of::<u32>())?;
-        (end <= isize::MAX as usize / 2).then_some(Layout {
-            params,
-            counts,
-            cells,
-            vertices,
-            sites,
-            clip,
-            words,
-            bytes: end,
-        })
-    })();
-    layout.ok_or(HIBI_ERROR_SIZE_OVERFLOW)
-}
+    unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
+        check_pointer(params)?;
+        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
+        let params = from_c(unsafe { &*params })?;
+        let memory = params.memory().map_err(skin_param_status)?;
+        Ok((params, memory))
+    }
 
-/// Builds a skin in `block` (checked: `layout.bytes` long, aligned to `BLOCK_ALIGN`).
-///
-/// # Safety
-/// `block` must be valid for writes of `layout.bytes` and outlive the skin.
-unsafe fn build(block: *mut u8, layout: Layout, origin: Origin) -> Result<*mut hibi_skin, hibi_status> {
-    let c = layout.counts;
-    // SAFETY: the layout places each array inside the block, aligned, without overlap.
-    let buffers = unsafe {
+    fn arrays((_, m): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
         SkinBuffers {
-            cells: array(block, layout.cells, c.cells),
-            vertices: array(block, layout.vertices, c.vertices),
-            sites: array(block, layout.sites, c.sites),
-            clip: array(block, layout.clip, c.clip),
-            words: array(block, layout.words, c.words),
+            cells: arena.take(m.cells),
+            vertices: arena.take(m.vertices),
+            sites: arena.take(m.sites),
+            clip: arena.take(m.clip),
+            words: arena.take(m.words),
         }
-    };
-    let skin = Skin::new(&layout.params, buffers).map_err(skin_status)?;
-    let ptr = block.cast::<hibi_skin>();
-    // SAFETY: the header fits at the block's start, aligned.
-    unsafe { ptr.write(hibi_skin { skin, origin }) };
-    Ok(ptr)
+    }
+
+    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_skin { skin: Skin::new(params, buffers).map_err(skin_status)?, origin })
+    }
+
+    fn origin(&self) -> Origin {
+        self.origin
+    }
 }
 
 /// The status of a core skin error.
@@ -410,12 +357,8 @@ pub unsafe extern "C" fn hibi_skin_params_preset(name: *const c_char, out: *mut 
 /// `params` must be NULL or readable; `size` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_memory_size(params: *const hibi_skin_params, size: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(size, layout.bytes) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::memory_size::<hibi_skin>(params, size) })
 }
 
 /// Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have.
@@ -433,22 +376,8 @@ pub extern "C" fn hibi_skin_memory_align() -> usize {
 /// `params` must be NULL or readable; `out` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_create(params: *const hibi_skin_params, out: *mut *mut hibi_skin) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        let (block, origin) = library_block(layout.bytes, BLOCK_ALIGN)?;
-        // SAFETY: a fresh block of the planned size and alignment.
-        match unsafe { build(block, layout, origin) } {
-            // SAFETY: checked above; the caller's contract.
-            Ok(skin) => unsafe { write_out(out, skin) },
-            Err(status) => {
-                // SAFETY: allocated above, never handed out.
-                unsafe { release_block(block, origin) };
-                Err(status)
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create(params, out) })
 }
 
 /// Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes aligned to
@@ -466,16 +395,8 @@ pub unsafe extern "C" fn hibi_skin_create_in(
     memory_len: usize,
     out: *mut *mut hibi_skin,
 ) -> hibi_status {
-    guard(|| {
-        check_pointer(out)?;
-        // SAFETY: the caller's contract.
-        let layout = unsafe { plan(params) }?;
-        let block = caller_block(memory, memory_len, layout.bytes, BLOCK_ALIGN)?;
-        // SAFETY: checked to hold the planned size, aligned; the caller's contract.
-        let skin = unsafe { build(block, layout, Origin::Caller) }?;
-        // SAFETY: checked above; the caller's contract.
-        unsafe { write_out(out, skin) }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
 }
 
 /// Destroys a skin; frees its memory if `hibi_skin_create` allocated it. NULL is ignored.
@@ -484,17 +405,8 @@ pub unsafe extern "C" fn hibi_skin_create_in(
 /// `skin` must be NULL or a live skin, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_destroy(skin: *mut hibi_skin) {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        if let Ok(live) = unsafe { object(skin) } {
-            let origin = live.origin;
-            // SAFETY: a live skin made by hibi_skin_create or hibi_skin_create_in.
-            unsafe {
-                skin.drop_in_place();
-                release_block(skin.cast(), origin);
-            }
-        }
-    })
+    // SAFETY: the caller's contract, passed on.
+    guard(|| unsafe { object::destroy(skin) })
 }
 
 /// An optional output layer: NULL with length 0 is "not wanted"; anything else is checked.

@@ -546,7 +546,7 @@ fn circumcentre(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> [f32; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mud::{Mud, MudParams};
+    use crate::mud::{Mud, MudBuffers, MudParams};
     extern crate std;
     use std::vec;
     use std::vec::Vec;
@@ -555,7 +555,7 @@ mod tests {
         let p = MudParams { topology: Topology::Irregular, boundary, columns, rows, seed, ..MudParams::default() };
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
-        let mud = Mud::new(&p, &mut s, &mut w).unwrap();
+        let mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
         check(mud.lattice());
     }
 

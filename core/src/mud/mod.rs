@@ -7,12 +7,12 @@
 //! traced through the mesh cells (Fig. 5), are the cracks.
 //!
 //! ```
-//! use hibi_core::mud::{Mud, MudParams};
+//! use hibi_core::mud::{Mud, MudBuffers, MudParams};
 //!
 //! let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
 //! let memory = params.memory().unwrap();
 //! let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-//! let mut mud = Mud::new(&params, &mut scalars, &mut words).unwrap();
+//! let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
 //! while !mud.step(100_000).finished {}
 //! let mut segments = vec![Default::default(); mud.segment_count()];
 //! mud.segments(&mut segments).unwrap();
@@ -126,6 +126,14 @@ impl MudParams {
     }
 }
 
+/// Caller memory for a run: at least [`MudParams::memory`] elements of each.
+pub struct MudBuffers<'a, S> {
+    /// At least [`MudMemory::scalars`] elements of the scalar type.
+    pub scalars: &'a mut [S],
+    /// At least [`MudMemory::words`] words.
+    pub words: &'a mut [u32],
+}
+
 /// Fixed-size storage for callers without a heap: `SCALARS` and `WORDS` come from
 /// [`memory_for`] (a `const fn`), e.g.
 /// `MudStorage<f32, { memory_for(..).unwrap().scalars }, { ... .words }>`.
@@ -144,7 +152,7 @@ impl<S: Scalar, const SCALARS: usize, const WORDS: usize> MudStorage<S, SCALARS,
 
     /// A run of `params` in this storage.
     pub fn mud(&mut self, params: &MudParams) -> Result<Mud<'_, S>, MudError> {
-        Mud::new(params, &mut self.scalars, &mut self.words)
+        Mud::new(params, MudBuffers { scalars: &mut self.scalars, words: &mut self.words })
     }
 }
 
@@ -261,7 +269,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Sets up a run of `params` in caller memory of at least [`MudParams::memory`] elements:
     /// draws every spring's break stretch and, for open edges, relaxes the boundary layer.
     /// Nothing is written to the buffers on failure.
-    pub fn new(params: &MudParams, scalars: &'a mut [S], words: &'a mut [u32]) -> Result<Self, MudError> {
+    pub fn new(params: &MudParams, buffers: MudBuffers<'a, S>) -> Result<Self, MudError> {
+        let MudBuffers { scalars, words } = buffers;
         let memory = params.memory()?;
         if scalars.len() < memory.scalars {
             return Err(MudError::BufferTooSmall { needed: memory.scalars });
@@ -517,14 +526,14 @@ mod tests {
         // of 32 springs; queue, flags and touched list per node.
         assert_eq!(m.words, 240 * 3 + 2 * 160 + 2 * 8 + 240);
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
-        assert!(Mud::new(&p, &mut s[..m.scalars - 1], &mut w).is_err());
+        assert!(Mud::new(&p, MudBuffers { scalars: &mut s[..m.scalars - 1], words: &mut w }).is_err());
         assert_eq!(
-            Mud::new(&p, &mut s, &mut w[..m.words - 1]).err(),
+            Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w[..m.words - 1] }).err(),
             Some(MudError::BufferTooSmall { needed: m.words })
         );
         // Nothing was written on failure.
         assert!(s.iter().all(|&x| x == 0.0) && w.iter().all(|&x| x == 0));
-        assert!(Mud::new(&p, &mut s, &mut w).is_ok());
+        assert!(Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).is_ok());
         let huge = MudParams { columns: u32::MAX, rows: u32::MAX - 1, ..MudParams::default() };
         assert_eq!(huge.memory(), Err(MudParamError::SizeOverflow));
     }
@@ -534,7 +543,7 @@ mod tests {
         let p = MudParams { columns: 12, rows: 12, topology: Topology::Square, ..MudParams::default() };
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
-        let mut mud = Mud::new(&p, &mut s, &mut w).unwrap();
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
         mud.trace();
         // Nothing is cut: one region, which wraps around the torus and has no outline.
         assert_eq!(mud.statistics().cells, 1);

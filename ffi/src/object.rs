@@ -1,0 +1,232 @@
+//! The one lifecycle of every C-held object (`*_memory_size`, `*_memory_align`, `*_create`,
+//! `*_create_in`, `*_destroy`), written once over the [`Object`] trait that the random
+//! source and the three models implement.
+//!
+//! An object lives in one block: its header (the Rust value) at the start, then the arrays it
+//! computes in, laid out by an [`Arena`]. The block is allocated by the library
+//! (`*_create`, freed by `*_destroy`) or handed in by the caller (`*_create_in`), as engines
+//! with their own allocators need.
+
+use core::ffi::c_void;
+use core::mem::{align_of, size_of};
+use std::alloc::{Layout, alloc, dealloc};
+
+use crate::guard::{check_pointer, object, write_out};
+use crate::status::{
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_OUT_OF_MEMORY,
+    HIBI_ERROR_SIZE_OVERFLOW, hibi_status,
+};
+
+/// Alignment of every object's block: enough for the header and every array element.
+pub(crate) const BLOCK_ALIGN: usize = 8;
+
+/// Who owns an object's block, recorded in the object so that `*_destroy` frees only what
+/// the library allocated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Origin {
+    /// Allocated by `*_create` with this size; `*_destroy` frees it.
+    Library {
+        /// Block size in bytes.
+        size: usize,
+    },
+    /// Placed in caller memory by `*_create_in`; `*_destroy` only drops it.
+    Caller,
+}
+
+/// Lays out the arrays of a block after its header. Measuring, it only counts the bytes;
+/// placing, it also hands out the arrays, each element set to its default.
+pub(crate) struct Arena {
+    /// The block, or null when measuring.
+    base: *mut u8,
+    /// Bytes laid out so far.
+    at: usize,
+    /// An array's size overflowed.
+    overflow: bool,
+}
+
+impl Arena {
+    /// Takes the next `n` elements of `T`.
+    pub(crate) fn take<T: Default>(&mut self, n: usize) -> &'static mut [T] {
+        const { assert!(align_of::<T>() <= BLOCK_ALIGN) };
+        let start = (self.at + align_of::<T>() - 1) & !(align_of::<T>() - 1);
+        match n.checked_mul(size_of::<T>()).and_then(|bytes| bytes.checked_add(start)) {
+            Some(end) if end <= isize::MAX as usize / 2 => self.at = end,
+            _ => {
+                self.overflow = true;
+                return &mut [];
+            }
+        }
+        if self.base.is_null() {
+            return &mut [];
+        }
+        // SAFETY: placing, the block was checked to hold every byte the measuring pass counted
+        // (the same layout); the range is aligned (the block is BLOCK_ALIGN-aligned), disjoint
+        // from every other array and the header, and lives as long as the object (the
+        // callers' contract). Every element is written before the slice is made.
+        unsafe {
+            let first = self.base.add(start).cast::<T>();
+            for i in 0..n {
+                first.add(i).write(T::default());
+            }
+            core::slice::from_raw_parts_mut(first, n)
+        }
+    }
+}
+
+/// An object C holds: how its parameters are checked, what arrays it needs and how it is
+/// made from them.
+pub(crate) trait Object: Sized + 'static {
+    /// What `*_create` takes besides the out-pointer (a params pointer, or a seed and stream).
+    type Input: Copy;
+    /// The checked parameters.
+    type Plan;
+    /// The arrays it computes in.
+    type Arrays;
+
+    /// Checks the input; every parameter error is reported here.
+    ///
+    /// # Safety
+    /// Pointers in the input must be NULL or readable.
+    unsafe fn plan(input: Self::Input) -> Result<Self::Plan, hibi_status>;
+
+    /// Takes the arrays the plan needs from `arena`, in one fixed order.
+    fn arrays(plan: &Self::Plan, arena: &mut Arena) -> Self::Arrays;
+
+    /// Makes the object from its arrays.
+    fn make(plan: &Self::Plan, arrays: Self::Arrays, origin: Origin) -> Result<Self, hibi_status>;
+
+    /// Where its block came from.
+    fn origin(&self) -> Origin;
+}
+
+/// Bytes of the header before the arrays.
+const fn header<T>() -> usize {
+    (size_of::<T>() + BLOCK_ALIGN - 1) & !(BLOCK_ALIGN - 1)
+}
+
+/// The checked input and the size of its block.
+///
+/// # Safety
+/// As [`Object::plan`].
+unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_status> {
+    const { assert!(align_of::<T>() <= BLOCK_ALIGN) };
+    // SAFETY: the caller's contract, passed on.
+    let plan = unsafe { T::plan(input) }?;
+    let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false };
+    T::arrays(&plan, &mut arena);
+    if arena.overflow {
+        return Err(HIBI_ERROR_SIZE_OVERFLOW);
+    }
+    Ok((plan, arena.at))
+}
+
+/// Makes the object in `block` (checked to hold the plan's `size` bytes, aligned).
+///
+/// # Safety
+/// `block` must be valid for writes of `size` bytes and outlive the object.
+unsafe fn place<T: Object>(block: *mut u8, plan: &T::Plan, origin: Origin) -> Result<*mut T, hibi_status> {
+    let mut arena = Arena { base: block, at: header::<T>(), overflow: false };
+    let arrays = T::arrays(plan, &mut arena);
+    let object = T::make(plan, arrays, origin)?;
+    let ptr = block.cast::<T>();
+    // SAFETY: the header fits at the block's start (the plan counted it), aligned.
+    unsafe { ptr.write(object) };
+    Ok(ptr)
+}
+
+/// The bytes an object of this input needs in caller memory.
+///
+/// # Safety
+/// As [`Object::plan`].
+pub(crate) unsafe fn block_size<T: Object>(input: T::Input) -> Result<usize, hibi_status> {
+    // SAFETY: the caller's contract, passed on.
+    unsafe { plan::<T>(input) }.map(|(_, bytes)| bytes)
+}
+
+/// `*_memory_size`: writes [`block_size`] to `*size`.
+///
+/// # Safety
+/// As [`Object::plan`]; `size` NULL or writable.
+pub(crate) unsafe fn memory_size<T: Object>(input: T::Input, size: *mut usize) -> Result<(), hibi_status> {
+    check_pointer(size)?;
+    // SAFETY: the caller's contract, passed on.
+    let bytes = unsafe { block_size::<T>(input) }?;
+    // SAFETY: checked; the caller's contract.
+    unsafe { write_out(size, bytes) }
+}
+
+/// `*_create`: the object in library memory.
+///
+/// # Safety
+/// As [`Object::plan`]; `out` NULL or writable.
+pub(crate) unsafe fn create<T: Object>(input: T::Input, out: *mut *mut T) -> Result<(), hibi_status> {
+    check_pointer(out)?;
+    // SAFETY: the caller's contract, passed on.
+    let (plan, size) = unsafe { plan::<T>(input) }?;
+    let layout = Layout::from_size_align(size, BLOCK_ALIGN).map_err(|_| HIBI_ERROR_SIZE_OVERFLOW)?;
+    // SAFETY: the layout has a non-zero size (the header is not empty).
+    let block = unsafe { alloc(layout) };
+    if block.is_null() {
+        return Err(HIBI_ERROR_OUT_OF_MEMORY);
+    }
+    // SAFETY: a fresh block of the planned size and alignment.
+    match unsafe { place::<T>(block, &plan, Origin::Library { size }) } {
+        // SAFETY: checked above; the caller's contract.
+        Ok(object) => unsafe { write_out(out, object) },
+        Err(status) => {
+            // SAFETY: allocated above with this layout, never handed out.
+            unsafe { dealloc(block, layout) };
+            Err(status)
+        }
+    }
+}
+
+/// `*_create_in`: the object in caller memory of `memory_len` bytes.
+///
+/// # Safety
+/// As [`Object::plan`]; `memory` NULL or writable for `memory_len` bytes and untouched while
+/// the object lives; `out` NULL or writable.
+pub(crate) unsafe fn create_in<T: Object>(
+    input: T::Input,
+    memory: *mut c_void,
+    memory_len: usize,
+    out: *mut *mut T,
+) -> Result<(), hibi_status> {
+    check_pointer(out)?;
+    // SAFETY: the caller's contract, passed on.
+    let (plan, size) = unsafe { plan::<T>(input) }?;
+    let block = memory.cast::<u8>();
+    if block.is_null() {
+        return Err(HIBI_ERROR_NULL_POINTER);
+    }
+    if block.align_offset(BLOCK_ALIGN) != 0 {
+        return Err(HIBI_ERROR_MISALIGNED);
+    }
+    if memory_len < size {
+        return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
+    }
+    // SAFETY: checked to hold the planned size, aligned; the caller's contract.
+    let object = unsafe { place::<T>(block, &plan, Origin::Caller) }?;
+    // SAFETY: checked above; the caller's contract.
+    unsafe { write_out(out, object) }
+}
+
+/// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is
+/// ignored.
+///
+/// # Safety
+/// `ptr` must be NULL or a live object made by [`create`] or [`create_in`], not used afterwards.
+pub(crate) unsafe fn destroy<T: Object>(ptr: *mut T) {
+    // SAFETY: the caller's contract.
+    if let Ok(live) = unsafe { object(ptr) } {
+        let origin = live.origin();
+        // SAFETY: a live object at the start of its block; dropped once, then its block freed
+        // with the layout it was allocated with.
+        unsafe {
+            ptr.drop_in_place();
+            if let Origin::Library { size } = origin {
+                dealloc(ptr.cast(), Layout::from_size_align_unchecked(size, BLOCK_ALIGN));
+            }
+        }
+    }
+}
