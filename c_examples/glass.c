@@ -101,7 +101,7 @@ int main(int argc, char **argv) {
     }
     printf("fragments: %lu, holes: %lu, points: %lu, covering %.1f of %.1f square pixels\n",
            (unsigned long)(ring_count - holes), (unsigned long)holes, (unsigned long)point_count, area,
-           (double)params.size[0] * params.size[1]);
+           (double)params.width * params.height);
     free(rings);
     free(points);
 

@@ -181,13 +181,13 @@ typedef struct hibi_glass_params {
    */
   uint32_t cookie;
   /**
-   * `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
+   * Plate width [px] (default 640).
    */
-  uint32_t spread;
+  float width;
   /**
-   * Plate width and height [px] (default 640 × 640).
+   * Plate height [px] (default 640).
    */
-  float size[2];
+  float height;
   /**
    * The first impact point (default the centre).
    */
@@ -205,25 +205,49 @@ typedef struct hibi_glass_params {
    */
   float ring_threshold;
   /**
-   * e, f in N = floor(e·M + f) (paper: 0.0606, 3.293).
+   * e in the number of large cracks N = floor(e·M + f) (paper: 0.0606).
    */
-  float large_count[2];
+  float large_slope;
   /**
-   * a, b in R = floor(a·M + b) (0.05, 0.5).
+   * f in N = floor(e·M + f) (paper: 3.293).
    */
-  float ring_count[2];
+  float large_offset;
   /**
-   * g, h in d_ave = g·M + h (paper: 0.470, 13.90).
+   * a in the number of ring start points R = floor(a·M + b) (0.05).
    */
-  float ring_radius[2];
+  float ring_slope;
   /**
-   * V1_ave, V2_ave, V3_ave [px per step] (default 40, 10, 10).
+   * b in R = floor(a·M + b) (0.5).
    */
-  float speeds[3];
+  float ring_offset;
+  /**
+   * g in the mean ring radius d_ave = g·M + h (paper: 0.470).
+   */
+  float ring_radius_slope;
+  /**
+   * h in d_ave = g·M + h [px] (paper: 13.90).
+   */
+  float ring_radius_offset;
+  /**
+   * V1_ave, the large cracks' mean speed [px per step] (default 40).
+   */
+  float large_speed;
+  /**
+   * V2_ave, the other radial cracks' mean speed (default 10).
+   */
+  float radial_speed;
+  /**
+   * V3_ave, the ring cracks' mean speed (default 10).
+   */
+  float ring_speed;
   /**
    * z of Rand(x) (paper: 0.3).
    */
   float spread_ratio;
+  /**
+   * `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
+   */
+  uint32_t spread;
   /**
    * θ_th, the largest turn per update (at most 10 px) [radians] (paper: 30°).
    */
@@ -241,9 +265,13 @@ typedef struct hibi_glass_params {
    */
   float sector_radius;
   /**
-   * k1 of F1, k2 of F2 [px²] (default 400, 400).
+   * k1 of F1 = k1/r², tips pushing apart [px²] (default 400).
    */
-  float forces[2];
+  float tip_repulsion;
+  /**
+   * k2 of F2 = k2/d², the pull to meet a crack or edge at a right angle [px²] (default 400).
+   */
+  float crack_attraction;
   /**
    * Spread of F3's direction per 10 px of growth [radians] (default 22°).
    */
@@ -253,11 +281,11 @@ typedef struct hibi_glass_params {
    */
   float ring_adherence;
   /**
-   * Most cracks and most vertices the plate holds (default 512, 16384).
+   * Most cracks the plate holds (default 512).
    */
   uint32_t max_cracks;
   /**
-   * See `max_cracks`.
+   * Most crack vertices the plate holds (default 16384).
    */
   uint32_t max_vertices;
 } hibi_glass_params;

@@ -15,17 +15,17 @@
 use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
-use hibi_core::Spread;
 use hibi_core::glass::{
     CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassMemory, GlassParams, GlassRender, preset,
 };
 
+use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_ENUM,
-    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_UNKNOWN_PRESET,
-    HIBI_ERROR_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
+    HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED,
+    HIBI_ERROR_GLASS_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
 };
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -45,10 +45,10 @@ const PARAMS_COOKIE: u32 = 0x474C_5331;
 pub struct hibi_glass_params {
     /// Set by `hibi_glass_params_default`; leave it alone.
     pub cookie: u32,
-    /// `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
-    pub spread: u32,
-    /// Plate width and height [px] (default 640 × 640).
-    pub size: [f32; 2],
+    /// Plate width [px] (default 640).
+    pub width: f32,
+    /// Plate height [px] (default 640).
+    pub height: f32,
     /// The first impact point (default the centre).
     pub impact: [f32; 2],
     /// Seed of every random draw.
@@ -57,16 +57,28 @@ pub struct hibi_glass_params {
     pub radial_mean: f32,
     /// A: rings appear when M > A (paper: 70).
     pub ring_threshold: f32,
-    /// e, f in N = floor(e·M + f) (paper: 0.0606, 3.293).
-    pub large_count: [f32; 2],
-    /// a, b in R = floor(a·M + b) (0.05, 0.5).
-    pub ring_count: [f32; 2],
-    /// g, h in d_ave = g·M + h (paper: 0.470, 13.90).
-    pub ring_radius: [f32; 2],
-    /// V1_ave, V2_ave, V3_ave [px per step] (default 40, 10, 10).
-    pub speeds: [f32; 3],
+    /// e in the number of large cracks N = floor(e·M + f) (paper: 0.0606).
+    pub large_slope: f32,
+    /// f in N = floor(e·M + f) (paper: 3.293).
+    pub large_offset: f32,
+    /// a in the number of ring start points R = floor(a·M + b) (0.05).
+    pub ring_slope: f32,
+    /// b in R = floor(a·M + b) (0.5).
+    pub ring_offset: f32,
+    /// g in the mean ring radius d_ave = g·M + h (paper: 0.470).
+    pub ring_radius_slope: f32,
+    /// h in d_ave = g·M + h [px] (paper: 13.90).
+    pub ring_radius_offset: f32,
+    /// V1_ave, the large cracks' mean speed [px per step] (default 40).
+    pub large_speed: f32,
+    /// V2_ave, the other radial cracks' mean speed (default 10).
+    pub radial_speed: f32,
+    /// V3_ave, the ring cracks' mean speed (default 10).
+    pub ring_speed: f32,
     /// z of Rand(x) (paper: 0.3).
     pub spread_ratio: f32,
+    /// `HIBI_SPREAD_NORMAL` (default) or `HIBI_SPREAD_UNIFORM`: the shape of Rand(x).
+    pub spread: u32,
     /// θ_th, the largest turn per update (at most 10 px) [radians] (paper: 30°).
     pub turn_limit: f32,
     /// T in weight(t) = 1 − exp(−t/T) (paper: 10).
@@ -75,15 +87,17 @@ pub struct hibi_glass_params {
     pub sector_angle: f32,
     /// B, the sector radius [px] (paper: 50).
     pub sector_radius: f32,
-    /// k1 of F1, k2 of F2 [px²] (default 400, 400).
-    pub forces: [f32; 2],
+    /// k1 of F1 = k1/r², tips pushing apart [px²] (default 400).
+    pub tip_repulsion: f32,
+    /// k2 of F2 = k2/d², the pull to meet a crack or edge at a right angle [px²] (default 400).
+    pub crack_attraction: f32,
     /// Spread of F3's direction per 10 px of growth [radians] (default 22°).
     pub wander: f32,
     /// How hard ring cracks keep to their circle (default 2).
     pub ring_adherence: f32,
-    /// Most cracks and most vertices the plate holds (default 512, 16384).
+    /// Most cracks the plate holds (default 512).
     pub max_cracks: u32,
-    /// See `max_cracks`.
+    /// Most crack vertices the plate holds (default 16384).
     pub max_vertices: u32,
 }
 
@@ -182,72 +196,25 @@ pub struct hibi_glass {
     origin: Origin,
 }
 
+convert!(hibi_glass_params <=> GlassParams, cookie: PARAMS_COOKIE {
+    width, height, impact, seed, radial_mean, ring_threshold, large_slope, large_offset, ring_slope, ring_offset,
+    ring_radius_slope, ring_radius_offset, large_speed, radial_speed, ring_speed, spread_ratio, spread, turn_limit,
+    turn_delay, sector_angle, sector_radius, tip_repulsion, crack_attraction, wander, ring_adherence, max_cracks,
+    max_vertices,
+});
+convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width });
+
 /// The C view of core parameters.
 fn to_c(p: &GlassParams) -> hibi_glass_params {
-    hibi_glass_params {
-        cookie: PARAMS_COOKIE,
-        spread: p.spread as u32,
-        size: [p.width, p.height],
-        impact: p.impact,
-        seed: p.seed,
-        radial_mean: p.radial_mean,
-        ring_threshold: p.ring_threshold,
-        large_count: [p.large_slope, p.large_offset],
-        ring_count: [p.ring_slope, p.ring_offset],
-        ring_radius: [p.ring_radius_slope, p.ring_radius_offset],
-        speeds: [p.large_speed, p.radial_speed, p.ring_speed],
-        spread_ratio: p.spread_ratio,
-        turn_limit: p.turn_limit,
-        turn_delay: p.turn_delay,
-        sector_angle: p.sector_angle,
-        sector_radius: p.sector_radius,
-        forces: [p.tip_repulsion, p.crack_attraction],
-        wander: p.wander,
-        ring_adherence: p.ring_adherence,
-        max_cracks: p.max_cracks,
-        max_vertices: p.max_vertices,
-    }
+    Field::from_core(p)
 }
 
-/// The core parameters of a C params struct: cookie, enum, fields.
+/// The core parameters of a C params struct: cookie, enumeration, fields.
 fn from_c(p: &hibi_glass_params) -> Result<GlassParams, hibi_status> {
     if p.cookie != PARAMS_COOKIE {
         return Err(HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED);
     }
-    let spread = match p.spread {
-        0 => Spread::Uniform,
-        1 => Spread::Normal,
-        _ => return Err(HIBI_ERROR_GLASS_ENUM),
-    };
-    Ok(GlassParams {
-        width: p.size[0],
-        height: p.size[1],
-        impact: p.impact,
-        seed: p.seed,
-        radial_mean: p.radial_mean,
-        ring_threshold: p.ring_threshold,
-        large_slope: p.large_count[0],
-        large_offset: p.large_count[1],
-        ring_slope: p.ring_count[0],
-        ring_offset: p.ring_count[1],
-        ring_radius_slope: p.ring_radius[0],
-        ring_radius_offset: p.ring_radius[1],
-        large_speed: p.speeds[0],
-        radial_speed: p.speeds[1],
-        ring_speed: p.speeds[2],
-        spread_ratio: p.spread_ratio,
-        spread,
-        turn_limit: p.turn_limit,
-        turn_delay: p.turn_delay,
-        sector_angle: p.sector_angle,
-        sector_radius: p.sector_radius,
-        tip_repulsion: p.forces[0],
-        crack_attraction: p.forces[1],
-        wander: p.wander,
-        ring_adherence: p.ring_adherence,
-        max_cracks: p.max_cracks,
-        max_vertices: p.max_vertices,
-    })
+    p.to_core().ok_or(HIBI_ERROR_GLASS_ENUM)
 }
 
 impl Object for hibi_glass {
@@ -615,10 +582,7 @@ pub unsafe extern "C" fn hibi_glass_fragments(
 /// Default drawing: 640 × 640, 1.2-pixel lines.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_glass_render_params_default() -> hibi_glass_render_params {
-    guard(|| {
-        let r = GlassRender::default();
-        hibi_glass_render_params { width: r.width, height: r.height, line_width: r.line_width }
-    })
+    guard(|| hibi_glass_render_params::from_core(&GlassRender::default()))
 }
 
 /// Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
@@ -641,8 +605,7 @@ pub unsafe extern "C" fn hibi_glass_render(
         let glass = unsafe { object_ref(glass) }?;
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let r = unsafe { *render };
-        let render = GlassRender { width: r.width, height: r.height, line_width: r.line_width };
+        let render: GlassRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         let drawn = match layer {
             // SAFETY (both): the caller's contract on `pixels`.
             HIBI_GLASS_LAYER_MASK => {
@@ -687,8 +650,8 @@ mod tests {
         let cases: [(Spoil, hibi_status); 6] = [
             (|p| p.cookie = 1, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED),
             (|p| p.spread = 5, HIBI_ERROR_GLASS_ENUM),
-            (|p| p.size[0] = f32::NAN, HIBI_ERROR_GLASS_SIZE),
-            (|p| p.speeds[2] = 0.0, HIBI_ERROR_GLASS_SPEED),
+            (|p| p.width = f32::NAN, HIBI_ERROR_GLASS_SIZE),
+            (|p| p.ring_speed = 0.0, HIBI_ERROR_GLASS_SPEED),
             (|p| p.spread_ratio = 1.0, HIBI_ERROR_GLASS_SPREAD_RATIO),
             (|p| p.max_vertices = 1, HIBI_ERROR_GLASS_CAPACITY_PARAMS),
         ];

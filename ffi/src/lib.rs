@@ -18,6 +18,7 @@
 
 use core::ffi::c_char;
 
+mod fields;
 pub mod glass;
 mod guard;
 pub mod mud;

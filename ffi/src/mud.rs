@@ -27,11 +27,12 @@ use hibi_core::mud::{
 };
 use hibi_core::raster::RasterError;
 
+use crate::fields::{Field, convert, enumeration};
 use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
 use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
+    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
     HIBI_ERROR_MUD_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status, raster_status,
 };
 
@@ -337,43 +338,24 @@ pub struct hibi_mud {
     origin: Origin,
 }
 
-fn enumeration<T, const N: usize>(value: u32, choices: [T; N]) -> Result<T, hibi_status> {
-    choices.into_iter().nth(value as usize).ok_or(HIBI_ERROR_MUD_ENUM)
-}
+enumeration!(Topology: Topology::Square, Topology::Hexagonal, Topology::Irregular);
+enumeration!(Boundary: Boundary::Open, Boundary::Periodic);
+enumeration!(Solver: Solver::Explicit, Solver::QuasiStatic);
+enumeration!(Drive: Drive::Shrink, Drive::Growth);
+convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
+    topology, boundary, solver, drive, columns, rows, seed, layer_thickness, element_size, long_step, short_step,
+    shrink_ratio, displacement_tolerance, damping_factor, density, young_modulus, shear_modulus, break_stretch_mean,
+    break_stretch_spread, break_stretch_size_exponent, anisotropy_direction, anisotropy_ratio,
+    stiffness_anisotropy_ratio, target_shrink, target_crack_density,
+});
+convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset });
 
-/// The core parameters of a C params struct: cookie, enums, fields.
+/// The core parameters of a C params struct: cookie, enumerations, fields.
 fn core_params(p: &hibi_mud_params) -> Result<MudParams, hibi_status> {
     if p.cookie != PARAMS_COOKIE {
         return Err(HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED);
     }
-    let params = MudParams {
-        topology: enumeration(p.topology, [Topology::Square, Topology::Hexagonal, Topology::Irregular])?,
-        boundary: enumeration(p.boundary, [Boundary::Open, Boundary::Periodic])?,
-        solver: enumeration(p.solver, [Solver::Explicit, Solver::QuasiStatic])?,
-        drive: enumeration(p.drive, [Drive::Shrink, Drive::Growth])?,
-        columns: p.columns,
-        rows: p.rows,
-        seed: p.seed,
-        layer_thickness: p.layer_thickness,
-        element_size: p.element_size,
-        long_step: p.long_step,
-        short_step: p.short_step,
-        shrink_ratio: p.shrink_ratio,
-        displacement_tolerance: p.displacement_tolerance,
-        damping_factor: p.damping_factor,
-        density: p.density,
-        young_modulus: p.young_modulus,
-        shear_modulus: p.shear_modulus,
-        break_stretch_mean: p.break_stretch_mean,
-        break_stretch_spread: p.break_stretch_spread,
-        break_stretch_size_exponent: p.break_stretch_size_exponent,
-        anisotropy_direction: p.anisotropy_direction,
-        anisotropy_ratio: p.anisotropy_ratio,
-        stiffness_anisotropy_ratio: p.stiffness_anisotropy_ratio,
-        target_shrink: p.target_shrink,
-        target_crack_density: p.target_crack_density,
-    };
-    Ok(params)
+    p.to_core().ok_or(HIBI_ERROR_MUD_ENUM)
 }
 
 impl Object for hibi_mud {
@@ -427,34 +409,7 @@ pub unsafe extern "C" fn hibi_mud_params_preset(name: *const c_char, out: *mut h
 
 /// Core parameters as the C struct, with the cookie set.
 fn to_c(p: &MudParams) -> hibi_mud_params {
-    hibi_mud_params {
-        cookie: PARAMS_COOKIE,
-        topology: p.topology as u32,
-        boundary: p.boundary as u32,
-        solver: p.solver as u32,
-        drive: p.drive as u32,
-        columns: p.columns,
-        rows: p.rows,
-        seed: p.seed,
-        layer_thickness: p.layer_thickness,
-        element_size: p.element_size,
-        long_step: p.long_step,
-        short_step: p.short_step,
-        shrink_ratio: p.shrink_ratio,
-        displacement_tolerance: p.displacement_tolerance,
-        damping_factor: p.damping_factor,
-        density: p.density,
-        young_modulus: p.young_modulus,
-        shear_modulus: p.shear_modulus,
-        break_stretch_mean: p.break_stretch_mean,
-        break_stretch_spread: p.break_stretch_spread,
-        break_stretch_size_exponent: p.break_stretch_size_exponent,
-        anisotropy_direction: p.anisotropy_direction,
-        anisotropy_ratio: p.anisotropy_ratio,
-        stiffness_anisotropy_ratio: p.stiffness_anisotropy_ratio,
-        target_shrink: p.target_shrink,
-        target_crack_density: p.target_crack_density,
-    }
+    Field::from_core(p)
 }
 
 /// Checks `params` and writes the bytes a run needs in caller memory (for
@@ -779,17 +734,7 @@ pub unsafe extern "C" fn hibi_mud_cells(
 /// Default drawing: 512 × 512, true crack widths, 1-pixel minimum stroke, groove depth 1.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_mud_render_params_default() -> hibi_mud_render_params {
-    guard(|| {
-        let r = MudRender::default();
-        hibi_mud_render_params {
-            width: r.width,
-            height: r.height,
-            width_scale: r.width_scale,
-            min_width: r.min_width,
-            groove_depth: r.groove_depth,
-            offset: r.offset,
-        }
-    })
+    guard(|| hibi_mud_render_params::from_core(&MudRender::default()))
 }
 
 /// Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
@@ -812,15 +757,7 @@ pub unsafe extern "C" fn hibi_mud_render(
         let mud = unsafe { object_ref(mud) }?;
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let r = unsafe { *render };
-        let render = MudRender {
-            width: r.width,
-            height: r.height,
-            width_scale: r.width_scale,
-            min_width: r.min_width,
-            groove_depth: r.groove_depth,
-            offset: r.offset,
-        };
+        let render: MudRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         let drawn: Result<(), RasterError> = match layer {
             // SAFETY (all three): the caller's contract on `pixels`.
             HIBI_MUD_LAYER_MASK => mud.mud.render_mask(&render, unsafe { buffer(pixels.cast::<u8>(), pixels_len) }?),

@@ -18,17 +18,17 @@
 use core::ffi::{c_char, c_void};
 use core::mem::size_of;
 
-use hibi_core::Spread;
 use hibi_core::skin::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams,
     SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, preset, shade,
 };
 
+use crate::fields::{Field, convert, enumeration};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX, HIBI_ERROR_SKIN_ENUM,
-    HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
+    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
+    HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
     HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW, HIBI_ERROR_SKIN_SHADE_RIDGE,
     HIBI_ERROR_SKIN_SHADE_SPECULAR, HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
 };
@@ -185,7 +185,7 @@ impl Outcome for hibi_skin_shade_params {
     }
     /// No light, which shading rejects.
     fn on_panic() -> Self {
-        hibi_skin_shade_params { light: [0.0; 3], ..shade_to_c(&ShadeParams::default()) }
+        hibi_skin_shade_params { light: [0.0; 3], ..hibi_skin_shade_params::from_core(&ShadeParams::default()) }
     }
 }
 
@@ -195,33 +195,19 @@ pub struct hibi_skin {
     origin: Origin,
 }
 
-/// The C view of a core level.
-fn level_to_c(l: &LevelParams) -> hibi_skin_level {
-    hibi_skin_level {
-        spacing: l.spacing,
-        perturbation: l.perturbation,
-        perturbation_decay: l.perturbation_decay,
-        perturbation_depth: l.perturbation_depth,
-        stretch: l.stretch,
-        profile: hibi_skin_profile { segments: l.profile.segments, points: l.profile.points },
-        roundness: l.roundness,
-    }
-}
+enumeration!(SiteLayout: SiteLayout::Triangular, SiteLayout::Square, SiteLayout::Random);
+convert!(hibi_skin_profile <=> Profile { segments, points });
+convert!(hibi_skin_level <=> LevelParams {
+    spacing, perturbation, perturbation_decay, perturbation_depth, stretch, profile, roundness,
+});
+convert!(hibi_skin_params <=> SkinParams, cookie: PARAMS_COOKIE {
+    layout, jitter, periodic, width, height, seed, jitter_ratio, levels, level,
+});
+convert!(hibi_skin_shade_params <=> ShadeParams { light, ridge, furrow, ambient, specular });
 
 /// The C view of core parameters.
 fn to_c(p: &SkinParams) -> hibi_skin_params {
-    hibi_skin_params {
-        cookie: PARAMS_COOKIE,
-        layout: p.layout as u32,
-        jitter: p.jitter as u32,
-        periodic: u32::from(p.periodic),
-        width: p.width,
-        height: p.height,
-        seed: p.seed,
-        jitter_ratio: p.jitter_ratio,
-        levels: p.levels,
-        level: p.level.map(|l| level_to_c(&l)),
-    }
+    Field::from_core(p)
 }
 
 /// The core parameters of a C params struct: cookie, enumerations, fields (the fields are
@@ -230,52 +216,7 @@ fn from_c(p: &hibi_skin_params) -> Result<SkinParams, hibi_status> {
     if p.cookie != PARAMS_COOKIE {
         return Err(HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED);
     }
-    let layout = match p.layout {
-        HIBI_SKIN_LAYOUT_TRIANGULAR => SiteLayout::Triangular,
-        HIBI_SKIN_LAYOUT_SQUARE => SiteLayout::Square,
-        HIBI_SKIN_LAYOUT_RANDOM => SiteLayout::Random,
-        _ => return Err(HIBI_ERROR_SKIN_ENUM),
-    };
-    let jitter = match p.jitter {
-        crate::rng::HIBI_SPREAD_UNIFORM => Spread::Uniform,
-        crate::rng::HIBI_SPREAD_NORMAL => Spread::Normal,
-        _ => return Err(HIBI_ERROR_SKIN_ENUM),
-    };
-    let periodic = match p.periodic {
-        0 => false,
-        1 => true,
-        _ => return Err(HIBI_ERROR_SKIN_ENUM),
-    };
-    Ok(SkinParams {
-        width: p.width,
-        height: p.height,
-        seed: p.seed,
-        layout,
-        jitter,
-        jitter_ratio: p.jitter_ratio,
-        periodic,
-        levels: p.levels,
-        level: p.level.map(|l| LevelParams {
-            spacing: l.spacing,
-            perturbation: l.perturbation,
-            perturbation_decay: l.perturbation_decay,
-            perturbation_depth: l.perturbation_depth,
-            stretch: l.stretch,
-            profile: Profile { segments: l.profile.segments, points: l.profile.points },
-            roundness: l.roundness,
-        }),
-    })
-}
-
-/// The C view of core shading parameters.
-fn shade_to_c(s: &ShadeParams) -> hibi_skin_shade_params {
-    hibi_skin_shade_params {
-        light: s.light,
-        ridge: s.ridge,
-        furrow: s.furrow,
-        ambient: s.ambient,
-        specular: s.specular,
-    }
+    p.to_core().ok_or(HIBI_ERROR_SKIN_ENUM)
 }
 
 impl Object for hibi_skin {
@@ -468,7 +409,7 @@ pub unsafe extern "C" fn hibi_skin_render(
 /// The default light (from the upper left) and palette (a light skin tone).
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_skin_shade_params_default() -> hibi_skin_shade_params {
-    guard(|| shade_to_c(&ShadeParams::default()))
+    guard(|| hibi_skin_shade_params::from_core(&ShadeParams::default()))
 }
 
 /// A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
@@ -495,9 +436,7 @@ pub unsafe extern "C" fn hibi_skin_shade(
     guard(|| {
         check_pointer(params)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let p = unsafe { *params };
-        let params =
-            ShadeParams { light: p.light, ridge: p.ridge, furrow: p.furrow, ambient: p.ambient, specular: p.specular };
+        let params: ShadeParams = unsafe { &*params }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`.
         let (height, normal, rgb) = unsafe {
             (
