@@ -369,11 +369,12 @@ typedef struct hibi_glass_crack {
 } hibi_glass_crack;
 
 /**
- * A polyline point: position [px] and the step at which the crack front passed it.
+ * A point of a crack's polyline: its position and the time (steps since its impact) the
+ * crack front passed it. In C: `hibi_glass_point`.
  */
 typedef struct hibi_glass_point {
   /**
-   * Position (x, y).
+   * Position (x, y) [px].
    */
   float at[2];
   /**
@@ -383,14 +384,14 @@ typedef struct hibi_glass_point {
 } hibi_glass_point;
 
 /**
- * One ring of a fragment's outline (glass) or of a cell's (mud, as `hibi_mud_cell_ring`):
- * `point_count` points from `first_point` on in the point buffer, counter-clockwise with y up
- * for an outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of`
- * names the outer ring it lies in).
+ * One ring of a fragment's outline (glass) or of a cell's (mud): `point_count` points from
+ * `first_point` on in the point buffer, counter-clockwise with y up for an outer ring
+ * (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the outer
+ * ring it lies in). In C: `hibi_glass_fragment_ring` and `hibi_mud_cell_ring`.
  */
 typedef struct hibi_glass_fragment_ring {
   /**
-   * Signed area: [px²] for glass, [lattice units²] for mud.
+   * Signed area: px² for glass, lattice units² for mud.
    */
   double area;
   /**
@@ -402,7 +403,8 @@ typedef struct hibi_glass_fragment_ring {
    */
   uint32_t point_count;
   /**
-   * For a hole, the index of the outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` otherwise.
+   * For a hole, the index of the outer ring it lies in; `u32::MAX` otherwise
+   * (`HIBI_GLASS_NOT_A_HOLE` in C).
    */
   uint32_t hole_of;
 } hibi_glass_fragment_ring;
@@ -584,8 +586,11 @@ typedef struct hibi_mud_progress {
 } hibi_mud_progress;
 
 /**
- * One straight piece of crack, in lattice units (× element_size for cm). Each end carries
- * the crack width and break time (long steps) of the spring it sits on.
+ * One straight piece of crack, in lattice units (multiply by `element_size` for cm), on
+ * the deformed surface. Each end carries the width and break time of the spring it sits on
+ * (an end at a cell centroid carries those of the spring the segment comes from). On
+ * periodic lattices, segments of cells on the far edges reach past the domain by less than
+ * one spacing: draw them wrapped. In C: `hibi_mud_segment`.
  */
 typedef struct hibi_mud_segment {
   /**
@@ -597,11 +602,11 @@ typedef struct hibi_mud_segment {
    */
   float end[2];
   /**
-   * Width at each end.
+   * Crack width at each end: current length − rest length of the broken spring.
    */
   float width[2];
   /**
-   * Break time at each end.
+   * Break time at each end, in long steps T.
    */
   float time[2];
 } hibi_mud_segment;
@@ -650,11 +655,12 @@ typedef struct hibi_mud_statistics {
 } hibi_mud_statistics;
 
 /**
- * A vertex of the crack network: a junction, or an end of a crack.
+ * A junction or an end of the crack network. In C: `hibi_mud_network_vertex`.
  */
 typedef struct hibi_mud_network_vertex {
   /**
-   * Position (x, y) on the deformed surface, lattice units (× element_size for cm).
+   * Position (x, y) on the deformed surface, lattice units (multiply by `element_size`
+   * for cm).
    */
   float at[2];
   /**
@@ -668,16 +674,17 @@ typedef struct hibi_mud_network_vertex {
 } hibi_mud_network_vertex;
 
 /**
- * An edge of the crack network: a crack between two vertices, as the polyline of
- * `point_count` points from `first_point` on in the point buffer.
+ * A crack between two vertices: the polyline of `point_count` points from `first_point` on
+ * in the point buffer. In C: `hibi_mud_network_edge`.
  */
 typedef struct hibi_mud_network_edge {
   /**
-   * The vertex it starts at, or `HIBI_MUD_NO_VERTEX` for a closed crack with no junction.
+   * The vertex it starts at, or `NO_VERTEX` (C: `HIBI_MUD_NO_VERTEX`) for a closed crack
+   * with no junction.
    */
   uint32_t from;
   /**
-   * The vertex it ends at, or `HIBI_MUD_NO_VERTEX`.
+   * The vertex it ends at, or `NO_VERTEX`.
    */
   uint32_t to;
   /**
@@ -691,20 +698,21 @@ typedef struct hibi_mud_network_edge {
 } hibi_mud_network_edge;
 
 /**
- * A point of a network edge's polyline.
+ * A point of a network edge's polyline. In C: `hibi_mud_network_point`.
  */
 typedef struct hibi_mud_network_point {
   /**
-   * Position (x, y), lattice units (× element_size for cm). On periodic lattices an edge is
-   * continuous and may reach past the domain: draw it wrapped.
+   * Position (x, y), lattice units (multiply by `element_size` for cm). On periodic
+   * lattices an edge is continuous and may reach past the domain: draw it wrapped.
    */
   float at[2];
   /**
-   * Opening of the crack here [lattice units]; 0 at a dead end.
+   * Opening of the crack here, lattice units: the separation of the spring it crosses;
+   * 0 at a dead end.
    */
   float width;
   /**
-   * Break time here [long steps].
+   * Break time here, in long steps T.
    */
   float time;
 } hibi_mud_network_point;

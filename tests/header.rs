@@ -12,6 +12,10 @@ fn header_is_fresh() {
     cbindgen::Builder::new()
         .with_config(config)
         .with_src(ffi.join("src/lib.rs"))
+        .with_src(root.join("core/src/mud/trace.rs"))
+        .with_src(root.join("core/src/mud/network.rs"))
+        .with_src(root.join("core/src/glass/output.rs"))
+        .with_src(root.join("core/src/glass/fragments.rs"))
         .generate()
         .expect("cbindgen parses ffi/src")
         .write(&mut generated);

@@ -146,16 +146,6 @@ pub struct hibi_glass_crack {
     pub points: u32,
 }
 
-/// A polyline point: position [px] and the step at which the crack front passed it.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_glass_point {
-    /// Position (x, y).
-    pub at: [f32; 2],
-    /// Time in steps.
-    pub time: f32,
-}
-
 /// How to draw a raster. Defaults from `hibi_glass_render_params_default`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -453,7 +443,7 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
 pub unsafe extern "C" fn hibi_glass_points(
     glass: *const hibi_glass,
     index: usize,
-    points: *mut hibi_glass_point,
+    points: *mut CrackPoint,
     len: usize,
     written: *mut usize,
 ) -> hibi_status {
@@ -464,14 +454,7 @@ pub unsafe extern "C" fn hibi_glass_points(
         glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(points, len) }?;
-        if out.len() < glass.glass.point_count(index) {
-            return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
-        }
-        let mut n = 0;
-        glass.glass.for_each_point(index, |p: CrackPoint| {
-            out[n] = hibi_glass_point { at: p.at, time: p.time };
-            n += 1;
-        });
+        let n = glass.glass.points(index, out).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(written, n) }
     })
@@ -487,33 +470,8 @@ pub struct hibi_vec2 {
     pub y: f32,
 }
 
-/// One ring of a fragment's outline (glass) or of a cell's (mud, as `hibi_mud_cell_ring`):
-/// `point_count` points from `first_point` on in the point buffer, counter-clockwise with y up
-/// for an outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of`
-/// names the outer ring it lies in).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_glass_fragment_ring {
-    /// Signed area: [px²] for glass, [lattice units²] for mud.
-    pub area: f64,
-    /// Index of the ring's first point.
-    pub first_point: u32,
-    /// Number of points (the first is not repeated).
-    pub point_count: u32,
-    /// For a hole, the index of the outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` otherwise.
-    pub hole_of: u32,
-}
-
-const _: () = {
-    use core::mem::offset_of;
+const _: () =
     assert!(size_of::<hibi_vec2>() == size_of::<[f32; 2]>() && align_of::<hibi_vec2>() == align_of::<[f32; 2]>());
-    assert!(size_of::<hibi_glass_fragment_ring>() == size_of::<FragmentRing>());
-    assert!(align_of::<hibi_glass_fragment_ring>() == align_of::<FragmentRing>());
-    assert!(offset_of!(hibi_glass_fragment_ring, area) == offset_of!(FragmentRing, area));
-    assert!(offset_of!(hibi_glass_fragment_ring, first_point) == offset_of!(FragmentRing, first_point));
-    assert!(offset_of!(hibi_glass_fragment_ring, point_count) == offset_of!(FragmentRing, point_count));
-    assert!(offset_of!(hibi_glass_fragment_ring, hole_of) == offset_of!(FragmentRing, hole_of));
-};
 
 /// `hibi_glass_fragment_ring.hole_of` of an outer ring.
 pub const HIBI_GLASS_NOT_A_HOLE: u32 = u32::MAX;
@@ -554,7 +512,7 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_fragments(
     glass: *mut hibi_glass,
-    rings: *mut hibi_glass_fragment_ring,
+    rings: *mut FragmentRing,
     rings_len: usize,
     points: *mut hibi_vec2,
     points_len: usize,
@@ -568,7 +526,7 @@ pub unsafe extern "C" fn hibi_glass_fragments(
         check_pointer(points_written)?;
         // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
         // and hibi_vec2 as [f32; 2] (asserted below).
-        let ring_out = unsafe { buffer(rings.cast::<FragmentRing>(), rings_len) }?;
+        let ring_out = unsafe { buffer(rings, rings_len) }?;
         // SAFETY: as above.
         let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
         let (r, p) = glass.glass.fragments(ring_out, point_out).map_err(|_| HIBI_ERROR_BUFFER_TOO_SMALL)?;
@@ -690,7 +648,7 @@ mod tests {
             assert_eq!(hibi_glass_crack_count(glass, &mut count), HIBI_OK);
             let mut crack = hibi_glass_crack::default();
             assert_eq!(hibi_glass_crack_info(glass, 0, &mut crack), HIBI_OK);
-            let mut points = vec![hibi_glass_point::default(); crack.points as usize];
+            let mut points = vec![CrackPoint::default(); crack.points as usize];
             let mut written = 0;
             if crack.points > 0 {
                 let short = crack.points as usize - 1;
@@ -727,7 +685,7 @@ mod tests {
             assert_eq!(ring_count, 0);
             assert_eq!(hibi_glass_fragment_counts(glass, &mut ring_count, &mut point_count), HIBI_OK);
             assert!(ring_count > 10 && point_count > 3 * ring_count);
-            let mut rings = vec![hibi_glass_fragment_ring::default(); ring_count];
+            let mut rings = vec![FragmentRing::default(); ring_count];
             let mut points = vec![hibi_vec2 { x: 9.0, y: 9.0 }; point_count];
             let (mut r, mut n) = (7usize, 7usize);
             let status = hibi_glass_fragments(

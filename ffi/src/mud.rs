@@ -22,13 +22,13 @@ use core::ffi::{c_char, c_void};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
-    Boundary, CellRing, CrackSegment, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams, MudRender,
-    NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
+    Boundary, CrackSegment, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams, MudRender, NO_VERTEX,
+    NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
 use hibi_core::raster::RasterError;
 
 use crate::fields::{Field, convert, enumeration};
-use crate::glass::{hibi_glass_fragment_ring, hibi_vec2};
+use crate::glass::hibi_vec2;
 use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
@@ -161,21 +161,6 @@ pub struct hibi_mud_progress {
     pub finished: u32,
 }
 
-/// One straight piece of crack, in lattice units (× element_size for cm). Each end carries
-/// the crack width and break time (long steps) of the spring it sits on.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_mud_segment {
-    /// First end (x, y).
-    pub start: [f32; 2],
-    /// Second end (x, y).
-    pub end: [f32; 2],
-    /// Width at each end.
-    pub width: [f32; 2],
-    /// Break time at each end.
-    pub time: [f32; 2],
-}
-
 /// Crack statistics of the traced network: density, the cells it encloses, and its vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
@@ -208,79 +193,12 @@ pub const HIBI_MUD_NO_VERTEX: u32 = u32::MAX;
 
 const _: () = assert!(HIBI_MUD_NO_VERTEX == NO_VERTEX);
 
-/// A vertex of the crack network: a junction, or an end of a crack.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_mud_network_vertex {
-    /// Position (x, y) on the deformed surface, lattice units (× element_size for cm).
-    pub at: [f32; 2],
-    /// Edges meeting here: 1 at a crack's end, 3 or more at a junction.
-    pub degree: u32,
-    /// 1 where a crack reaches the plate's open border (an end that is not a dead end), else 0.
-    pub on_border: u32,
-}
-
-/// An edge of the crack network: a crack between two vertices, as the polyline of
-/// `point_count` points from `first_point` on in the point buffer.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_mud_network_edge {
-    /// The vertex it starts at, or `HIBI_MUD_NO_VERTEX` for a closed crack with no junction.
-    pub from: u32,
-    /// The vertex it ends at, or `HIBI_MUD_NO_VERTEX`.
-    pub to: u32,
-    /// Index of its first point in the point buffer.
-    pub first_point: u32,
-    /// Points in its polyline, both ends included (a closed crack repeats its first point).
-    pub point_count: u32,
-}
-
-/// A point of a network edge's polyline.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct hibi_mud_network_point {
-    /// Position (x, y), lattice units (× element_size for cm). On periodic lattices an edge is
-    /// continuous and may reach past the domain: draw it wrapped.
-    pub at: [f32; 2],
-    /// Opening of the crack here [lattice units]; 0 at a dead end.
-    pub width: f32,
-    /// Break time here [long steps].
-    pub time: f32,
-}
-
 /// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
 /// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
 /// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
 /// outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
 /// lattice units (× element_size for cm), not pixels.
-pub type hibi_mud_cell_ring = hibi_glass_fragment_ring;
-
-// The C structs are laid out as the core's, so caller buffers are handed to the core as they
-// are; the cell ring is glass's fragment ring, whose layout glass asserts.
-const _: () = {
-    use core::mem::offset_of;
-    assert!(size_of::<hibi_mud_network_vertex>() == size_of::<NetworkVertex>());
-    assert!(align_of::<hibi_mud_network_vertex>() == align_of::<NetworkVertex>());
-    assert!(offset_of!(hibi_mud_network_vertex, at) == offset_of!(NetworkVertex, at));
-    assert!(offset_of!(hibi_mud_network_vertex, degree) == offset_of!(NetworkVertex, degree));
-    assert!(offset_of!(hibi_mud_network_vertex, on_border) == offset_of!(NetworkVertex, on_border));
-    assert!(size_of::<hibi_mud_network_edge>() == size_of::<NetworkEdge>());
-    assert!(align_of::<hibi_mud_network_edge>() == align_of::<NetworkEdge>());
-    assert!(offset_of!(hibi_mud_network_edge, from) == offset_of!(NetworkEdge, from));
-    assert!(offset_of!(hibi_mud_network_edge, to) == offset_of!(NetworkEdge, to));
-    assert!(offset_of!(hibi_mud_network_edge, first_point) == offset_of!(NetworkEdge, first_point));
-    assert!(offset_of!(hibi_mud_network_edge, point_count) == offset_of!(NetworkEdge, point_count));
-    assert!(size_of::<hibi_mud_network_point>() == size_of::<NetworkPoint>());
-    assert!(align_of::<hibi_mud_network_point>() == align_of::<NetworkPoint>());
-    assert!(offset_of!(hibi_mud_network_point, at) == offset_of!(NetworkPoint, at));
-    assert!(offset_of!(hibi_mud_network_point, width) == offset_of!(NetworkPoint, width));
-    assert!(offset_of!(hibi_mud_network_point, time) == offset_of!(NetworkPoint, time));
-    assert!(size_of::<hibi_mud_cell_ring>() == size_of::<CellRing>());
-    assert!(align_of::<hibi_mud_cell_ring>() == align_of::<CellRing>());
-};
-
-/// The core's cell ring is glass's fragment ring (this fails to compile if it stops being so).
-const _: fn(CellRing) -> FragmentRing = |ring| ring;
+pub type hibi_mud_cell_ring = FragmentRing;
 
 /// How to draw a raster: its size and the stroke widths. Defaults from
 /// `hibi_mud_render_params_default`.
@@ -526,7 +444,7 @@ pub unsafe extern "C" fn hibi_mud_segment_count(mud: *const hibi_mud, count: *mu
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_segments(
     mud: *const hibi_mud,
-    segments: *mut hibi_mud_segment,
+    segments: *mut CrackSegment,
     len: usize,
     written: *mut usize,
 ) -> hibi_status {
@@ -536,15 +454,7 @@ pub unsafe extern "C" fn hibi_mud_segments(
         check_pointer(written)?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(segments, len) }?;
-        let needed = mud.mud.segment_count();
-        if out.len() < needed {
-            return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
-        }
-        let mut n = 0;
-        mud.mud.for_each_segment(|s: CrackSegment| {
-            out[n] = hibi_mud_segment { start: s.start, end: s.end, width: s.width, time: s.time };
-            n += 1;
-        });
+        let n = mud.mud.segments(out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(written, n) }
     })
@@ -629,11 +539,11 @@ pub unsafe extern "C" fn hibi_mud_network_counts(
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_mud_network(
     mud: *const hibi_mud,
-    vertices: *mut hibi_mud_network_vertex,
+    vertices: *mut NetworkVertex,
     vertices_len: usize,
-    edges: *mut hibi_mud_network_edge,
+    edges: *mut NetworkEdge,
     edges_len: usize,
-    points: *mut hibi_mud_network_point,
+    points: *mut NetworkPoint,
     points_len: usize,
     vertices_written: *mut usize,
     edges_written: *mut usize,
@@ -647,11 +557,11 @@ pub unsafe extern "C" fn hibi_mud_network(
         check_pointer(points_written)?;
         // SAFETY: the caller's contract; the C structs are laid out as the core's (asserted
         // above).
-        let vertex_out = unsafe { buffer(vertices.cast::<NetworkVertex>(), vertices_len) }?;
+        let vertex_out = unsafe { buffer(vertices, vertices_len) }?;
         // SAFETY: as above.
-        let edge_out = unsafe { buffer(edges.cast::<NetworkEdge>(), edges_len) }?;
+        let edge_out = unsafe { buffer(edges, edges_len) }?;
         // SAFETY: as above.
-        let point_out = unsafe { buffer(points.cast::<NetworkPoint>(), points_len) }?;
+        let point_out = unsafe { buffer(points, points_len) }?;
         let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(vertices_written, counts.vertices) }?;
@@ -720,7 +630,7 @@ pub unsafe extern "C" fn hibi_mud_cells(
         check_pointer(points_written)?;
         // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
         // hibi_vec2 as [f32; 2] (asserted above and in glass).
-        let ring_out = unsafe { buffer(rings.cast::<CellRing>(), rings_len) }?;
+        let ring_out = unsafe { buffer(rings, rings_len) }?;
         // SAFETY: as above.
         let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
         let counts = mud.mud.cells(ring_out, point_out).map_err(output_status)?;
@@ -775,6 +685,7 @@ pub unsafe extern "C" fn hibi_mud_render(
 mod tests {
     use super::*;
     use crate::status::*;
+    use hibi_core::mud::CellRing;
     use core::ptr::{null, null_mut};
 
     #[test]
@@ -872,14 +783,14 @@ mod tests {
             let mut count = 0;
             assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
             assert!(count > 0);
-            let mut segments = vec![hibi_mud_segment::default(); count];
+            let mut segments = vec![CrackSegment::default(); count];
             let mut written = 777;
             assert_eq!(
                 hibi_mud_segments(mud, segments.as_mut_ptr(), count - 1, &mut written),
                 HIBI_ERROR_BUFFER_TOO_SMALL
             );
             assert_eq!(written, 777);
-            assert!(segments.iter().all(|s| *s == hibi_mud_segment::default()));
+            assert!(segments.iter().all(|s| *s == CrackSegment::default()));
             assert_eq!(hibi_mud_segments(mud, segments.as_mut_ptr(), count, &mut written), HIBI_OK);
             assert_eq!(written, count);
 
@@ -922,10 +833,10 @@ mod tests {
         (mud, vec![0.0; memory.scalars], vec![0; memory.words])
     }
 
-    const VERTEX: hibi_mud_network_vertex = hibi_mud_network_vertex { at: [-7.0; 2], degree: 77, on_border: 77 };
-    const EDGE: hibi_mud_network_edge = hibi_mud_network_edge { from: 77, to: 77, first_point: 77, point_count: 77 };
-    const POINT: hibi_mud_network_point = hibi_mud_network_point { at: [-7.0; 2], width: -7.0, time: -7.0 };
-    const RING: hibi_mud_cell_ring = hibi_mud_cell_ring { area: -7.0, first_point: 77, point_count: 77, hole_of: 77 };
+    const VERTEX: NetworkVertex = NetworkVertex { at: [-7.0; 2], degree: 77, on_border: 77 };
+    const EDGE: NetworkEdge = NetworkEdge { from: 77, to: 77, first_point: 77, point_count: 77 };
+    const POINT: NetworkPoint = NetworkPoint { at: [-7.0; 2], width: -7.0, time: -7.0 };
+    const RING: CellRing = CellRing { area: -7.0, first_point: 77, point_count: 77, hole_of: 77 };
     const VEC: hibi_vec2 = hibi_vec2 { x: -7.0, y: -7.0 };
 
     #[test]
@@ -941,7 +852,7 @@ mod tests {
         let (nv, ne, np) = (expected.vertices, expected.edges, expected.points);
         // One element more than needed: it must keep its sentinel.
         let (mut vertices, mut edges, mut points) = (vec![VERTEX; nv + 1], vec![EDGE; ne + 1], vec![POINT; np + 1]);
-        let untouched = |v: &[hibi_mud_network_vertex], e: &[hibi_mud_network_edge], q: &[hibi_mud_network_point]| {
+        let untouched = |v: &[NetworkVertex], e: &[NetworkEdge], q: &[NetworkPoint]| {
             v.iter().all(|x| *x == VERTEX) && e.iter().all(|x| *x == EDGE) && q.iter().all(|x| *x == POINT)
         };
         let (mut wv, mut we, mut wp) = (5usize, 5usize, 5usize);
@@ -1029,7 +940,7 @@ mod tests {
             assert!(nr > 1 && np > 3 * nr, "{boundary}: {expected:?}");
             let (mut rings, mut points) = (vec![RING; nr + 1], vec![VEC; np + 1]);
             let untouched =
-                |r: &[hibi_mud_cell_ring], q: &[hibi_vec2]| r.iter().all(|x| *x == RING) && q.iter().all(|x| *x == VEC);
+                |r: &[CellRing], q: &[hibi_vec2]| r.iter().all(|x| *x == RING) && q.iter().all(|x| *x == VEC);
             let (r, q) = (rings.as_mut_ptr(), points.as_mut_ptr());
             let (mut wr, mut wp) = (5usize, 5usize);
             // SAFETY: valid pointers and lengths throughout; failing calls write nothing.

@@ -15,19 +15,21 @@ use super::{Glass, GlassError, take};
 use crate::geom::pseudo_angle;
 use crate::geom::{crosses_ray, shoelace};
 
-/// One ring of a fragment's outline, in [`Glass::fragments`]' point buffer.
+/// One ring of a fragment's outline (glass) or of a cell's (mud): `point_count` points from
+/// `first_point` on in the point buffer, counter-clockwise with y up for an outer ring
+/// (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the outer
+/// ring it lies in). In C: `hibi_glass_fragment_ring` and `hibi_mud_cell_ring`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct FragmentRing {
-    /// Signed area (glass: \[px²\]; mud's cells: \[lattice units²\]): positive for an outer
-    /// ring, negative for a hole.
+    /// Signed area: px² for glass, lattice units² for mud.
     pub area: f64,
     /// Index of the ring's first point.
     pub first_point: u32,
-    /// Points in the ring (the first is not repeated at the end).
+    /// Number of points (the first is not repeated).
     pub point_count: u32,
-    /// For a hole, the index of the ring of the fragment it lies in; `u32::MAX` for an outer
-    /// ring.
+    /// For a hole, the index of the outer ring it lies in; `u32::MAX` otherwise
+    /// (`HIBI_GLASS_NOT_A_HOLE` in C).
     pub hole_of: u32,
 }
 

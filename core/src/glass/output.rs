@@ -3,12 +3,12 @@
 use super::grid::NONE;
 use super::{Glass, GlassError};
 
-/// A polyline vertex: position and the time (steps since its impact) the crack front
-/// passed it.
+/// A point of a crack's polyline: its position and the time (steps since its impact) the
+/// crack front passed it. In C: `hibi_glass_point`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct CrackPoint {
-    /// Position (x, y) in pixels.
+    /// Position (x, y) [px].
     pub at: [f32; 2],
     /// Time in steps.
     pub time: f32,

@@ -45,11 +45,12 @@ pub(super) const BRANCH: u32 = 1 << 31;
 /// No vertex: the ends of a closed crack with no junction on it.
 pub const NO_VERTEX: u32 = u32::MAX;
 
-/// A junction or an end of the crack network.
+/// A junction or an end of the crack network. In C: `hibi_mud_network_vertex`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct NetworkVertex {
-    /// Position (x, y) on the deformed surface, lattice units.
+    /// Position (x, y) on the deformed surface, lattice units (multiply by `element_size`
+    /// for cm).
     pub at: [f32; 2],
     /// Edges meeting here: 1 at a crack's end, 3 or more at a junction.
     pub degree: u32,
@@ -57,27 +58,29 @@ pub struct NetworkVertex {
     pub on_border: u32,
 }
 
-/// A point of a network edge's polyline.
+/// A point of a network edge's polyline. In C: `hibi_mud_network_point`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct NetworkPoint {
     /// Position (x, y), lattice units (multiply by `element_size` for cm). On periodic
     /// lattices an edge is continuous and may reach past the domain: draw it wrapped.
     pub at: [f32; 2],
-    /// Opening of the crack here [lattice units]: the separation of the spring it crosses;
+    /// Opening of the crack here, lattice units: the separation of the spring it crosses;
     /// 0 at a dead end.
     pub width: f32,
     /// Break time here, in long steps T.
     pub time: f32,
 }
 
-/// A crack between two vertices, as a polyline.
+/// A crack between two vertices: the polyline of `point_count` points from `first_point` on
+/// in the point buffer. In C: `hibi_mud_network_edge`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct NetworkEdge {
-    /// The vertex it starts at, or [`NO_VERTEX`] for a closed crack with no junction.
+    /// The vertex it starts at, or `NO_VERTEX` (C: `HIBI_MUD_NO_VERTEX`) for a closed crack
+    /// with no junction.
     pub from: u32,
-    /// The vertex it ends at, or [`NO_VERTEX`].
+    /// The vertex it ends at, or `NO_VERTEX`.
     pub to: u32,
     /// Index of its first point in the point buffer.
     pub first_point: u32,

@@ -13,7 +13,7 @@ use crate::scalar::Scalar;
 /// the deformed surface. Each end carries the width and break time of the spring it sits on
 /// (an end at a cell centroid carries those of the spring the segment comes from). On
 /// periodic lattices, segments of cells on the far edges reach past the domain by less than
-/// one spacing: draw them wrapped.
+/// one spacing: draw them wrapped. In C: `hibi_mud_segment`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct CrackSegment {
