@@ -16,7 +16,8 @@ use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassMemory, GlassParams, GlassRender, preset,
+    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassMemory, GlassParams, GlassProgress, GlassRender,
+    ImpactCounts, preset,
 };
 
 use crate::fields::{Field, convert};
@@ -192,6 +193,8 @@ convert!(hibi_glass_params <=> GlassParams, cookie: PARAMS_COOKIE {
     turn_delay, sector_angle, sector_radius, tip_repulsion, crack_attraction, wander, ring_adherence, max_cracks,
     max_vertices,
 });
+convert!(hibi_glass_progress <=> GlassProgress { time, cracks, growing, vertices, finished, capacity_reached });
+convert!(hibi_glass_counts <=> ImpactCounts { radial, large, rings });
 convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width });
 
 /// The C view of core parameters.
@@ -341,25 +344,12 @@ pub unsafe extern "C" fn hibi_glass_impact(
         }
         let c = glass.glass.impact([x, y]).map_err(glass_status)?;
         if !counts.is_null() {
-            let value = hibi_glass_counts { radial: c.radial, large: c.large, rings: c.rings };
+            let value = hibi_glass_counts::from_core(&c);
             // SAFETY: checked; the caller's contract.
             unsafe { write_out(counts, value) }?;
         }
         Ok(())
     })
-}
-
-/// The progress of a plate, as C sees it.
-fn progress_of(glass: &Glass) -> hibi_glass_progress {
-    let p = glass.progress();
-    hibi_glass_progress {
-        time: p.time,
-        cracks: p.cracks,
-        growing: p.growing,
-        vertices: p.vertices,
-        finished: u32::from(p.finished),
-        capacity_reached: u32::from(p.capacity_reached),
-    }
 }
 
 /// Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
@@ -387,7 +377,7 @@ pub unsafe extern "C" fn hibi_glass_step(
         }
         if !progress.is_null() {
             // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, progress_of(&glass.glass)) }?;
+            unsafe { write_out(progress, hibi_glass_progress::from_core(&glass.glass.progress())) }?;
         }
         Ok(())
     })

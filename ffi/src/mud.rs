@@ -22,8 +22,8 @@ use core::ffi::{c_char, c_void};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
-    Boundary, CrackSegment, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams, MudRender, NO_VERTEX,
-    NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
+    Boundary, CrackSegment, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams,
+    MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Progress, Solver, Topology, preset,
 };
 use hibi_core::raster::RasterError;
 
@@ -266,6 +266,11 @@ convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     break_stretch_spread, break_stretch_size_exponent, anisotropy_direction, anisotropy_ratio,
     stiffness_anisotropy_ratio, target_shrink, target_crack_density,
 });
+convert!(hibi_mud_progress <=> Progress { shrink, time, broken_springs, crack_density, work, finished });
+convert!(hibi_mud_statistics <=> CrackStatistics {
+    crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
+    mean_widest_junction_angle,
+});
 convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset });
 
 /// The core parameters of a C params struct: cookie, enumerations, fields.
@@ -405,14 +410,7 @@ pub unsafe extern "C" fn hibi_mud_step(
         }
         let p = mud.mud.step(budget);
         if !progress.is_null() {
-            let value = hibi_mud_progress {
-                shrink: p.shrink,
-                time: p.time,
-                broken_springs: p.broken_springs,
-                crack_density: p.crack_density,
-                work: p.work,
-                finished: u32::from(p.finished),
-            };
+            let value = hibi_mud_progress::from_core(&p);
             // SAFETY: checked; the caller's contract.
             unsafe { write_out(progress, value) }?;
         }
@@ -472,17 +470,7 @@ pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_m
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud) }?;
         check_pointer(out)?;
-        let s = mud.mud.statistics();
-        let value = hibi_mud_statistics {
-            crack_density: s.crack_density,
-            cells: s.cells,
-            mean_cell_area: s.mean_cell_area,
-            cell_area_spread: s.cell_area_spread,
-            junctions: s.junctions,
-            dead_ends: s.dead_ends,
-            t_junctions: s.t_junctions,
-            mean_widest_junction_angle: s.mean_widest_junction_angle,
-        };
+        let value = hibi_mud_statistics::from_core(&mud.mud.statistics());
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, value) }
     })
@@ -685,8 +673,8 @@ pub unsafe extern "C" fn hibi_mud_render(
 mod tests {
     use super::*;
     use crate::status::*;
-    use hibi_core::mud::CellRing;
     use core::ptr::{null, null_mut};
+    use hibi_core::mud::CellRing;
 
     #[test]
     fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
