@@ -5,13 +5,12 @@
 
 use std::time::{Duration, Instant};
 
-use hibi_core::glass::{Glass, GlassParams, GlassRender};
-use hibi_tests::GlassVecs;
+use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
 
 fn main() {
     let base = GlassParams::default();
     let m = base.memory().expect("valid parameters");
-    let mut memory = GlassVecs::new(&m);
+    let mut memory = m.allocate();
     let render = GlassRender::default();
     let (mut mask, mut time) = (vec![0u8; 640 * 640], vec![0.0f32; 640 * 640]);
     let (mut generation, mut masks, mut times) = (Duration::ZERO, Duration::ZERO, Duration::ZERO);
@@ -23,10 +22,10 @@ fn main() {
         while !glass.step(u64::MAX).finished {}
         generation += start.elapsed();
         let start = Instant::now();
-        glass.render_mask(&render, &mut mask).expect("buffer suffices");
+        glass.render(&render, GlassLayers { mask: Some(&mut mask), ..Default::default() }).expect("buffer suffices");
         masks += start.elapsed();
         let start = Instant::now();
-        glass.render_time(&render, &mut time).expect("buffer suffices");
+        glass.render(&render, GlassLayers { time: Some(&mut time), ..Default::default() }).expect("buffer suffices");
         times += start.elapsed();
     }
     println!("| 640×640, M_ave = 100 (mean of {plates} seeds) | time |");

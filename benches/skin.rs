@@ -14,8 +14,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use fastnoise_lite::{CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType};
-use hibi_core::skin::{Skin, SkinLayers, preset};
-use hibi_tests::SkinVecs;
+use hibi_core::skin::{Skin, SkinLayers, SkinRender, preset};
 
 /// Timed runs per measurement.
 const RUNS: usize = 10;
@@ -81,7 +80,7 @@ fn main() {
     let (w, h) = (params.width as usize, params.height as usize);
     let pixels = w * h;
     let m = params.memory().expect("valid parameters");
-    let mut memory = SkinVecs::new(&m);
+    let mut memory = m.allocate();
     let (mut height, mut normals) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels]);
 
     let noise = black_box(cellular());
@@ -100,10 +99,11 @@ fn main() {
     for round in 0..=RUNS {
         // Ours: build, then render, into the same buffers each round.
         let start = Instant::now();
-        let skin = Skin::new(black_box(&params), memory.buffers()).expect("memory suffices");
+        let mut skin = Skin::<f32>::new(black_box(&params), memory.buffers()).expect("memory suffices");
+        skin.run();
         let built = start.elapsed();
         let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normals), ..SkinLayers::default() };
-        skin.render::<f32>(layers).expect("buffers suffice");
+        skin.render(&SkinRender::default(), layers).expect("buffers suffice");
         let total = start.elapsed();
         cell_count = skin.cells().len();
         black_box((&height, &normals));

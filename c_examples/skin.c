@@ -38,7 +38,8 @@ int main(int argc, char **argv) {
     hibi_skin_cell cell;
     hibi_status status;
     size_t cells = 0, pixels, i, k, bytes = 0, written = 0, per_level[HIBI_SKIN_MAX_LEVELS] = {0};
-    size_t capacity = 0;
+    size_t capacity = 0, steps = 0;
+    hibi_skin_progress progress;
     double area[HIBI_SKIN_MAX_LEVELS] = {0.0}, *xy = NULL;
     float *height, *normal;
     uint32_t *map;
@@ -68,6 +69,15 @@ int main(int argc, char **argv) {
 
     status = hibi_skin_create(&params, &skin);
     if (status != HIBI_OK) return fail("hibi_skin_create", status);
+    /* Build the cells in slices, as a frame-sliced engine would. */
+    steps = 0;
+    do {
+        status = hibi_skin_step(skin, 20000, &progress);
+        if (status != HIBI_OK) return fail("hibi_skin_step", status);
+        steps++;
+    } while (!progress.finished);
+    printf("built in %lu steps: %lu cells from %lu level-0 centres\n", (unsigned long)steps,
+           (unsigned long)progress.cells, (unsigned long)progress.roots);
 
     /* The hierarchy: every cell's level, and its outline in pixels. */
     status = hibi_skin_cell_count(skin, &cells);
@@ -143,6 +153,8 @@ int main(int argc, char **argv) {
     if (memory == NULL) return 1;
     status = hibi_skin_create_in(&params, memory, bytes, &placed);
     if (status != HIBI_OK) return fail("hibi_skin_create_in", status);
+    status = hibi_skin_step(placed, UINT64_MAX, NULL);
+    if (status != HIBI_OK) return fail("hibi_skin_step", status);
     status = preview(placed, pixels, height, normal, again);
     if (status != HIBI_OK) return fail("preview", status);
     printf("caller memory, same bytes: %s\n", memcmp(rgb, again, 3 * pixels) == 0 ? "yes" : "no");

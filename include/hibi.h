@@ -374,7 +374,7 @@ typedef struct hibi_glass_crack {
  */
 typedef struct hibi_glass_point {
   /**
-   * Position (x, y) [px].
+   * Position (x, y), in px.
    */
   float at[2];
   /**
@@ -862,6 +862,36 @@ typedef struct hibi_skin_params {
 } hibi_skin_params;
 
 /**
+ * Where a build stands.
+ */
+typedef struct hibi_skin_progress {
+  /**
+   * Cells built, all levels.
+   */
+  uint32_t cells;
+  /**
+   * Level-0 centre points whose cells (with all their descendants) are built.
+   */
+  uint32_t roots;
+  /**
+   * Level-0 centre points in all.
+   */
+  uint32_t root_total;
+  /**
+   * 1 when every cell is built, else 0.
+   */
+  uint32_t finished;
+  /**
+   * 1 when a cell outgrew its capacity (the build then stopped; what was built is usable).
+   */
+  uint32_t capacity_reached;
+  /**
+   * Work done since the build began (units of the step budget).
+   */
+  uint64_t work;
+} hibi_skin_progress;
+
+/**
  * Light and palette for `hibi_skin_shade`. Defaults from `hibi_skin_shade_params_default`.
  */
 typedef struct hibi_skin_shade_params {
@@ -1289,8 +1319,9 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_SKIN_ENUM 1344
 
 /**
- * `hibi_skin_create`: a cell outline or one parent's centre points outgrew their fixed
- * capacity; lower the perturbation depth or the ratio of a level's spacing to the next's.
+ * `hibi_skin_step`: a cell outline or one parent's centre points outgrew their fixed
+ * capacity (the build stopped there; what was built stays usable); lower the perturbation
+ * depth or the ratio of a level's spacing to the next's.
  */
 #define HIBI_ERROR_SKIN_CAPACITY 1345
 
@@ -1877,6 +1908,19 @@ hibi_status hibi_skin_render(const struct hibi_skin *skin,
                              uint32_t *cells,
                              size_t cells_len,
                              uint32_t cell_level);
+
+/**
+ * Advances the build by about `budget` units of work (outline vertices written; at least
+ * one level-0 cell with its descendants, and the cells do not depend on the budgets); writes
+ * where it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and
+ * writes nothing) once a cell outgrew its capacity; what was built stays usable.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `progress` NULL or writable.
+ */
+hibi_status hibi_skin_step(struct hibi_skin *skin,
+                           uint64_t budget,
+                           struct hibi_skin_progress *progress);
 
 /**
  * The default light (from the upper left) and palette (a light skin tone).

@@ -188,7 +188,7 @@ fn cpp17_example_links_shared_library() {
 /// What the mud example computes, as Rust computes it for the same parameters: the mask,
 /// the network's counts, and the cells' counts and summed ring area.
 fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::CellCounts, f64) {
-    use hibi_core::mud::{CellRing, Mud, MudBuffers, MudParams, MudRender};
+    use hibi_core::mud::{CellRing, Mud, MudBuffers, MudLayers, MudParams, MudRender};
     let params = MudParams { columns: 96, rows: 96, seed: 7, ..MudParams::default() };
     let memory = params.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
@@ -196,7 +196,7 @@ fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::Ce
     mud.run();
     let render = MudRender { width: 384, height: 384, ..MudRender::default() };
     let mut mask = vec![0u8; 384 * 384];
-    mud.render_mask(&render, &mut mask).unwrap();
+    mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
     let cells = mud.cell_counts();
     let (mut rings, mut points) = (vec![CellRing::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
     mud.cells(&mut rings, &mut points).unwrap();
@@ -261,16 +261,16 @@ fn mud_example_is_clean_under_sanitizers() {
 /// The glass example's mask, as Rust draws it for the same parameters, and its fragment ring
 /// and point counts.
 fn expected_glass() -> (Vec<u8>, (usize, usize)) {
-    use hibi_core::glass::{Glass, GlassParams, GlassRender};
-    use hibi_tests::GlassVecs;
+    use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+
     let params = GlassParams { seed: 7, ..GlassParams::default() };
     let m = params.memory().unwrap();
-    let mut memory = GlassVecs::new(&m);
+    let mut memory = m.allocate();
     let buffers = memory.buffers();
     let mut glass = Glass::new(&params, buffers).unwrap();
     while !glass.step(100).finished {}
     let mut mask = vec![0u8; 640 * 640];
-    glass.render_mask(&GlassRender::default(), &mut mask).unwrap();
+    glass.render(&GlassRender::default(), GlassLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
     (mask.iter().map(|v| 255 - v).collect(), glass.fragment_counts())
 }
 
@@ -328,20 +328,21 @@ fn glass_example_is_clean_under_sanitizers() {
 /// preview, the cell count per level, and the cell (and its parent) that pixel (100, 100)
 /// lies in at level 2.
 fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
-    use hibi_core::skin::{ShadeParams, Skin, SkinLayers, SkinParams, preset, shade};
-    use hibi_tests::SkinVecs;
+    use hibi_core::skin::{ShadeParams, Skin, SkinLayers, SkinParams, SkinRender, preset, shade};
+
     let params = SkinParams { width: 200, height: 200, ..preset("fig19a").unwrap() };
     let m = params.memory().unwrap();
-    let mut memory = SkinVecs::new(&m);
+    let mut memory = m.allocate();
     let buffers = memory.buffers();
-    let skin = Skin::new(&params, buffers).unwrap();
+    let mut skin = Skin::<f32>::new(&params, buffers).unwrap();
+    assert!(skin.run().finished);
     let pixels = 200 * 200;
     let (mut height, mut normal, mut map) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
-    skin.render::<f32>(layers).unwrap();
+    skin.render(&SkinRender::default(), layers).unwrap();
     let mut rgb = vec![[0u8; 3]; pixels];
     shade(&height, &normal, &ShadeParams::default(), &mut rgb).unwrap();
-    skin.render::<f32>(SkinLayers { cell: Some(&mut map), cell_level: 2, ..SkinLayers::default() }).unwrap();
+    skin.render(&SkinRender { cell_level: 2 }, SkinLayers { cell: Some(&mut map), ..SkinLayers::default() }).unwrap();
     let mut per_level = [0; 3];
     for c in skin.cells() {
         per_level[c.level as usize] += 1;

@@ -1,12 +1,12 @@
 //! Model B against the paper's facts (Agui et al.) and the acceptance list.
 
 use hibi_core::glass::{CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams};
-use hibi_tests::{GlassVecs, fnv1a64};
+use hibi_tests::fnv1a64;
 
 /// Runs `params` to the end of generation and hands the plate to `inspect`.
 fn with_plate<R>(params: &GlassParams, inspect: impl FnOnce(&mut Glass) -> R) -> R {
     let m = params.memory().expect("valid parameters");
-    let mut memory = GlassVecs::new(&m);
+    let mut memory = m.allocate();
     let buffers = memory.buffers();
     let mut glass = Glass::new(params, buffers).expect("memory suffices");
     while !glass.step(100_000).finished {}
@@ -134,14 +134,14 @@ fn golden_cracks() {
 
 #[test]
 fn rasters_draw_the_network_and_date_its_pixels() {
-    use hibi_core::glass::GlassRender;
+    use hibi_core::glass::{GlassLayers, GlassRender};
     use hibi_core::raster::RasterError;
     let p = GlassParams { seed: 3, ..GlassParams::default() };
     with_plate(&p, |g| {
         let render = GlassRender { width: 320, height: 320, ..GlassRender::default() };
         let (mut mask, mut time) = (vec![0u8; 320 * 320], vec![0.0f32; 320 * 320]);
-        g.render_mask(&render, &mut mask).unwrap();
-        g.render_time(&render, &mut time).unwrap();
+        g.render(&render, GlassLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
+        g.render(&render, GlassLayers { time: Some(&mut time), ..Default::default() }).unwrap();
         let cracked = mask.iter().filter(|&&v| v >= 128).count();
         assert!(cracked > 1000, "{cracked} cracked pixels");
         let last = g.progress().time as f32 + 1.0;
@@ -156,10 +156,16 @@ fn rasters_draw_the_network_and_date_its_pixels() {
         // The impact point cracks first, the plate's edge last.
         assert!(time[160 * 320 + 160] < 1.0);
         let mut untouched = vec![9u8; 320 * 320 - 1];
-        assert_eq!(g.render_mask(&render, &mut untouched), Err(RasterError::BufferTooSmall { needed: 320 * 320 }));
+        assert_eq!(
+            g.render(&render, GlassLayers { mask: Some(&mut untouched), ..Default::default() }),
+            Err(RasterError::BufferTooSmall { needed: 320 * 320 })
+        );
         assert!(untouched.iter().all(|&v| v == 9));
         let thin = GlassRender { line_width: 0.0, ..render };
-        assert_eq!(g.render_mask(&thin, &mut mask), Err(RasterError::LineWidth));
+        assert_eq!(
+            g.render(&thin, GlassLayers { mask: Some(&mut mask), ..Default::default() }),
+            Err(RasterError::LineWidth)
+        );
     });
 }
 
@@ -255,7 +261,7 @@ fn fragments_of_several_impacts_and_of_a_cut_short_run_still_tile_the_plate() {
     // Part way through growth.
     let p = GlassParams { seed: 6, ..GlassParams::default() };
     let m = p.memory().unwrap();
-    let mut memory = GlassVecs::new(&m);
+    let mut memory = m.allocate();
     let buffers = memory.buffers();
     let mut g = Glass::new(&p, buffers).unwrap();
     for _ in 0..4 {
@@ -681,7 +687,7 @@ fn step_budgets_bound_the_work() {
     ];
     for (what, p) in cases {
         let m = p.memory().unwrap();
-        let mut memory = GlassVecs::new(&m);
+        let mut memory = m.allocate();
         let mut g = Glass::new(&p, memory.buffers()).unwrap();
         // One update examines at most every grid entry twice (its sector and its move) and
         // every tip entry once, plus the step loop's look at each crack.
@@ -702,7 +708,7 @@ fn step_budgets_bound_the_work() {
     // Budgets do not change the result.
     let hash = |budget: u64| {
         let m = base.memory().unwrap();
-        let mut memory = GlassVecs::new(&m);
+        let mut memory = m.allocate();
         let mut g = Glass::new(&base, memory.buffers()).unwrap();
         while !g.step(budget).finished {}
         let mut bytes = Vec::new();

@@ -33,3 +33,37 @@ fn header_is_fresh() {
         );
     }
 }
+
+/// The header compiles without a warning in C99, C11 and C++17 under gcc and clang at
+/// `-Wall -Wextra -Wpedantic -Werror` (`.ci/run` installs clang).
+#[test]
+fn header_is_warning_free_in_c99_c11_and_cpp17_with_gcc_and_clang() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let c = dir.join("header_only.c");
+    let cpp = dir.join("header_only.cpp");
+    let unit = "#include \"hibi.h\"\nint main(void) { return hibi_version() == 0; }\n";
+    std::fs::write(&c, unit).expect("write the C unit");
+    std::fs::write(&cpp, unit.replace("(void)", "()")).expect("write the C++ unit");
+    for (compiler, standard, source) in [
+        ("gcc", "c99", &c),
+        ("gcc", "c11", &c),
+        ("g++", "c++17", &cpp),
+        ("clang", "c99", &c),
+        ("clang", "c11", &c),
+        ("clang++", "c++17", &cpp),
+    ] {
+        let output = std::process::Command::new(compiler)
+            .arg(format!("-std={standard}"))
+            .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-fsyntax-only", "-I"])
+            .arg(root.join("include"))
+            .arg(source)
+            .output()
+            .unwrap_or_else(|e| panic!("run {compiler} (install it: .ci/run does): {e}"));
+        assert!(
+            output.status.success(),
+            "{compiler} -std={standard}: the header warns:\n{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+}

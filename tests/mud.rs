@@ -1,7 +1,7 @@
 //! Model A against the paper's claims (Hirota et al.), the acceptance list, and the
 //! golden snapshots. These run the model at size; hibi-core is optimised in every profile.
 
-use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudBuffers, MudParams, MudRender, Solver, Topology};
+use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudBuffers, MudLayers, MudParams, MudRender, Solver, Topology};
 use hibi_core::scalar::{Q16, Scalar};
 use hibi_tests::fnv1a64;
 
@@ -162,9 +162,13 @@ fn periodic_rasters_are_seamless() {
     let [w, h] = mud.lattice().extent();
     let render = MudRender { width: 256, height: 256, ..MudRender::default() };
     let mut tile = vec![0u8; 256 * 256];
-    mud.render_mask(&render, &mut tile).unwrap();
+    mud.render(&render, MudLayers { mask: Some(&mut tile), ..Default::default() }).unwrap();
     let mut panned = vec![0u8; 256 * 256];
-    mud.render_mask(&MudRender { offset: [w / 2.0, h / 2.0], ..render }, &mut panned).unwrap();
+    mud.render(
+        &MudRender { offset: [w / 2.0, h / 2.0], ..render },
+        MudLayers { mask: Some(&mut panned), ..Default::default() },
+    )
+    .unwrap();
     let mut worst = 0u8;
     let mut total = 0u64;
     for y in 0..256 {
@@ -183,8 +187,12 @@ fn periodic_rasters_are_seamless() {
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&open, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
     mud.run();
-    mud.render_mask(&render, &mut tile).unwrap();
-    mud.render_mask(&MudRender { offset: [w / 2.0, h / 2.0], ..render }, &mut panned).unwrap();
+    mud.render(&render, MudLayers { mask: Some(&mut tile), ..Default::default() }).unwrap();
+    mud.render(
+        &MudRender { offset: [w / 2.0, h / 2.0], ..render },
+        MudLayers { mask: Some(&mut panned), ..Default::default() },
+    )
+    .unwrap();
     let differs =
         (0..256 * 256).filter(|&i| tile[((i / 256 + 128) % 256) * 256 + (i % 256 + 128) % 256] != panned[i]).count();
     assert!(differs > 1000, "{differs}");
@@ -304,9 +312,9 @@ fn the_time_map_dates_every_crack_pixel_and_only_those() {
     let end = mud.run();
     let render = MudRender { width: 192, height: 192, ..MudRender::default() };
     let (mut mask, mut time, mut height) = (vec![0u8; 192 * 192], vec![0.0f32; 192 * 192], vec![0.0f32; 192 * 192]);
-    mud.render_mask(&render, &mut mask).unwrap();
-    mud.render_time(&render, &mut time).unwrap();
-    mud.render_height(&render, &mut height).unwrap();
+    mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
+    mud.render(&render, MudLayers { time: Some(&mut time), ..Default::default() }).unwrap();
+    mud.render(&render, MudLayers { height: Some(&mut height), ..Default::default() }).unwrap();
     for i in 0..192 * 192 {
         if mask[i] >= 128 {
             assert!(time[i].is_finite() && time[i] > 0.0 && time[i] <= end.time, "pixel {i}: {}", time[i]);
@@ -611,7 +619,7 @@ fn the_default_mask_shows_thin_connected_cracks() {
     mud.run();
     let render = MudRender { width: 512, height: 512, ..MudRender::default() };
     let mut mask = vec![0u8; 512 * 512];
-    mud.render_mask(&render, &mut mask).unwrap();
+    mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
     let on: Vec<bool> = mask.iter().map(|&v| v >= 128).collect();
     let cracked = on.iter().filter(|&&c| c).count();
     let pieces = pieces_8_connected(&on, 512);

@@ -1,15 +1,22 @@
 //! Model C against the paper (Ishii et al.) and the acceptance list.
 
+use hibi_core::Scalar;
 use hibi_core::skin::{
-    PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, preset, shade,
+    PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, SkinRender,
+    preset, shade,
 };
-use hibi_tests::{SkinVecs, fnv1a64};
+use hibi_tests::fnv1a64;
 
-/// Builds `params` and hands the skin to `inspect`.
+/// Builds `params` (maps in `f32`) and hands the skin to `inspect`.
 fn with_skin<R>(params: &SkinParams, inspect: impl FnOnce(&Skin) -> R) -> R {
-    let m = params.memory().expect("valid parameters");
-    let mut memory = SkinVecs::new(&m);
-    let skin = Skin::new(params, memory.buffers()).expect("memory suffices");
+    with_skin_in::<f32, R>(params, inspect)
+}
+
+/// Builds `params` with maps in backend `S` and hands the skin to `inspect`.
+fn with_skin_in<S: Scalar, R>(params: &SkinParams, inspect: impl FnOnce(&Skin<S>) -> R) -> R {
+    let mut memory = params.memory().expect("valid parameters").allocate();
+    let mut skin = Skin::<S>::new(params, memory.buffers()).expect("memory suffices");
+    assert!(!skin.run().capacity_reached, "the capacities suffice");
     inspect(&skin)
 }
 
@@ -192,10 +199,14 @@ fn more_levels_give_more_cells() {
 }
 
 /// Height and normal maps of a skin.
-fn maps<S: hibi_core::Scalar>(skin: &Skin) -> (Vec<f32>, Vec<[f32; 3]>) {
+fn maps<S: Scalar>(skin: &Skin<S>) -> (Vec<f32>, Vec<[f32; 3]>) {
     let n = (skin.params().width * skin.params().height) as usize;
     let (mut h, mut nm) = (vec![0.0f32; n], vec![[0.0f32; 3]; n]);
-    skin.render::<S>(SkinLayers { height: Some(&mut h), normal: Some(&mut nm), ..SkinLayers::default() }).unwrap();
+    skin.render(
+        &SkinRender::default(),
+        SkinLayers { height: Some(&mut h), normal: Some(&mut nm), ..SkinLayers::default() },
+    )
+    .unwrap();
     (h, nm)
 }
 
@@ -209,26 +220,24 @@ fn each_map_is_the_same_alone_or_with_the_others() {
     let cases = [("fig19a", sized("fig19a", 150)), ("fig19f", sized("fig19f", 150)), ("periodic fig19b", periodic)];
     for (name, p) in cases {
         with_skin(&p, |skin| {
-            let (together_h, together_n) = maps::<f32>(skin);
+            let (together_h, together_n) = maps(skin);
             let n = together_h.len();
             let (mut h, mut nm) = (vec![-1.0f32; n], vec![[-1.0f32; 3]; n]);
-            skin.render::<f32>(SkinLayers { height: Some(&mut h), ..SkinLayers::default() }).unwrap();
-            skin.render::<f32>(SkinLayers { normal: Some(&mut nm), ..SkinLayers::default() }).unwrap();
+            skin.render(&SkinRender::default(), SkinLayers { height: Some(&mut h), ..SkinLayers::default() }).unwrap();
+            skin.render(&SkinRender::default(), SkinLayers { normal: Some(&mut nm), ..SkinLayers::default() }).unwrap();
             let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert!(bits(&h) == bits(&together_h), "{name}: heights alone");
             assert!(bits(nm.as_flattened()) == bits(together_n.as_flattened()), "{name}: normals alone");
             let (_, owner) = coverage(skin);
             for level in 0..p.levels {
                 let (mut alone, mut with) = (vec![0u32; n], vec![0u32; n]);
-                skin.render::<f32>(SkinLayers { cell: Some(&mut alone), cell_level: level, ..SkinLayers::default() })
-                    .unwrap();
-                let layers = SkinLayers {
-                    height: Some(&mut h),
-                    normal: Some(&mut nm),
-                    cell: Some(&mut with),
-                    cell_level: level,
-                };
-                skin.render::<f32>(layers).unwrap();
+                skin.render(
+                    &SkinRender { cell_level: level },
+                    SkinLayers { cell: Some(&mut alone), ..SkinLayers::default() },
+                )
+                .unwrap();
+                let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut with) };
+                skin.render(&SkinRender { cell_level: level }, layers).unwrap();
                 assert!(alone == owner[level as usize], "{name}: cell map of level {level}");
                 assert!(with == alone, "{name}: cell map of level {level} with the other maps");
                 assert!(bits(&h) == bits(&together_h), "{name}: heights with cell map {level}");
@@ -242,7 +251,7 @@ fn a_periodic_surface_has_no_seam() {
     let mut p = sized("fig19a", 160);
     p.periodic = true;
     with_skin(&p, |skin| {
-        let (h, _) = maps::<f32>(skin);
+        let (h, _) = maps(skin);
         let w = p.width as usize;
         // Height steps across the wrap (last column to first, last row to first) against steps
         // between neighbouring columns and rows inside.
@@ -267,7 +276,7 @@ fn a_periodic_surface_has_no_seam() {
 fn heights_and_normals_follow_the_profile() {
     let p = sized("fig13b", 200);
     with_skin(&p, |skin| {
-        let (h, n) = maps::<f32>(skin);
+        let (h, n) = maps(skin);
         // Fig. 13 b: a plateau at 3 falling to 0 at the furrows.
         let max = h.iter().cloned().fold(f32::MIN, f32::max);
         let min = h.iter().cloned().fold(f32::MAX, f32::min);
@@ -313,8 +322,8 @@ fn f32_and_q16_agree_and_each_has_its_golden() {
             }
             fnv1a64(&bytes)
         };
-        let f = maps::<f32>(skin);
-        let q = maps::<hibi_core::scalar::Q16>(skin);
+        let f = maps(skin);
+        let q = with_skin_in::<hibi_core::scalar::Q16, _>(&p, maps);
         let worst = f.0.iter().zip(&q.0).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
         println!("Q16 vs f32 height: worst {worst}");
         assert!(worst < 0.02, "{worst}");
@@ -351,7 +360,7 @@ fn bad_input_is_refused_and_nothing_is_written() {
         clip: &mut clip,
         words: &mut words,
     };
-    assert_eq!(Skin::new(&p, buffers).err(), Some(SkinError::BufferTooSmall { needed: m.vertices }));
+    assert_eq!(Skin::<f32>::new(&p, buffers).err(), Some(SkinError::BufferTooSmall { needed: m.vertices }));
     assert!(vertices.iter().all(|v| *v == [7, 7]));
     let bad = SkinParams { levels: 9, ..p };
     assert!(bad.memory().is_err());
@@ -359,13 +368,13 @@ fn bad_input_is_refused_and_nothing_is_written() {
         let mut short = vec![5.0f32; 64 * 64 - 1];
         let mut normal = vec![[5.0f32; 3]; 64 * 64];
         let layers = SkinLayers { height: Some(&mut short), normal: Some(&mut normal), ..SkinLayers::default() };
-        assert_eq!(skin.render::<f32>(layers), Err(SkinError::BufferTooSmall { needed: 64 * 64 }));
+        assert_eq!(skin.render(&SkinRender::default(), layers), Err(SkinError::BufferTooSmall { needed: 64 * 64 }));
         assert!(short.iter().all(|&v| v == 5.0) && normal.iter().all(|v| *v == [5.0; 3]));
         let mut ids = vec![9u32; 64 * 64];
-        let layers = SkinLayers { cell: Some(&mut ids), cell_level: 3, ..SkinLayers::default() };
-        assert_eq!(skin.render::<f32>(layers), Err(SkinError::Level));
+        let layers = SkinLayers { cell: Some(&mut ids), ..SkinLayers::default() };
+        assert_eq!(skin.render(&SkinRender { cell_level: 3 }, layers), Err(SkinError::Level));
         assert!(ids.iter().all(|&v| v == 9));
-        let (h, n) = maps::<f32>(skin);
+        let (h, n) = maps(skin);
         let mut rgb = vec![[1u8; 3]; 64 * 64];
         let dark = ShadeParams { light: [0.0; 3], ..ShadeParams::default() };
         assert_eq!(shade(&h, &n, &dark, &mut rgb), Err(SkinError::Shade(ShadeError::Light)));
@@ -389,7 +398,7 @@ fn every_preset_builds_and_renders() {
     for name in PRESETS {
         let p = sized(name, 96);
         with_skin(&p, |skin| {
-            let (h, _) = maps::<f32>(skin);
+            let (h, _) = maps(skin);
             assert!(h.iter().all(|v| v.is_finite()) && h.iter().any(|&v| v > 0.5), "{name}");
         });
     }
@@ -408,9 +417,8 @@ fn a_fig19a_skin_builds_and_renders_in_a_256_kib_stack() {
             with_skin(&p, |skin| {
                 let n = (p.width * p.height) as usize;
                 let (mut h, mut nm, mut c) = (vec![0.0f32; n], vec![[0.0f32; 3]; n], vec![0u32; n]);
-                let layers =
-                    SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut c), cell_level: 2 };
-                skin.render::<f32>(layers).unwrap();
+                let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut c) };
+                skin.render(&SkinRender { cell_level: 2 }, layers).unwrap();
                 assert!(c.iter().all(|&i| i != hibi_core::skin::NO_CELL));
                 skin.cells().len()
             })

@@ -2,7 +2,7 @@
 //! API.
 
 use hibi_core::Spread;
-use hibi_core::glass::{Glass, GlassBuffers, GlassParamError, GlassParams, GlassRender, ImpactCounts};
+use hibi_core::glass::{Glass, GlassBuffers, GlassLayers, GlassParamError, GlassParams, GlassRender, ImpactCounts};
 
 use crate::Failure;
 use crate::args::{GlassOptions, SpreadArg};
@@ -169,8 +169,7 @@ pub fn simulate(
     let pixels = render.width as usize * render.height as usize;
     let mut mask = vec![0u8; pixels];
     let mut time = vec![0.0f32; pixels];
-    glass.render_mask(render, &mut mask).expect("the raster was checked");
-    glass.render_time(render, &mut time).expect("the raster was checked");
+    glass.render(render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time) }).expect("the raster was checked");
     let heights = mask.iter().map(|&m| 1.0 - f32::from(m) / 255.0).collect();
     let maps = CrackMaps {
         width: render.width,

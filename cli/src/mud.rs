@@ -1,7 +1,7 @@
 //! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
 
 use hibi_core::mud::{
-    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudParamError, MudParams, MudRender, Solver, Topology,
+    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudLayers, MudParamError, MudParams, MudRender, Solver, Topology,
 };
 
 use crate::Failure;
@@ -199,9 +199,9 @@ pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) ->
                 look: Look::Mud,
             };
             let drawn = "the view was checked";
-            mud.render_mask(view, &mut maps.mask).expect(drawn);
-            mud.render_height(view, &mut maps.heights).expect(drawn);
-            mud.render_time(view, &mut maps.time).expect(drawn);
+            let layers =
+                MudLayers { mask: Some(&mut maps.mask), height: Some(&mut maps.heights), time: Some(&mut maps.time) };
+            mud.render(view, layers).expect(drawn);
             maps
         })
         .collect();

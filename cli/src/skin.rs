@@ -3,8 +3,8 @@
 
 use hibi_core::Spread;
 use hibi_core::skin::{
-    MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers,
-    SkinParamError, SkinParams, shade,
+    MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinError, SkinLayers, SkinParamError,
+    SkinParams, SkinRender, shade,
 };
 
 use crate::Failure;
@@ -167,19 +167,15 @@ impl SkinRun {
 
 /// Builds the skin and renders `layer`. The parameters must have passed [`check`].
 pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<SkinRun, Failure> {
-    let m = params.memory().expect("checked parameters");
-    let mut cells = vec![Default::default(); m.cells];
-    let mut vertices = vec![[0i64; 2]; m.vertices];
-    let (mut sites, mut clip, mut words) =
-        (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
-    let buffers = SkinBuffers {
-        cells: &mut cells,
-        vertices: &mut vertices,
-        sites: &mut sites,
-        clip: &mut clip,
-        words: &mut words,
-    };
-    let skin = Skin::new(params, buffers).map_err(failure)?;
+    let mut store = params.memory().expect("checked parameters").allocate();
+    let mut skin = Skin::<f32>::new(params, store.buffers()).map_err(failure)?;
+    if skin.run().capacity_reached {
+        return Err(Failure::Runtime(
+            "skin: a cell outline or a cell's centre points outgrew their fixed capacity: lower \
+             --perturbation-depth, or make finer levels less fine (--spacing)"
+                .into(),
+        ));
+    }
     let (width, height) = (params.width, params.height);
     let pixels = width as usize * height as usize;
     let mut counts = vec![0usize; params.levels as usize];
@@ -191,8 +187,8 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
         Layer::Height | Layer::Normal | Layer::Shaded => {
             let mut h = vec![0.0f32; pixels];
             let mut n = vec![[0.0f32; 3]; pixels];
-            skin.render::<f32>(SkinLayers { height: Some(&mut h), normal: Some(&mut n), ..SkinLayers::default() })
-                .map_err(failure)?;
+            let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut n), ..SkinLayers::default() };
+            skin.render(&SkinRender::default(), layers).map_err(failure)?;
             let pixels = match layer {
                 Layer::Height => {
                     let top = h.iter().copied().fold(0.0f32, f32::max);
@@ -221,7 +217,7 @@ fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
     let mut mask = vec![0u8; w * h];
     let mut cell = vec![0u32; w * h];
     for level in 0..p.levels {
-        skin.render::<f32>(SkinLayers { cell: Some(&mut cell), cell_level: level, ..SkinLayers::default() })
+        skin.render(&SkinRender { cell_level: level }, SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() })
             .map_err(failure)?;
         let value = [255, 160, 100, 64][level as usize];
         for y in 0..h {
@@ -243,11 +239,6 @@ fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
 fn failure(e: SkinError) -> Failure {
     match e {
         SkinError::Param(p) => Failure::invalid("skin", option(p), message(p)),
-        SkinError::Capacity => Failure::Runtime(
-            "skin: a cell outline or a cell's centre points outgrew their fixed capacity: lower \
-             --perturbation-depth, or make finer levels less fine (--spacing)"
-                .into(),
-        ),
         SkinError::Shade(e) => shade_failure(e),
         other => Failure::Runtime(format!("skin: internal error: {other:?}")),
     }

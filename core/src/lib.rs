@@ -5,7 +5,8 @@
 //! hit by a ball (Agui et al.), and hierarchical Voronoi cells for skin (Ishii et al.).
 //!
 //! This crate is the core: `#![no_std]`, no `alloc` (the compiler proves it never
-//! allocates), no `unsafe`. Every byte it writes is handed in by the caller, every run is
+//! allocates; the `alloc` feature adds only `XMemory::allocate`, owned buffers for callers
+//! with a heap), no `unsafe`. Every byte it writes is handed in by the caller, every run is
 //! bounded and resumable, and the same seed, parameters and scalar backend give the same
 //! bytes on every platform and in every build.
 //!
@@ -18,6 +19,9 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
 
 mod error;
 mod geom;

@@ -16,8 +16,8 @@ use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassMemory, GlassParams, GlassProgress, GlassRender,
-    ImpactCounts, preset,
+    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams, GlassProgress,
+    GlassRender, ImpactCounts, preset,
 };
 
 use crate::fields::{Field, convert};
@@ -554,17 +554,17 @@ pub unsafe extern "C" fn hibi_glass_render(
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let render: GlassRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
-        let drawn = match layer {
-            // SAFETY (both): the caller's contract on `pixels`.
+        // SAFETY (both): the caller's contract on `pixels`.
+        let layers = match layer {
             HIBI_GLASS_LAYER_MASK => {
-                glass.glass.render_mask(&render, unsafe { buffer(pixels.cast::<u8>(), pixels_len) }?)
+                GlassLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), time: None }
             }
             HIBI_GLASS_LAYER_TIME => {
-                glass.glass.render_time(&render, unsafe { buffer(pixels.cast::<f32>(), pixels_len) }?)
+                GlassLayers { mask: None, time: Some(unsafe { buffer(pixels.cast(), pixels_len) }?) }
             }
             _ => return Err(HIBI_ERROR_RENDER_LAYER),
         };
-        drawn.map_err(raster_status)
+        glass.glass.render(&render, layers).map_err(raster_status)
     })
 }
 

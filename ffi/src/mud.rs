@@ -22,10 +22,9 @@ use core::ffi::{c_char, c_void};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
-    Boundary, CrackSegment, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayer, MudMemory, MudParams,
-    MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Progress, Solver, Topology, preset,
+    Boundary, CrackSegment, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayers, MudMemory, MudParams,
+    MudProgress, MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
-use hibi_core::raster::RasterError;
 
 use crate::fields::{Field, convert, enumeration};
 use crate::glass::hibi_vec2;
@@ -73,9 +72,6 @@ const _: () = assert!(
         && HIBI_MUD_QUASI_STATIC == Solver::QuasiStatic as u32
         && HIBI_MUD_SHRINK == Drive::Shrink as u32
         && HIBI_MUD_GROWTH == Drive::Growth as u32
-        && HIBI_MUD_LAYER_MASK == MudLayer::Mask as u32
-        && HIBI_MUD_LAYER_HEIGHT == MudLayer::Height as u32
-        && HIBI_MUD_LAYER_TIME == MudLayer::Time as u32
 );
 
 /// Marks a params struct that came from `hibi_mud_params_default` ("MUD1").
@@ -266,7 +262,7 @@ convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     break_stretch_spread, break_stretch_size_exponent, anisotropy_direction, anisotropy_ratio,
     stiffness_anisotropy_ratio, target_shrink, target_crack_density,
 });
-convert!(hibi_mud_progress <=> Progress { shrink, time, broken_springs, crack_density, work, finished });
+convert!(hibi_mud_progress <=> MudProgress { shrink, time, broken_springs, crack_density, work, finished });
 convert!(hibi_mud_statistics <=> CrackStatistics {
     crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
     mean_widest_junction_angle,
@@ -656,16 +652,20 @@ pub unsafe extern "C" fn hibi_mud_render(
         check_pointer(render)?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let render: MudRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
-        let drawn: Result<(), RasterError> = match layer {
-            // SAFETY (all three): the caller's contract on `pixels`.
-            HIBI_MUD_LAYER_MASK => mud.mud.render_mask(&render, unsafe { buffer(pixels.cast::<u8>(), pixels_len) }?),
-            HIBI_MUD_LAYER_HEIGHT => {
-                mud.mud.render_height(&render, unsafe { buffer(pixels.cast::<f32>(), pixels_len) }?)
+        // SAFETY (all three): the caller's contract on `pixels`.
+        let layers = match layer {
+            HIBI_MUD_LAYER_MASK => {
+                MudLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
             }
-            HIBI_MUD_LAYER_TIME => mud.mud.render_time(&render, unsafe { buffer(pixels.cast::<f32>(), pixels_len) }?),
+            HIBI_MUD_LAYER_HEIGHT => {
+                MudLayers { height: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
+            }
+            HIBI_MUD_LAYER_TIME => {
+                MudLayers { time: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
+            }
             _ => return Err(HIBI_ERROR_RENDER_LAYER),
         };
-        drawn.map_err(raster_status)
+        mud.mud.render(&render, layers).map_err(raster_status)
     })
 }
 

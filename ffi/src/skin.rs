@@ -6,25 +6,28 @@
 //! params.width = params.height = 256;
 //! hibi_skin *skin = NULL;
 //! if (hibi_skin_create(&params, &skin) != HIBI_OK) { ... }
+//! hibi_skin_progress progress;
+//! do { hibi_skin_step(skin, 100000, &progress); } while (!progress.finished);
 //! hibi_skin_render(skin, height, w * h, normal, 3 * w * h, NULL, 0, 0);
 //! hibi_skin_shade_params light = hibi_skin_shade_params_default();
 //! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
 //! hibi_skin_destroy(skin);
 //! ```
 //!
-//! Every cell outline is built by `hibi_skin_create`; rendering only reads them. An object is
-//! one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
+//! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
+//! another; rendering only reads them (it draws what is built so far). An object is one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
 
 use core::ffi::{c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams,
-    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, preset, shade,
+    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, preset,
+    shade,
 };
 
 use crate::fields::{Field, convert, enumeration};
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, write_out, write_preset};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -151,6 +154,24 @@ pub struct hibi_skin_shade_params {
     pub specular: f32,
 }
 
+/// Where a build stands.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct hibi_skin_progress {
+    /// Cells built, all levels.
+    pub cells: u32,
+    /// Level-0 centre points whose cells (with all their descendants) are built.
+    pub roots: u32,
+    /// Level-0 centre points in all.
+    pub root_total: u32,
+    /// 1 when every cell is built, else 0.
+    pub finished: u32,
+    /// 1 when a cell outgrew its capacity (the build then stopped; what was built is usable).
+    pub capacity_reached: u32,
+    /// Work done since the build began (units of the step budget).
+    pub work: u64,
+}
+
 /// One cell of the hierarchy.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -203,6 +224,7 @@ convert!(hibi_skin_level <=> LevelParams {
 convert!(hibi_skin_params <=> SkinParams, cookie: PARAMS_COOKIE {
     layout, jitter, periodic, width, height, seed, jitter_ratio, levels, level,
 });
+convert!(hibi_skin_progress <=> SkinProgress { cells, roots, root_total, finished, capacity_reached, work });
 convert!(hibi_skin_shade_params <=> ShadeParams { light, ridge, furrow, ambient, specular });
 
 /// The C view of core parameters.
@@ -256,7 +278,6 @@ fn skin_status(error: SkinError) -> hibi_status {
     match error {
         SkinError::Param(p) => skin_param_status(p),
         SkinError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
-        SkinError::Capacity => HIBI_ERROR_SKIN_CAPACITY,
         SkinError::Level => HIBI_ERROR_SKIN_LEVEL,
         SkinError::Shade(ShadeError::Light) => HIBI_ERROR_SKIN_SHADE,
         SkinError::Shade(ShadeError::Ridge) => HIBI_ERROR_SKIN_SHADE_RIDGE,
@@ -399,10 +420,40 @@ pub unsafe extern "C" fn hibi_skin_render(
                 height: layer(height, height_len)?,
                 normal: layer(normal.cast::<[f32; 3]>(), normal_len / 3)?,
                 cell: layer(cells, cells_len)?,
-                cell_level,
             }
         };
-        skin.skin.render::<f32>(layers).map_err(skin_status)
+        skin.skin.render(&SkinRender { cell_level }, layers).map_err(skin_status)
+    })
+}
+
+/// Advances the build by about `budget` units of work (outline vertices written; at least
+/// one level-0 cell with its descendants, and the cells do not depend on the budgets); writes
+/// where it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and
+/// writes nothing) once a cell outgrew its capacity; what was built stays usable.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; `progress` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_step(
+    skin: *mut hibi_skin,
+    budget: u64,
+    progress: *mut hibi_skin_progress,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object(skin) }?;
+        if !progress.is_null() {
+            check_pointer(progress)?;
+        }
+        let p = skin.skin.step(budget);
+        if p.capacity_reached {
+            return Err(HIBI_ERROR_SKIN_CAPACITY);
+        }
+        if !progress.is_null() {
+            // SAFETY: checked; the caller's contract.
+            unsafe { write_out(progress, hibi_skin_progress::from_core(&p)) }?;
+        }
+        Ok(())
     })
 }
 
@@ -548,7 +599,7 @@ mod tests {
     #[test]
     fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {
         type Spoil = fn(&mut hibi_skin_params);
-        let cases: [(Spoil, hibi_status); 17] = [
+        let cases: [(Spoil, hibi_status); 16] = [
             (|p| p.cookie = 0, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED),
             (|p| p.layout = 3, HIBI_ERROR_SKIN_ENUM),
             (|p| p.jitter = 2, HIBI_ERROR_SKIN_ENUM),
@@ -565,14 +616,6 @@ mod tests {
             (|p| p.level[0].profile.points[1][0] = f32::INFINITY, HIBI_ERROR_SKIN_PROFILE_POINTS),
             (|p| p.level[1].roundness = 1.5, HIBI_ERROR_SKIN_ROUNDNESS),
             (|p| (p.width, p.height, p.levels) = (32_768, 32_768, 4), HIBI_ERROR_SKIN_CAPACITY_PARAMS),
-            (
-                |p| {
-                    // A parent holding more centre points than the core can sort.
-                    (p.width, p.height, p.level[0].spacing, p.level[1].spacing) = (128, 128, 128.0, 1.5);
-                    (p.level[0].perturbation_depth, p.level[1].perturbation_depth) = (0, 0);
-                },
-                HIBI_ERROR_SKIN_CAPACITY,
-            ),
         ];
         for (k, (spoil, expected)) in cases.into_iter().enumerate() {
             let mut p = small();
@@ -582,14 +625,60 @@ mod tests {
             // SAFETY: valid pointers; failing calls write nothing.
             unsafe {
                 assert_eq!(hibi_skin_create(&p, &mut out), expected, "case {k}");
-                if expected != HIBI_ERROR_SKIN_CAPACITY {
-                    assert_eq!(hibi_skin_memory_size(&p, &mut size), expected, "case {k}");
-                }
+                assert_eq!(hibi_skin_memory_size(&p, &mut size), expected, "case {k}");
             }
             assert!(out.is_null() && size == 99, "case {k}");
             let message = message(expected).to_str().unwrap();
             assert!(message.starts_with("skin: "), "{message}");
         }
+    }
+
+    #[test]
+    fn a_build_that_outgrows_a_capacity_stops_and_says_so() {
+        let mut p = small();
+        // A parent holding more centre points than the core can sort.
+        (p.width, p.height, p.level[0].spacing, p.level[1].spacing) = (128, 128, 128.0, 1.5);
+        (p.level[0].perturbation_depth, p.level[1].perturbation_depth) = (0, 0);
+        let mut skin = null_mut();
+        let mut progress = hibi_skin_progress { cells: 77, ..Default::default() };
+        // SAFETY: valid pointers; a failing step writes nothing.
+        unsafe {
+            assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+            assert_eq!(hibi_skin_step(skin, u64::MAX, &mut progress), HIBI_ERROR_SKIN_CAPACITY);
+            assert_eq!(progress.cells, 77);
+            let mut count = 0;
+            assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
+            hibi_skin_destroy(skin);
+        }
+    }
+
+    #[test]
+    fn steps_of_any_budget_build_the_same_cells() {
+        let p = small();
+        let outlines = |budget: u64| {
+            let mut skin = null_mut();
+            let mut progress = hibi_skin_progress::default();
+            let mut steps = 0;
+            // SAFETY: valid pointers throughout.
+            unsafe {
+                assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+                while progress.finished == 0 {
+                    assert_eq!(hibi_skin_step(skin, budget, &mut progress), HIBI_OK);
+                    steps += 1;
+                }
+                let skin = &*skin;
+                let cells: Vec<_> = skin.skin.cells().iter().map(|c| (c.level, c.parent, c.vertex_count)).collect();
+                let vertices = skin.skin.vertices().to_vec();
+                hibi_skin_destroy(skin as *const hibi_skin as *mut hibi_skin);
+                (cells, vertices, steps, progress)
+            }
+        };
+        let (cells, vertices, one_go, done) = outlines(u64::MAX);
+        let (cells_1, vertices_1, many, done_1) = outlines(1);
+        assert_eq!(one_go, 1);
+        assert!(many > 2 && many as u32 == done.root_total, "{many} steps of one root each");
+        assert!(cells == cells_1 && vertices == vertices_1);
+        assert_eq!((done.cells, done.roots, done.work), (done_1.cells, done_1.roots, done_1.work));
     }
 
     #[test]
@@ -650,6 +739,7 @@ mod tests {
             assert!(untouched(&memory) && out.is_null());
             assert_eq!(hibi_skin_create_in(&p, base, size, &mut out), HIBI_OK);
             assert_eq!(out.cast::<c_void>(), base);
+            assert_eq!(hibi_skin_step(out, u64::MAX, null_mut()), HIBI_OK);
             let mut count = 0;
             assert_eq!(hibi_skin_cell_count(out, &mut count), HIBI_OK);
             assert!(count > 2);
@@ -666,6 +756,7 @@ mod tests {
         // SAFETY: valid pointers throughout; failing calls write nothing.
         unsafe {
             assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+            assert_eq!(hibi_skin_step(skin, u64::MAX, null_mut()), HIBI_OK);
             let mut height = vec![7.0f32; pixels];
             let mut normal = vec![7.0f32; 3 * pixels];
             let mut cells = vec![7u32; pixels];
@@ -744,6 +835,7 @@ mod tests {
         // SAFETY: valid pointers throughout; failing calls write nothing.
         unsafe {
             assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
+            assert_eq!(hibi_skin_step(skin, u64::MAX, null_mut()), HIBI_OK);
             let mut count = 0;
             assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
             let mut info = hibi_skin_cell { level: 9, ..Default::default() };

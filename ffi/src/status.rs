@@ -211,8 +211,9 @@ pub const HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED: hibi_status = 1343;
 /// Skin parameters: `layout` is not a `HIBI_SKIN_LAYOUT_*` constant, `jitter` not
 /// `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`, or `periodic` not 0 or 1.
 pub const HIBI_ERROR_SKIN_ENUM: hibi_status = 1344;
-/// `hibi_skin_create`: a cell outline or one parent's centre points outgrew their fixed
-/// capacity; lower the perturbation depth or the ratio of a level's spacing to the next's.
+/// `hibi_skin_step`: a cell outline or one parent's centre points outgrew their fixed
+/// capacity (the build stopped there; what was built stays usable); lower the perturbation
+/// depth or the ratio of a level's spacing to the next's.
 pub const HIBI_ERROR_SKIN_CAPACITY: hibi_status = 1345;
 /// `hibi_skin_render`: `cell_level` is not below the skin's `levels`.
 pub const HIBI_ERROR_SKIN_LEVEL: hibi_status = 1346;

@@ -27,6 +27,11 @@ enum Hit {
 }
 
 impl Glass<'_> {
+    /// Grows every crack of the current impact to its end.
+    pub fn run(&mut self) -> GlassProgress {
+        self.step(u64::MAX)
+    }
+
     /// Advances growth by about `budget` units of work (at least one). A unit is a grid entry
     /// examined by a distance or crossing query (a segment or a tip), or a crack looked at by
     /// the step loop. The budget is checked before every update of a tip, so a call overruns

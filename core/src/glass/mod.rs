@@ -11,21 +11,21 @@
 //! cuts the plate into, as polygons.
 //!
 //! ```
-//! use hibi_core::glass::{Glass, GlassBuffers, GlassParams};
+//! use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
 //!
-//! let params = GlassParams::default();
-//! let m = params.memory().unwrap();
-//! let (mut cracks, mut vertices) = (vec![Default::default(); m.cracks], vec![Default::default(); m.vertices]);
-//! let (mut edges, mut words) = (vec![Default::default(); m.edges], vec![0u32; m.words]);
-//! let buffers = GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
-//! let mut glass = Glass::new(&params, buffers).unwrap();
-//! while !glass.step(10_000).finished {}
-//! assert!(glass.crack_count() > 0);
+//! let params = GlassParams { width: 160.0, height: 160.0, impact: [80.0, 80.0], ..GlassParams::default() };
+//! let mut memory = params.memory().unwrap().allocate(); // or GlassStorage, or your own buffers
+//! let mut glass: Glass = Glass::new(&params, memory.buffers()).unwrap(); // computes in f32
+//! while !glass.step(100_000).finished {}
+//! let mut mask = vec![0u8; 64 * 64];
+//! let render = GlassRender { width: 64, height: 64, ..GlassRender::default() };
+//! glass.render(&render, GlassLayers { mask: Some(&mut mask), ..GlassLayers::default() }).unwrap();
+//! assert!(mask.iter().any(|&m| m > 0));
 //! ```
 
 mod grid;
-pub mod params;
-pub mod presets;
+mod params;
+mod presets;
 
 pub use params::{GlassParamError, GlassParams};
 pub use presets::{PRESETS, preset};
@@ -156,6 +156,82 @@ pub struct GlassBuffers<'a> {
     pub edges: &'a mut [Edge],
     /// At least [`GlassMemory::words`].
     pub words: &'a mut [u32],
+}
+
+/// Owned memory for a plate (the `alloc` feature), from [`GlassMemory::allocate`].
+#[cfg(feature = "alloc")]
+pub struct GlassStore {
+    cracks: alloc::vec::Vec<Crack>,
+    vertices: alloc::vec::Vec<Vertex>,
+    edges: alloc::vec::Vec<Edge>,
+    words: alloc::vec::Vec<u32>,
+}
+
+#[cfg(feature = "alloc")]
+impl GlassMemory {
+    /// Owned buffers of this size.
+    pub fn allocate(&self) -> GlassStore {
+        GlassStore {
+            cracks: alloc::vec![Crack::default(); self.cracks],
+            vertices: alloc::vec![Vertex::default(); self.vertices],
+            edges: alloc::vec![Edge::default(); self.edges],
+            words: alloc::vec![0; self.words],
+        }
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl GlassStore {
+    /// The buffers, for [`Glass::new`].
+    pub fn buffers(&mut self) -> GlassBuffers<'_> {
+        GlassBuffers {
+            cracks: &mut self.cracks,
+            vertices: &mut self.vertices,
+            edges: &mut self.edges,
+            words: &mut self.words,
+        }
+    }
+}
+
+/// Fixed-size storage for callers without a heap: the sizes are those of
+/// [`GlassParams::memory`] (edges as many as vertices).
+pub struct GlassStorage<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> {
+    /// Crack records.
+    pub cracks: [Crack; CRACKS],
+    /// Vertex records.
+    pub vertices: [Vertex; VERTICES],
+    /// Edge records.
+    pub edges: [Edge; VERTICES],
+    /// Words.
+    pub words: [u32; WORDS],
+}
+
+impl<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> GlassStorage<CRACKS, VERTICES, WORDS> {
+    /// Empty storage.
+    pub fn new() -> Self {
+        GlassStorage {
+            cracks: [Crack::default(); CRACKS],
+            vertices: [Vertex::default(); VERTICES],
+            edges: [Edge::default(); VERTICES],
+            words: [0; WORDS],
+        }
+    }
+
+    /// The buffers, for [`Glass::new`].
+    pub fn buffers(&mut self) -> GlassBuffers<'_> {
+        GlassBuffers {
+            cracks: &mut self.cracks,
+            vertices: &mut self.vertices,
+            edges: &mut self.edges,
+            words: &mut self.words,
+        }
+    }
+}
+
+impl<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> Default for GlassStorage<CRACKS, VERTICES, WORDS> {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 /// Why a plate could not be set up or an output written.
@@ -544,9 +620,9 @@ mod faces;
 mod fragments;
 mod growth;
 mod output;
-pub mod render;
+mod render;
 
 pub use fragments::FragmentRing;
 use fragments::FragmentScratch;
 pub use output::CrackPoint;
-pub use render::GlassRender;
+pub use render::{GlassLayers, GlassRender};

@@ -8,7 +8,7 @@ use super::{Glass, GlassError};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 pub struct CrackPoint {
-    /// Position (x, y) [px].
+    /// Position (x, y), in px.
     pub at: [f32; 2],
     /// Time in steps.
     pub time: f32,

@@ -2,7 +2,20 @@
 //! time map (the step at which the crack front passed each pixel, for animating the break).
 
 use super::Glass;
-use crate::raster::{Frame, RasterError, Stroke, StrokeHit, draw_mask, draw_time, for_each_hit, pixel_count};
+use crate::raster::{
+    Frame, RasterError, Stroke, StrokeHit, check_lengths, draw_mask, draw_time, for_each_hit, pixel_count,
+};
+
+/// The rasters one [`Glass::render`] call draws: any of them, each `width × height` values,
+/// row-major.
+#[derive(Default)]
+pub struct GlassLayers<'o> {
+    /// Crack coverage, anti-aliased, 0 (none) to 255 (full).
+    pub mask: Option<&'o mut [u8]>,
+    /// For each pixel the earliest step at which a crack covering at least half of it was
+    /// there; +∞ where none is (for animating the break).
+    pub time: Option<&'o mut [f32]>,
+}
 
 /// How to draw: raster size and line width.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,15 +65,18 @@ impl Glass<'_> {
         }
     }
 
-    /// The crack mask, 0 (none) to 255, row-major `width × height`. Nothing is written on
-    /// failure.
-    pub fn render_mask(&self, render: &GlassRender, out: &mut [u8]) -> Result<(), RasterError> {
-        draw_mask(render.validate()?, out, |visit| self.draw(render, visit))
-    }
-
-    /// The time map: for each pixel the earliest step at which a crack covering at least half
-    /// of it was there; +∞ where none is. Nothing is written on failure.
-    pub fn render_time(&self, render: &GlassRender, out: &mut [f32]) -> Result<(), RasterError> {
-        draw_time(render.validate()?, out, |visit| self.draw(render, visit))
+    /// Draws the requested layers (see [`GlassLayers`]). Every buffer is checked first:
+    /// nothing is written on failure.
+    pub fn render(&self, render: &GlassRender, layers: GlassLayers<'_>) -> Result<(), RasterError> {
+        let pixels = render.validate()?;
+        let GlassLayers { mask, time } = layers;
+        check_lengths(pixels, [mask.as_deref().map(<[u8]>::len), time.as_deref().map(<[f32]>::len)])?;
+        if let Some(out) = mask {
+            draw_mask(pixels, out, |visit| self.draw(render, visit))?;
+        }
+        if let Some(out) = time {
+            draw_time(pixels, out, |visit| self.draw(render, visit))?;
+        }
+        Ok(())
     }
 }

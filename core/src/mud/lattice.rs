@@ -15,7 +15,7 @@ use super::params::{Boundary, Topology};
 pub const ROW_PITCH_HEX: f32 = 0.866_025_4;
 
 /// The shape of a lattice: topology, edges and size, and for the irregular topology the
-/// tables of its mesh (built with the run, see [`irregular`]).
+/// tables of its mesh (built with the run: the irregular lattice).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Lattice<'a> {
     /// Square or hexagonal elements.

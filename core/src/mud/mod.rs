@@ -6,35 +6,40 @@
 //! layer grows), springs stretch past their break stretch and break, and the broken springs,
 //! traced through the mesh cells (Fig. 5), are the cracks.
 //!
+//! Every model has the same shape (this is the example of each, but for the names):
+//!
 //! ```
-//! use hibi_core::mud::{Mud, MudBuffers, MudParams};
+//! use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender};
 //!
 //! let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
-//! let memory = params.memory().unwrap();
-//! let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-//! let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+//! let mut memory = params.memory().unwrap().allocate(); // or MudStorage, or your own buffers
+//! let mut mud: Mud = Mud::new(&params, memory.buffers()).unwrap(); // Mud<Q16> for fixed point
 //! while !mud.step(100_000).finished {}
-//! let mut segments = vec![Default::default(); mud.segment_count()];
-//! mud.segments(&mut segments).unwrap();
-//! assert!(!segments.is_empty());
+//! let mut mask = vec![0u8; 64 * 64];
+//! let render = MudRender { width: 64, height: 64, ..MudRender::default() };
+//! mud.render(&render, MudLayers { mask: Some(&mut mask), ..MudLayers::default() }).unwrap();
+//! assert!(mask.iter().any(|&m| m > 0));
 //! ```
 //!
-//! Memory is the caller's: [`MudParams::memory`] tells how many scalars and words a run needs,
-//! [`MudStorage`] holds them in fixed-size arrays for callers without a heap.
+//! Memory is the caller's: [`MudParams::memory`] tells how many scalars and words a run needs;
+//! [`MudStorage`] holds them in fixed-size arrays for callers without a heap, and with the
+//! `alloc` feature [`MudMemory::allocate`] gives owned ones. Outputs are counted, then written
+//! into caller buffers: [`Mud::network_counts`] and [`Mud::network`], [`Mud::cell_counts`] and
+//! [`Mud::cells`], [`Mud::segment_count`] and [`Mud::segments`].
 
-pub mod cells;
+mod cells;
 mod explicit;
-pub mod irregular;
-pub mod lattice;
-pub mod material;
-pub mod network;
-pub mod params;
-pub mod presets;
+mod irregular;
+mod lattice;
+mod material;
+mod network;
+mod params;
+mod presets;
 mod quasi_static;
-pub mod render;
-pub mod spacing;
-pub mod statistics;
-pub mod trace;
+mod render;
+mod spacing;
+mod statistics;
+mod trace;
 
 pub use cells::{CellCounts, CellRing};
 pub use lattice::Lattice;
@@ -42,9 +47,9 @@ pub use material::Material;
 pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
-pub use render::{MudLayer, MudRender};
+pub use render::{BEVEL, MudLayers, MudRender};
 pub use spacing::{SpacingPrediction, predict_spacing};
-pub use statistics::CrackStatistics;
+pub use statistics::{CrackStatistics, JUNCTION_REACH};
 pub use trace::CrackSegment;
 
 use crate::rng::{Rng, Stream};
@@ -134,6 +139,29 @@ pub struct MudBuffers<'a, S> {
     pub words: &'a mut [u32],
 }
 
+/// Owned memory for a run (the `alloc` feature), from [`MudMemory::allocate`].
+#[cfg(feature = "alloc")]
+pub struct MudStore<S> {
+    scalars: alloc::vec::Vec<S>,
+    words: alloc::vec::Vec<u32>,
+}
+
+#[cfg(feature = "alloc")]
+impl MudMemory {
+    /// Owned, zeroed buffers of this size.
+    pub fn allocate<S: Scalar>(&self) -> MudStore<S> {
+        MudStore { scalars: alloc::vec![S::ZERO; self.scalars], words: alloc::vec![0; self.words] }
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl<S> MudStore<S> {
+    /// The buffers, for [`Mud::new`].
+    pub fn buffers(&mut self) -> MudBuffers<'_, S> {
+        MudBuffers { scalars: &mut self.scalars, words: &mut self.words }
+    }
+}
+
 /// Fixed-size storage for callers without a heap: `SCALARS` and `WORDS` come from
 /// [`memory_for`] (a `const fn`), e.g.
 /// `MudStorage<f32, { memory_for(..).unwrap().scalars }, { ... .words }>`.
@@ -150,9 +178,9 @@ impl<S: Scalar, const SCALARS: usize, const WORDS: usize> MudStorage<S, SCALARS,
         MudStorage { scalars: [S::ZERO; SCALARS], words: [0; WORDS] }
     }
 
-    /// A run of `params` in this storage.
-    pub fn mud(&mut self, params: &MudParams) -> Result<Mud<'_, S>, MudError> {
-        Mud::new(params, MudBuffers { scalars: &mut self.scalars, words: &mut self.words })
+    /// The buffers, for [`Mud::new`].
+    pub fn buffers(&mut self) -> MudBuffers<'_, S> {
+        MudBuffers { scalars: &mut self.scalars, words: &mut self.words }
     }
 }
 
@@ -200,7 +228,7 @@ impl core::error::Error for MudError {
 
 /// Where a run stands, as [`Mud::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Progress {
+pub struct MudProgress {
     /// The misfit between the layers: shrink 1 − r (growth: 1/r − 1).
     pub shrink: f32,
     /// Time in long steps T (fractional for the quasi-static solver).
@@ -216,7 +244,7 @@ pub struct Progress {
 }
 
 /// A drying-mud run over caller memory.
-pub struct Mud<'a, S: Scalar> {
+pub struct Mud<'a, S: Scalar = f32> {
     params: MudParams,
     lattice: Lattice<'a>,
     material: Material<S>,
@@ -373,7 +401,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Advances the run by at most `budget` units of work (one unit is one spring visited),
     /// but always by at least one indivisible piece: a short step of the explicit solver, or
     /// a node relaxation or break event of the quasi-static one.
-    pub fn step(&mut self, budget: u64) -> Progress {
+    pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
             work += match self.solver {
@@ -392,13 +420,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// Runs to the end (target shrink or crack density).
-    pub fn run(&mut self) -> Progress {
+    pub fn run(&mut self) -> MudProgress {
         self.step(u64::MAX)
     }
 
     /// Where the run stands.
-    pub fn progress(&self) -> Progress {
-        Progress {
+    pub fn progress(&self) -> MudProgress {
+        MudProgress {
             shrink: self.misfit.to_f32(),
             time: self.time_now(),
             broken_springs: self.broken,
@@ -588,7 +616,7 @@ mod tests {
         };
         let mut storage = MudStorage::<f32, { M.scalars }, { M.words }>::new();
         let p = MudParams { columns: 16, rows: 16, ..MudParams::default() };
-        let mut mud = storage.mud(&p).unwrap();
+        let mut mud = Mud::new(&p, storage.buffers()).unwrap();
         assert!(mud.run().finished);
     }
 }

@@ -52,7 +52,7 @@ fn anisotropic(direction: f32, ratio: f32) -> MudParams {
 }
 
 /// About the crack density [1/cm] `fig6a` ends at: 0.383 on its seed, as
-/// [`super::Progress::crack_density`] counts it (the broken springs' faces per area; the
+/// [`super::MudProgress::crack_density`] counts it (the broken springs' faces per area; the
 /// traced network's density is higher, 0.534).
 const FIG6A_CRACK_DENSITY: f32 = 0.38;
 

@@ -4,19 +4,21 @@
 //! rasters: strokes wrap around the domain.
 
 use super::Mud;
-use crate::raster::{Frame, RasterError, Stroke, StrokeHit, draw_mask, draw_time, for_each_hit, pixel_count};
+use crate::raster::{
+    Frame, RasterError, Stroke, StrokeHit, check_lengths, draw_mask, draw_time, for_each_hit, pixel_count,
+};
 use crate::scalar::Scalar;
 
-/// Which raster to draw.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum MudLayer {
+/// The rasters one [`Mud::render`] call draws: any of them, each `width × height` values,
+/// row-major.
+#[derive(Default)]
+pub struct MudLayers<'o> {
     /// Crack coverage, 0 (none) to 255 (full).
-    Mask = 0,
-    /// Height: 1 on the surface, down to 1 − `groove_depth` in the widest crack.
-    Height = 1,
+    pub mask: Option<&'o mut [u8]>,
+    /// Height: 1 on a cell's surface, down to 1 − `groove_depth` in the widest crack.
+    pub height: Option<&'o mut [f32]>,
     /// Break time in long steps of the crack covering the pixel; +∞ where there is none.
-    Time = 2,
+    pub time: Option<&'o mut [f32]>,
 }
 
 /// How to draw: raster size and stroke widths.
@@ -105,32 +107,39 @@ impl<S: Scalar> Mud<'_, S> {
         });
     }
 
-    /// The crack mask, 0 (none) to 255, row-major `width × height`. Nothing is written on
-    /// failure.
-    pub fn render_mask(&self, render: &MudRender, out: &mut [u8]) -> Result<(), RasterError> {
-        draw_mask(render.validate()?, out, |visit| self.draw(render, 0.0, visit))
-    }
-
-    /// The break-time map: for each pixel the earliest break time (long steps) of the cracks
-    /// covering at least half of it; +∞ where none does. Nothing is written on failure.
-    pub fn render_time(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
-        draw_time(render.validate()?, out, |visit| self.draw(render, 0.0, visit))
+    /// Draws the requested layers (see [`MudLayers`]): the mask, an anti-aliased,
+    /// width-aware coverage; the time map, for each pixel the earliest break time of the
+    /// cracks covering at least half of it; the height map, raised cells between grooves (older, wider cracks deeper; see [`BEVEL`]).
+    /// Every buffer is checked first: nothing is written on failure.
+    pub fn render(&self, render: &MudRender, layers: MudLayers<'_>) -> Result<(), RasterError> {
+        let pixels = render.validate()?;
+        let MudLayers { mask, height, time } = layers;
+        check_lengths(
+            pixels,
+            [mask.as_deref().map(<[u8]>::len), height.as_deref().map(<[f32]>::len), time.as_deref().map(<[f32]>::len)],
+        )?;
+        if let Some(out) = mask {
+            draw_mask(pixels, out, |visit| self.draw(render, 0.0, visit))?;
+        }
+        if let Some(out) = time {
+            draw_time(pixels, out, |visit| self.draw(render, 0.0, visit))?;
+        }
+        if let Some(out) = height {
+            self.render_height(render, pixels, out);
+        }
+        Ok(())
     }
 
     /// The height map: 1 on a cell's surface. Each cell's edge rounds off over
     /// [`BEVEL`] spacings into its crack, whose floor lies `groove_depth` times
     /// (½ + ½ · its width over the widest crack's) below the surface: raised cells between
-    /// grooves, older (wider) cracks deeper. Nothing is written on failure.
-    pub fn render_height(&self, render: &MudRender, out: &mut [f32]) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        if out.len() < pixels {
-            return Err(RasterError::BufferTooSmall { needed: pixels });
-        }
+    /// grooves, older (wider) cracks deeper.
+    fn render_height(&self, render: &MudRender, pixels: usize, out: &mut [f32]) {
         let mut widest = 0.0f32;
         self.draw(render, 0.0, |hit| widest = widest.max(hit.half_width));
         out[..pixels].fill(1.0);
         if widest <= 0.0 {
-            return Ok(());
+            return;
         }
         let bevel = BEVEL * self.pixels_per_unit(render);
         self.draw(render, bevel, |hit| {
@@ -142,7 +151,6 @@ impl<S: Scalar> Mud<'_, S> {
             let groove = floor * edge * edge * hit.coverage;
             out[hit.pixel] = out[hit.pixel].min(1.0 - groove);
         });
-        Ok(())
     }
 }
 

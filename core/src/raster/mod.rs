@@ -62,6 +62,14 @@ impl core::fmt::Display for RasterError {
 
 impl core::error::Error for RasterError {}
 
+/// Checks that every present buffer of a render holds `pixels` values, before any is written.
+pub fn check_lengths<const N: usize>(pixels: usize, lengths: [Option<usize>; N]) -> Result<(), RasterError> {
+    if lengths.into_iter().flatten().any(|n| n < pixels) {
+        return Err(RasterError::BufferTooSmall { needed: pixels });
+    }
+    Ok(())
+}
+
 /// The number of pixels of a `width` × `height` raster, checked.
 pub fn pixel_count(width: u32, height: u32) -> Result<usize, RasterError> {
     if width == 0 || height == 0 {

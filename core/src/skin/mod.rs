@@ -9,28 +9,27 @@
 //! profile along the ray from its centre point to its edge; heights add up over the levels
 //! and normals come from the profiles' slopes.
 //!
-//! [`Skin::new`] builds every cell outline into caller memory (fixed point, 1/256 px, shared
-//! edges bit for bit); [`Skin::render`] evaluates height, normal and cell maps into caller
-//! buffers; [`shade`] lights a normal map for a preview.
+//! [`Skin::step`] builds the cell outlines into caller memory, one level-0 cell with its
+//! descendants after another (fixed point, 1/256 px, shared edges bit for bit);
+//! [`Skin::render`] evaluates height, normal and cell maps into caller buffers; [`shade`]
+//! lights a normal map for a preview.
 //!
 //! ```
-//! use hibi_core::skin::{Skin, SkinBuffers, SkinLayers, SkinParams};
+//! use hibi_core::skin::{Skin, SkinLayers, SkinParams, SkinRender};
 //!
 //! let params = SkinParams { width: 64, height: 64, ..SkinParams::default() };
-//! let m = params.memory().unwrap();
-//! let mut cells = vec![Default::default(); m.cells];
-//! let mut vertices = vec![[0i64; 2]; m.vertices];
-//! let (mut sites, mut clip, mut words) = (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
-//! let buffers = SkinBuffers { cells: &mut cells, vertices: &mut vertices, sites: &mut sites, clip: &mut clip, words: &mut words };
-//! let skin = Skin::new(&params, buffers).unwrap();
+//! let mut memory = params.memory().unwrap().allocate(); // or SkinStorage, or your own buffers
+//! let mut skin: Skin = Skin::new(&params, memory.buffers()).unwrap(); // Skin<Q16> for fixed point
+//! while !skin.step(100_000).finished {}
 //! let mut height = vec![0.0f32; 64 * 64];
-//! skin.render::<f32>(SkinLayers { height: Some(&mut height), ..SkinLayers::default() }).unwrap();
+//! let render = SkinRender::default();
+//! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }).unwrap();
 //! assert!(height.iter().any(|&h| h > 2.0));
 //! ```
 
 mod cell;
 mod grid;
-pub mod params;
+mod params;
 mod presets;
 mod profile;
 mod scan;
@@ -46,13 +45,17 @@ pub use params::{
 pub use presets::{PRESETS, preset};
 pub use shade::{ShadeError, ShadeParams, shade};
 pub use sites::Site;
-pub use surface::SkinLayers;
+pub use surface::{SkinLayers, SkinRender};
 
 use cell::{Builder, Frame, Parent};
 use grid::EdgeGrid;
 use profile::{ProfileTable, Sampling};
 use shared::SharedEdges;
 use sites::Lattice;
+
+use core::marker::PhantomData;
+
+use crate::scalar::Scalar;
 
 /// Neighbours on each side a level-1 centre is clipped against (jitter is at most half a
 /// spacing per axis, so a cell never reaches past them).
@@ -113,6 +116,99 @@ pub struct SkinBuffers<'a> {
     pub words: &'a mut [u32],
 }
 
+/// Owned memory for a skin (the `alloc` feature), from [`SkinMemory::allocate`].
+#[cfg(feature = "alloc")]
+pub struct SkinStore {
+    cells: alloc::vec::Vec<SkinCell>,
+    vertices: alloc::vec::Vec<[i64; 2]>,
+    sites: alloc::vec::Vec<Site>,
+    clip: alloc::vec::Vec<ClipVertex>,
+    words: alloc::vec::Vec<u32>,
+}
+
+#[cfg(feature = "alloc")]
+impl SkinMemory {
+    /// Owned buffers of this size.
+    pub fn allocate(&self) -> SkinStore {
+        SkinStore {
+            cells: alloc::vec![SkinCell::default(); self.cells],
+            vertices: alloc::vec![[0; 2]; self.vertices],
+            sites: alloc::vec![Site::default(); self.sites],
+            clip: alloc::vec![ClipVertex::default(); self.clip],
+            words: alloc::vec![0; self.words],
+        }
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl SkinStore {
+    /// The buffers, for [`Skin::new`].
+    pub fn buffers(&mut self) -> SkinBuffers<'_> {
+        SkinBuffers {
+            cells: &mut self.cells,
+            vertices: &mut self.vertices,
+            sites: &mut self.sites,
+            clip: &mut self.clip,
+            words: &mut self.words,
+        }
+    }
+}
+
+/// Fixed-size storage for callers without a heap: the sizes are those of
+/// [`SkinParams::memory`].
+pub struct SkinStorage<
+    const CELLS: usize,
+    const VERTICES: usize,
+    const SITES: usize,
+    const CLIP: usize,
+    const WORDS: usize,
+> {
+    /// Cell records.
+    pub cells: [SkinCell; CELLS],
+    /// Outline vertices.
+    pub vertices: [[i64; 2]; VERTICES],
+    /// Site records.
+    pub sites: [Site; SITES],
+    /// Clip vertices.
+    pub clip: [ClipVertex; CLIP],
+    /// Words.
+    pub words: [u32; WORDS],
+}
+
+impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: usize, const WORDS: usize>
+    SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS>
+{
+    /// Empty storage.
+    pub fn new() -> Self {
+        SkinStorage {
+            cells: [SkinCell::default(); CELLS],
+            vertices: [[0; 2]; VERTICES],
+            sites: [Site::default(); SITES],
+            clip: [ClipVertex::default(); CLIP],
+            words: [0; WORDS],
+        }
+    }
+
+    /// The buffers, for [`Skin::new`].
+    pub fn buffers(&mut self) -> SkinBuffers<'_> {
+        SkinBuffers {
+            cells: &mut self.cells,
+            vertices: &mut self.vertices,
+            sites: &mut self.sites,
+            clip: &mut self.clip,
+            words: &mut self.words,
+        }
+    }
+}
+
+impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: usize, const WORDS: usize> Default
+    for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// Why a skin could not be built or rendered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SkinError {
@@ -123,9 +219,6 @@ pub enum SkinError {
         /// Elements the buffer must hold.
         needed: usize,
     },
-    /// A cell outline or a parent's centre points outgrew their fixed capacity
-    /// ([`MAX_OUTLINE`], [`MAX_CHILDREN`]): lower the perturbation depth or the spacing ratio.
-    Capacity,
     /// The requested cell-map level is not below `levels`.
     Level,
     /// A shading parameter is out of range.
@@ -143,9 +236,6 @@ impl core::fmt::Display for SkinError {
         match self {
             SkinError::Param(e) => e.fmt(f),
             SkinError::BufferTooSmall { needed } => write!(f, "skin: a caller buffer is too small ({needed} needed)"),
-            SkinError::Capacity => f.write_str(
-                "skin: a cell outline or a parent's centre points outgrew their capacity (lower perturbation_depth or the spacing ratio)",
-            ),
             SkinError::Level => f.write_str("skin: the cell-map level must be below levels"),
             SkinError::Shade(e) => e.fmt(f),
         }
@@ -214,13 +304,49 @@ impl SkinParams {
     }
 }
 
-/// A skin surface: every cell outline of every level, over caller memory.
-pub struct Skin<'a> {
+/// A skin surface: every cell outline of every level, over caller memory, built by
+/// [`Skin::step`] one level-0 cell (with all its descendants) after another. `S` is the
+/// scalar backend the maps are computed in (`f32`, `micromath::F32`, `Q16`).
+pub struct Skin<'a, S: Scalar = f32> {
     params: SkinParams,
-    cells: &'a [SkinCell],
-    vertices: &'a [[i64; 2]],
+    build: Build<'a>,
     tables: [ProfileTable; MAX_LEVELS],
+    /// The level-0 lattice indices that can reach the surface (inclusive: i0, j0, i1, j1).
+    range: [i64; 4],
+    /// The next level-0 index (i, j) to build.
+    next: [i64; 2],
+    /// The level-0 index whose neighbour window `sites[..WINDOW_SITES]` holds, if any.
+    window: Option<[i64; 2]>,
+    /// Level-0 cells whose trees are built.
+    done: u32,
+    finished: bool,
+    capacity_reached: bool,
+    /// Outline vertices written so far: what [`Skin::step`]'s budget counts.
+    work: u64,
+    backend: PhantomData<S>,
 }
+
+/// Where a build stands, as [`Skin::step`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkinProgress {
+    /// Cells built, all levels.
+    pub cells: u32,
+    /// Level-0 centre points whose cells (with all their descendants) are built.
+    pub roots: u32,
+    /// Level-0 centre points in all.
+    pub root_total: u32,
+    /// Every cell is built.
+    pub finished: bool,
+    /// A cell outline or a parent's centre points outgrew their capacity ([`MAX_OUTLINE`],
+    /// [`MAX_CHILDREN`]) or the cell buffer filled: the build stopped there, and what was
+    /// built stays usable (lower the perturbation depth or the spacing ratio).
+    pub capacity_reached: bool,
+    /// Work done since the build began, in the units of [`Skin::step`]'s budget.
+    pub work: u64,
+}
+
+/// Sites in a level-0 centre's neighbour window.
+const WINDOW_SITES: usize = ((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize;
 
 /// The state of a build: the buffers and how far they are filled.
 struct Build<'b> {
@@ -254,7 +380,7 @@ impl Build<'_> {
         neighbours: (usize, usize),
         parent: ParentOutline,
         parent_index: u32,
-    ) -> Result<(), SkinError> {
+    ) -> Result<(), Full> {
         let f = self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
@@ -280,13 +406,13 @@ impl Build<'_> {
                 let room = tail.len().min(MAX_OUTLINE);
                 (&mut tail[..room], &mut self.shared, &mut self.scratch)
             })
-            .map_err(|_| SkinError::Capacity)?;
+            .map_err(|_| Full)?;
         if n < 3 {
             return Ok(());
         }
         let index = self.cell_count;
         if index == self.cells.len() {
-            return Err(SkinError::Capacity);
+            return Err(Full);
         }
         self.cells[index] = SkinCell {
             level: level as u32,
@@ -306,7 +432,7 @@ impl Build<'_> {
     }
 
     /// Divides cell `parent` (outline vertices[first..first + n]) into the cells of `level`.
-    fn children(&mut self, level: usize, parent: u32, first: usize, n: usize) -> Result<(), SkinError> {
+    fn children(&mut self, level: usize, parent: u32, first: usize, n: usize) -> Result<(), Full> {
         let (f, lattice) = (self.frames[level], self.lattices[level]);
         let outline = &self.vertices[first..first + n];
         let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
@@ -338,7 +464,7 @@ impl Build<'_> {
                         let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
                         if in_box && outer.contains(p) {
                             if count == MAX_CHILDREN {
-                                return Err(SkinError::Capacity);
+                                return Err(Full);
                             }
                             self.sites[base + count] = s;
                             count += 1;
@@ -373,6 +499,9 @@ fn with_scratch<T: Copy, R, const SMALL: usize, const LARGE: usize>(
     if small { f(&mut [zero; SMALL]) } else { f(&mut [zero; LARGE]) }
 }
 
+/// A cell outline, a parent's centre points or the cell buffer outgrew its capacity.
+struct Full;
+
 /// The outline a cell is clipped to.
 enum ParentOutline<'c> {
     /// Stored vertices (first, count) and their chunk boxes.
@@ -381,10 +510,10 @@ enum ParentOutline<'c> {
     Box([[i64; 2]; 4]),
 }
 
-impl<'a> Skin<'a> {
-    /// Builds every cell of every level into the caller's buffers. Uses about 100 KiB of stack
-    /// with three levels (scratch for one outline per level, and the edges kept for
-    /// neighbours).
+impl<'a, S: Scalar> Skin<'a, S> {
+    /// Sets up a skin of `params` in caller memory of at least [`SkinParams::memory`]
+    /// elements; [`Skin::step`] builds its cells. Nothing is written to the buffers on
+    /// failure.
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
         let m = params.memory()?;
         let short = [
@@ -401,11 +530,10 @@ impl<'a> Skin<'a> {
         let frames = core::array::from_fn(|l| {
             Frame::new(l, &params.level[l.min(params.levels as usize - 1)], params.seed, size, params.levels)
         });
-        let shift = frames[0].shift;
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
         let (clip, rest) = buffers.clip.split_at_mut(MAX_OUTLINE);
         let (spare, parent_frames) = rest.split_at_mut(MAX_OUTLINE);
-        let mut build = Build {
+        let build = Build {
             params: *params,
             frames,
             lattices,
@@ -420,50 +548,6 @@ impl<'a> Skin<'a> {
             grids: [const { EdgeGrid::new() }; MAX_LEVELS],
             scratch: cell::EdgeScratch::new(),
         };
-        let lattice = lattices[0];
-        let f = frames[0];
-        let r = params.level0_indices(&lattice);
-        let (w, h) = (i64::from(size[0]) << shift, i64::from(size[1]) << shift);
-        let surface = [[0, 0], [w, 0], [w, h], [0, h]];
-        // Each centre's neighbours: the window around it, row by row (level 0 keeps them in the
-        // first block of `sites`), slid along the row one column at a time.
-        let side = (2 * WINDOW + 1) as usize;
-        let n = side * side;
-        for j in r[1]..=r[3] {
-            for i in r[0]..=r[2] {
-                for (row, dj) in build.sites[..n].chunks_exact_mut(side).zip(-WINDOW..) {
-                    if i == r[0] {
-                        for (s, di) in row.iter_mut().zip(-WINDOW..) {
-                            *s = lattice.site(i + di, j + dj);
-                        }
-                    } else {
-                        row.copy_within(1.., 0);
-                        row[side - 1] = lattice.site(i + WINDOW, j + dj);
-                    }
-                }
-                let site = build.sites[n / 2];
-                let parent = if params.periodic {
-                    let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
-                    let corner = |dx: f64, dy: f64| {
-                        let q = |k: usize, d: f64| {
-                            crate::geom::round_to_i64((site.at[k] + d) * f.stretch[k] * 256.0) << (shift - 8)
-                        };
-                        [q(0, dx), q(1, dy)]
-                    };
-                    ParentOutline::Box([
-                        corner(-reach[0], -reach[1]),
-                        corner(reach[0], -reach[1]),
-                        corner(reach[0], reach[1]),
-                        corner(-reach[0], reach[1]),
-                    ])
-                } else {
-                    ParentOutline::Box(surface)
-                };
-                build.cell(0, site, (0, n), parent, NO_CELL)?;
-            }
-        }
-        let (cell_count, vertex_count) = (build.cell_count, build.vertex_count);
-        let (cells, vertices) = (build.cells, build.vertices);
         // One table per level in use (the rest repeat the last; they are never read), each
         // level sampled where the level before was when their profiles share the sampling.
         let profile = |l: usize| &params.level[l].profile;
@@ -479,7 +563,102 @@ impl<'a> Skin<'a> {
                 tables[l - 1]
             };
         }
-        Ok(Skin { params: *params, cells: &cells[..cell_count], vertices: &vertices[..vertex_count], tables })
+        let range = params.level0_indices(&lattices[0]);
+        Ok(Skin {
+            params: *params,
+            build,
+            tables,
+            range,
+            next: [range[0], range[1]],
+            window: None,
+            done: 0,
+            finished: false,
+            capacity_reached: false,
+            work: 0,
+            backend: PhantomData,
+        })
+    }
+
+    /// Builds level-0 cells, each with all its descendants, until about `budget` outline
+    /// vertices have been written in this call (at least one level-0 cell's tree; a tree is
+    /// at most a level-0 window of [`MAX_CHILDREN`] cells per level). The cells do not depend
+    /// on the budgets. Call until `finished`.
+    pub fn step(&mut self, budget: u64) -> SkinProgress {
+        let start = self.work;
+        while !self.finished && (self.work == start || self.work - start < budget) {
+            let [i, j] = self.next;
+            if self.root(i, j).is_err() {
+                self.capacity_reached = true;
+                self.finished = true;
+                break;
+            }
+            self.done += 1;
+            self.next = if i < self.range[2] { [i + 1, j] } else { [self.range[0], j + 1] };
+            self.finished = self.next[1] > self.range[3];
+        }
+        self.progress()
+    }
+
+    /// Builds every cell.
+    pub fn run(&mut self) -> SkinProgress {
+        self.step(u64::MAX)
+    }
+
+    /// Where the build stands.
+    pub fn progress(&self) -> SkinProgress {
+        let r = self.range;
+        SkinProgress {
+            cells: self.build.cell_count as u32,
+            roots: self.done,
+            root_total: ((r[2] - r[0] + 1) * (r[3] - r[1] + 1)) as u32,
+            finished: self.finished,
+            capacity_reached: self.capacity_reached,
+            work: self.work,
+        }
+    }
+
+    /// Builds the cell of level-0 lattice index (i, j) and its descendants.
+    fn root(&mut self, i: i64, j: i64) -> Result<(), Full> {
+        let (lattice, f) = (self.build.lattices[0], self.build.frames[0]);
+        // The centre's neighbours: the window around it, row by row (level 0 keeps them in the
+        // first block of `sites`), slid along the row one column at a time.
+        let side = (2 * WINDOW + 1) as usize;
+        let slide = self.window == Some([i - 1, j]);
+        for (row, dj) in self.build.sites[..WINDOW_SITES].chunks_exact_mut(side).zip(-WINDOW..) {
+            if slide {
+                row.copy_within(1.., 0);
+                row[side - 1] = lattice.site(i + WINDOW, j + dj);
+            } else {
+                for (s, di) in row.iter_mut().zip(-WINDOW..) {
+                    *s = lattice.site(i + di, j + dj);
+                }
+            }
+        }
+        self.window = Some([i, j]);
+        let site = self.build.sites[WINDOW_SITES / 2];
+        let shift = f.shift;
+        let parent = if self.params.periodic {
+            let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
+            let corner = |dx: f64, dy: f64| {
+                let q = |k: usize, d: f64| {
+                    crate::geom::round_to_i64((site.at[k] + d) * f.stretch[k] * 256.0) << (shift - 8)
+                };
+                [q(0, dx), q(1, dy)]
+            };
+            ParentOutline::Box([
+                corner(-reach[0], -reach[1]),
+                corner(reach[0], -reach[1]),
+                corner(reach[0], reach[1]),
+                corner(-reach[0], reach[1]),
+            ])
+        } else {
+            let (w, h) = (i64::from(self.params.width) << shift, i64::from(self.params.height) << shift);
+            ParentOutline::Box([[0, 0], [w, 0], [w, h], [0, h]])
+        };
+        let before = self.build.vertex_count;
+        let built = self.build.cell(0, site, (0, WINDOW_SITES), parent, NO_CELL);
+        self.work += (self.build.vertex_count - before) as u64 + 1;
+        built
     }
 
     /// The parameters.
@@ -490,12 +669,12 @@ impl<'a> Skin<'a> {
     /// Every cell, level by level inside each level-0 cell (a parent comes before its
     /// children).
     pub fn cells(&self) -> &[SkinCell] {
-        self.cells
+        &self.build.cells[..self.build.cell_count]
     }
 
     /// Every outline vertex in fixed point.
     pub fn vertices(&self) -> &[[i64; 2]] {
-        self.vertices
+        &self.build.vertices[..self.build.vertex_count]
     }
 
     /// Fractional bits of the fixed point outlines are in: 8 + 12·(levels − 1) (a pixel is
@@ -506,7 +685,7 @@ impl<'a> Skin<'a> {
 
     /// The outline of `cell`.
     pub fn outline(&self, cell: &SkinCell) -> &[[i64; 2]] {
-        &self.vertices[cell.first_vertex as usize..][..cell.vertex_count as usize]
+        &self.vertices()[cell.first_vertex as usize..][..cell.vertex_count as usize]
     }
 
     /// Calls `visit(column, row)` for every pixel whose centre lies in `cell` (wrapped onto

@@ -30,7 +30,8 @@ use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
 
-/// The maps to write; each is optional and `width × height` long, row-major.
+/// The maps one [`Skin::render`] call writes; each is optional and `width × height` long,
+/// row-major.
 #[derive(Default)]
 pub struct SkinLayers<'o> {
     /// Height, the sum over levels of the profile heights (profile units).
@@ -38,9 +39,15 @@ pub struct SkinLayers<'o> {
     /// Unit tangent-space normal (x right, y up, z out of the surface), as in OpenGL normal
     /// maps.
     pub normal: Option<&'o mut [[f32; 3]]>,
-    /// For each pixel, the index in [`Skin::cells`] of its cell at `cell_level`.
+    /// For each pixel, the index in [`Skin::cells`] of its cell at [`SkinRender::cell_level`].
     pub cell: Option<&'o mut [u32]>,
-    /// The level `cell` is taken from.
+}
+
+/// How to draw: the rasters are the surface's `width × height` pixels; this picks what the
+/// cell map shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkinRender {
+    /// The level the cell map is taken from (below `levels`; default 0, the coarsest).
     pub cell_level: u32,
 }
 
@@ -432,15 +439,16 @@ impl<S: Scalar> Ridge<'_, S> {
     }
 }
 
-impl Skin<'_> {
+impl<S: Scalar> Skin<'_, S> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
     /// cell level is not below `levels`, nothing is written. Uses about 160 KiB of stack for
     /// the wedges of one outline per level, one outline's crossings and a batch of pixels (in
     /// an optimised build; a thread that builds and renders needs about 184 KiB, 248 KiB in a
     /// debug build).
-    pub fn render<S: Scalar>(&self, layers: SkinLayers) -> Result<(), SkinError> {
+    pub fn render(&self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
-        let SkinLayers { height, normal, cell, cell_level } = layers;
+        let SkinLayers { height, normal, cell } = layers;
+        let cell_level = render.cell_level;
         let lengths =
             [height.as_ref().map(|b| b.len()), normal.as_ref().map(|b| b.len()), cell.as_ref().map(|b| b.len())];
         if lengths.iter().flatten().any(|&n| n < pixels) {
@@ -456,19 +464,19 @@ impl Skin<'_> {
         // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
         let flat = unit_normal([0.0; 2]);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
-            (None, None) => self.draw::<S, _>(&mut NoMaps, cell),
+            (None, None) => self.draw(&mut NoMaps, cell),
             (Some(h), None) => {
                 h.fill(0.0);
-                self.draw::<S, _>(&mut Heights(h), cell);
+                self.draw(&mut Heights(h), cell);
             }
             (None, Some(n)) => {
                 n.fill(flat);
-                self.draw::<S, _>(&mut Normals(n), cell);
+                self.draw(&mut Normals(n), cell);
             }
             (Some(h), Some(n)) => {
                 h.fill(0.0);
                 n.fill(flat);
-                self.draw::<S, _>(&mut Both(h, n), cell);
+                self.draw(&mut Both(h, n), cell);
             }
         }
         Ok(())
@@ -481,13 +489,13 @@ impl Skin<'_> {
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
     /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
     /// while its descendants are drawn.
-    fn draw<S: Scalar, K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
+    fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
         let width = self.params.width as usize;
         let mut crossings = [0u64; MAX_OUTLINE];
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
             let Some((map, level)) = cell else { return };
-            for (index, c) in self.cells.iter().enumerate().filter(|(_, c)| c.level == level) {
+            for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
                 self.for_each_run(c, &mut crossings, |_, x0, x1, wx, wy| {
                     let i0 = wy as usize * width + wx as usize;
                     map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
@@ -507,7 +515,7 @@ impl Skin<'_> {
             Ridge { table, end: S::from_f32(table.end), roundness, flat: S::ONE - roundness }
         });
         let ridges = &ridges[..levels];
-        for (index, c) in self.cells.iter().enumerate() {
+        for (index, c) in self.cells().iter().enumerate() {
             let level = c.level as usize;
             if level < finest && batch.len > 0 {
                 // The queued pixels lie in the cell this one follows.
