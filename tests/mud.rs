@@ -126,8 +126,8 @@ fn a_stiffer_surface_spaces_cracks_wider_as_the_one_dimensional_model_predicts()
 /// Paper §4.2 (Fig. 9): the same physical parameters meshed finer give cells of about the
 /// same size in cm, so a coarse mesh previews a fine one. The plate is the `fig9a`–`fig9c`
 /// presets' square 64 cm one, meshed at W = 2, 1 and 0.5 cm, measured on the traced network
-/// over 16 seeds. The paper's rule (κ̄ at every W) does not keep it: 0.39 / 0.54 / 0.68 cracks
-/// per cm and 42.5 / 20.6 / 12.7 cm² cells. The presets scale the break margin to the element
+/// over 16 seeds. The paper's rule (κ̄ at every W) does not keep it: 0.41 / 0.55 / 0.75 cracks
+/// per cm and 30.3 / 18.4 / 10.3 cm² cells. The presets scale the break margin to the element
 /// size (`break_stretch_size_exponent` 0.25), which does.
 #[test]
 fn halving_the_element_size_keeps_crack_density_and_cell_area() {
@@ -420,11 +420,10 @@ fn the_network_is_one_connected_thing() {
             100.0 * dead
         );
         assert!(share >= 0.90, "{topology:?} seed {seed}: {share}");
-        // Issue 21 asks for at most 10 %; the tip rule leaves 13-15 % on the hexagonal
-        // lattice and 25-27 % on the irregular one (the README says so). These bounds guard
-        // against a regression towards the dashes (which gave 85 %).
-        let bound = if topology == Topology::Hexagonal { 0.20 } else { 0.30 };
-        assert!(dead <= bound, "{topology:?} seed {seed}: {dead}");
+        // Issue 21: at most 10 %. The separation rule alone left 12-15 % on the hexagonal
+        // lattice and 25-27 % on the irregular one: tips one node short of another crack,
+        // and dead ends that had not opened (see network.rs, rule 1).
+        assert!(dead <= 0.10, "{topology:?} seed {seed}: {dead}");
         // Every edge joins its vertices: its first and last points are theirs.
         for e in &n.edges {
             let p = n.polyline(e);
@@ -437,8 +436,7 @@ fn the_network_is_one_connected_thing() {
 }
 
 /// At the default end (2.2 % shrink) the network is still growing: run on, its tips join up
-/// and the dead ends fall below issue 21's 10 %, while the cells shrink (the README's
-/// figures; seeds 1-8).
+/// and the dead ends fall further, while the cells shrink (the README's figures; seeds 1-8).
 #[test]
 fn dead_ends_join_up_as_the_network_grows() {
     let figures = [0.022f32, 0.024, 0.025].map(|target_shrink| {
@@ -451,7 +449,7 @@ fn dead_ends_join_up_as_the_network_grows() {
         println!("end shrink {target_shrink}: dead ends {:.1} %, cells of {area:.1} cm²", 100.0 * dead);
         (dead, area)
     });
-    assert!(figures[0].0 > 0.10 && figures[2].0 < 0.10, "{figures:?}");
+    assert!(figures[0].0 <= 0.10, "{figures:?}");
     assert!(figures.windows(2).all(|w| w[1].0 < w[0].0 && w[1].1 < w[0].1), "{figures:?}");
 }
 
