@@ -163,9 +163,9 @@ impl Glass<'_> {
 
     /// The root of vertex `v`'s connected piece of the network (with path halving).
     pub(super) fn component(&mut self, mut v: u32) -> u32 {
-        while self.roots[v as usize] != v {
-            let grandparent = self.roots[self.roots[v as usize] as usize];
-            self.roots[v as usize] = grandparent;
+        while self.walk.roots[v as usize] != v {
+            let grandparent = self.walk.roots[self.walk.roots[v as usize] as usize];
+            self.walk.roots[v as usize] = grandparent;
             v = grandparent;
         }
         v
@@ -175,7 +175,7 @@ impl Glass<'_> {
     /// between them closes a cycle).
     pub(super) fn join(&mut self, a: u32, b: u32) -> bool {
         let (ra, rb) = (self.component(a), self.component(b));
-        self.roots[ra as usize] = rb;
+        self.walk.roots[ra as usize] = rb;
         ra == rb
     }
 
@@ -216,12 +216,12 @@ impl Glass<'_> {
         else {
             return;
         };
-        self.mark = self.mark.wrapping_add(1);
-        if self.mark == 0 {
-            self.marks.fill(0);
-            self.mark = 1;
+        self.walk.mark = self.walk.mark.wrapping_add(1);
+        if self.walk.mark == 0 {
+            self.walk.marks.fill(0);
+            self.walk.mark = 1;
         }
-        let (marks, mark) = (&mut *self.marks, self.mark);
+        let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
         walk_face(&g, start, |h| marks[g.ends(h).0 as usize] = mark);
         let v = g.ends(start).0;
         let piece = self.component(v);
@@ -232,7 +232,7 @@ impl Glass<'_> {
             let tip = self.tip_vertex(i);
             // A tip of this piece is inside when the walk passed it (its dangling crack lies in
             // the face); a tip of another piece (a ring crack not yet joined) by the crossing rule.
-            let inside = if self.marks[tip as usize] == mark {
+            let inside = if self.walk.marks[tip as usize] == mark {
                 true
             } else if self.component(tip) == piece {
                 false

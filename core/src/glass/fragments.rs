@@ -161,7 +161,7 @@ impl Glass<'_> {
         let (w, h) = (self.params.width, self.params.height);
         let corners = [[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]];
         let on_border = |p: [f32; 2]| p[0] == 0.0 || p[1] == 0.0 || p[0] == w || p[1] == h;
-        let s = &mut self.fragments;
+        let s = &mut self.walk.fragments;
         s.degree[..vertices + 4].fill(0);
         s.alive.fill(0);
         for (e, edge) in self.edges[..edges].iter().enumerate() {
@@ -244,7 +244,7 @@ impl Glass<'_> {
     fn for_each_ring(&mut self, mut visit: impl FnMut(&PlateGraph, Ring)) {
         let n = self.prepare_fragments();
         let (w, h) = (self.params.width, self.params.height);
-        let FragmentScratch { alive, border, border_index, visited, .. } = &mut self.fragments;
+        let FragmentScratch { alive, border, border_index, visited, .. } = &mut self.walk.fragments;
         let g = PlateGraph {
             cracks: CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] },
             alive,

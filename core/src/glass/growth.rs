@@ -40,41 +40,41 @@ impl Glass<'_> {
     /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
     /// in updates of at most 10 px.
     pub fn step(&mut self, budget: u64) -> GlassProgress {
-        let start = self.work;
-        while !self.finished && self.work - start < budget.max(1) {
-            if self.cursor == 0 && !self.stepping {
-                self.work += self.crack_count as u64 + 1;
+        let start = self.clock.work;
+        while !self.clock.finished && self.clock.work - start < budget.max(1) {
+            if self.clock.cursor == 0 && !self.clock.stepping {
+                self.clock.work += self.crack_count as u64 + 1;
                 if !self.rebuild_tips() {
                     self.finish();
                     break;
                 }
-                self.stepping = true;
+                self.clock.stepping = true;
             }
-            if self.cursor < self.crack_count {
-                self.work += 1;
-                let c = self.cracks[self.cursor];
-                if c.growing && self.time >= c.wake {
-                    if self.update(self.cursor) {
-                        self.cursor += 1;
+            if self.clock.cursor < self.crack_count {
+                self.clock.work += 1;
+                let c = self.cracks[self.clock.cursor];
+                if c.growing && self.clock.time >= c.wake {
+                    if self.update(self.clock.cursor) {
+                        self.clock.cursor += 1;
                     }
-                    if self.capacity_reached {
+                    if self.clock.capacity_reached {
                         self.finish();
                     }
                 } else {
-                    self.cursor += 1;
+                    self.clock.cursor += 1;
                 }
                 continue;
             }
-            self.cursor = 0;
-            self.stepping = false;
-            self.time += 1;
-            self.work += self.crack_count as u64;
+            self.clock.cursor = 0;
+            self.clock.stepping = false;
+            self.clock.time += 1;
+            self.clock.work += self.crack_count as u64;
             // Generation ends when every large and ring crack of this impact has stopped.
             let impact = self.impacts - 1;
             let driving = self.cracks[..self.crack_count]
                 .iter()
                 .any(|c| c.growing && c.impact == impact && c.kind != CrackKind::Radial);
-            if !driving || self.time >= self.time_limit {
+            if !driving || self.clock.time >= self.clock.time_limit {
                 self.finish();
             }
         }
@@ -83,21 +83,21 @@ impl Glass<'_> {
 
     /// Units of work done so far, as [`Glass::step`] counts them.
     pub fn work(&self) -> u64 {
-        self.work
+        self.clock.work
     }
 
     /// Puts every growing tip into the tip grid; false if it is full.
     fn rebuild_tips(&mut self) -> bool {
-        self.tips.clear();
+        self.index.tips.clear();
         for i in 0..self.crack_count {
             let c = &mut self.cracks[i];
             c.before = c.tip;
             c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
             let c = self.cracks[i];
             if c.growing {
-                let (cx, cy, _, _) = self.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
-                if !self.tips.insert(cy * self.grid.columns + cx, i as u32) {
-                    self.capacity_reached = true;
+                let (cx, cy, _, _) = self.index.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
+                if !self.index.tips.insert(cy * self.index.grid.columns + cx, i as u32) {
+                    self.clock.capacity_reached = true;
                     return false;
                 }
             }
@@ -114,7 +114,7 @@ impl Glass<'_> {
             return None;
         }
         let cosine = (e[0] * direction[0] + e[1] * direction[1]) / distance;
-        (cosine >= self.sector_cosine).then_some((e, distance))
+        (cosine >= self.sector.cosine).then_some((e, distance))
     }
 
     /// The bounding box (x0, y0, x1, y1) of the sector S ahead of a tip at `w` heading
@@ -122,7 +122,7 @@ impl Glass<'_> {
     /// fall inside it.
     fn sector_box(&self, w: [f32; 2], direction: [f32; 2]) -> [f32; 4] {
         let b = self.params.sector_radius;
-        let (c, s) = (self.sector_cosine, self.sector_sine);
+        let (c, s) = (self.sector.cosine, self.sector.sine);
         let mut bounds = [w[0], w[1], w[0], w[1]];
         let mut include = |d: [f32; 2]| {
             let q = [w[0] + b * d[0], w[1] + b * d[1]];
@@ -157,14 +157,14 @@ impl Glass<'_> {
         sector: Option<([f32; 2], [f32; 2])>,
         mut visit: impl FnMut(&Self, u32),
     ) {
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
-            self.stamps.fill(0);
-            self.stamp = 1;
+        self.index.stamp = self.index.stamp.wrapping_add(1);
+        if self.index.stamp == 0 {
+            self.index.stamps.fill(0);
+            self.index.stamp = 1;
         }
-        let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
-        let cell = self.grid.cell;
-        let (c, s, b) = (self.sector_cosine, self.sector_sine, self.params.sector_radius);
+        let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
+        let cell = self.index.grid.cell;
+        let (c, s, b) = (self.sector.cosine, self.sector.sine, self.params.sector_radius);
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 if let Some((w, [dx, dy])) = sector {
@@ -201,15 +201,15 @@ impl Glass<'_> {
                         }
                     }
                 }
-                let mut entry = self.segments.heads[cy * self.grid.columns + cx];
+                let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
                 while entry != NONE {
-                    self.work += 1;
-                    let e = self.segments.item[entry as usize];
-                    if self.stamps[e as usize] != self.stamp {
-                        self.stamps[e as usize] = self.stamp;
+                    self.clock.work += 1;
+                    let e = self.index.segments.item[entry as usize];
+                    if self.index.stamps[e as usize] != self.index.stamp {
+                        self.index.stamps[e as usize] = self.index.stamp;
                         visit(self, e);
                     }
-                    entry = self.segments.next[entry as usize];
+                    entry = self.index.segments.next[entry as usize];
                 }
             }
         }
@@ -226,7 +226,7 @@ impl Glass<'_> {
     /// "shortest distance" from the tip to a crack or edge in S). The segment is clipped to the
     /// sector's wedge first, so a crack that only crosses a corner of S is seen there.
     fn nearest_in_sector(&self, w: [f32; 2], direction: [f32; 2], a: [f32; 2], z: [f32; 2]) -> Option<([f32; 2], f32)> {
-        let (c, s) = (self.sector_cosine, self.sector_sine);
+        let (c, s) = (self.sector.cosine, self.sector.sine);
         let (ea, ez) = ([a[0] - w[0], a[1] - w[1]], [z[0] - w[0], z[1] - w[1]]);
         let d = [ez[0] - ea[0], ez[1] - ea[1]];
         let (mut t0, mut t1) = (0.0f32, 1.0f32);
@@ -276,11 +276,11 @@ impl Glass<'_> {
         let mut f = [0.0f32; 2];
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
         // F1: away from every other tip in S, |F1| = k1/r².
-        let (cx0, cy0, cx1, cy1) = self.grid.span(x0, y0, x1, y1);
+        let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
         let mut work = 0u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
-                self.tips.for_each(cy * self.grid.columns + cx, |j| {
+                self.index.tips.for_each(cy * self.index.grid.columns + cx, |j| {
                     work += 1;
                     if j as usize == i {
                         return;
@@ -300,7 +300,7 @@ impl Glass<'_> {
                 });
             }
         }
-        self.work += work;
+        self.clock.work += work;
         // F2: for every crack in S, one pull along its normal at its nearest point in S (to
         // cross it at a right angle), |F2| = k2/d² with d that shortest distance. A crack's
         // pieces are folded into one entry per crack (the nearest); past NEAR cracks the rest
@@ -310,7 +310,7 @@ impl Glass<'_> {
         let mut count = 0usize;
         let crack = i as u32;
         let mut extra = [0.0f32; 2];
-        let now = self.time as f32;
+        let now = self.clock.time as f32;
         self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
             let edge = glass.edges[e as usize];
             let owner = edge.crack;
@@ -469,7 +469,7 @@ impl Glass<'_> {
         let next = [w[0] + length * libm::cosf(heading), w[1] + length * libm::sinf(heading)];
         let tip_vertex = if c.last_segment == NONE { c.start_vertex } else { self.edges[c.last_segment as usize].to };
         let (hit, along) = self.first_hit(i, w, next);
-        let time = self.time as f32 + done / c.speed;
+        let time = self.clock.time as f32 + done / c.speed;
         let (end, stop) = match hit {
             Hit::Nothing => (self.add_vertex(next), CrackEnd::Growing),
             Hit::Edge(at) => (self.add_vertex(at), CrackEnd::Edge),
@@ -641,7 +641,7 @@ impl Glass<'_> {
     /// None (capacity reached) when full.
     fn push_edge(&mut self, mut edge: Edge) -> Option<u32> {
         if self.edge_count == self.edges.len() {
-            self.capacity_reached = true;
+            self.clock.capacity_reached = true;
             return None;
         }
         let e = self.edge_count as u32;
@@ -654,11 +654,11 @@ impl Glass<'_> {
         self.edges[self.edge_count] = edge;
         self.edge_count += 1;
         let (a, z) = self.edge_points(e);
-        let (cx0, cy0, cx1, cy1) = self.grid.span(a[0].min(z[0]), a[1].min(z[1]), a[0].max(z[0]), a[1].max(z[1]));
+        let (cx0, cy0, cx1, cy1) = self.index.grid.span(a[0].min(z[0]), a[1].min(z[1]), a[0].max(z[0]), a[1].max(z[1]));
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
-                if !self.segments.insert(cy * self.grid.columns + cx, e) {
-                    self.capacity_reached = true;
+                if !self.index.segments.insert(cy * self.index.grid.columns + cx, e) {
+                    self.clock.capacity_reached = true;
                     return None;
                 }
             }

@@ -336,19 +336,37 @@ impl GlassParams {
 /// A glass plate and the cracks growing in it, over caller memory.
 pub struct Glass<'a> {
     params: GlassParams,
-    grid: Grid,
     cracks: &'a mut [Crack],
     crack_count: usize,
     vertices: &'a mut [Vertex],
     vertex_count: usize,
     edges: &'a mut [Edge],
     edge_count: usize,
-    segments: Buckets<'a>,
-    tips: Buckets<'a>,
-    stamps: &'a mut [u32],
-    stamp: u32,
+    /// Which segments and tips lie where.
+    index: SpatialIndex<'a>,
+    /// Where generation stands.
+    clock: Clock,
+    /// Scratch of the face walks (stop condition 2, fragments).
+    walk: FaceWalk<'a>,
+    /// The sector S ahead of a tip.
+    sector: Sector,
     impacts: u32,
     counts: ImpactCounts,
+    forces: Rng,
+}
+
+/// The grids that find the segments and tips near a point.
+struct SpatialIndex<'a> {
+    grid: Grid,
+    segments: Buckets<'a>,
+    tips: Buckets<'a>,
+    /// Per edge: the stamp of the latest query that visited it (to visit each segment once).
+    stamps: &'a mut [u32],
+    stamp: u32,
+}
+
+/// Where generation of the current impact stands.
+struct Clock {
     time: u32,
     /// The next crack to advance in the current step.
     cursor: usize,
@@ -356,23 +374,31 @@ pub struct Glass<'a> {
     time_limit: u32,
     finished: bool,
     capacity_reached: bool,
-    forces: Rng,
+    /// Units of work done so far (grid entries examined, cracks looked at): what
+    /// [`Glass::step`]'s budget counts.
+    work: u64,
+    /// A time step is under way (its tips' positions were filed).
+    stepping: bool,
+}
+
+/// Scratch of the walks around faces of the crack network.
+struct FaceWalk<'a> {
     /// Per vertex: the stamp of the latest face walk that passed it.
     marks: &'a mut [u32],
     mark: u32,
     /// Per vertex: its parent in the union–find forest of connected cracks.
     roots: &'a mut [u32],
     fragments: FragmentScratch<'a>,
+}
+
+/// The sector S ahead of a tip, angle φ (paper §4.2.2).
+#[derive(Clone, Copy)]
+struct Sector {
     /// cos(φ/2): a point is in a tip's sector when its direction's cosine with the heading
     /// is at least this.
-    sector_cosine: f32,
+    cosine: f32,
     /// sin(φ/2).
-    sector_sine: f32,
-    /// Units of work done so far (grid entries examined, cracks looked at): what
-    /// [`Glass::step`]'s budget counts.
-    work: u64,
-    /// A time step is under way (its tips' positions were filed).
-    stepping: bool,
+    sine: f32,
 }
 
 /// Cuts the first `n` elements off a buffer.
@@ -432,33 +458,30 @@ impl<'a> Glass<'a> {
         let fragments = FragmentScratch::new(&mut words, vertices);
         let mut glass = Glass {
             params: *params,
-            grid,
             cracks: &mut buffers.cracks[..cracks],
             crack_count: 0,
             vertices: &mut buffers.vertices[..vertices],
             vertex_count: 0,
             edges: &mut buffers.edges[..vertices],
             edge_count: 0,
-            segments,
-            tips,
-            stamps,
-            stamp: 0,
+            index: SpatialIndex { grid, segments, tips, stamps, stamp: 0 },
+            clock: Clock {
+                time: 0,
+                cursor: 0,
+                time_limit: 0,
+                finished: false,
+                capacity_reached: false,
+                work: 0,
+                stepping: false,
+            },
+            walk: FaceWalk { marks, mark: 0, roots, fragments },
+            sector: Sector {
+                cosine: libm::cosf(0.5 * params.sector_angle),
+                sine: libm::sinf(0.5 * params.sector_angle),
+            },
             impacts: 0,
             counts: ImpactCounts { radial: 0, large: 0, rings: 0 },
-            time: 0,
-            cursor: 0,
-            time_limit: 0,
-            finished: false,
-            capacity_reached: false,
             forces: Rng::new(params.seed, Stream::RandomForce),
-            marks,
-            mark: 0,
-            roots,
-            fragments,
-            sector_cosine: libm::cosf(0.5 * params.sector_angle),
-            sector_sine: libm::sinf(0.5 * params.sector_angle),
-            work: 0,
-            stepping: false,
         };
         glass.impact(params.impact)?;
         Ok(glass)
@@ -485,13 +508,13 @@ impl<'a> Glass<'a> {
         self.counts = counts;
         let impact = self.impacts;
         self.impacts += 1;
-        self.time = 0;
-        self.cursor = 0;
-        self.stepping = false;
-        self.finished = false;
+        self.clock.time = 0;
+        self.clock.cursor = 0;
+        self.clock.stepping = false;
+        self.clock.finished = false;
         // Long enough to cross the plate twice at the slowest speed Rand can draw.
         let slowest = p.large_speed.min(p.radial_speed).min(p.ring_speed) * (1.0 - p.spread_ratio);
-        self.time_limit = (libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32).saturating_add(16);
+        self.clock.time_limit = (libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32).saturating_add(16);
         let tau = 2.0 * core::f32::consts::PI;
         let rotation = turn_rng.uniform_f32() * tau;
         let rand = |rng: &mut Rng, x: f32| rng.rand(x, p.spread_ratio, p.spread).unwrap_or(x);
@@ -534,7 +557,7 @@ impl<'a> Glass<'a> {
                 }
             }
         }
-        if self.capacity_reached {
+        if self.clock.capacity_reached {
             self.finish();
         }
         Ok(counts)
@@ -543,18 +566,18 @@ impl<'a> Glass<'a> {
     /// Adds a vertex; NONE (and capacity reached) when the pool is full.
     fn add_vertex(&mut self, at: [f32; 2]) -> u32 {
         if self.vertex_count == self.vertices.len() {
-            self.capacity_reached = true;
+            self.clock.capacity_reached = true;
             return NONE;
         }
         self.vertices[self.vertex_count] = Vertex { at, first_edge: NONE };
-        self.roots[self.vertex_count] = self.vertex_count as u32;
+        self.walk.roots[self.vertex_count] = self.vertex_count as u32;
         self.vertex_count += 1;
         (self.vertex_count - 1) as u32
     }
 
     fn add_crack(&mut self, kind: CrackKind, impact: u32, start: u32, heading: f32, speed: f32, ring: ([f32; 2], f32)) {
         if start == NONE || self.crack_count == self.cracks.len() {
-            self.capacity_reached = true;
+            self.clock.capacity_reached = true;
             return;
         }
         self.cracks[self.crack_count] = Crack {
@@ -585,7 +608,7 @@ impl<'a> Glass<'a> {
             crack.growing = false;
             crack.end = CrackEnd::Generation;
         }
-        self.finished = true;
+        self.clock.finished = true;
     }
 
     /// The counts drawn by the latest impact.
@@ -606,12 +629,12 @@ impl<'a> Glass<'a> {
     /// Where generation stands.
     pub fn progress(&self) -> GlassProgress {
         GlassProgress {
-            time: self.time,
+            time: self.clock.time,
             cracks: self.crack_count as u32,
             growing: self.cracks[..self.crack_count].iter().filter(|c| c.growing).count() as u32,
             vertices: self.vertex_count as u32,
-            finished: self.finished,
-            capacity_reached: self.capacity_reached,
+            finished: self.clock.finished,
+            capacity_reached: self.clock.capacity_reached,
         }
     }
 }
