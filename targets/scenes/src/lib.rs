@@ -202,6 +202,7 @@ impl<T: Default, const N: usize> Slot<T, N> {
     ///
     /// # Safety
     /// At most one call per slot.
+    #[allow(clippy::mut_from_ref, reason = "the UnsafeCell pattern; the one-call contract makes it unique")]
     unsafe fn init(&'static self) -> &'static mut [T] {
         let first = self.0.get().cast::<T>();
         for i in 0..N {
@@ -602,7 +603,8 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit("scalar.q16", Ok(backend_table::<Q16>()));
 }
 /// Runs every scene and writes one line per scene to `out` (`ok`, `DIFFERS` with both hashes,
-/// or `FAILED` with the reason), then a summary line
+/// or `FAILED` with the reason, `MISSING` for a scene that did not run), the static memory the
+/// scenes use, then a summary line
 /// `hibi-scenes on TARGET: N scenes, M differ`. Returns the number of scenes that differ,
 /// failed or are missing.
 pub fn check(memory: &mut Memory, target: &str, out: &mut dyn Write) -> Result<usize, fmt::Error> {
@@ -637,6 +639,7 @@ pub fn check(memory: &mut Memory, target: &str, out: &mut dyn Write) -> Result<u
         differ += 1;
         writeln!(out, "MISSING  {name}")?;
     }
+    writeln!(out, "scene memory {} bytes (static)", Memory::bytes())?;
     writeln!(out, "hibi-scenes on {target}: {} scenes, {differ} differ", GOLDENS.len())?;
     Ok(differ)
 }
