@@ -27,7 +27,7 @@ use hibi_core::skin::{ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
 /// Every scene's name and the FNV-1a 64 hash of its bytes, in the order [`run`] produces them.
-pub const GOLDENS: [(&str, u64); 37] = [
+pub const GOLDENS: [(&str, u64); 40] = [
     // The first four 32-bit outputs of each stream for seed 2026 (tests/goldens.rs lists them).
     ("rng.stream.break_stretch", 1769533495125578143),
     ("rng.stream.lattice_jitter", 9541135610860920612),
@@ -55,12 +55,14 @@ pub const GOLDENS: [(&str, u64); 37] = [
     ("mud.hex32.f32.mask", 7236618965716880919),
     ("mud.hex32.f32.time", 5941658506452611329),
     ("mud.hex32.f32.height", 3072296968484177086),
+    ("mud.hex32.f32.statistics", 11445357569580779721),
     ("mud.hex32.q16.segments", 2682182723861238163),
     ("mud.hex32.q16.network", 10237370279661179524),
     ("mud.hex32.q16.cells", 11175134878694836360),
     ("mud.hex32.q16.mask", 2906332301457775115),
     ("mud.hex32.q16.time", 14840678022766323410),
     ("mud.hex32.q16.height", 15702450779059551060),
+    ("mud.hex32.q16.statistics", 17189084402720945096),
     // The irregular (jittered Delaunay) lattice, 32×32.
     ("mud.irregular32.f32.segments", 15521179618261552893),
     // A 160×160 plate hit at its centre, seed 7.
@@ -68,11 +70,13 @@ pub const GOLDENS: [(&str, u64); 37] = [
     ("glass.plate160.fragments", 679147713355531113),
     ("glass.plate160.mask", 13645325520639060209),
     ("glass.plate160.time", 9471383570816441372),
-    // Skin fig19a at 64×64: outlines, height and normal maps on both backends, shading.
+    // Skin fig19a at 64×64: outlines, height and normal maps on both backends, shading, the
+    // cell map of every level.
     ("skin.fig19a64.outlines", 16065892686752697251),
     ("skin.fig19a64.f32.maps", 4427729296421534182),
     ("skin.fig19a64.q16.maps", 11898630028135427798),
     ("skin.fig19a64.shade", 4422298828594955254),
+    ("skin.fig19a64.cell_maps", 8055995322159811074),
 ];
 
 /// The streams in [`Stream::ALL`] order, with their scene names.
@@ -127,6 +131,14 @@ impl Fnv {
     /// The hash of everything fed so far.
     pub const fn finish(&self) -> u64 {
         self.0
+    }
+}
+
+/// Feeds formatted text (`write!(fnv, ...)`).
+impl Write for Fnv {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        self.bytes(s.as_bytes());
+        Ok(())
     }
 }
 
@@ -230,6 +242,7 @@ pub struct Memory {
     clip: &'static mut [ClipVertex],
     normals: &'static mut [[f32; 3]],
     rgb: &'static mut [[u8; 3]],
+    cell_map: &'static mut [u32],
 }
 
 /// Output buffers shared by the models.
@@ -266,6 +279,7 @@ impl Memory {
         static FLOATS: Slot<f32, PIXELS> = Slot::new();
         static NORMALS: Slot<[f32; 3], SKIN_PIXELS> = Slot::new();
         static RGB: Slot<[u8; 3], SKIN_PIXELS> = Slot::new();
+        static CELL_MAP: Slot<u32, SKIN_PIXELS> = Slot::new();
         if TAKEN.swap(true, Ordering::AcqRel) {
             return None;
         }
@@ -293,6 +307,7 @@ impl Memory {
                 clip: CLIP.init(),
                 normals: NORMALS.init(),
                 rgb: RGB.init(),
+                cell_map: CELL_MAP.init(),
             })
         }
     }
@@ -315,7 +330,7 @@ impl Memory {
             + SKIN_SITES * size_of::<Site>()
             + SKIN_CLIP * size_of::<ClipVertex>()
             + PIXELS * 5
-            + SKIN_PIXELS * 15
+            + SKIN_PIXELS * 19
     }
 }
 
@@ -341,6 +356,7 @@ pub fn run(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         "mud.hex32.f32.mask",
         "mud.hex32.f32.time",
         "mud.hex32.f32.height",
+        "mud.hex32.f32.statistics",
     ];
     mud_outputs(&small, memory.mud_f32, memory.words, &mut memory.out, names, emit);
     let names = [
@@ -350,6 +366,7 @@ pub fn run(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         "mud.hex32.q16.mask",
         "mud.hex32.q16.time",
         "mud.hex32.q16.height",
+        "mud.hex32.q16.statistics",
     ];
     mud_outputs(&small, memory.mud_q16, memory.words, &mut memory.out, names, emit);
     let irregular = MudParams { topology: Topology::Irregular, ..small };
@@ -384,14 +401,14 @@ fn mud_segments<S: Scalar>(params: &MudParams, scalars: &mut [S], words: &mut [u
     Ok(segments_hash(&mud_run(params, scalars, words)?))
 }
 
-/// One mud run and every output of it: segments, network, cells, and the mask, time and
-/// height rasters.
+/// One mud run and every output of it: segments, network, cells, the mask, time and height
+/// rasters, and the statistics.
 fn mud_outputs<S: Scalar>(
     params: &MudParams,
     scalars: &mut [S],
     words: &mut [u32],
     out: &mut Outputs,
-    names: [&'static str; 6],
+    names: [&'static str; 7],
     emit: &mut dyn FnMut(&'static str, Outcome),
 ) {
     let mud = match mud_run(params, scalars, words) {
@@ -438,6 +455,10 @@ fn mud_outputs<S: Scalar>(
     let height =
         mud.render_height(&render, &mut out.floats[..pixels]).map_err(|_| Failure("mud: render_height refused"));
     emit(names[5], height.map(|()| floats_hash(&out.floats[..pixels])));
+    // Every statistic, as its `Debug` text (shortest round-trip decimals: one text per value).
+    let mut h = Fnv::new();
+    let statistics = write!(h, "{:?}", mud.statistics()).map_err(|_| Failure("mud: statistics not formatted"));
+    emit(names[6], statistics.map(|()| h.finish()));
 }
 
 fn floats_hash(values: &[f32]) -> u64 {
@@ -500,7 +521,13 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
 }
 
 fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
-    let names = ["skin.fig19a64.outlines", "skin.fig19a64.f32.maps", "skin.fig19a64.q16.maps", "skin.fig19a64.shade"];
+    let names = [
+        "skin.fig19a64.outlines",
+        "skin.fig19a64.f32.maps",
+        "skin.fig19a64.q16.maps",
+        "skin.fig19a64.shade",
+        "skin.fig19a64.cell_maps",
+    ];
     let Some(preset) = hibi_core::skin::preset("fig19a") else {
         return names.into_iter().for_each(|name| emit(name, Err(Failure("skin: no preset fig19a"))));
     };
@@ -552,6 +579,16 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let rgb = &mut memory.rgb[..pixels];
     let shaded = shade(height, normals, &ShadeParams::default(), rgb).map_err(|_| Failure("skin: shade refused"));
     emit(names[3], shaded.map(|()| fnv1a64(rgb.as_flattened())));
+    let cell_maps = (|| {
+        let mut h = Fnv::new();
+        for level in 0..params.levels {
+            let layers = SkinLayers { cell: Some(&mut *memory.cell_map), cell_level: level, ..SkinLayers::default() };
+            skin.render::<f32>(layers).map_err(|_| Failure("skin: cell map refused"))?;
+            memory.cell_map.iter().for_each(|&c| h.u32(c));
+        }
+        Ok(h.finish())
+    })();
+    emit(names[4], cell_maps);
 }
 
 fn rng(emit: &mut dyn FnMut(&'static str, Outcome)) {
