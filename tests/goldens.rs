@@ -1,17 +1,15 @@
-//! Golden snapshots of the frame: the first outputs of every random stream, and hashes of
-//! every distribution and every scalar backend's functions over fixed grids. The README's
-//! test command runs these in debug and in release; both must give these exact bits.
+//! Golden snapshots: every scene of `hibi-scenes` (the random streams and distributions, the
+//! scalar backends, and a run of every model with each of its outputs) must hash to its
+//! listed value. The README's test command runs this in debug and in release; `targets/run`
+//! runs the same list on other architectures.
 //!
 //! A change here is a deliberate, reviewed event: it changes every pattern hibi makes.
 
-use hibi_core::scalar::Q16;
-use hibi_core::{Rng, Scalar, Spread, Stream};
-use hibi_tests::fnv1a64;
+use hibi_core::{Rng, Stream};
+use hibi_scenes::{GOLDENS, Memory, SEED, check, fnv1a64};
 
-/// Seed of the golden runs.
-const SEED: u64 = 2026;
-
-/// The first four 32-bit outputs of each stream for seed 2026, in `Stream::ALL` order.
+/// The first four 32-bit outputs of each stream for seed 2026, in `Stream::ALL` order: the
+/// numbers the `rng.stream.*` scenes hash.
 const FIRST_OUTPUTS: [(Stream, [u32; 4]); 10] = [
     (Stream::BreakStretch, [1427003102, 2937897310, 2427765056, 1693374040]),
     (Stream::LatticeJitter, [954381491, 385118382, 373506146, 1222866654]),
@@ -27,51 +25,21 @@ const FIRST_OUTPUTS: [(Stream, [u32; 4]); 10] = [
 
 #[test]
 fn first_outputs_of_every_stream() {
-    for (stream, expected) in FIRST_OUTPUTS {
+    for (i, (stream, expected)) in FIRST_OUTPUTS.into_iter().enumerate() {
         let mut rng = Rng::new(SEED, stream);
         let got: [u32; 4] = core::array::from_fn(|_| rng.next_u32());
         assert_eq!(got, expected, "stream {stream:?} changed");
+        let bytes: Vec<u8> = expected.iter().flat_map(|v| v.to_le_bytes()).collect();
+        assert_eq!(fnv1a64(&bytes), GOLDENS[i].1, "the scene {} hashes other numbers", GOLDENS[i].0);
     }
     assert_eq!(Stream::ALL.map(|s| s), FIRST_OUTPUTS.map(|(s, _)| s), "a stream is missing here");
 }
 
-/// Hash of 10 000 draws of each distribution, as raw bits.
 #[test]
-fn distributions_are_bit_exact() {
-    let mut bytes = Vec::new();
-    let mut rng = Rng::new(SEED, Stream::BreakStretch);
-    for _ in 0..10_000 {
-        bytes.extend(rng.uniform_f32().to_bits().to_le_bytes());
-        bytes.extend(rng.uniform_f64().to_bits().to_le_bytes());
-        bytes.extend(rng.normal().to_bits().to_le_bytes());
-        bytes.extend(rng.poisson(37.5).unwrap().to_le_bytes());
-        bytes.extend(rng.rand(40.0, 0.3, Spread::Normal).unwrap().to_bits().to_le_bytes());
-        bytes.extend(rng.rand(40.0, 0.3, Spread::Uniform).unwrap().to_bits().to_le_bytes());
-    }
-    assert_eq!(fnv1a64(&bytes), 4447176120813173559, "the distributions changed");
-}
-
-/// Every function of a backend over a fixed grid, as the bits of `to_f32`.
-fn backend_table<S: Scalar>() -> Vec<u8> {
-    let mut bytes = Vec::new();
-    let mut push = |v: S| bytes.extend(v.to_f32().to_bits().to_le_bytes());
-    for i in -400..=400 {
-        let x = S::from_f32(i as f32 * 0.037);
-        let y = S::from_f32(i as f32 * -0.021 + 0.5);
-        push(x.sqrt());
-        push(x.sin());
-        push(x.cos());
-        push(y.atan2(x));
-        push((x * S::from_f32(0.25)).exp());
-        push(x.floor());
-        push(x * y + x / (y + S::from_f32(3.0)));
-    }
-    bytes
-}
-
-#[test]
-fn scalar_backends_are_bit_exact() {
-    assert_eq!(fnv1a64(&backend_table::<f32>()), 2369291559573998798, "the f32 (libm) backend changed");
-    assert_eq!(fnv1a64(&backend_table::<micromath::F32>()), 6723904205137209666, "the micromath backend changed");
-    assert_eq!(fnv1a64(&backend_table::<Q16>()), 18042995786501796456, "the Q16.16 backend changed");
+fn every_scene_matches_its_golden() {
+    let mut memory = Memory::take().expect("the only test that takes the scenes' memory");
+    let mut report = String::new();
+    let differ = check(&mut memory, "host", &mut report).expect("a String takes every line");
+    println!("{report}");
+    assert_eq!(differ, 0, "golden scenes differ:\n{report}");
 }

@@ -37,7 +37,5 @@ pub fn profile_dir() -> PathBuf {
     exe.parent().and_then(Path::parent).expect("target/<profile>/deps").to_path_buf()
 }
 
-/// FNV-1a, 64-bit: the hash of golden snapshots.
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
-}
+/// FNV-1a, 64-bit: the hash of golden snapshots (one definition, in the scenes crate).
+pub use hibi_scenes::fnv1a64;
