@@ -149,7 +149,7 @@ fn main() {
         params.levels
     );
     println!("|---|---|---|");
-    println!("| hibi Model C: build (`Skin::new`) | {:.2} ms | |", ms(build));
+    println!("| hibi Model C: build (`Skin::new` + `run`) | {:.2} ms | |", ms(build));
     println!("| hibi Model C: render height + normal | {:.2} ms | |", ms(render));
     println!("| hibi Model C: total | {:.2} ms | |", ms(total));
     println!(
