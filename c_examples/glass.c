@@ -60,9 +60,9 @@ int main(int argc, char **argv) {
     for (i = 0; i < cracks; i++) {
         status = hibi_glass_crack_info(glass, i, &crack);
         if (status != HIBI_OK) return fail("hibi_glass_crack_info", status);
-        if (crack.kind == 0) {
+        if (crack.kind == HIBI_GLASS_KIND_LARGE) {
             large++;
-            if (crack.end == 1) large_at_edge++;
+            if (crack.end == HIBI_GLASS_END_EDGE) large_at_edge++;
         }
     }
     printf("finished after %u steps: %lu cracks, %lu large, %lu of them at the edge\n", (unsigned)progress.time,

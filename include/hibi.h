@@ -29,6 +29,51 @@
 #define HIBI_GLASS_LAYER_TIME 1
 
 /**
+ * `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
+ */
+#define HIBI_GLASS_KIND_LARGE 0
+
+/**
+ * `hibi_glass_crack.kind`: another radial crack.
+ */
+#define HIBI_GLASS_KIND_RADIAL 1
+
+/**
+ * `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
+ */
+#define HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE 2
+
+/**
+ * `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
+ */
+#define HIBI_GLASS_KIND_RING_CLOCKWISE 3
+
+/**
+ * `hibi_glass_crack.end`: it still grows.
+ */
+#define HIBI_GLASS_END_GROWING 0
+
+/**
+ * `hibi_glass_crack.end`: its tip reached the plate's edge.
+ */
+#define HIBI_GLASS_END_EDGE 1
+
+/**
+ * `hibi_glass_crack.end`: its tip reached another crack.
+ */
+#define HIBI_GLASS_END_CRACK 2
+
+/**
+ * `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
+ */
+#define HIBI_GLASS_END_GENERATION 3
+
+/**
+ * `hibi_glass_crack.end`: other cracks closed a region around its tip.
+ */
+#define HIBI_GLASS_END_ENCLOSED 4
+
+/**
  * `hibi_glass_fragment_ring.hole_of` of an outer ring.
  */
 #define HIBI_GLASS_NOT_A_HOLE UINT32_MAX
@@ -350,12 +395,11 @@ typedef struct hibi_glass_progress {
  */
 typedef struct hibi_glass_crack {
   /**
-   * 0 large, 1 radial, 2 ring counter-clockwise, 3 ring clockwise.
+   * A `HIBI_GLASS_KIND_*` constant.
    */
   uint32_t kind;
   /**
-   * 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended, 4 enclosed (other
-   * cracks closed a region around it).
+   * Why it stopped: a `HIBI_GLASS_END_*` constant.
    */
   uint32_t end;
   /**
@@ -1931,7 +1975,8 @@ struct hibi_skin_shade_params hibi_skin_shade_params_default(void);
  * A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
  * it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
  * per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
- * `height` and `rgb` must hold as many pixels as `normal`; if not, or if a parameter is out
+ * The pixels are `height_len`; `normal` and `rgb` must hold as many (`normal_len` and
+ * `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out
  * of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
  * `specular` negative), nothing is written.
  *

@@ -16,8 +16,8 @@ use core::ffi::{c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams, GlassProgress,
-    GlassRender, ImpactCounts, preset,
+    CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory,
+    GlassParams, GlassProgress, GlassRender, ImpactCounts, preset,
 };
 
 use crate::fields::{Field, convert};
@@ -34,6 +34,37 @@ pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
 /// Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
 /// no crack is.
 pub const HIBI_GLASS_LAYER_TIME: u32 = 1;
+
+/// `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
+pub const HIBI_GLASS_KIND_LARGE: u32 = 0;
+/// `hibi_glass_crack.kind`: another radial crack.
+pub const HIBI_GLASS_KIND_RADIAL: u32 = 1;
+/// `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
+pub const HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE: u32 = 2;
+/// `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
+pub const HIBI_GLASS_KIND_RING_CLOCKWISE: u32 = 3;
+/// `hibi_glass_crack.end`: it still grows.
+pub const HIBI_GLASS_END_GROWING: u32 = 0;
+/// `hibi_glass_crack.end`: its tip reached the plate's edge.
+pub const HIBI_GLASS_END_EDGE: u32 = 1;
+/// `hibi_glass_crack.end`: its tip reached another crack.
+pub const HIBI_GLASS_END_CRACK: u32 = 2;
+/// `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
+pub const HIBI_GLASS_END_GENERATION: u32 = 3;
+/// `hibi_glass_crack.end`: other cracks closed a region around its tip.
+pub const HIBI_GLASS_END_ENCLOSED: u32 = 4;
+
+const _: () = assert!(
+    HIBI_GLASS_KIND_LARGE == CrackKind::Large as u32
+        && HIBI_GLASS_KIND_RADIAL == CrackKind::Radial as u32
+        && HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE == CrackKind::RingCounterClockwise as u32
+        && HIBI_GLASS_KIND_RING_CLOCKWISE == CrackKind::RingClockwise as u32
+        && HIBI_GLASS_END_GROWING == CrackEnd::Growing as u32
+        && HIBI_GLASS_END_EDGE == CrackEnd::Edge as u32
+        && HIBI_GLASS_END_CRACK == CrackEnd::Crack as u32
+        && HIBI_GLASS_END_GENERATION == CrackEnd::Generation as u32
+        && HIBI_GLASS_END_ENCLOSED == CrackEnd::Enclosed as u32
+);
 
 /// Marks a params struct that came from `hibi_glass_params_default` ("GLS1").
 const PARAMS_COOKIE: u32 = 0x474C_5331;
@@ -136,10 +167,9 @@ pub struct hibi_glass_counts {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct hibi_glass_crack {
-    /// 0 large, 1 radial, 2 ring counter-clockwise, 3 ring clockwise.
+    /// A `HIBI_GLASS_KIND_*` constant.
     pub kind: u32,
-    /// 0 growing, 1 reached the edge, 2 reached a crack, 3 generation ended, 4 enclosed (other
-    /// cracks closed a region around it).
+    /// Why it stopped: a `HIBI_GLASS_END_*` constant.
     pub end: u32,
     /// Which impact started it.
     pub impact: u32,

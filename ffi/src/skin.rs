@@ -466,7 +466,8 @@ pub extern "C" fn hibi_skin_shade_params_default() -> hibi_skin_shade_params {
 /// A shaded preview: lights `normal` (three floats per pixel, as `hibi_skin_render` writes
 /// it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
 /// per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
-/// `height` and `rgb` must hold as many pixels as `normal`; if not, or if a parameter is out
+/// The pixels are `height_len`; `normal` and `rgb` must hold as many (`normal_len` and
+/// `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out
 /// of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
 /// `specular` negative), nothing is written.
 ///
@@ -801,10 +802,13 @@ mod tests {
             let mut rgb = vec![1u8; 3 * pixels];
             let (hc, nc) = (height.as_ptr(), normal.as_ptr());
             let r = rgb.as_mut_ptr();
+            // A normal buffer one value short of the heights' pixels (issue 25: this shaded one
+            // pixel fewer and said OK).
             assert_eq!(
-                hibi_skin_shade(hc, pixels - 1, nc, 3 * pixels, &light, r, 3 * pixels),
+                hibi_skin_shade(hc, pixels, nc, 3 * pixels - 1, &light, r, 3 * pixels),
                 HIBI_ERROR_BUFFER_TOO_SMALL
             );
+            assert_eq!(hibi_skin_shade(hc, 2, nc, 5, &light, r, 6), HIBI_ERROR_BUFFER_TOO_SMALL);
             assert_eq!(
                 hibi_skin_shade(hc, pixels, nc, 3 * pixels, &light, r, 3 * pixels - 1),
                 HIBI_ERROR_BUFFER_TOO_SMALL

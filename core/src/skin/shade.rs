@@ -69,12 +69,12 @@ impl Default for ShadeParams {
 }
 
 /// Lights `normal` (and darkens towards the furrows by `height`, scaled to its own range) into
-/// 8-bit RGB (sRGB-encoded) in `out`. All three buffers must hold as many pixels as `normal`,
-/// and the parameters must be in range ([`ShadeParams::validate`]); nothing is written
-/// otherwise.
+/// 8-bit RGB (sRGB-encoded) in `out`, one pixel per value of `height`: `normal` and `out` must
+/// hold at least as many pixels, and the parameters must be in range
+/// ([`ShadeParams::validate`]); nothing is written otherwise.
 pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mut [[u8; 3]]) -> Result<(), SkinError> {
-    let pixels = normal.len();
-    if height.len() < pixels || out.len() < pixels {
+    let pixels = height.len();
+    if normal.len() < pixels || out.len() < pixels {
         return Err(SkinError::BufferTooSmall { needed: pixels });
     }
     params.validate().map_err(SkinError::Shade)?;
