@@ -590,7 +590,7 @@ typedef struct hibi_mud_params {
    */
   float stiffness_anisotropy_ratio;
   /**
-   * End at this shrink (default 0.022; 0 = no limit).
+   * End at this shrink (default 0.023; 0 = no limit).
    */
   float target_shrink;
   /**

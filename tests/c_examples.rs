@@ -216,7 +216,7 @@ fn check_mud(linkage: Linkage) {
         line(&output, "params not from the default:"),
         "params not from the default: status 575, mud: the params struct did not come from hibi_mud_params_default or hibi_mud_params_preset"
     );
-    assert!(line(&output, "finished:").starts_with("finished: shrink 0.0220"), "{output}");
+    assert!(line(&output, "finished:").starts_with("finished: shrink 0.0230"), "{output}");
     assert_eq!(
         line(&output, "short pixel buffer:"),
         "short pixel buffer: status 3, a buffer is smaller than the call needs"

@@ -249,7 +249,7 @@ pub struct MudOptions {
     /// Springs across φ are RATIO times less stiff than along it; ≥ 1 [default: 1].
     #[arg(long, value_name = "RATIO")]
     pub stiffness_anisotropy_ratio: Option<f32>,
-    /// The run ends at this shrink 1 − r; 0 = no limit [default: 0.022].
+    /// The run ends at this shrink 1 − r; 0 = no limit [default: 0.023].
     #[arg(long, value_name = "SHRINK")]
     pub target_shrink: Option<f32>,
     /// The run also ends at this crack length per area [1/cm]; 0 = no limit [default: 0].

@@ -133,7 +133,7 @@ pub struct hibi_mud_params {
     pub anisotropy_ratio: f32,
     /// Stiffness anisotropy ratio (1 = none, default).
     pub stiffness_anisotropy_ratio: f32,
-    /// End at this shrink (default 0.022; 0 = no limit).
+    /// End at this shrink (default 0.023; 0 = no limit).
     pub target_shrink: f32,
     /// End at this crack length per area [1/cm] (default 0 = no limit).
     pub target_crack_density: f32,

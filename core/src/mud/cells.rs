@@ -5,9 +5,10 @@
 //! cracks that end inside a region, do not bound it; see [`super::network`]) and, on an open
 //! lattice, along the border. Walking a boundary keeps the cell on the left: an outer ring is
 //! counter-clockwise with y up (positive shoelace area), a hole (an island cut out of a cell)
-//! clockwise. Inside a mesh cell a boundary joins two cut sides' midpoints, or passes through
-//! the centroid where three or more separating cracks meet: each mesh cell's area is split
-//! among its corners' cells, so the rings' signed areas add up to the plate's.
+//! clockwise. A boundary runs through the network's points: from one cut side's crack point
+//! (its spring's midpoint, smoothed along the crack: `Mud::crack_point`) to the next, and
+//! through the centroid where three or more separating cracks meet. Every boundary piece is
+//! walked once each way, so the rings' signed areas add up to the plate's.
 //!
 //! On a periodic lattice a ring is continuous and may reach past the domain (draw it
 //! wrapped). A region that no crack crosses in one direction wraps around the torus and has
@@ -92,7 +93,7 @@ impl<S: Scalar> Mud<'_, S> {
                     }
                     match self.across(&c, j, wrap) {
                         Some((next, side, wrap)) => {
-                            if !visit(c.midpoint(j), key(next.index, side)) {
+                            if !visit(self.crack_point(&c, j), key(next.index, side)) {
                                 return RingEnd::Stopped;
                             }
                             if key(next.index, side) == start_key {
@@ -102,7 +103,7 @@ impl<S: Scalar> Mud<'_, S> {
                         }
                         None => {
                             let i = (j + 1) % n;
-                            if !visit(c.midpoint(j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
+                            if !visit(self.crack_point(&c, j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
                                 return RingEnd::Stopped;
                             }
                             At::Border { c, i }
@@ -119,7 +120,7 @@ impl<S: Scalar> Mud<'_, S> {
                                 return RingEnd::Closed([0, 0]);
                             }
                             if c.separating[i] {
-                                if !visit(c.midpoint(i), key(c.index, i)) {
+                                if !visit(self.crack_point(&c, i), key(c.index, i)) {
                                     return RingEnd::Stopped;
                                 }
                                 if key(c.index, i) == start_key {

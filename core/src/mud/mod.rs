@@ -87,7 +87,8 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // Per node: displacement (x, y); explicit adds velocity and force (x, y).
     // Per spring: break stretch, and the explicit solver's liveness or the quasi-static
     // solver's break misfit.
-    // Words per spring: the other node, the break time and the traced network's cut; per
+    // Words per spring: the other node, the break time, the traced network's cut and where
+    // its crack point lies (`network::crack_offset`); per
     // mesh cell (1 square, 2 triangles per node) one word for tracing and one for the cells'
     // ring starts. Quasi-static adds a tournament tree over blocks of 32 springs (2·P, P the
     // next power of two of the blocks), a work queue, node flags and a list of relaxed nodes
@@ -97,12 +98,12 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
         // The irregular lattice's explicit run keeps five constants per node.
         Solver::Explicit => {
             let constants = if mesh > 0 { explicit::NODE_CONSTANTS as u128 * nodes } else { 0 };
-            (6 * nodes + 2 * springs + constants, 3 * springs + 2 * cells + mesh)
+            (6 * nodes + 2 * springs + constants, 4 * springs + 2 * cells + mesh)
         }
         Solver::QuasiStatic => {
             let blocks = springs.div_ceil(quasi_static::BLOCK as u128);
             let leaves = if blocks <= 1 { 1 } else { 1u128 << (128 - (blocks - 1).leading_zeros()) };
-            (2 * nodes + 2 * springs, 3 * springs + 2 * cells + 2 * leaves + 3 * nodes + mesh)
+            (2 * nodes + 2 * springs, 4 * springs + 2 * cells + 2 * leaves + 3 * nodes + mesh)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -261,6 +262,10 @@ pub struct Mud<'a, S: Scalar = f32> {
     /// Per spring, the traced network: the time its crack formed (f32 bits, with
     /// `network::BRANCH` on a branch), or INTACT where it is not cut.
     trace: &'a mut [u32],
+    /// Per spring cut in the traced network: where its crack point lies from the spring's
+    /// midpoint (two `i16` in 1/`network::OFFSET_UNITS` lattice units; see
+    /// `Mud::crack_point`).
+    crack_offset: &'a mut [u32],
     /// Per mesh cell: the tracing's stack, then the index of the cell's first network vertex.
     stack: &'a mut [u32],
     /// Per mesh cell: which of its sides start a ring of the cells (see `cells`).
@@ -321,6 +326,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let other = take(&mut words, springs);
         let break_time = take(&mut words, springs);
         let trace = take(&mut words, springs);
+        let crack_offset = take(&mut words, springs);
+        crack_offset.fill(0);
         let stack = take(&mut words, shape.cell_count());
         let ring_starts = take(&mut words, shape.cell_count());
         ring_starts.fill(0);
@@ -380,6 +387,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             other,
             break_time,
             trace,
+            crack_offset,
             stack,
             ring_starts,
             vertex_total: 0,
@@ -550,9 +558,9 @@ mod tests {
         let p = MudParams { columns: 10, rows: 8, ..MudParams::default() };
         let m = p.memory().unwrap();
         assert_eq!(m.scalars, 80 * 2 + 240 * 2);
-        // Springs: other, break time, cut; cells: stack and ring starts; a tree over 8 blocks
-        // of 32 springs; queue, flags and touched list per node.
-        assert_eq!(m.words, 240 * 3 + 2 * 160 + 2 * 8 + 240);
+        // Springs: other, break time, cut, crack offset; cells: stack and ring starts; a tree
+        // over 8 blocks of 32 springs; queue, flags and touched list per node.
+        assert_eq!(m.words, 240 * 4 + 2 * 160 + 2 * 8 + 240);
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         assert!(Mud::new(&p, MudBuffers { scalars: &mut s[..m.scalars - 1], words: &mut w }).is_err());
         assert_eq!(

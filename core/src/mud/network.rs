@@ -42,17 +42,23 @@
 //!    dead-end cracks are closed, so the network stays connected and no cell changes.
 //! 2. **A single node is not a cell.** Where the cracks have cut every spring of one node (a
 //!    crack that splits around a node and joins again, which the first rule makes at some
-//!    junctions), the node stays joined, for the cells, to the neighbour it is least
-//!    separated from. The network keeps the loop; the cells do not get a fragment one node
-//!    wide (before this rule about a quarter of the default run's cells were such crumbs).
+//!    junctions), the crack passes the node on one side: on the triangle meshes, if two or
+//!    more cracks leave the ring of cut springs around the node, the arc of its springs
+//!    between two of them whose most separated spring has separated least is no longer cut
+//!    (the node stays with that side). A ring with fewer ways out (closed, or one crack in)
+//!    stays in the network, and the node stays joined, for the cells, to the neighbour it is
+//!    least separated from. The cells get no fragment one node wide (before this rule about
+//!    a quarter of the default run's cells were such crumbs).
 //! 3. **Cracks that end inside a region do not cut it.** For the cells (faces), branches are
 //!    pruned: a mesh cell with exactly one separating side has a dead end in it, that side is
 //!    marked a branch, and so on back to the junction. Branches stay in the network; they do
 //!    not bound a cell.
 //!
-//! The network's points are the cut springs' midpoints and the centroids of the mesh cells
-//! where cracks end (one cut side) or meet (three or more); Fig. 5's rule draws the pieces
-//! between them. Its vertices are those centroids, and, on open lattices, the midpoints of
+//! The network's points are the cut springs' midpoints, smoothed along their cracks (see
+//! `Mud::smoothing_offset`: the lattice places a crack only to within an element, and the
+//! zigzag between the midpoints of neighbouring triangle sides is the mesh's, not the
+//! crack's), and the centroids of the mesh cells where cracks end (one cut side) or meet
+//! (three or more); Fig. 5's rule draws the pieces between them. Its vertices are those centroids, and, on open lattices, the midpoints of
 //! cut springs on the plate's border; its edges are the chains of points between vertices.
 //! The opening (width) at a point is the separation |x_j − x_i − l·e_ij| of its spring.
 
@@ -63,6 +69,16 @@ use crate::scalar::Scalar;
 /// Marks a cut spring on a branch: its crack ends inside a region, so it does not separate
 /// cells (bit 31 of the trace word, whose other bits hold an `f32` time ≥ 0).
 pub(super) const BRANCH: u32 = 1 << 31;
+
+/// Points along a crack each way that place one of its points (see `Mud::smoothing_offset`).
+const SMOOTHING: usize = 4;
+
+/// Binomial weights of the points 1 to [`SMOOTHING`] away along a crack, each way: row 8 of
+/// Pascal's triangle over 256 (the point itself, 70/256, stays where it is).
+const SMOOTHING_WEIGHTS: [f32; SMOOTHING + 1] = [70.0 / 256.0, 56.0 / 256.0, 28.0 / 256.0, 8.0 / 256.0, 1.0 / 256.0];
+
+/// Crack offsets are stored in steps of 1/`OFFSET_UNITS` lattice units (±16 units fit).
+pub(super) const OFFSET_UNITS: f32 = 2048.0;
 
 /// No vertex: the ends of a closed crack with no junction on it.
 pub const NO_VERTEX: u32 = u32::MAX;
@@ -268,9 +284,13 @@ impl<S: Scalar> Mud<'_, S> {
                 self.close_dead_end(cell);
             }
         }
-        // 2. A node whose springs are all cut is not a cell of its own: it stays joined, for
-        //    the cells, to the neighbour it is least separated from (that spring no longer
-        //    separates, and the pruning below takes back what then ends inside a cell).
+        // 2. A node whose springs are all cut is not a cell of its own. On the triangle
+        //    meshes, where two or more cracks leave the ring around it, the crack passes it on
+        //    one side: the arc of its springs between two cracks that has separated least is
+        //    no longer cut (the node stays with that side). Otherwise (a closed ring, or one
+        //    crack in) it stays joined, for the cells, to the neighbour it is least separated
+        //    from (that spring no longer separates, and the pruning below takes back what
+        //    then ends inside a cell).
         for node in 0..self.lattice.node_count() {
             let mut least: Option<(f32, usize)> = None;
             let mut all_cut = true;
@@ -281,7 +301,9 @@ impl<S: Scalar> Mud<'_, S> {
                     least = Some((ratio, spring));
                 }
             });
-            if let (true, Some((_, spring))) = (all_cut, least) {
+            if let (true, Some((_, spring))) = (all_cut, least)
+                && !self.close_least_separated_arc(node, spring)
+            {
                 self.trace[spring] |= BRANCH;
             }
         }
@@ -305,7 +327,16 @@ impl<S: Scalar> Mud<'_, S> {
             next += self.vertices_in(cell) as u32;
         }
         self.vertex_total = next;
-        // 5. The cells' rings: where each one starts (see `cells`).
+        // 5. Where each crack point lies (the vertices are numbered: walks can end).
+        for spring in 0..self.lattice.spring_count() {
+            self.crack_offset[spring] = 0;
+            if self.is_cut(spring) {
+                let pack = |v: f32| (libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0) as i16 as u16) as u32;
+                let [x, y] = self.smoothing_offset(spring);
+                self.crack_offset[spring] = pack(x) | pack(y) << 16;
+            }
+        }
+        // 6. The cells' rings: where each one starts (see `cells`).
         self.find_ring_starts();
         self.traced_broken = self.broken;
     }
@@ -341,6 +372,57 @@ impl<S: Scalar> Mud<'_, S> {
             (at, spring) = (next, side);
         }
         None
+    }
+
+    /// Rule 2 on the triangle meshes, for a node whose springs are all cut (one of them
+    /// `first`): turns around the node, and if two or more cracks leave the ring of cut
+    /// springs around it, un-cuts the arc of springs between two of them whose most separated
+    /// spring has separated least (the first such arc at a tie). Returns whether it did.
+    fn close_least_separated_arc(&mut self, node: usize, first: usize) -> bool {
+        const N: usize = super::irregular::MAX_DEGREE;
+        // ring[i] = (spring, the triangle after it turning around the node, whether a crack
+        // leaves that triangle across its side away from the node).
+        let mut ring = [(0usize, 0usize, false); N];
+        let Some((mut at, _)) = self.lattice.cells_of_spring(first)[0] else { return false };
+        let mut spring = first;
+        let mut n = 0;
+        loop {
+            let Some(c) = self.lattice.cell(at).filter(|c| c.corners == 3) else { return false };
+            let away = (0..3).find(|&k| c.nodes[k] as usize != node && c.nodes[(k + 1) % 3] as usize != node);
+            let Some(away) = away else { return false };
+            if n == N {
+                return false;
+            }
+            ring[n] = (spring, at, self.is_cut(c.sides[away] as usize));
+            n += 1;
+            let Some(next_spring) = self.other_side_at(at, spring, node) else { return false };
+            let Some(next) = self.neighbours_across(next_spring).find(|&x| x != at) else { return false };
+            if next_spring == first {
+                break;
+            }
+            (at, spring) = (next, next_spring);
+        }
+        let ring = &ring[..n];
+        let exits = ring.iter().filter(|r| r.2).count();
+        if exits < 2 {
+            return false;
+        }
+        // An arc runs from an exit triangle to the next: the springs after the first up to
+        // and including the one before the second.
+        let mut best: Option<(f32, usize, usize)> = None;
+        for start in (0..n).filter(|&i| ring[i].2) {
+            let len = (1..=n).find(|&d| ring[(start + d) % n].2).unwrap_or(n);
+            let widest =
+                (1..=len).map(|d| self.separation_ratio(ring[(start + d) % n].0)).fold(f32::NEG_INFINITY, f32::max);
+            if best.is_none_or(|(w, _, _)| widest < w) {
+                best = Some((widest, start, len));
+            }
+        }
+        let Some((_, start, len)) = best else { return false };
+        for d in 1..=len {
+            self.trace[ring[(start + d) % n].0] = INTACT;
+        }
+        true
     }
 
     /// Rule 1, a tip one node from another crack: if the node of triangle `cell` opposite
@@ -525,7 +607,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// The network point at the midpoint of side `k`.
     fn side_point(&self, c: &TracedCell, k: usize) -> NetworkPoint {
         let spring = c.cell.sides[k] as usize;
-        NetworkPoint { at: c.midpoint(k), width: self.separation(spring), time: self.cut_time(spring) }
+        NetworkPoint { at: self.crack_point(c, k), width: self.separation(spring), time: self.cut_time(spring) }
     }
 
     /// The network point at a cell's centroid: a dead end (width 0) or a junction (the mean
@@ -561,19 +643,35 @@ impl<S: Scalar> Mud<'_, S> {
     fn walk(
         &self,
         start: (usize, usize),
+        c: TracedCell,
+        k: usize,
+        wrap: [i32; 2],
+        mut visit: impl FnMut(NetworkPoint, usize) -> bool,
+    ) -> Option<Arrival> {
+        self.walk_sides(start, c, k, wrap, |c, side| match side {
+            Some(j) => visit(self.side_point(c, j), c.cell.sides[j] as usize),
+            None => visit(self.centroid_point(c), usize::MAX),
+        })
+    }
+
+    /// [`Self::walk`] by mesh cells: `visit(c, Some(j))` at the midpoint of side `j` of `c`,
+    /// `visit(c, None)` at its centroid (the vertex the walk ends at).
+    fn walk_sides(
+        &self,
+        start: (usize, usize),
         mut c: TracedCell,
         mut k: usize,
         mut wrap: [i32; 2],
-        mut visit: impl FnMut(NetworkPoint, usize) -> bool,
+        mut visit: impl FnMut(&TracedCell, Option<usize>) -> bool,
     ) -> Option<Arrival> {
         for _ in 0..=self.lattice.cell_count() {
             if Self::centroid_is_vertex(&c) {
-                visit(self.centroid_point(&c), usize::MAX);
+                visit(&c, None);
                 return Some(Arrival { vertex: self.stack[c.index], side: k });
             }
             // Two cut sides: leave by the other one.
             let out = (0..c.sides()).find(|&j| j != k && c.cut[j]).unwrap_or(k);
-            if !visit(self.side_point(&c, out), c.cell.sides[out] as usize) {
+            if !visit(&c, Some(out)) {
                 return None;
             }
             let Some((next, side, next_wrap)) = self.across(&c, out, wrap) else {
@@ -587,6 +685,48 @@ impl<S: Scalar> Mud<'_, S> {
             k = side;
         }
         None
+    }
+
+    /// Where the network point on cut side `k` of `c` lies: the spring's midpoint, moved as
+    /// [`Self::smoothing_offset`] found when the network was traced.
+    pub(super) fn crack_point(&self, c: &TracedCell, k: usize) -> [f32; 2] {
+        let own = c.midpoint(k);
+        let packed = self.crack_offset[c.cell.sides[k] as usize];
+        let unit = |half: u32| f32::from(half as u16 as i16) / OFFSET_UNITS;
+        [own[0] + unit(packed & 0xffff), own[1] + unit(packed >> 16)]
+    }
+
+    /// How far the crack point of cut `spring` lies from the spring's midpoint: the binomial
+    /// mean of its neighbours' offsets along the crack, [`SMOOTHING`] points each way (the
+    /// paper's Fig. 5 places a crack at the midpoint of its broken spring). The lattice
+    /// places a crack only to within one element: the zigzag between the midpoints of
+    /// neighbouring triangle sides is the mesh's, not the crack's, and this takes it out.
+    /// Vertices (ends, junctions, border points) stay where they are; a walk that reaches
+    /// one before [`SMOOTHING`] points counts it for the rest. The triangle meshes only; the
+    /// raw segments ([`Mud::segments`]) keep the midpoints.
+    fn smoothing_offset(&self, spring: usize) -> [f32; 2] {
+        let [Some((first, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { return [0.0; 2] };
+        // The square lattice keeps its midpoints: its axis-aligned steps are the paper's
+        // Fig. 6 b, the lattice's artefact the figure shows.
+        let Some(home) = self.traced_cell(first, [0, 0]).filter(|c| c.sides() == 3) else { return [0.0; 2] };
+        let Some((other, other_side, wrap)) = self.across(&home, side, [0, 0]) else { return [0.0; 2] };
+        let centre = home.midpoint(side);
+        let mut offset = [0.0f32; 2];
+        for (cell, entry, wrap) in [(home, side, [0, 0]), (other, other_side, wrap)] {
+            let (mut n, mut last) = (0, centre);
+            self.walk_sides((cell.index, entry), cell, entry, wrap, |c, side| {
+                last = side.map_or_else(|| c.centroid(), |j| c.midpoint(j));
+                n += 1;
+                offset[0] += SMOOTHING_WEIGHTS[n] * (last[0] - centre[0]);
+                offset[1] += SMOOTHING_WEIGHTS[n] * (last[1] - centre[1]);
+                n < SMOOTHING
+            });
+            for w in &SMOOTHING_WEIGHTS[n + 1..] {
+                offset[0] += w * (last[0] - centre[0]);
+                offset[1] += w * (last[1] - centre[1]);
+            }
+        }
+        offset
     }
 
     /// Calls `edge(from, to, points)` for every edge of the network, in a fixed order: by

@@ -116,7 +116,8 @@ pub struct MudParams {
     pub stiffness_anisotropy_ratio: f32,
 
     /// The run ends when the shrink 1 − r reaches this (growth: 1/r − 1). 0 = no limit.
-    /// Default 0.022: closed polygonal cells, before they subdivide towards lattice scale.
+    /// Default 0.023: closed polygonal cells whose tips have joined up, before they subdivide
+    /// towards lattice scale.
     pub target_shrink: f32,
     /// The run also ends when the crack length per area reaches this [1/cm]. 0 = no limit.
     pub target_crack_density: f32,
@@ -148,7 +149,7 @@ impl Default for MudParams {
             anisotropy_direction: 0.0,
             anisotropy_ratio: 1.0,
             stiffness_anisotropy_ratio: 1.0,
-            target_shrink: 0.022,
+            target_shrink: 0.023,
             target_crack_density: 0.0,
         }
     }

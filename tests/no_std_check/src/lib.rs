@@ -15,7 +15,7 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
 pub extern "C" fn hibi_no_std_probe(seed: u64) -> f32 {
     let mut rng = Rng::new(seed, Stream::BreakStretch);
     let u = rng.uniform_f32() + rng.normal_f32() + rng.poisson(12.0).unwrap_or(0) as f32;
-    let spacing = MudParams::default().predicted_spacing(0.022).map_or(0.0, |s| s.spacing);
+    let spacing = MudParams::default().predicted_spacing(MudParams::default().target_shrink).map_or(0.0, |s| s.spacing);
     let m = micromath::F32(u).sin();
     spacing + Q16::from_f32(u).sqrt().to_f32() + m.to_f32() + Q16::from_f32(u).exp().to_f32()
 }
