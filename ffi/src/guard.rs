@@ -99,9 +99,11 @@ pub(crate) fn guard<T: Outcome>(body: impl FnOnce() -> T) -> T::C {
 /// earlier calls (`hibi_status_string`, `hibi_error_argument`, `hibi_version`).
 pub(crate) fn guard_query<T: Outcome>(body: impl FnOnce() -> T) -> T::C {
     install_silent_hook();
-    GUARDED.with(|g| g.set(g.get() + 1));
+    // `try_with` (here and for the refused argument): a call from a thread-local destructor,
+    // after this thread's locals are gone, must not panic outside `catch_unwind`.
+    let _ = GUARDED.try_with(|g| g.set(g.get() + 1));
     let result = catch_unwind(AssertUnwindSafe(body));
-    GUARDED.with(|g| g.set(g.get() - 1));
+    let _ = GUARDED.try_with(|g| g.set(g.get() - 1));
     match result {
         Ok(outcome) => outcome.into_c(),
         Err(_) => T::on_panic(),

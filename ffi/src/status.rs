@@ -398,13 +398,13 @@ std::thread_local! {
 /// Puts argument `name` on record as the one the current call refuses with `status`, and
 /// returns `status`.
 pub(crate) fn refuse_argument(name: &'static CStr, status: hibi_status) -> hibi_status {
-    REFUSED.with(|r| r.set(name));
+    let _ = REFUSED.try_with(|r| r.set(name));
     status
 }
 
 /// Clears the record: a call begins.
 pub(crate) fn clear_argument() {
-    REFUSED.with(|r| r.set(c""));
+    let _ = REFUSED.try_with(|r| r.set(c""));
 }
 
 /// The name of the pointer argument that the latest call on this thread refused, as it is
@@ -415,5 +415,51 @@ pub(crate) fn clear_argument() {
 /// `hibi_error_argument` and `hibi_version`.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_error_argument() -> *const c_char {
-    guard_query(|| REFUSED.with(Cell::get).as_ptr())
+    guard_query(|| REFUSED.try_with(Cell::get).unwrap_or(c"").as_ptr())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::glass::{hibi_glass_crack_count, hibi_glass_params_default, hibi_glass_step};
+    use core::ptr::{null, null_mut};
+
+    fn refused() -> &'static str {
+        // SAFETY: hibi_error_argument returns a static NUL-terminated string.
+        unsafe { CStr::from_ptr(hibi_error_argument()) }.to_str().unwrap()
+    }
+
+    #[test]
+    fn the_refused_argument_is_per_thread_and_per_call() {
+        let mut count = 0usize;
+        // SAFETY: NULL handles are refused before anything is touched.
+        unsafe {
+            assert_eq!(hibi_glass_crack_count(null(), &mut count), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(refused(), "glass");
+            // Asking for the message or the version keeps the record.
+            hibi_status_string(HIBI_ERROR_NULL_POINTER);
+            crate::hibi_version();
+            assert_eq!(refused(), "glass");
+            std::thread::spawn(|| {
+                assert_eq!(refused(), "", "another thread's record");
+                let mut count = 0usize;
+                let misaligned = (&raw mut count).cast::<u8>().wrapping_add(1).cast::<usize>();
+                let params = hibi_glass_params_default();
+                let mut glass = null_mut();
+                assert_eq!(crate::glass::hibi_glass_create(&params, &mut glass), HIBI_OK);
+                assert_eq!(hibi_glass_crack_count(glass, misaligned), HIBI_ERROR_MISALIGNED);
+                assert_eq!(refused(), "count");
+                crate::glass::hibi_glass_destroy(glass);
+                assert_eq!(refused(), "", "a call that succeeds clears it");
+            })
+            .join()
+            .unwrap();
+            assert_eq!(refused(), "glass");
+            assert_eq!(hibi_glass_step(null_mut(), 1, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(refused(), "glass");
+            assert!(!hibi_status_string(9999).is_null());
+            let _ = hibi_glass_params_default();
+            assert_eq!(refused(), "", "any other call clears it");
+        }
+    }
 }
