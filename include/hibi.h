@@ -9,6 +9,12 @@
  * outputs only on success; hibi_status_string() explains any code. Every buffer pointer is
  * followed by its length. Objects live in library memory (create/destroy) or caller memory
  * (memory_size + create_in).
+ *
+ * Pointers: "NULL or ..." in a function's Safety notes means NULL is safe to pass. Every
+ * pointer is required (NULL gives HIBI_ERROR_NULL_POINTER and the call does nothing;
+ * hibi_error_argument() then names it) except the few outputs marked "optional" (the step
+ * functions' progress, hibi_glass_impact's counts), which are skipped when NULL. A buffer
+ * of length 0 may be NULL. The *_written counts are required.
  */
 
 #ifndef HIBI_H
@@ -262,7 +268,10 @@ typedef struct hibi_glass_params {
    */
   float ring_slope;
   /**
-   * b in R = floor(a·M + b) (0.5).
+   * b in R = floor(a·M + b) (0.5). Whatever a and b hold, creation and each impact are
+   * bounded by the capacities: at most `max_cracks` ring start points are looked at, and a
+   * larger R (each grows two cracks) counts as running out of capacity (`hibi_glass_step`
+   * then returns `HIBI_ERROR_GLASS_CAPACITY`; the plate stays usable).
    */
   float ring_offset;
   /**
@@ -540,7 +549,8 @@ typedef struct hibi_mud_params {
    */
   float short_step;
   /**
-   * γ, shrink ratio per long step (paper: 0.9999).
+   * γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
+   * and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`).
    */
   float shrink_ratio;
   /**
@@ -590,7 +600,9 @@ typedef struct hibi_mud_params {
    */
   float stiffness_anisotropy_ratio;
   /**
-   * End at this shrink (default 0.023; 0 = no limit).
+   * End at this shrink (default 0.023; 0 = at the largest the model follows, shrink 0.99
+   * or growth 100). Both solvers end there too, uncracked, when no spring can break before
+   * it (a very large `break_stretch_mean`, say).
    */
   float target_shrink;
   /**
@@ -994,12 +1006,13 @@ typedef struct hibi_skin_cell {
 #define HIBI_OK 0
 
 /**
- * A required pointer argument is NULL.
+ * A required pointer argument is NULL (`hibi_error_argument` names it).
  */
 #define HIBI_ERROR_NULL_POINTER 1
 
 /**
- * A pointer argument is not aligned for the type it points to.
+ * A pointer argument is not aligned for the type it points to (`hibi_error_argument` names
+ * it).
  */
 #define HIBI_ERROR_MISALIGNED 2
 
@@ -1019,12 +1032,15 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_OUT_OF_MEMORY 5
 
 /**
- * A buffer length in elements overflows the address space when converted to bytes.
+ * A buffer length in elements overflows the address space when converted to bytes
+ * (`hibi_error_argument` names the buffer).
  */
 #define HIBI_ERROR_SIZE_OVERFLOW 6
 
 /**
  * An internal error: a panic inside hibi was caught at the C boundary (a bug; please report).
+ * Nothing is printed: hibi installs a panic hook that is silent inside its calls and hands
+ * any other panic to the hook installed before it.
  */
 #define HIBI_ERROR_PANIC 7
 
@@ -1069,7 +1085,7 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SHORT_STEP 517
 
 /**
- * Mud parameters: `shrink_ratio` (γ) must be within (0, 1].
+ * Mud parameters: `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
  */
 #define HIBI_ERROR_MUD_SHRINK_RATIO 518
 
@@ -1119,7 +1135,7 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_ANISOTROPY_RATIO 527
 
 /**
- * Mud parameters: `stiffness_anisotropy_ratio` must be finite and >= 1.
+ * Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
  */
 #define HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO 528
 
@@ -1139,14 +1155,39 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SIZE_OVERFLOW 531
 
 /**
- * Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
+ * Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
+ * within [1e-6, 1e6].
  */
-#define HIBI_ERROR_MUD_SCALE 532
+#define HIBI_ERROR_MUD_SHEAR_SCALE 532
 
 /**
  * Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
  */
 #define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 533
+
+/**
+ * Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
+ * within [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_DAMPING_SCALE 534
+
+/**
+ * Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
+ * [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP_SCALE 535
+
+/**
+ * Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
+ * element_size must be within [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_TOLERANCE_SCALE 536
+
+/**
+ * Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
+ * finite.
+ */
+#define HIBI_ERROR_MUD_SPREAD_SCALE 537
 
 /**
  * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
@@ -1194,7 +1235,7 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_RENDER_LINE_WIDTH 774
 
 /**
- * Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
+ * `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
  */
 #define HIBI_ERROR_RENDER_LAYER 773
 
@@ -1295,6 +1336,11 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_GLASS_CRACK_INDEX 1091
 
 /**
+ * `hibi_glass_render`: `layer` is not `HIBI_GLASS_LAYER_MASK` or `HIBI_GLASS_LAYER_TIME`.
+ */
+#define HIBI_ERROR_GLASS_RENDER_LAYER 1094
+
+/**
  * Skin parameters: `width` and `height` must be in 1..=32768.
  */
 #define HIBI_ERROR_SKIN_SIZE 1280
@@ -1375,7 +1421,7 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_SKIN_LEVEL 1346
 
 /**
- * `hibi_skin_shade`: the light direction is zero or not finite.
+ * `hibi_skin_shade`: a `light` component is not finite, or all three are zero.
  */
 #define HIBI_ERROR_SKIN_SHADE 1347
 
@@ -1483,7 +1529,7 @@ void hibi_glass_destroy(struct hibi_glass *glass);
  * earlier ones. Writes the counts it drew unless `counts` is NULL.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `counts` NULL or writable.
+ * `glass` must be NULL or a live plate; `counts` optional: NULL (not written) or writable.
  */
 hibi_status hibi_glass_impact(struct hibi_glass *glass,
                               float x,
@@ -1498,7 +1544,7 @@ hibi_status hibi_glass_impact(struct hibi_glass *glass,
  * once a capacity has run out; the plate then stays as it was drawn, usable.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `progress` NULL or writable.
+ * `glass` must be NULL or a live plate; `progress` optional: NULL (not written) or writable.
  */
 hibi_status hibi_glass_step(struct hibi_glass *glass,
                             uint64_t budget,
@@ -1528,7 +1574,7 @@ hibi_status hibi_glass_crack_info(const struct hibi_glass *glass,
  *
  * # Safety
  * `glass` must be NULL or a live plate; `points` NULL (only with `len` 0) or writable for
- * `len` points; `written` NULL or writable.
+ * `len` points; `written` NULL (refused) or writable.
  */
 hibi_status hibi_glass_points(const struct hibi_glass *glass,
                               size_t index,
@@ -1554,7 +1600,8 @@ hibi_status hibi_glass_fragment_counts(struct hibi_glass *glass, size_t *rings, 
  *
  * # Safety
  * `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
- * writable for their lengths; `rings_written` and `points_written` NULL or writable.
+ * writable for their lengths; `rings_written` and `points_written` NULL (refused) or
+ * writable.
  */
 hibi_status hibi_glass_fragments(struct hibi_glass *glass,
                                  struct hibi_glass_fragment_ring *rings,
@@ -1650,7 +1697,7 @@ void hibi_mud_destroy(struct hibi_mud *mud);
  * is NULL. Call until `progress.finished`.
  *
  * # Safety
- * `mud` must be NULL or a live run; `progress` NULL or writable.
+ * `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.
  */
 hibi_status hibi_mud_step(struct hibi_mud *mud,
                           uint64_t budget,
@@ -1671,7 +1718,7 @@ hibi_status hibi_mud_segment_count(const struct hibi_mud *mud, size_t *count);
  *
  * # Safety
  * `mud` must be NULL or a live run; `segments` NULL (only with `len` 0) or writable for
- * `len` segments; `written` NULL or writable.
+ * `len` segments; `written` NULL (refused) or writable.
  */
 hibi_status hibi_mud_segments(const struct hibi_mud *mud,
                               struct hibi_mud_segment *segments,
@@ -1710,8 +1757,8 @@ hibi_status hibi_mud_network_counts(const struct hibi_mud *mud,
  *
  * # Safety
  * `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL (only with length
- * 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL or
- * writable.
+ * 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL
+ * (refused) or writable.
  */
 hibi_status hibi_mud_network(const struct hibi_mud *mud,
                              struct hibi_mud_network_vertex *vertices,
@@ -1748,8 +1795,8 @@ hibi_status hibi_mud_cell_counts(const struct hibi_mud *mud,
  *
  * # Safety
  * `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
- * writable for their lengths, not overlapping; `rings_written` and `points_written` NULL or
- * writable.
+ * writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
+ * (refused) or writable.
  */
 hibi_status hibi_mud_cells(const struct hibi_mud *mud,
                            hibi_mud_cell_ring *rings,
@@ -1960,7 +2007,7 @@ hibi_status hibi_skin_render(const struct hibi_skin *skin,
  * writes nothing) once a cell outgrew its capacity; what was built stays usable.
  *
  * # Safety
- * `skin` must be NULL or a live skin; `progress` NULL or writable.
+ * `skin` must be NULL or a live skin; `progress` optional: NULL (not written) or writable.
  */
 hibi_status hibi_skin_step(struct hibi_skin *skin,
                            uint64_t budget,
@@ -1976,9 +2023,10 @@ struct hibi_skin_shade_params hibi_skin_shade_params_default(void);
  * it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
  * per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
  * The pixels are `height_len`; `normal` and `rgb` must hold as many (`normal_len` and
- * `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out
- * of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
- * `specular` negative), nothing is written.
+ * `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out of range (a light
+ * component not finite, or all three zero; a colour channel or `ambient` outside [0, 1];
+ * `specular` negative), nothing is written. Any other light is a direction, however large
+ * or small its components.
  *
  * # Safety
  * `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL
@@ -2022,7 +2070,7 @@ hibi_status hibi_skin_cell_info(const struct hibi_skin *skin,
  *
  * # Safety
  * `skin` must be NULL or a live skin; `xy` NULL (only with `len` 0) or writable for `len`
- * doubles; `written` NULL or writable.
+ * doubles; `written` NULL (refused) or writable.
  */
 hibi_status hibi_skin_outline(const struct hibi_skin *skin,
                               size_t index,
@@ -2035,6 +2083,16 @@ hibi_status hibi_skin_outline(const struct hibi_skin *skin,
  * "unknown status code"). The string lives as long as the library.
  */
 const char *hibi_status_string(hibi_status status);
+
+/**
+ * The name of the pointer argument that the latest call on this thread refused, as it is
+ * spelled in this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
+ * `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`; `""`
+ * after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
+ * thread's calls do not change it, and neither do `hibi_status_string`,
+ * `hibi_error_argument` and `hibi_version`.
+ */
+const char *hibi_error_argument(void);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -48,6 +48,17 @@ fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage)
 
 /// As [`build_and_run`], passing `args` to the program.
 fn build_and_run_with(compiler: &str, standard: &str, source: &str, linkage: Linkage, args: &[&str]) -> String {
+    build_and_run_capturing(compiler, standard, source, linkage, args).0
+}
+
+/// As [`build_and_run_with`], returning what the program printed on stdout and on stderr.
+fn build_and_run_capturing(
+    compiler: &str,
+    standard: &str,
+    source: &str,
+    linkage: Linkage,
+    args: &[&str],
+) -> (String, String) {
     let root = workspace_root();
     let lib = library_dir();
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
@@ -83,13 +94,9 @@ fn build_and_run_with(compiler: &str, standard: &str, source: &str, linkage: Lin
     // libhibi.so; the program must load the one it was linked with (its rpath).
     let run = Command::new(&exe).args(args).env_remove("LD_LIBRARY_PATH").output().expect("run the example");
     let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
-    assert!(
-        run.status.success(),
-        "{source} ({linkage:?}) exited with {}:\n{stdout}\n{}",
-        run.status,
-        String::from_utf8_lossy(&run.stderr)
-    );
-    stdout
+    let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{source} ({linkage:?}) exited with {}:\n{stdout}\n{stderr}", run.status);
+    (stdout, stderr)
 }
 
 /// What the examples must print for seed 42, stream 7, computed by the Rust API.
@@ -414,4 +421,102 @@ fn skin_example_links_shared_library() {
 #[test]
 fn skin_example_is_clean_under_sanitizers() {
     check_skin(Linkage::Sanitized);
+}
+
+/// Issue 25's C regression programs in `tests/c/`, statically linked under the sanitizers:
+/// what they printed, after checking that they printed nothing on stderr.
+fn regression(source: &str) -> String {
+    let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Sanitized, &[]);
+    assert!(stderr.is_empty(), "{source} printed on stderr:\n{stderr}");
+    stdout
+}
+
+/// Defect 1: a huge ring count formula is bounded by `max_cracks` (it ran for minutes).
+#[test]
+fn c_glass_create_is_bounded_by_the_capacities() {
+    let output = regression("tests/c/glass_ring_counts.c");
+    for field in ["ring_slope 100000", "ring_slope 1e+07", "ring_slope 1e+30", "ring_offset 1e+30"] {
+        assert_eq!(
+            line(&output, &format!("{field}:")),
+            format!("{field}: create 0, under a second: yes, step 1090, crack count 0, cracks within max_cracks: yes")
+        );
+    }
+}
+
+/// Defect 2: out of capacity, every output still works, and no panic message reaches stderr.
+#[test]
+fn c_glass_plate_out_of_capacity_stays_usable() {
+    let output = regression("tests/c/glass_capacity.c");
+    let plates: Vec<&str> = output.lines().filter(|l| l.starts_with("max_vertices ")).collect();
+    assert_eq!(plates.len(), 12, "{output}");
+    for plate in plates {
+        let (_, results) = plate.split_once(": ").unwrap();
+        assert_eq!(
+            results, "step 1090 then 1090, fragment_counts 0, fragments 0 covering 409600.0, cracks 0, render 0",
+            "{plate}"
+        );
+    }
+}
+
+/// Defect 3: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
+/// both solvers alike: at the target shrink, uncracked, at a positive time.
+#[test]
+fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
+    let output = regression("tests/c/mud_shrink.c");
+    assert_eq!(
+        line(&output, "shrink_ratio 1:"),
+        "shrink_ratio 1: status 518, mud: shrink_ratio (gamma) must be within (0, 1) (1 would never shrink); \
+         nothing created: yes"
+    );
+    assert_eq!(
+        line(&output, "shrink_ratio 1, memory size:"),
+        "shrink_ratio 1, memory size: status 518, size untouched: yes"
+    );
+    assert_eq!(line(&output, "shrink_ratio just below 1:"), "shrink_ratio just below 1: status 0");
+    for solver in ["explicit", "quasi-static"] {
+        let prefix = format!("{solver}, break_stretch_mean 1e30:");
+        assert_eq!(
+            line(&output, &prefix),
+            format!("{prefix} status 0, finished 1, shrink 0.023, broken 0, positive time: yes")
+        );
+    }
+}
+
+/// Defect 4: refusals name the field or argument the caller wrote, and the `*_written`
+/// counts are required everywhere while the optional outputs are skipped.
+#[test]
+fn c_refusals_name_what_the_caller_wrote() {
+    let output = regression("tests/c/messages.c");
+    let expected = [
+        "young_modulus 1e20: status 532, mud: (shear_modulus / young_modulus) * (element_size / layer_thickness)^2 \
+         must be within [1e-6, 1e6] []",
+        "damping_factor 1e9: status 534, mud: damping_factor is out of scale: 2 * sqrt(k_max * m) * damping_factor \
+         must be within [1e-6, 1e6] []",
+        "short_step 1e9: status 535, mud: short_step / (element_size * sqrt(density / young_modulus)) must be \
+         within [1e-6, 1e6] []",
+        "displacement_tolerance 1e-12: status 536, mud: displacement_tolerance is out of scale: k_min * \
+         displacement_tolerance / element_size must be within [1e-6, 1e6] []",
+        "stiffness_anisotropy_ratio 1e9: status 528, mud: stiffness_anisotropy_ratio must be within [1, 1e6] []",
+        "glass layer 7: status 1094, hibi_glass_render: layer is not HIBI_GLASS_LAYER_MASK or HIBI_GLASS_LAYER_TIME []",
+        "light (0, 0, 1e30): status 0, ok []",
+        "light (0, 0, 0): status 1347, skin: the shading light direction must be three finite numbers, not all zero []",
+        "shade without params: status 1, a required pointer argument is NULL [params]",
+        "shade into NULL rgb: status 1, a required pointer argument is NULL [rgb]",
+        "fragment_counts with NULL points: status 1, a required pointer argument is NULL [points]",
+        "a call that succeeds clears the name: status 0, ok []",
+        "glass points with NULL written: status 1, a required pointer argument is NULL [written]",
+        "glass step with NULL progress: status 0, ok []",
+        "glass step on a NULL plate: status 1, a required pointer argument is NULL [glass]",
+        "glass impact with NULL counts: status 0, ok []",
+        "mud step with NULL progress: status 0, ok []",
+        "mud step: status 0, ok []",
+        "mud segments with NULL written: status 1, a required pointer argument is NULL [written]",
+        "mud segments into NULL with a length: status 1, a required pointer argument is NULL [segments]",
+        "mud create with NULL out: status 1, a required pointer argument is NULL [out]",
+        "mud create_in with NULL memory: status 1, a required pointer argument is NULL [memory]",
+    ];
+    for want in expected {
+        let (prefix, _) = want.split_once(": status").unwrap();
+        assert_eq!(line(&output, &format!("{prefix}: ")), want);
+    }
 }

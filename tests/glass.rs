@@ -86,6 +86,36 @@ fn running_out_of_capacity_is_reported_not_a_panic() {
     assert!(with_plate(&p, |g| g.progress()).capacity_reached);
 }
 
+/// Issue 25 defect 2: a plate that ran out of capacity (down to two vertices: the impact
+/// point and one more) stays usable: its fragments cover the plate after every step, whatever
+/// the budgets, and the ring loop of an impact stops at the capacities (defect 1).
+#[test]
+fn a_plate_out_of_capacity_stays_usable_down_to_two_vertices() {
+    let fragments = |g: &mut Glass| {
+        let (rings, points) = g.fragment_counts();
+        let (mut ring_out, mut point_out) = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
+        assert_eq!(g.fragments(&mut ring_out, &mut point_out), Ok((rings, points)));
+        ring_out.iter().map(|r| r.area).sum::<f64>()
+    };
+    for (max_vertices, max_cracks, seed) in (0..6).flat_map(|s| [(2, 512, s), (3, 2, s), (5, 1, s), (40, 7, s)]) {
+        let p = GlassParams { max_vertices, max_cracks, seed, ..GlassParams::default() };
+        for budget in [1, 1000] {
+            let m = p.memory().expect("valid parameters");
+            let mut memory = m.allocate();
+            let mut g = Glass::new(&p, memory.buffers()).expect("memory suffices");
+            loop {
+                let progress = g.step(budget);
+                let area = fragments(&mut g);
+                assert!((area - 640.0 * 640.0).abs() < 1e-3, "{p:?}, budget {budget}: area {area}");
+                if progress.finished {
+                    assert!(progress.capacity_reached && progress.vertices <= max_vertices, "{progress:?}");
+                    break;
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_second_impact_grows_cracks_that_stop_at_the_first() {
     let p = GlassParams::default();

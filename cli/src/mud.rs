@@ -122,8 +122,12 @@ fn option(e: MudParamError) -> &'static str {
         TargetShrink => "--target-shrink",
         TargetCrackDensity => "--target-crack-density",
         SizeOverflow => "--columns/--rows",
-        Scale => "--young-modulus/--shear-modulus/--element-size/--layer-thickness/--density/--long-step",
+        ShearScale => "--shear-modulus/--young-modulus/--element-size/--layer-thickness",
         BreakStretchSizeExponent => "--break-stretch-size-exponent",
+        DampingScale => "--damping-factor",
+        ShortStepScale => "--short-step/--element-size/--density/--young-modulus",
+        ToleranceScale => "--displacement-tolerance/--element-size",
+        SpreadScale => "--break-stretch-spread/--element-size/--layer-thickness",
     }
 }
 

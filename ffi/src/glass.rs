@@ -26,7 +26,7 @@ use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
     HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED,
-    HIBI_ERROR_GLASS_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_GLASS_RENDER_LAYER, HIBI_ERROR_GLASS_UNKNOWN_PRESET, glass_param_status, hibi_status, raster_status,
 };
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -95,7 +95,10 @@ pub struct hibi_glass_params {
     pub large_offset: f32,
     /// a in the number of ring start points R = floor(a·M + b) (0.05).
     pub ring_slope: f32,
-    /// b in R = floor(a·M + b) (0.5).
+    /// b in R = floor(a·M + b) (0.5). Whatever a and b hold, creation and each impact are
+    /// bounded by the capacities: at most `max_cracks` ring start points are looked at, and a
+    /// larger R (each grows two cracks) counts as running out of capacity (`hibi_glass_step`
+    /// then returns `HIBI_ERROR_GLASS_CAPACITY`; the plate stays usable).
     pub ring_offset: f32,
     /// g in the mean ring radius d_ave = g·M + h (paper: 0.470).
     pub ring_radius_slope: f32,
@@ -246,7 +249,7 @@ impl Object for hibi_glass {
     type Arrays = GlassBuffers<'static>;
 
     unsafe fn plan(params: *const hibi_glass_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params)?;
+        check_pointer(params, c"params")?;
         // SAFETY: non-null and aligned (checked); readable by the caller's contract.
         let params = from_c(unsafe { &*params })?;
         let memory = params.memory().map_err(glass_param_status)?;
@@ -358,7 +361,7 @@ pub unsafe extern "C" fn hibi_glass_destroy(glass: *mut hibi_glass) {
 /// earlier ones. Writes the counts it drew unless `counts` is NULL.
 ///
 /// # Safety
-/// `glass` must be NULL or a live plate; `counts` NULL or writable.
+/// `glass` must be NULL or a live plate; `counts` optional: NULL (not written) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_impact(
     glass: *mut hibi_glass,
@@ -368,15 +371,15 @@ pub unsafe extern "C" fn hibi_glass_impact(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass) }?;
+        let glass = unsafe { object(glass, c"glass") }?;
         if !counts.is_null() {
-            check_pointer(counts)?;
+            check_pointer(counts, c"counts")?;
         }
         let c = glass.glass.impact([x, y]).map_err(glass_status)?;
         if !counts.is_null() {
             let value = hibi_glass_counts::from_core(&c);
             // SAFETY: checked; the caller's contract.
-            unsafe { write_out(counts, value) }?;
+            unsafe { write_out(counts, c"counts", value) }?;
         }
         Ok(())
     })
@@ -389,7 +392,7 @@ pub unsafe extern "C" fn hibi_glass_impact(
 /// once a capacity has run out; the plate then stays as it was drawn, usable.
 ///
 /// # Safety
-/// `glass` must be NULL or a live plate; `progress` NULL or writable.
+/// `glass` must be NULL or a live plate; `progress` optional: NULL (not written) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_step(
     glass: *mut hibi_glass,
@@ -398,16 +401,16 @@ pub unsafe extern "C" fn hibi_glass_step(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass) }?;
+        let glass = unsafe { object(glass, c"glass") }?;
         if !progress.is_null() {
-            check_pointer(progress)?;
+            check_pointer(progress, c"progress")?;
         }
         if glass.glass.step(budget).capacity_reached {
             return Err(HIBI_ERROR_GLASS_CAPACITY);
         }
         if !progress.is_null() {
             // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, hibi_glass_progress::from_core(&glass.glass.progress())) }?;
+            unsafe { write_out(progress, c"progress", hibi_glass_progress::from_core(&glass.glass.progress())) }?;
         }
         Ok(())
     })
@@ -421,9 +424,9 @@ pub unsafe extern "C" fn hibi_glass_step(
 pub unsafe extern "C" fn hibi_glass_crack_count(glass: *const hibi_glass, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass) }?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
         // SAFETY: the caller's contract.
-        unsafe { write_out(count, glass.glass.crack_count()) }
+        unsafe { write_out(count, c"count", glass.glass.crack_count()) }
     })
 }
 
@@ -439,8 +442,8 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass) }?;
-        check_pointer(crack)?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        check_pointer(crack, c"crack")?;
         let c = glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
         let value = hibi_glass_crack {
             kind: c.kind as u32,
@@ -449,7 +452,7 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
             points: glass.glass.point_count(index) as u32,
         };
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(crack, value) }
+        unsafe { write_out(crack, c"crack", value) }
     })
 }
 
@@ -458,7 +461,7 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
 ///
 /// # Safety
 /// `glass` must be NULL or a live plate; `points` NULL (only with `len` 0) or writable for
-/// `len` points; `written` NULL or writable.
+/// `len` points; `written` NULL (refused) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_points(
     glass: *const hibi_glass,
@@ -469,14 +472,14 @@ pub unsafe extern "C" fn hibi_glass_points(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass) }?;
-        check_pointer(written)?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        check_pointer(written, c"written")?;
         glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
         // SAFETY: the caller's contract.
-        let out = unsafe { buffer(points, len) }?;
+        let out = unsafe { buffer(points, len, c"points") }?;
         let n = glass.glass.points(index, out).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(written, n) }
+        unsafe { write_out(written, c"written", n) }
     })
 }
 
@@ -509,14 +512,14 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass) }?;
-        check_pointer(rings)?;
-        check_pointer(points)?;
+        let glass = unsafe { object(glass, c"glass") }?;
+        check_pointer(rings, c"rings")?;
+        check_pointer(points, c"points")?;
         let (r, p) = glass.glass.fragment_counts();
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings, r) }?;
+        unsafe { write_out(rings, c"rings", r) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, p) }
+        unsafe { write_out(points, c"points", p) }
     })
 }
 
@@ -528,7 +531,8 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 ///
 /// # Safety
 /// `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
-/// writable for their lengths; `rings_written` and `points_written` NULL or writable.
+/// writable for their lengths; `rings_written` and `points_written` NULL (refused) or
+/// writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_fragments(
     glass: *mut hibi_glass,
@@ -541,19 +545,19 @@ pub unsafe extern "C" fn hibi_glass_fragments(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass) }?;
-        check_pointer(rings_written)?;
-        check_pointer(points_written)?;
+        let glass = unsafe { object(glass, c"glass") }?;
+        check_pointer(rings_written, c"rings_written")?;
+        check_pointer(points_written, c"points_written")?;
         // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
         // and hibi_vec2 as [f32; 2] (asserted below).
-        let ring_out = unsafe { buffer(rings, rings_len) }?;
+        let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
         // SAFETY: as above.
-        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
+        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
         let (r, p) = glass.glass.fragments(ring_out, point_out).map_err(|_| HIBI_ERROR_BUFFER_TOO_SMALL)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings_written, r) }?;
+        unsafe { write_out(rings_written, c"rings_written", r) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, p) }
+        unsafe { write_out(points_written, c"points_written", p) }
     })
 }
 
@@ -580,19 +584,19 @@ pub unsafe extern "C" fn hibi_glass_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass) }?;
-        check_pointer(render)?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        check_pointer(render, c"render")?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let render: GlassRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (both): the caller's contract on `pixels`.
         let layers = match layer {
             HIBI_GLASS_LAYER_MASK => {
-                GlassLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), time: None }
+                GlassLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?), time: None }
             }
             HIBI_GLASS_LAYER_TIME => {
-                GlassLayers { mask: None, time: Some(unsafe { buffer(pixels.cast(), pixels_len) }?) }
+                GlassLayers { mask: None, time: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?) }
             }
-            _ => return Err(HIBI_ERROR_RENDER_LAYER),
+            _ => return Err(HIBI_ERROR_GLASS_RENDER_LAYER),
         };
         glass.glass.render(&render, layers).map_err(raster_status)
     })

@@ -1,16 +1,22 @@
 //! The one guard every exported function runs in, and the checks of what C hands in.
 //!
 //! [`guard`] catches any panic so that none unwinds into C (which is undefined behaviour) and
-//! turns it into `HIBI_ERROR_PANIC` or the function's neutral value. The pointer helpers turn
-//! NULL, misaligned and overflowing arguments into statuses before anything is touched.
+//! turns it into `HIBI_ERROR_PANIC` or the function's neutral value. A panic inside a guard
+//! prints nothing: the first guarded call installs a panic hook that stays silent while the
+//! panicking thread is inside a guard and hands every other panic (the host's own, if it is
+//! Rust) to the hook that was there before. The host's stderr is its own; the status is how
+//! hibi reports. The pointer helpers turn NULL, misaligned and overflowing arguments into
+//! statuses before anything is touched.
 
-use core::ffi::c_char;
+use core::cell::Cell;
+use core::ffi::{CStr, c_char};
 use core::mem::{align_of, size_of};
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Once;
 
 use crate::status::{
     HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_PANIC, HIBI_ERROR_SIZE_OVERFLOW, HIBI_OK, hibi_status,
-    message,
+    message, refuse_argument,
 };
 
 /// What an exported function's body gives back, and what C sees instead if it panics.
@@ -59,20 +65,58 @@ impl Outcome for *const c_char {
     }
 }
 
-/// Runs an exported function's body; no panic crosses into C.
+std::thread_local! {
+    /// How many guards this thread is inside (exported functions do not call each other,
+    /// but counting keeps nesting sound).
+    static GUARDED: Cell<u32> = const { Cell::new(0) };
+}
+
+/// Installs, once per process, the hook that keeps panics inside a guard silent.
+fn install_silent_hook() {
+    static INSTALL: Once = Once::new();
+    if std::thread::panicking() {
+        return; // the hook cannot be swapped now (a call from a host's unwinding); later
+    }
+    INSTALL.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            // `try_with`: a panic while the thread's locals are being torn down is not ours.
+            if GUARDED.try_with(Cell::get).unwrap_or(0) == 0 {
+                previous(info);
+            }
+        }));
+    });
+}
+
+/// Runs an exported function's body; no panic crosses into C, and none prints. The body
+/// starts with no refused argument on record (see `hibi_error_argument`).
 pub(crate) fn guard<T: Outcome>(body: impl FnOnce() -> T) -> T::C {
-    match catch_unwind(AssertUnwindSafe(body)) {
+    crate::status::clear_argument();
+    guard_query(body)
+}
+
+/// As [`guard`], keeping the refused argument on record: for the functions that report on
+/// earlier calls (`hibi_status_string`, `hibi_error_argument`, `hibi_version`).
+pub(crate) fn guard_query<T: Outcome>(body: impl FnOnce() -> T) -> T::C {
+    install_silent_hook();
+    // `try_with` (here and for the refused argument): a call from a thread-local destructor,
+    // after this thread's locals are gone, must not panic outside `catch_unwind`.
+    let _ = GUARDED.try_with(|g| g.set(g.get() + 1));
+    let result = catch_unwind(AssertUnwindSafe(body));
+    let _ = GUARDED.try_with(|g| g.set(g.get() - 1));
+    match result {
         Ok(outcome) => outcome.into_c(),
         Err(_) => T::on_panic(),
     }
 }
 
-/// Checks that `ptr` is non-null and aligned for `T`.
-pub(crate) fn check_pointer<T>(ptr: *const T) -> Result<(), hibi_status> {
+/// Checks that argument `name`, `ptr`, is non-null and aligned for `T`; on failure `name` is
+/// put on record for `hibi_error_argument`.
+pub(crate) fn check_pointer<T>(ptr: *const T, name: &'static CStr) -> Result<(), hibi_status> {
     if ptr.is_null() {
-        Err(HIBI_ERROR_NULL_POINTER)
+        Err(refuse_argument(name, HIBI_ERROR_NULL_POINTER))
     } else if !ptr.cast::<u8>().align_offset(align_of::<T>()).eq(&0) {
-        Err(HIBI_ERROR_MISALIGNED)
+        Err(refuse_argument(name, HIBI_ERROR_MISALIGNED))
     } else {
         Ok(())
     }
@@ -82,8 +126,8 @@ pub(crate) fn check_pointer<T>(ptr: *const T) -> Result<(), hibi_status> {
 ///
 /// # Safety
 /// A non-null, aligned `ptr` must point to a live `T` that nothing else uses during the call.
-pub(crate) unsafe fn object<'a, T>(ptr: *mut T) -> Result<&'a mut T, hibi_status> {
-    check_pointer(ptr)?;
+pub(crate) unsafe fn object<'a, T>(ptr: *mut T, name: &'static CStr) -> Result<&'a mut T, hibi_status> {
+    check_pointer(ptr, name)?;
     // SAFETY: non-null and aligned (checked); liveness and exclusivity are the caller's contract.
     Ok(unsafe { &mut *ptr })
 }
@@ -93,8 +137,8 @@ pub(crate) unsafe fn object<'a, T>(ptr: *mut T) -> Result<&'a mut T, hibi_status
 ///
 /// # Safety
 /// A non-null, aligned `ptr` must point to a live `T` that nothing mutates during the call.
-pub(crate) unsafe fn object_ref<'a, T>(ptr: *const T) -> Result<&'a T, hibi_status> {
-    check_pointer(ptr)?;
+pub(crate) unsafe fn object_ref<'a, T>(ptr: *const T, name: &'static CStr) -> Result<&'a T, hibi_status> {
+    check_pointer(ptr, name)?;
     // SAFETY: non-null and aligned (checked); liveness and no concurrent mutation are the
     // caller's contract.
     Ok(unsafe { &*ptr })
@@ -112,13 +156,13 @@ pub(crate) unsafe fn write_preset<P, C>(
     to_c: impl FnOnce(&P) -> C,
     unknown: hibi_status,
 ) -> Result<(), hibi_status> {
-    check_pointer(name)?;
-    check_pointer(out)?;
+    check_pointer(name, c"name")?;
+    check_pointer(out, c"out")?;
     // SAFETY: non-null (checked); NUL-terminated by the caller's contract.
     let name = unsafe { core::ffi::CStr::from_ptr(name) };
     let params = name.to_str().ok().and_then(preset).ok_or(unknown)?;
     // SAFETY: checked; the caller's contract.
-    unsafe { write_out(out, to_c(&params)) }
+    unsafe { write_out(out, c"out", to_c(&params)) }
 }
 
 /// Writes `value` through an out-parameter. Call it only once everything else succeeded, so
@@ -126,19 +170,19 @@ pub(crate) unsafe fn write_preset<P, C>(
 ///
 /// # Safety
 /// A non-null, aligned `ptr` must be valid for a write of `T`.
-pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) -> Result<(), hibi_status> {
-    check_pointer(ptr)?;
+pub(crate) unsafe fn write_out<T>(ptr: *mut T, name: &'static CStr, value: T) -> Result<(), hibi_status> {
+    check_pointer(ptr, name)?;
     // SAFETY: non-null and aligned (checked); validity is the caller's contract.
     unsafe { ptr.write(value) };
     Ok(())
 }
 
-/// Checks a caller buffer of `len` elements of `T` at a non-empty `ptr`: non-null, aligned,
-/// and its size in bytes fits `isize`.
-fn check_buffer<T>(ptr: *const T, len: usize) -> Result<(), hibi_status> {
-    check_pointer(ptr)?;
+/// Checks caller buffer `name` of `len` elements of `T` at a non-empty `ptr`: non-null,
+/// aligned, and its size in bytes fits `isize`.
+fn check_buffer<T>(ptr: *const T, len: usize, name: &'static CStr) -> Result<(), hibi_status> {
+    check_pointer(ptr, name)?;
     if len.checked_mul(size_of::<T>()).is_none_or(|bytes| bytes > isize::MAX as usize) {
-        return Err(HIBI_ERROR_SIZE_OVERFLOW);
+        return Err(refuse_argument(name, HIBI_ERROR_SIZE_OVERFLOW));
     }
     Ok(())
 }
@@ -148,11 +192,11 @@ fn check_buffer<T>(ptr: *const T, len: usize) -> Result<(), hibi_status> {
 /// # Safety
 /// A non-null, aligned `ptr` must be valid for reads and writes of `len` elements of `T`, not
 /// aliased during the call.
-pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize) -> Result<&'a mut [T], hibi_status> {
+pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<&'a mut [T], hibi_status> {
     if len == 0 {
         return Ok(&mut []);
     }
-    check_buffer(ptr, len)?;
+    check_buffer(ptr, len, name)?;
     // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
     Ok(unsafe { core::slice::from_raw_parts_mut(ptr, len) })
 }
@@ -162,11 +206,11 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize) -> Result<&'a mut [T
 /// # Safety
 /// A non-null, aligned `ptr` must be valid for reads of `len` elements of `T`, not written
 /// during the call.
-pub(crate) unsafe fn input<'a, T>(ptr: *const T, len: usize) -> Result<&'a [T], hibi_status> {
+pub(crate) unsafe fn input<'a, T>(ptr: *const T, len: usize, name: &'static CStr) -> Result<&'a [T], hibi_status> {
     if len == 0 {
         return Ok(&[]);
     }
-    check_buffer(ptr, len)?;
+    check_buffer(ptr, len, name)?;
     // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
     Ok(unsafe { core::slice::from_raw_parts(ptr, len) })
 }
@@ -185,25 +229,60 @@ mod tests {
         assert_eq!(guard(|| Ok(())), HIBI_OK);
     }
 
+    /// The child half of the next test: panics inside a guard, and once outside.
+    #[test]
+    fn child_panics_inside_and_outside_a_guard() {
+        if std::env::var_os("HIBI_GUARD_CHILD").is_none() {
+            return;
+        }
+        let status = guard(|| -> Result<(), hibi_status> { panic!("inside-a-guard") });
+        assert_eq!(status, HIBI_ERROR_PANIC);
+        let outside = std::thread::spawn(|| panic!("outside-a-guard")).join();
+        assert!(outside.is_err());
+    }
+
+    /// Issue 25 defect 2: a panic caught at the C boundary prints nothing on the host's
+    /// stderr, while a panic outside hibi's guards still reaches the previous hook.
+    #[test]
+    fn a_caught_panic_prints_nothing() {
+        let exe = std::env::current_exe().expect("the test binary");
+        let child = std::process::Command::new(exe)
+            .args([
+                "--exact",
+                "guard::tests::child_panics_inside_and_outside_a_guard",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env("HIBI_GUARD_CHILD", "1")
+            .output()
+            .expect("run the child test");
+        let stderr = String::from_utf8_lossy(&child.stderr);
+        let stdout = String::from_utf8_lossy(&child.stdout);
+        assert!(child.status.success(), "{stdout}\n{stderr}");
+        assert!(stdout.contains("1 passed"), "the child test did not run:\n{stdout}");
+        assert!(!stderr.contains("inside-a-guard"), "a guarded panic printed:\n{stderr}");
+        assert!(stderr.contains("outside-a-guard"), "an unguarded panic was silenced:\n{stderr}");
+    }
+
     #[test]
     fn pointer_checks_name_the_problem() {
         let mut words = [0u32; 4];
         let base = words.as_mut_ptr();
-        assert_eq!(check_pointer(core::ptr::null::<u32>()), Err(HIBI_ERROR_NULL_POINTER));
-        assert_eq!(check_pointer(base.cast::<u8>().wrapping_add(1).cast::<u32>()), Err(HIBI_ERROR_MISALIGNED));
-        assert_eq!(check_pointer(base), Ok(()));
+        assert_eq!(check_pointer(core::ptr::null::<u32>(), c"p"), Err(HIBI_ERROR_NULL_POINTER));
+        assert_eq!(check_pointer(base.cast::<u8>().wrapping_add(1).cast::<u32>(), c"p"), Err(HIBI_ERROR_MISALIGNED));
+        assert_eq!(check_pointer(base, c"p"), Ok(()));
         // SAFETY: a null pointer with length 0 is the empty buffer; no access happens.
-        assert_eq!(unsafe { buffer(core::ptr::null_mut::<u32>(), 0) }.map(|b| b.len()), Ok(0));
+        assert_eq!(unsafe { buffer(core::ptr::null_mut::<u32>(), 0, c"p") }.map(|b| b.len()), Ok(0));
         // SAFETY: the checks fail before any access.
-        assert_eq!(unsafe { buffer(base, usize::MAX / 2) }.err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
+        assert_eq!(unsafe { buffer(base, usize::MAX / 2, c"p") }.err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
         // SAFETY: `words` is valid for 4 u32.
-        assert_eq!(unsafe { buffer(base, 4) }.map(|b| b.len()), Ok(4));
+        assert_eq!(unsafe { buffer(base, 4, c"p") }.map(|b| b.len()), Ok(4));
         // SAFETY: as above, read only; the failing checks happen before any access.
         unsafe {
-            assert_eq!(input(core::ptr::null::<u32>(), 0).map(<[u32]>::len), Ok(0));
-            assert_eq!(input(core::ptr::null::<u32>(), 1).err(), Some(HIBI_ERROR_NULL_POINTER));
-            assert_eq!(input(base.cast_const(), usize::MAX / 2).err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
-            assert_eq!(input(base.cast_const(), 4).map(<[u32]>::len), Ok(4));
+            assert_eq!(input(core::ptr::null::<u32>(), 0, c"p").map(<[u32]>::len), Ok(0));
+            assert_eq!(input(core::ptr::null::<u32>(), 1, c"p").err(), Some(HIBI_ERROR_NULL_POINTER));
+            assert_eq!(input(base.cast_const(), usize::MAX / 2, c"p").err(), Some(HIBI_ERROR_SIZE_OVERFLOW));
+            assert_eq!(input(base.cast_const(), 4, c"p").map(<[u32]>::len), Ok(4));
         }
     }
 }

@@ -10,7 +10,9 @@
 //!   out-of-range enumeration values are statuses, never crashes;
 //! - objects are created in library memory (`*_create` / `*_destroy`) or in caller memory
 //!   (`*_memory_size` + `*_create_in`);
-//! - every exported function runs inside one guard: no panic ever unwinds into C.
+//! - every exported function runs inside one guard: no panic ever unwinds into C, and none
+//!   prints (the first call installs a panic hook that is silent inside hibi's calls and
+//!   passes every other panic to the hook before it).
 #![allow(non_camel_case_types)]
 // Doc comments here are the C header's comments (cbindgen): units read "[px]", not links.
 #![allow(rustdoc::broken_intra_doc_links)]
@@ -36,5 +38,5 @@ pub use status::*;
 /// The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_version() -> *const c_char {
-    guard::guard(|| concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast::<c_char>())
+    guard::guard_query(|| concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast::<c_char>())
 }

@@ -107,7 +107,8 @@ pub struct hibi_mud_params {
     pub long_step: f32,
     /// τ, short time step [s] (paper: 0.001).
     pub short_step: f32,
-    /// γ, shrink ratio per long step (paper: 0.9999).
+    /// γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
+    /// and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`).
     pub shrink_ratio: f32,
     /// δx, allowed displacement error [cm] (paper: 1e-4).
     pub displacement_tolerance: f32,
@@ -133,7 +134,9 @@ pub struct hibi_mud_params {
     pub anisotropy_ratio: f32,
     /// Stiffness anisotropy ratio (1 = none, default).
     pub stiffness_anisotropy_ratio: f32,
-    /// End at this shrink (default 0.023; 0 = no limit).
+    /// End at this shrink (default 0.023; 0 = at the largest the model follows, shrink 0.99
+    /// or growth 100). Both solvers end there too, uncracked, when no spring can break before
+    /// it (a very large `break_stretch_mean`, say).
     pub target_shrink: f32,
     /// End at this crack length per area [1/cm] (default 0 = no limit).
     pub target_crack_density: f32,
@@ -283,7 +286,7 @@ impl Object for hibi_mud {
     type Arrays = MudBuffers<'static, f32>;
 
     unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params)?;
+        check_pointer(params, c"params")?;
         // SAFETY: non-null and aligned (checked); readable by the caller's contract.
         let params = core_params(unsafe { &*params })?;
         let memory = params.memory().map_err(mud_param_status)?;
@@ -391,7 +394,7 @@ pub unsafe extern "C" fn hibi_mud_destroy(mud: *mut hibi_mud) {
 /// is NULL. Call until `progress.finished`.
 ///
 /// # Safety
-/// `mud` must be NULL or a live run; `progress` NULL or writable.
+/// `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_step(
     mud: *mut hibi_mud,
@@ -400,15 +403,15 @@ pub unsafe extern "C" fn hibi_mud_step(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud) }?;
+        let mud = unsafe { object(mud, c"mud") }?;
         if !progress.is_null() {
-            check_pointer(progress)?;
+            check_pointer(progress, c"progress")?;
         }
         let p = mud.mud.step(budget);
         if !progress.is_null() {
             let value = hibi_mud_progress::from_core(&p);
             // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, value) }?;
+            unsafe { write_out(progress, c"progress", value) }?;
         }
         Ok(())
     })
@@ -422,9 +425,9 @@ pub unsafe extern "C" fn hibi_mud_step(
 pub unsafe extern "C" fn hibi_mud_segment_count(mud: *const hibi_mud, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
         // SAFETY: the caller's contract.
-        unsafe { write_out(count, mud.mud.segment_count()) }
+        unsafe { write_out(count, c"count", mud.mud.segment_count()) }
     })
 }
 
@@ -434,7 +437,7 @@ pub unsafe extern "C" fn hibi_mud_segment_count(mud: *const hibi_mud, count: *mu
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `segments` NULL (only with `len` 0) or writable for
-/// `len` segments; `written` NULL or writable.
+/// `len` segments; `written` NULL (refused) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_segments(
     mud: *const hibi_mud,
@@ -444,13 +447,13 @@ pub unsafe extern "C" fn hibi_mud_segments(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(written)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(written, c"written")?;
         // SAFETY: the caller's contract.
-        let out = unsafe { buffer(segments, len) }?;
+        let out = unsafe { buffer(segments, len, c"segments") }?;
         let n = mud.mud.segments(out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(written, n) }
+        unsafe { write_out(written, c"written", n) }
     })
 }
 
@@ -464,11 +467,11 @@ pub unsafe extern "C" fn hibi_mud_segments(
 pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_mud_statistics) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(out)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(out, c"out")?;
         let value = hibi_mud_statistics::from_core(&mud.mud.statistics());
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, value) }
+        unsafe { write_out(out, c"out", value) }
     })
 }
 
@@ -494,17 +497,17 @@ pub unsafe extern "C" fn hibi_mud_network_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(vertices)?;
-        check_pointer(edges)?;
-        check_pointer(points)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(vertices, c"vertices")?;
+        check_pointer(edges, c"edges")?;
+        check_pointer(points, c"points")?;
         let counts = mud.mud.network_counts();
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(vertices, counts.vertices) }?;
+        unsafe { write_out(vertices, c"vertices", counts.vertices) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(edges, counts.edges) }?;
+        unsafe { write_out(edges, c"edges", counts.edges) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, counts.points) }
+        unsafe { write_out(points, c"points", counts.points) }
     })
 }
 
@@ -517,8 +520,8 @@ pub unsafe extern "C" fn hibi_mud_network_counts(
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL (only with length
-/// 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL or
-/// writable.
+/// 0) or writable for their lengths, not overlapping; the `*_written` pointers NULL
+/// (refused) or writable.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_mud_network(
@@ -535,24 +538,24 @@ pub unsafe extern "C" fn hibi_mud_network(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(vertices_written)?;
-        check_pointer(edges_written)?;
-        check_pointer(points_written)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(vertices_written, c"vertices_written")?;
+        check_pointer(edges_written, c"edges_written")?;
+        check_pointer(points_written, c"points_written")?;
         // SAFETY: the caller's contract; the C structs are laid out as the core's (asserted
         // above).
-        let vertex_out = unsafe { buffer(vertices, vertices_len) }?;
+        let vertex_out = unsafe { buffer(vertices, vertices_len, c"vertices") }?;
         // SAFETY: as above.
-        let edge_out = unsafe { buffer(edges, edges_len) }?;
+        let edge_out = unsafe { buffer(edges, edges_len, c"edges") }?;
         // SAFETY: as above.
-        let point_out = unsafe { buffer(points, points_len) }?;
+        let point_out = unsafe { buffer(points, points_len, c"points") }?;
         let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(vertices_written, counts.vertices) }?;
+        unsafe { write_out(vertices_written, c"vertices_written", counts.vertices) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(edges_written, counts.edges) }?;
+        unsafe { write_out(edges_written, c"edges_written", counts.edges) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, counts.points) }
+        unsafe { write_out(points_written, c"points_written", counts.points) }
     })
 }
 
@@ -571,17 +574,17 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(rings)?;
-        check_pointer(points)?;
-        check_pointer(wrapping)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(rings, c"rings")?;
+        check_pointer(points, c"points")?;
+        check_pointer(wrapping, c"wrapping")?;
         let counts = mud.mud.cell_counts();
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings, counts.rings) }?;
+        unsafe { write_out(rings, c"rings", counts.rings) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, counts.points) }?;
+        unsafe { write_out(points, c"points", counts.points) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(wrapping, counts.wrapping) }
+        unsafe { write_out(wrapping, c"wrapping", counts.wrapping) }
     })
 }
 
@@ -595,8 +598,8 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
-/// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL or
-/// writable.
+/// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
+/// (refused) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_cells(
     mud: *const hibi_mud,
@@ -609,19 +612,19 @@ pub unsafe extern "C" fn hibi_mud_cells(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(rings_written)?;
-        check_pointer(points_written)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(rings_written, c"rings_written")?;
+        check_pointer(points_written, c"points_written")?;
         // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
         // hibi_vec2 as [f32; 2] (asserted above and in glass).
-        let ring_out = unsafe { buffer(rings, rings_len) }?;
+        let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
         // SAFETY: as above.
-        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len) }?;
+        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
         let counts = mud.mud.cells(ring_out, point_out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings_written, counts.rings) }?;
+        unsafe { write_out(rings_written, c"rings_written", counts.rings) }?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, counts.points) }
+        unsafe { write_out(points_written, c"points_written", counts.points) }
     })
 }
 
@@ -648,21 +651,24 @@ pub unsafe extern "C" fn hibi_mud_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud) }?;
-        check_pointer(render)?;
+        let mud = unsafe { object_ref(mud, c"mud") }?;
+        check_pointer(render, c"render")?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let render: MudRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (all three): the caller's contract on `pixels`.
         let layers = match layer {
-            HIBI_MUD_LAYER_MASK => {
-                MudLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
-            }
-            HIBI_MUD_LAYER_HEIGHT => {
-                MudLayers { height: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
-            }
-            HIBI_MUD_LAYER_TIME => {
-                MudLayers { time: Some(unsafe { buffer(pixels.cast(), pixels_len) }?), ..MudLayers::default() }
-            }
+            HIBI_MUD_LAYER_MASK => MudLayers {
+                mask: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
+                ..MudLayers::default()
+            },
+            HIBI_MUD_LAYER_HEIGHT => MudLayers {
+                height: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
+                ..MudLayers::default()
+            },
+            HIBI_MUD_LAYER_TIME => MudLayers {
+                time: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
+                ..MudLayers::default()
+            },
             _ => return Err(HIBI_ERROR_RENDER_LAYER),
         };
         mud.mud.render(&render, layers).map_err(raster_status)

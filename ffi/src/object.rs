@@ -14,7 +14,7 @@ use std::alloc::{Layout, alloc, dealloc};
 use crate::guard::{check_pointer, object, write_out};
 use crate::status::{
     HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_OUT_OF_MEMORY,
-    HIBI_ERROR_SIZE_OVERFLOW, hibi_status,
+    HIBI_ERROR_SIZE_OVERFLOW, hibi_status, refuse_argument,
 };
 
 /// Alignment of every object's block: enough for the header and every array element.
@@ -148,11 +148,11 @@ pub(crate) unsafe fn block_size<T: Object>(input: T::Input) -> Result<usize, hib
 /// # Safety
 /// As [`Object::plan`]; `size` NULL or writable.
 pub(crate) unsafe fn memory_size<T: Object>(input: T::Input, size: *mut usize) -> Result<(), hibi_status> {
-    check_pointer(size)?;
+    check_pointer(size, c"size")?;
     // SAFETY: the caller's contract, passed on.
     let bytes = unsafe { block_size::<T>(input) }?;
     // SAFETY: checked; the caller's contract.
-    unsafe { write_out(size, bytes) }
+    unsafe { write_out(size, c"size", bytes) }
 }
 
 /// `*_create`: the object in library memory.
@@ -160,7 +160,7 @@ pub(crate) unsafe fn memory_size<T: Object>(input: T::Input, size: *mut usize) -
 /// # Safety
 /// As [`Object::plan`]; `out` NULL or writable.
 pub(crate) unsafe fn create<T: Object>(input: T::Input, out: *mut *mut T) -> Result<(), hibi_status> {
-    check_pointer(out)?;
+    check_pointer(out, c"out")?;
     // SAFETY: the caller's contract, passed on.
     let (plan, size) = unsafe { plan::<T>(input) }?;
     let layout = Layout::from_size_align(size, BLOCK_ALIGN).map_err(|_| HIBI_ERROR_SIZE_OVERFLOW)?;
@@ -172,7 +172,7 @@ pub(crate) unsafe fn create<T: Object>(input: T::Input, out: *mut *mut T) -> Res
     // SAFETY: a fresh block of the planned size and alignment.
     match unsafe { place::<T>(block, &plan, Origin::Library { size }) } {
         // SAFETY: checked above; the caller's contract.
-        Ok(object) => unsafe { write_out(out, object) },
+        Ok(object) => unsafe { write_out(out, c"out", object) },
         Err(status) => {
             // SAFETY: allocated above with this layout, never handed out.
             unsafe { dealloc(block, layout) };
@@ -192,15 +192,15 @@ pub(crate) unsafe fn create_in<T: Object>(
     memory_len: usize,
     out: *mut *mut T,
 ) -> Result<(), hibi_status> {
-    check_pointer(out)?;
+    check_pointer(out, c"out")?;
     // SAFETY: the caller's contract, passed on.
     let (plan, size) = unsafe { plan::<T>(input) }?;
     let block = memory.cast::<u8>();
     if block.is_null() {
-        return Err(HIBI_ERROR_NULL_POINTER);
+        return Err(refuse_argument(c"memory", HIBI_ERROR_NULL_POINTER));
     }
     if block.align_offset(BLOCK_ALIGN) != 0 {
-        return Err(HIBI_ERROR_MISALIGNED);
+        return Err(refuse_argument(c"memory", HIBI_ERROR_MISALIGNED));
     }
     if memory_len < size {
         return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
@@ -208,7 +208,7 @@ pub(crate) unsafe fn create_in<T: Object>(
     // SAFETY: checked to hold the planned size, aligned; the caller's contract.
     let object = unsafe { place::<T>(block, &plan, Origin::Caller) }?;
     // SAFETY: checked above; the caller's contract.
-    unsafe { write_out(out, object) }
+    unsafe { write_out(out, c"out", object) }
 }
 
 /// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is
@@ -218,7 +218,7 @@ pub(crate) unsafe fn create_in<T: Object>(
 /// `ptr` must be NULL or a live object made by [`create`] or [`create_in`], not used afterwards.
 pub(crate) unsafe fn destroy<T: Object>(ptr: *mut T) {
     // SAFETY: the caller's contract.
-    if let Ok(live) = unsafe { object(ptr) } {
+    if let Ok(live) = unsafe { object(ptr, c"ptr") } {
         let origin = live.origin();
         // SAFETY: a live object at the start of its block; dropped once, then its block freed
         // with the layout it was allocated with.

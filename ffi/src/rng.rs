@@ -102,10 +102,10 @@ pub unsafe extern "C" fn hibi_rng_destroy(rng: *mut hibi_rng) {
 pub unsafe extern "C" fn hibi_rng_next_u32(rng: *mut hibi_rng, out: *mut u32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let rng = unsafe { object(rng) }?;
-        crate::guard::check_pointer(out)?;
+        let rng = unsafe { object(rng, c"rng") }?;
+        crate::guard::check_pointer(out, c"out")?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, rng.rng.next_u32()) }
+        unsafe { write_out(out, c"out", rng.rng.next_u32()) }
     })
 }
 
@@ -136,7 +136,7 @@ pub unsafe extern "C" fn hibi_rng_normal(rng: *mut hibi_rng, values: *mut f32, l
 unsafe fn fill(rng: *mut hibi_rng, values: *mut f32, len: usize, draw: fn(&mut Rng) -> f32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let (rng, values) = unsafe { (object(rng)?, buffer(values, len)?) };
+        let (rng, values) = unsafe { (object(rng, c"rng")?, buffer(values, len, c"values")?) };
         values.iter_mut().for_each(|v| *v = draw(&mut rng.rng));
         Ok(())
     })
@@ -150,11 +150,11 @@ unsafe fn fill(rng: *mut hibi_rng, values: *mut f32, len: usize, draw: fn(&mut R
 pub unsafe extern "C" fn hibi_rng_poisson(rng: *mut hibi_rng, mean: f64, out: *mut u32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let rng = unsafe { object(rng) }?;
-        crate::guard::check_pointer(out)?;
+        let rng = unsafe { object(rng, c"rng") }?;
+        crate::guard::check_pointer(out, c"out")?;
         let value = rng.rng.poisson(mean).map_err(rng_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, value) }
+        unsafe { write_out(out, c"out", value) }
     })
 }
 
@@ -167,8 +167,8 @@ pub unsafe extern "C" fn hibi_rng_poisson(rng: *mut hibi_rng, mean: f64, out: *m
 pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, spread: u32, out: *mut f32) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let rng = unsafe { object(rng) }?;
-        crate::guard::check_pointer(out)?;
+        let rng = unsafe { object(rng, c"rng") }?;
+        crate::guard::check_pointer(out, c"out")?;
         let spread = match spread {
             HIBI_SPREAD_UNIFORM => Spread::Uniform,
             HIBI_SPREAD_NORMAL => Spread::Normal,
@@ -176,7 +176,7 @@ pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, sprea
         };
         let value = rng.rng.rand(x, z, spread).map_err(rng_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(out, value) }
+        unsafe { write_out(out, c"out", value) }
     })
 }
 

@@ -17,7 +17,7 @@
 //! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
 //! another; rendering only reads them (it draws what is built so far). An object is one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
 
-use core::ffi::{c_char, c_void};
+use core::ffi::{CStr, c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
@@ -247,7 +247,7 @@ impl Object for hibi_skin {
     type Arrays = SkinBuffers<'static>;
 
     unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params)?;
+        check_pointer(params, c"params")?;
         // SAFETY: non-null and aligned (checked); readable by the caller's contract.
         let params = from_c(unsafe { &*params })?;
         let memory = params.memory().map_err(skin_param_status)?;
@@ -375,12 +375,12 @@ pub unsafe extern "C" fn hibi_skin_destroy(skin: *mut hibi_skin) {
 ///
 /// # Safety
 /// As [`buffer`].
-unsafe fn layer<'a, T>(ptr: *mut T, len: usize) -> Result<Option<&'a mut [T]>, hibi_status> {
+unsafe fn layer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<Option<&'a mut [T]>, hibi_status> {
     if ptr.is_null() && len == 0 {
         return Ok(None);
     }
     // SAFETY: the caller's contract.
-    unsafe { buffer(ptr, len) }.map(Some)
+    unsafe { buffer(ptr, len, name) }.map(Some)
 }
 
 /// Draws the surface's maps, each row-major over `width × height` pixels of the params:
@@ -412,14 +412,14 @@ pub unsafe extern "C" fn hibi_skin_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin) }?;
+        let skin = unsafe { object_ref(skin, c"skin") }?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
         // and a trailing partial pixel of `normal` is not used.
         let layers = unsafe {
             SkinLayers {
-                height: layer(height, height_len)?,
-                normal: layer(normal.cast::<[f32; 3]>(), normal_len / 3)?,
-                cell: layer(cells, cells_len)?,
+                height: layer(height, height_len, c"height")?,
+                normal: layer(normal.cast::<[f32; 3]>(), normal_len / 3, c"normal")?,
+                cell: layer(cells, cells_len, c"cells")?,
             }
         };
         skin.skin.render(&SkinRender { cell_level }, layers).map_err(skin_status)
@@ -432,7 +432,7 @@ pub unsafe extern "C" fn hibi_skin_render(
 /// writes nothing) once a cell outgrew its capacity; what was built stays usable.
 ///
 /// # Safety
-/// `skin` must be NULL or a live skin; `progress` NULL or writable.
+/// `skin` must be NULL or a live skin; `progress` optional: NULL (not written) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_step(
     skin: *mut hibi_skin,
@@ -441,9 +441,9 @@ pub unsafe extern "C" fn hibi_skin_step(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin) }?;
+        let skin = unsafe { object(skin, c"skin") }?;
         if !progress.is_null() {
-            check_pointer(progress)?;
+            check_pointer(progress, c"progress")?;
         }
         let p = skin.skin.step(budget);
         if p.capacity_reached {
@@ -451,7 +451,7 @@ pub unsafe extern "C" fn hibi_skin_step(
         }
         if !progress.is_null() {
             // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, hibi_skin_progress::from_core(&p)) }?;
+            unsafe { write_out(progress, c"progress", hibi_skin_progress::from_core(&p)) }?;
         }
         Ok(())
     })
@@ -467,9 +467,10 @@ pub extern "C" fn hibi_skin_shade_params_default() -> hibi_skin_shade_params {
 /// it; `normal_len` counts floats) and darkens towards the furrows by `height` (one float
 /// per pixel) into 8-bit sRGB in `rgb` (three bytes per pixel; `rgb_len` counts bytes).
 /// The pixels are `height_len`; `normal` and `rgb` must hold as many (`normal_len` and
-/// `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out
-/// of range (the light zero or not finite, a colour channel or `ambient` outside [0, 1],
-/// `specular` negative), nothing is written.
+/// `rgb_len` at least 3 · `height_len`); if not, or if a parameter is out of range (a light
+/// component not finite, or all three zero; a colour channel or `ambient` outside [0, 1];
+/// `specular` negative), nothing is written. Any other light is a direction, however large
+/// or small its components.
 ///
 /// # Safety
 /// `height`, `normal` NULL (only with length 0) or readable for their lengths; `params` NULL
@@ -486,15 +487,15 @@ pub unsafe extern "C" fn hibi_skin_shade(
     rgb_len: usize,
 ) -> hibi_status {
     guard(|| {
-        check_pointer(params)?;
+        check_pointer(params, c"params")?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let params: ShadeParams = unsafe { &*params }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`.
         let (height, normal, rgb) = unsafe {
             (
-                input(height, height_len)?,
-                input(normal.cast::<[f32; 3]>(), normal_len / 3)?,
-                buffer(rgb.cast::<[u8; 3]>(), rgb_len / 3)?,
+                input(height, height_len, c"height")?,
+                input(normal.cast::<[f32; 3]>(), normal_len / 3, c"normal")?,
+                buffer(rgb.cast::<[u8; 3]>(), rgb_len / 3, c"rgb")?,
             )
         };
         shade(height, normal, &params, rgb).map_err(skin_status)
@@ -509,9 +510,9 @@ pub unsafe extern "C" fn hibi_skin_shade(
 pub unsafe extern "C" fn hibi_skin_cell_count(skin: *const hibi_skin, count: *mut usize) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin) }?;
+        let skin = unsafe { object_ref(skin, c"skin") }?;
         // SAFETY: the caller's contract.
-        unsafe { write_out(count, skin.skin.cells().len()) }
+        unsafe { write_out(count, c"count", skin.skin.cells().len()) }
     })
 }
 
@@ -528,8 +529,8 @@ pub unsafe extern "C" fn hibi_skin_cell_info(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin) }?;
-        check_pointer(cell)?;
+        let skin = unsafe { object_ref(skin, c"skin") }?;
+        check_pointer(cell, c"cell")?;
         let c = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
         let unit = pixels_per_unit(&skin.skin);
         let value = hibi_skin_cell {
@@ -540,7 +541,7 @@ pub unsafe extern "C" fn hibi_skin_cell_info(
             centre: [c.centre[0] as f64 * unit, c.centre[1] as f64 * unit],
         };
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(cell, value) }
+        unsafe { write_out(cell, c"cell", value) }
     })
 }
 
@@ -553,7 +554,7 @@ pub unsafe extern "C" fn hibi_skin_cell_info(
 ///
 /// # Safety
 /// `skin` must be NULL or a live skin; `xy` NULL (only with `len` 0) or writable for `len`
-/// doubles; `written` NULL or writable.
+/// doubles; `written` NULL (refused) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_outline(
     skin: *const hibi_skin,
@@ -564,11 +565,11 @@ pub unsafe extern "C" fn hibi_skin_outline(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin) }?;
-        check_pointer(written)?;
+        let skin = unsafe { object_ref(skin, c"skin") }?;
+        check_pointer(written, c"written")?;
         let cell = skin.skin.cells().get(index).ok_or(HIBI_ERROR_SKIN_CELL_INDEX)?;
         // SAFETY: the caller's contract.
-        let out = unsafe { buffer(xy, len) }?;
+        let out = unsafe { buffer(xy, len, c"xy") }?;
         let outline = skin.skin.outline(cell);
         let needed = 2 * outline.len();
         if out.len() < needed {
@@ -580,7 +581,7 @@ pub unsafe extern "C" fn hibi_skin_outline(
             pair[1] = v[1] as f64 * unit;
         }
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(written, needed) }
+        unsafe { write_out(written, c"written", needed) }
     })
 }
 

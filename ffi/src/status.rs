@@ -1,5 +1,6 @@
 //! `hibi_status`: what every fallible function returns, and its message.
 
+use core::cell::Cell;
 use core::ffi::{CStr, c_char};
 
 use hibi_core::RngError;
@@ -8,7 +9,7 @@ use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
 use hibi_core::skin::{ShadeError, SkinParamError};
 
-use crate::guard::guard;
+use crate::guard::guard_query;
 
 /// The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
 /// Codes below 256 are about the call itself (pointers, buffers, enums); codes from 256 up
@@ -17,9 +18,10 @@ pub type hibi_status = u32;
 
 /// Success.
 pub const HIBI_OK: hibi_status = 0;
-/// A required pointer argument is NULL.
+/// A required pointer argument is NULL (`hibi_error_argument` names it).
 pub const HIBI_ERROR_NULL_POINTER: hibi_status = 1;
-/// A pointer argument is not aligned for the type it points to.
+/// A pointer argument is not aligned for the type it points to (`hibi_error_argument` names
+/// it).
 pub const HIBI_ERROR_MISALIGNED: hibi_status = 2;
 /// A caller buffer is shorter than the call needs.
 pub const HIBI_ERROR_BUFFER_TOO_SMALL: hibi_status = 3;
@@ -27,9 +29,12 @@ pub const HIBI_ERROR_BUFFER_TOO_SMALL: hibi_status = 3;
 pub const HIBI_ERROR_BAD_ENUM: hibi_status = 4;
 /// The library could not allocate the memory an object needs.
 pub const HIBI_ERROR_OUT_OF_MEMORY: hibi_status = 5;
-/// A buffer length in elements overflows the address space when converted to bytes.
+/// A buffer length in elements overflows the address space when converted to bytes
+/// (`hibi_error_argument` names the buffer).
 pub const HIBI_ERROR_SIZE_OVERFLOW: hibi_status = 6;
 /// An internal error: a panic inside hibi was caught at the C boundary (a bug; please report).
+/// Nothing is printed: hibi installs a panic hook that is silent inside its calls and hands
+/// any other panic to the hook installed before it.
 pub const HIBI_ERROR_PANIC: hibi_status = 7;
 /// `hibi_rng_poisson`: the mean is negative, not finite, or above 1e6.
 pub const HIBI_ERROR_POISSON_MEAN: hibi_status = 256;
@@ -48,7 +53,7 @@ pub const HIBI_ERROR_MUD_ELEMENT_SIZE: hibi_status = 515;
 pub const HIBI_ERROR_MUD_LONG_STEP: hibi_status = 516;
 /// Mud parameters: `short_step` (τ) must be finite and > 0.
 pub const HIBI_ERROR_MUD_SHORT_STEP: hibi_status = 517;
-/// Mud parameters: `shrink_ratio` (γ) must be within (0, 1].
+/// Mud parameters: `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
 pub const HIBI_ERROR_MUD_SHRINK_RATIO: hibi_status = 518;
 /// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
 pub const HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: hibi_status = 519;
@@ -68,7 +73,7 @@ pub const HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD: hibi_status = 525;
 pub const HIBI_ERROR_MUD_ANISOTROPY_DIRECTION: hibi_status = 526;
 /// Mud parameters: `anisotropy_ratio` must be finite and >= 1.
 pub const HIBI_ERROR_MUD_ANISOTROPY_RATIO: hibi_status = 527;
-/// Mud parameters: `stiffness_anisotropy_ratio` must be finite and >= 1.
+/// Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
 pub const HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO: hibi_status = 528;
 /// Mud parameters: `target_shrink` must be finite and within [0, 1).
 pub const HIBI_ERROR_MUD_TARGET_SHRINK: hibi_status = 529;
@@ -76,10 +81,23 @@ pub const HIBI_ERROR_MUD_TARGET_SHRINK: hibi_status = 529;
 pub const HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: hibi_status = 530;
 /// Mud parameters: The lattice is too large: its memory size overflows.
 pub const HIBI_ERROR_MUD_SIZE_OVERFLOW: hibi_status = 531;
-/// Mud parameters: The parameters' ratios put a derived constant outside (1e-6, 1e6).
-pub const HIBI_ERROR_MUD_SCALE: hibi_status = 532;
+/// Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
+/// within [1e-6, 1e6].
+pub const HIBI_ERROR_MUD_SHEAR_SCALE: hibi_status = 532;
 /// Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
 pub const HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: hibi_status = 533;
+/// Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
+/// within [1e-6, 1e6].
+pub const HIBI_ERROR_MUD_DAMPING_SCALE: hibi_status = 534;
+/// Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
+/// [1e-6, 1e6].
+pub const HIBI_ERROR_MUD_SHORT_STEP_SCALE: hibi_status = 535;
+/// Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
+/// element_size must be within [1e-6, 1e6].
+pub const HIBI_ERROR_MUD_TOLERANCE_SCALE: hibi_status = 536;
+/// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
+/// finite.
+pub const HIBI_ERROR_MUD_SPREAD_SCALE: hibi_status = 537;
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
@@ -98,7 +116,7 @@ pub const HIBI_ERROR_RENDER_GROOVE_DEPTH: hibi_status = 771;
 pub const HIBI_ERROR_RENDER_OFFSET: hibi_status = 772;
 /// Render: `line_width` must be finite and > 0.
 pub const HIBI_ERROR_RENDER_LINE_WIDTH: hibi_status = 774;
-/// Render: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
+/// `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
 pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
 
 const _: () = {
@@ -122,8 +140,12 @@ const _: () = {
     assert!(HIBI_ERROR_MUD_TARGET_SHRINK == 512 + MudParamError::TargetShrink as u32);
     assert!(HIBI_ERROR_MUD_TARGET_CRACK_DENSITY == 512 + MudParamError::TargetCrackDensity as u32);
     assert!(HIBI_ERROR_MUD_SIZE_OVERFLOW == 512 + MudParamError::SizeOverflow as u32);
-    assert!(HIBI_ERROR_MUD_SCALE == 512 + MudParamError::Scale as u32);
+    assert!(HIBI_ERROR_MUD_SHEAR_SCALE == 512 + MudParamError::ShearScale as u32);
     assert!(HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT == 512 + MudParamError::BreakStretchSizeExponent as u32);
+    assert!(HIBI_ERROR_MUD_DAMPING_SCALE == 512 + MudParamError::DampingScale as u32);
+    assert!(HIBI_ERROR_MUD_SHORT_STEP_SCALE == 512 + MudParamError::ShortStepScale as u32);
+    assert!(HIBI_ERROR_MUD_TOLERANCE_SCALE == 512 + MudParamError::ToleranceScale as u32);
+    assert!(HIBI_ERROR_MUD_SPREAD_SCALE == 512 + MudParamError::SpreadScale as u32);
 };
 
 /// Glass parameters: width and height must be finite and >= 1.
@@ -165,6 +187,8 @@ pub const HIBI_ERROR_GLASS_IMPACT: hibi_status = 1089;
 pub const HIBI_ERROR_GLASS_CAPACITY: hibi_status = 1090;
 /// A crack index is not below `hibi_glass_crack_count`.
 pub const HIBI_ERROR_GLASS_CRACK_INDEX: hibi_status = 1091;
+/// `hibi_glass_render`: `layer` is not `HIBI_GLASS_LAYER_MASK` or `HIBI_GLASS_LAYER_TIME`.
+pub const HIBI_ERROR_GLASS_RENDER_LAYER: hibi_status = 1094;
 
 const _: () = {
     assert!(HIBI_ERROR_GLASS_SIZE == 1024 + GlassParamError::Size as u32);
@@ -217,7 +241,7 @@ pub const HIBI_ERROR_SKIN_ENUM: hibi_status = 1344;
 pub const HIBI_ERROR_SKIN_CAPACITY: hibi_status = 1345;
 /// `hibi_skin_render`: `cell_level` is not below the skin's `levels`.
 pub const HIBI_ERROR_SKIN_LEVEL: hibi_status = 1346;
-/// `hibi_skin_shade`: the light direction is zero or not finite.
+/// `hibi_skin_shade`: a `light` component is not finite, or all three are zero.
 pub const HIBI_ERROR_SKIN_SHADE: hibi_status = 1347;
 /// `hibi_skin_shade`: a `ridge` channel is outside [0, 1].
 pub const HIBI_ERROR_SKIN_SHADE_RIDGE: hibi_status = 1350;
@@ -321,7 +345,10 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RENDER_GROOVE_DEPTH => RasterError::GrooveDepth.message(),
         HIBI_ERROR_RENDER_OFFSET => RasterError::Offset.message(),
         HIBI_ERROR_RENDER_LINE_WIDTH => RasterError::LineWidth.message(),
-        HIBI_ERROR_RENDER_LAYER => c"render: layer is not one of the HIBI_MUD_LAYER_* constants",
+        HIBI_ERROR_RENDER_LAYER => c"hibi_mud_render: layer is not one of the HIBI_MUD_LAYER_* constants",
+        HIBI_ERROR_GLASS_RENDER_LAYER => {
+            c"hibi_glass_render: layer is not HIBI_GLASS_LAYER_MASK or HIBI_GLASS_LAYER_TIME"
+        }
         HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED => {
             c"glass: the params struct did not come from hibi_glass_params_default or hibi_glass_params_preset"
         }
@@ -360,5 +387,79 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
 /// "unknown status code"). The string lives as long as the library.
 #[unsafe(no_mangle)]
 pub extern "C" fn hibi_status_string(status: hibi_status) -> *const c_char {
-    guard(|| message(status).as_ptr())
+    guard_query(|| message(status).as_ptr())
+}
+
+std::thread_local! {
+    /// The argument the latest call on this thread refused, by its C name.
+    static REFUSED: Cell<&'static CStr> = const { Cell::new(c"") };
+}
+
+/// Puts argument `name` on record as the one the current call refuses with `status`, and
+/// returns `status`.
+pub(crate) fn refuse_argument(name: &'static CStr, status: hibi_status) -> hibi_status {
+    let _ = REFUSED.try_with(|r| r.set(name));
+    status
+}
+
+/// Clears the record: a call begins.
+pub(crate) fn clear_argument() {
+    let _ = REFUSED.try_with(|r| r.set(c""));
+}
+
+/// The name of the pointer argument that the latest call on this thread refused, as it is
+/// spelled in this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
+/// `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`; `""`
+/// after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
+/// thread's calls do not change it, and neither do `hibi_status_string`,
+/// `hibi_error_argument` and `hibi_version`.
+#[unsafe(no_mangle)]
+pub extern "C" fn hibi_error_argument() -> *const c_char {
+    guard_query(|| REFUSED.try_with(Cell::get).unwrap_or(c"").as_ptr())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::glass::{hibi_glass_crack_count, hibi_glass_params_default, hibi_glass_step};
+    use core::ptr::{null, null_mut};
+
+    fn refused() -> &'static str {
+        // SAFETY: hibi_error_argument returns a static NUL-terminated string.
+        unsafe { CStr::from_ptr(hibi_error_argument()) }.to_str().unwrap()
+    }
+
+    #[test]
+    fn the_refused_argument_is_per_thread_and_per_call() {
+        let mut count = 0usize;
+        // SAFETY: NULL handles are refused before anything is touched.
+        unsafe {
+            assert_eq!(hibi_glass_crack_count(null(), &mut count), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(refused(), "glass");
+            // Asking for the message or the version keeps the record.
+            hibi_status_string(HIBI_ERROR_NULL_POINTER);
+            crate::hibi_version();
+            assert_eq!(refused(), "glass");
+            std::thread::spawn(|| {
+                assert_eq!(refused(), "", "another thread's record");
+                let mut count = 0usize;
+                let misaligned = (&raw mut count).cast::<u8>().wrapping_add(1).cast::<usize>();
+                let params = hibi_glass_params_default();
+                let mut glass = null_mut();
+                assert_eq!(crate::glass::hibi_glass_create(&params, &mut glass), HIBI_OK);
+                assert_eq!(hibi_glass_crack_count(glass, misaligned), HIBI_ERROR_MISALIGNED);
+                assert_eq!(refused(), "count");
+                crate::glass::hibi_glass_destroy(glass);
+                assert_eq!(refused(), "", "a call that succeeds clears it");
+            })
+            .join()
+            .unwrap();
+            assert_eq!(refused(), "glass");
+            assert_eq!(hibi_glass_step(null_mut(), 1, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(refused(), "glass");
+            assert!(!hibi_status_string(9999).is_null());
+            let _ = hibi_glass_params_default();
+            assert_eq!(refused(), "", "any other call clears it");
+        }
+    }
 }

@@ -535,9 +535,20 @@ impl<'a> Glass<'a> {
         // cracks with one speed V3_i (Eq. 11). A ring crack wakes once the large cracks have
         // passed its radius (step ⌈d_i / V1_ave⌉): radial cracks run first and the rings join
         // them, and large cracks, by definition, reach the edge.
+        // The loop is bounded by the capacities, whatever R the floats give: it stops once the
+        // cracks or the vertices are full (no ring crack can be added after that), and looks
+        // at no more than `max_cracks` start points (each grows two cracks, so more than that
+        // can never all be held: a larger R counts as running out of capacity).
         let ring_mean = p.ring_radius_slope * mf + p.ring_radius_offset;
         let ring_rotation = turn_rng.uniform_f32() * tau;
-        for i in 0..r {
+        if r > p.max_cracks {
+            self.clock.capacity_reached = true;
+        }
+        for i in 0..r.min(p.max_cracks) {
+            if self.crack_count == self.cracks.len() || self.vertex_count == self.vertices.len() {
+                self.clock.capacity_reached = true;
+                break;
+            }
             let angle = ring_rotation + tau * i as f32 / r as f32;
             let radius = rand(&mut radius_rng, ring_mean);
             let start = [at[0] + radius * libm::cosf(angle), at[1] + radius * libm::sinf(angle)];

@@ -28,6 +28,11 @@ pub struct GlassParams {
     /// 0.05 matches every figure caption (M 113 → R 6, 104 → 5, 89 → 4).
     pub ring_slope: f32,
     /// b in R = ⌊a·M + b⌋ (Eq. 3). 0.5, as for a.
+    ///
+    /// Whatever a and b hold, the work an impact does is bounded by the capacities: it looks
+    /// at no more than `max_cracks` ring start points and stops once the cracks or vertices
+    /// are full; a larger R (each start point grows two cracks) counts as running out of
+    /// capacity, which ends generation with [`GlassProgress::capacity_reached`](super::GlassProgress).
     pub ring_offset: f32,
     /// g in d_ave = g·M + h, the mean ring radius \[px\] (Eq. 7). Paper: 0.470.
     pub ring_radius_slope: f32,

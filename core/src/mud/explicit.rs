@@ -726,8 +726,8 @@ impl<S: Scalar> Mud<'_, S> {
             self.finished = true;
         }
         if stable && !self.finished {
-            if self.params.shrink_ratio == 1.0 || self.target_misfit().is_some_and(|target| self.misfit >= target) {
-                // Stable at the target (or nothing drives the lattice any more).
+            if self.misfit >= self.end_misfit() {
+                // Stable at the target (or at the largest misfit the model follows).
                 self.finished = true;
             } else {
                 // Eq. 1: the next long step, r = γ^(t/T).

@@ -79,9 +79,19 @@ impl<S: Scalar> Material<S> {
         let force_tolerance = k_min * p.displacement_tolerance / w;
         let face_area_cm2 = face * w * h_layer;
         let spread = p.break_stretch_spread / libm::sqrtf(face_area_cm2);
-        let derived = [shear, k_max, k_min, damping, short_step, force_tolerance];
-        if derived.iter().any(|&x| !(1e-6..=1e6).contains(&x)) || !spread.is_finite() {
-            return Err(MudParamError::Scale);
+        // Each derived constant names the fields it comes from (k_max and k_min lie between
+        // the shear and the springs' face·anisotropy, within [1e-6, 1] once the shear and
+        // `stiffness_anisotropy_ratio` are in range).
+        let in_scale = |x: f32| (1e-6..=1e6).contains(&x);
+        let derived = [
+            (in_scale(shear), MudParamError::ShearScale),
+            (in_scale(damping), MudParamError::DampingScale),
+            (in_scale(short_step), MudParamError::ShortStepScale),
+            (in_scale(force_tolerance), MudParamError::ToleranceScale),
+            (spread.is_finite(), MudParamError::SpreadScale),
+        ];
+        if let Some(&(_, error)) = derived.iter().find(|(ok, _)| !ok) {
+            return Err(error);
         }
         Ok(Material {
             stiffness: stiffness.map(S::from_f32),
@@ -142,7 +152,26 @@ mod tests {
 
     #[test]
     fn absurd_ratios_are_refused() {
-        let p = MudParams { young_modulus: 1e20, ..MudParams::default() };
-        assert_eq!(Material::<f32>::new(&p, &lattice(Topology::Hexagonal)), Err(MudParamError::Scale));
+        let d = MudParams::default();
+        let cases = [
+            (MudParams { young_modulus: 1e20, ..d }, MudParamError::ShearScale),
+            (MudParams { damping_factor: 1e9, ..d }, MudParamError::DampingScale),
+            (MudParams { short_step: 1e9, ..d }, MudParamError::ShortStepScale),
+            (MudParams { displacement_tolerance: 1e-12, ..d }, MudParamError::ToleranceScale),
+            (
+                MudParams {
+                    break_stretch_spread: 3e38,
+                    element_size: 1e-20,
+                    layer_thickness: 1e-20,
+                    short_step: 1e-26,
+                    displacement_tolerance: 1e-24,
+                    ..d
+                },
+                MudParamError::SpreadScale,
+            ),
+        ];
+        for (p, error) in cases {
+            assert_eq!(Material::<f32>::new(&p, &lattice(Topology::Hexagonal)), Err(error), "{p:?}");
+        }
     }
 }

@@ -497,8 +497,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
             Drive::Shrink => 1.0 - m,
             Drive::Growth => 1.0 / (1.0 + m),
         };
+        // γ < 1 (validated), so ln γ < 0; r ≥ 1 (no misfit yet) is time 0, not −0.
         let ln_gamma = libm::logf(self.params.shrink_ratio);
-        if ln_gamma == 0.0 || r <= 0.0 { 0.0 } else { libm::logf(r) / ln_gamma }
+        if r >= 1.0 || r <= 0.0 { 0.0 } else { libm::logf(r) / ln_gamma }
     }
 
     fn time_now(&self) -> f32 {
@@ -511,6 +512,20 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// The target misfit, if any.
     fn target_misfit(&self) -> Option<S> {
         (self.params.target_shrink > 0.0).then(|| S::from_f32(self.params.target_shrink))
+    }
+
+    /// The largest misfit the model follows: shrink 0.99 (rest lengths a hundredth), growth
+    /// 100. A spring that breaks only beyond it never breaks.
+    fn misfit_limit(&self) -> S {
+        S::from_f32(match self.params.drive {
+            Drive::Shrink => 0.99,
+            Drive::Growth => 100.0,
+        })
+    }
+
+    /// The misfit at which the run ends, in both solvers: the target, or else the limit.
+    fn end_misfit(&self) -> S {
+        self.target_misfit().unwrap_or_else(|| self.misfit_limit())
     }
 
     /// Whether the crack density reached its target.

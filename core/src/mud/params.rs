@@ -79,7 +79,9 @@ pub struct MudParams {
     pub long_step: f32,
     /// τ: the short time step of the explicit solver \[s\]. Paper: 0.001.
     pub short_step: f32,
-    /// γ: shrink ratio per long step, in (0, 1]. Paper: 0.9999.
+    /// γ: shrink ratio per long step, in (0, 1): the rest lengths shrink to γⁿ after n long
+    /// steps (γ = 1 would never shrink, so nothing would ever crack; it is rejected, as both
+    /// solvers would otherwise disagree on what it means). Paper: 0.9999.
     pub shrink_ratio: f32,
     /// δx: allowed displacement error \[cm\]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
     pub displacement_tolerance: f32,
@@ -112,10 +114,14 @@ pub struct MudParams {
     /// How much weaker springs across φ are than springs along φ: the break margin κ − 1 of a
     /// spring at angle θ is (κ − 1)·(cos²(θ − φ) + sin²(θ − φ)/ratio). 1 = isotropic; ≥ 1.
     pub anisotropy_ratio: f32,
-    /// Optional stiffness anisotropy: k(θ) = k·(cos²(θ − φ) + sin²(θ − φ)/ratio). 1 = none; ≥ 1.
+    /// Optional stiffness anisotropy: k(θ) = k·(cos²(θ − φ) + sin²(θ − φ)/ratio). 1 = none;
+    /// within [1, 1e6] (the model computes in units where the weakest spring is ≥ 1e-6).
     pub stiffness_anisotropy_ratio: f32,
 
-    /// The run ends when the shrink 1 − r reaches this (growth: 1/r − 1). 0 = no limit.
+    /// The run ends when the shrink 1 − r reaches this (growth: 1/r − 1). 0 = no target:
+    /// the run then ends at the largest misfit the model follows (shrink 0.99, growth 100),
+    /// as it does, in both solvers, when no spring is left that can break before the end (a
+    /// large `break_stretch_mean`, say: the run ends at the target, uncracked).
     /// Default 0.023: closed polygonal cells whose tips have joined up, before they subdivide
     /// towards lattice scale.
     pub target_shrink: f32,
@@ -170,8 +176,8 @@ crate::error::error_list! {
         LongStep => c"mud: long_step (T) must be finite and > 0",
         /// `short_step` (τ) must be finite and > 0.
         ShortStep => c"mud: short_step (tau) must be finite and > 0",
-        /// `shrink_ratio` (γ) must be within (0, 1].
-        ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1]",
+        /// `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
+        ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1) (1 would never shrink)",
         /// `displacement_tolerance` (δx) must be finite and > 0.
         DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
         /// `damping_factor` (α) must be finite and > 0.
@@ -190,19 +196,29 @@ crate::error::error_list! {
         AnisotropyDirection => c"mud: anisotropy_direction must be finite",
         /// `anisotropy_ratio` must be finite and ≥ 1.
         AnisotropyRatio => c"mud: anisotropy_ratio must be finite and >= 1",
-        /// `stiffness_anisotropy_ratio` must be finite and ≥ 1.
-        StiffnessAnisotropyRatio => c"mud: stiffness_anisotropy_ratio must be finite and >= 1",
+        /// `stiffness_anisotropy_ratio` must be within [1, 1e6].
+        StiffnessAnisotropyRatio => c"mud: stiffness_anisotropy_ratio must be within [1, 1e6]",
         /// `target_shrink` must be finite and within [0, 1).
         TargetShrink => c"mud: target_shrink must be finite and within [0, 1)",
         /// `target_crack_density` must be finite and ≥ 0.
         TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
         /// The lattice is too large: its memory size overflows the address space.
         SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
-        /// The lattice does not fit in units the model can compute in: the ratios of the moduli,
-        /// sizes and time steps put a derived constant outside (1e-6, 1e6).
-        Scale => c"mud: the parameters' ratios put a derived constant outside (1e-6, 1e6)",
+        /// The deep-layer spring constant h = (G/E)·(W/H)² (per unit element area) is outside
+        /// [1e-6, 1e6]: the ratios of `shear_modulus`, `young_modulus`, `element_size` and
+        /// `layer_thickness` are too far apart for the units the model computes in.
+        ShearScale => c"mud: (shear_modulus / young_modulus) * (element_size / layer_thickness)^2 must be within [1e-6, 1e6]",
         /// `break_stretch_size_exponent` must be within [0, 1].
         BreakStretchSizeExponent => c"mud: break_stretch_size_exponent must be within [0, 1]",
+        /// The damping constant 2·√(k_max·m)·α (lattice units) is outside [1e-6, 1e6]:
+        /// `damping_factor` is too large or too small for the lattice.
+        DampingScale => c"mud: damping_factor is out of scale: 2 * sqrt(k_max * m) * damping_factor must be within [1e-6, 1e6]",
+        /// The short step in lattice time units τ / (W·√(ρ/E)) is outside [1e-6, 1e6].
+        ShortStepScale => c"mud: short_step / (element_size * sqrt(density / young_modulus)) must be within [1e-6, 1e6]",
+        /// The force tolerance k_min·δx/W (lattice units) is outside [1e-6, 1e6].
+        ToleranceScale => c"mud: displacement_tolerance is out of scale: k_min * displacement_tolerance / element_size must be within [1e-6, 1e6]",
+        /// The spread of the break stretch per element, σ/√(face·W·H), is not finite.
+        SpreadScale => c"mud: break_stretch_spread / sqrt(face * element_size * layer_thickness) must be finite",
     }
 }
 
@@ -238,7 +254,7 @@ impl MudParams {
             (positive(self.element_size), ElementSize),
             (positive(self.long_step), LongStep),
             (positive(self.short_step), ShortStep),
-            (self.shrink_ratio > 0.0 && self.shrink_ratio <= 1.0, ShrinkRatio),
+            (self.shrink_ratio > 0.0 && self.shrink_ratio < 1.0, ShrinkRatio),
             (positive(self.displacement_tolerance), DisplacementTolerance),
             (positive(self.damping_factor), DampingFactor),
             (positive(self.density), Density),
@@ -249,10 +265,7 @@ impl MudParams {
             ((0.0..=1.0).contains(&self.break_stretch_size_exponent), BreakStretchSizeExponent),
             (self.anisotropy_direction.is_finite(), AnisotropyDirection),
             (self.anisotropy_ratio.is_finite() && self.anisotropy_ratio >= 1.0, AnisotropyRatio),
-            (
-                self.stiffness_anisotropy_ratio.is_finite() && self.stiffness_anisotropy_ratio >= 1.0,
-                StiffnessAnisotropyRatio,
-            ),
+            ((1.0..=1e6).contains(&self.stiffness_anisotropy_ratio), StiffnessAnisotropyRatio),
             (self.target_shrink.is_finite() && (0.0..1.0).contains(&self.target_shrink), TargetShrink),
             (self.target_crack_density.is_finite() && self.target_crack_density >= 0.0, TargetCrackDensity),
         ];
@@ -283,7 +296,7 @@ mod tests {
     fn every_bad_field_is_named() {
         let base = MudParams::default();
         type Spoil = fn(&mut MudParams);
-        let cases: [(Spoil, MudParamError); 21] = [
+        let cases: [(Spoil, MudParamError); 22] = [
             (|p| p.columns = 1, MudParamError::Columns),
             (|p| p.rows = 5, MudParamError::Rows),
             (|p| p.layer_thickness = 0.0, MudParamError::LayerThickness),
@@ -292,6 +305,7 @@ mod tests {
             (|p| p.short_step = -1.0, MudParamError::ShortStep),
             (|p| p.shrink_ratio = 1.5, MudParamError::ShrinkRatio),
             (|p| p.shrink_ratio = 0.0, MudParamError::ShrinkRatio),
+            (|p| p.shrink_ratio = 1.0, MudParamError::ShrinkRatio),
             (|p| p.displacement_tolerance = 0.0, MudParamError::DisplacementTolerance),
             (|p| p.damping_factor = f32::NEG_INFINITY, MudParamError::DampingFactor),
             (|p| p.density = -2.0, MudParamError::Density),

@@ -170,10 +170,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
             opening /= S::from_f32(self.lattice.rest_length(spring));
         }
         let kappa = self.break_stretch[spring];
-        let (denominator, limit) = match self.params.drive {
-            Drive::Shrink => (opening + kappa, S::from_f32(0.99)),
-            Drive::Growth => (opening + S::ONE, S::from_f32(100.0)),
+        let denominator = match self.params.drive {
+            Drive::Shrink => opening + kappa,
+            Drive::Growth => opening + S::ONE,
         };
+        let limit = self.misfit_limit();
         if denominator <= S::ZERO {
             return S::MAX;
         }
@@ -333,13 +334,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let r = self.relaxation();
         let next = r.tree[1];
         let at = if next == NONE { S::MAX } else { r.break_misfit[next as usize] };
-        if at == S::MAX {
-            self.finished = true; // nothing left that can break
-            return 1;
-        }
         if at > self.misfit {
-            if let Some(target) = self.target_misfit().filter(|&t| at > t) {
-                self.misfit = target;
+            // The next break lies past the end (S::MAX: nothing left can break): the run ends
+            // there, as the explicit solver's long steps do.
+            let end = self.end_misfit();
+            if at > end {
+                self.misfit = self.misfit.max(end);
                 self.finished = true;
                 return 1;
             }

@@ -22,8 +22,8 @@ pub struct ShadeParams {
 crate::error::error_list! {
     /// Which shading parameter is out of range.
     pub enum ShadeError {
-        /// The light direction is zero or not finite.
-        Light => c"skin: the shading light direction must be finite and non-zero",
+        /// A light component is not finite, or all three are zero.
+        Light => c"skin: the shading light direction must be three finite numbers, not all zero",
         /// A `ridge` channel is outside [0, 1].
         Ridge => c"skin: the shading ridge colour must be three numbers in [0, 1]",
         /// A `furrow` channel is outside [0, 1].
@@ -38,11 +38,9 @@ crate::error::error_list! {
 impl ShadeParams {
     /// Checks every field against its documented range.
     pub fn validate(&self) -> Result<(), ShadeError> {
-        let l = self.light;
-        let length = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
         let unit = |c: [f32; 3]| c.iter().all(|v| (0.0..=1.0).contains(v));
         let checks = [
-            (length.is_finite() && length > 0.0, ShadeError::Light),
+            (light_direction(self.light).is_some(), ShadeError::Light),
             (unit(self.ridge), ShadeError::Ridge),
             (unit(self.furrow), ShadeError::Furrow),
             ((0.0..=1.0).contains(&self.ambient), ShadeError::Ambient),
@@ -53,6 +51,21 @@ impl ShadeParams {
             None => Ok(()),
         }
     }
+}
+
+/// The unit vector along `l`; None when a component is not finite or all are zero. Any finite
+/// non-zero direction works, however large or small its components: when their squares would
+/// overflow or lose precision, `l` is first scaled by its largest component.
+fn light_direction(l: [f32; 3]) -> Option<[f32; 3]> {
+    let largest = l[0].abs().max(l[1].abs()).max(l[2].abs());
+    if !(l.iter().all(|v| v.is_finite()) && largest > 0.0) {
+        return None;
+    }
+    let square = |v: [f32; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let squared = square(l);
+    let l = if squared.is_finite() && squared >= f32::MIN_POSITIVE { l } else { l.map(|v| v / largest) };
+    let length = libm::sqrtf(square(l));
+    Some([l[0] / length, l[1] / length, l[2] / length])
 }
 
 impl Default for ShadeParams {
@@ -78,9 +91,9 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
         return Err(SkinError::BufferTooSmall { needed: pixels });
     }
     params.validate().map_err(SkinError::Shade)?;
-    let l = params.light;
-    let length = libm::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    let light = [l[0] / length, l[1] / length, l[2] / length];
+    let Some(light) = light_direction(params.light) else {
+        return Err(SkinError::Shade(ShadeError::Light));
+    };
     // Blinn's half vector between the light and a viewer straight above.
     let h = [light[0], light[1], light[2] + 1.0];
     let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
@@ -119,5 +132,23 @@ mod tests {
     #[test]
     fn the_default_shading_is_valid() {
         assert_eq!(ShadeParams::default().validate(), Ok(()));
+    }
+
+    #[test]
+    fn any_finite_non_zero_light_is_a_direction() {
+        for (light, unit) in [
+            ([0.0, 0.0, 1e30], [0.0, 0.0, 1.0]),
+            ([-3e38, 0.0, 3e38], [-core::f32::consts::FRAC_1_SQRT_2, 0.0, core::f32::consts::FRAC_1_SQRT_2]),
+            ([0.0, 1e-40, 0.0], [0.0, 1.0, 0.0]),
+            ([0.0, 0.0, 2.0], [0.0, 0.0, 1.0]),
+        ] {
+            let got = light_direction(light).unwrap();
+            assert!(got.iter().zip(unit).all(|(g, u)| (g - u).abs() < 1e-6), "{light:?}: {got:?}");
+            assert_eq!(ShadeParams { light, ..ShadeParams::default() }.validate(), Ok(()));
+        }
+        for light in [[0.0; 3], [f32::NAN, 0.0, 1.0], [0.0, f32::INFINITY, 1.0]] {
+            assert_eq!(light_direction(light), None);
+            assert_eq!(ShadeParams { light, ..ShadeParams::default() }.validate(), Err(ShadeError::Light));
+        }
     }
 }
