@@ -107,8 +107,58 @@ impl Default for SkinLevel {
     }
 }
 
-/// Chunk boxes of one parent outline (see [`cell::chunk_boxes`]).
-const BOXES: usize = MAX_OUTLINE / cell::CHUNK + 1;
+/// Where each level's scratch lies in the caller's arrays, sized by the parameters: the
+/// longest outline a level can have, and from it the clip vertices, chunk boxes and wedges.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    levels: usize,
+    /// Per level, the most vertices one of its outlines can have: at level 0, a cell is
+    /// clipped to a rectangle (4 corners, convex) by the bisectors of at most
+    /// `WINDOW_SITES − 1` neighbours, each adding at most one edge, perturbed into
+    /// `2^depth` pieces (level 0 crosses no parent edges); finer levels inherit their
+    /// parent's corners and cross its edges: [`MAX_OUTLINE`].
+    outline: [usize; MAX_LEVELS],
+}
+
+impl Layout {
+    fn of(p: &SkinParams) -> Layout {
+        let depth = p.level[0].perturbation_depth;
+        let first = (((WINDOW_SITES - 1) << depth) + 4).min(MAX_OUTLINE);
+        let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
+        Layout { levels: p.levels as usize, outline }
+    }
+
+    /// The longest outline of any level (the clip, spare and crossing scratch).
+    fn longest(&self) -> usize {
+        self.outline[..self.levels].iter().copied().max().unwrap_or(0)
+    }
+
+    /// The vertices of a level's parent outline: the 4 corners of a rectangle at level 0.
+    fn parent(&self, level: usize) -> usize {
+        if level == 0 { 4 } else { self.outline[level - 1] }
+    }
+
+    /// Where level `level`'s parent outline, as clip vertices, starts in `parent_frames`.
+    fn frames_at(&self, level: usize) -> usize {
+        (0..level).map(|l| self.parent(l)).sum()
+    }
+
+    /// Chunk boxes of level `level`'s parent outline (levels from 1).
+    fn boxes(&self, level: usize) -> usize {
+        self.parent(level) / cell::CHUNK + 1
+    }
+
+    /// Where level `level`'s wedges start (one per outline edge, one in front).
+    fn wedges_at(&self, level: usize) -> usize {
+        (0..level).map(|l| self.outline[l] + 1).sum()
+    }
+
+    /// Where level `level`'s centre points start in `sites`: level 0 holds one neighbour
+    /// window, each finer level one parent's children.
+    fn sites_at(level: usize) -> usize {
+        if level == 0 { 0 } else { WINDOW_SITES + (level - 1) * MAX_CHILDREN }
+    }
+}
 
 /// How much caller memory a skin needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -382,17 +432,19 @@ impl SkinParams {
         if vertices > i32::MAX as usize || cells > i32::MAX as usize {
             return Err(SkinParamError::Capacity);
         }
+        let layout = Layout::of(self);
         Ok(SkinMemory {
             cells,
             vertices,
-            sites: MAX_CHILDREN * levels,
+            sites: Layout::sites_at(levels),
             // Two outlines being clipped, and each level's parent outline as its children start.
-            clip: (2 + levels) * MAX_OUTLINE,
-            words: MAX_CHILDREN,
+            clip: 2 * layout.longest() + layout.frames_at(levels),
+            // The order of a cell's neighbours: a window at level 0, a parent's children below.
+            words: if levels > 1 { MAX_CHILDREN } else { WINDOW_SITES },
             levels,
-            boxes: (levels - 1) * BOXES,
-            wedges: levels * (MAX_OUTLINE + 1),
-            crossings: MAX_OUTLINE,
+            boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
+            wedges: layout.wedges_at(levels),
+            crossings: layout.longest(),
         })
     }
 }
@@ -443,6 +495,7 @@ const WINDOW_SITES: usize = ((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize;
 /// The state of a build: the buffers and how far they are filled.
 struct Build<'b> {
     params: SkinParams,
+    layout: Layout,
     frames: [Frame; MAX_LEVELS],
     lattices: [Lattice; MAX_LEVELS],
     cells: &'b mut [SkinCell],
@@ -451,15 +504,15 @@ struct Build<'b> {
     vertex_count: usize,
     sites: &'b mut [Site],
     /// Per level, the parent outline of the cells being built, as their clipping starts from
-    /// it ([`MAX_OUTLINE`] each).
+    /// it ([`Layout::frames_at`]).
     parent_frames: &'b mut [ClipVertex],
     /// Per level: its profile table, the edges of the parent outline of the cells being built,
     /// binned (when it is short enough: [`EdgeGrid::of`]), its shared edges and edge scratch.
     levels: &'b mut [SkinLevel],
-    /// Per level from 1, the chunk boxes of the parent outline being divided ([`BOXES`]
-    /// each); taken out while a build runs ([`Build::cell`]'s `boxes`).
+    /// Per level from 1, the chunk boxes of the parent outline being divided
+    /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
     boxes: &'b mut [[i64; 4]],
-    /// Per level, the wedges of the cell being drawn (`MAX_OUTLINE + 1` each), for
+    /// Per level, the wedges of the cell being drawn ([`Layout::wedges_at`]), for
     /// [`Skin::render`].
     wedges: &'b mut [Wedge],
     /// One outline's crossings of a pixel row, for [`Skin::render`] and
@@ -489,11 +542,11 @@ impl Build<'_> {
                 outline: &head[first..first + count],
                 chunks,
                 grid: grid.of(count),
-                frame: &self.parent_frames[level * MAX_OUTLINE..][..count],
+                frame: &self.parent_frames[self.layout.frames_at(level)..][..count],
             },
             ParentOutline::Box(ref b) => {
                 let count = cell::chunk_boxes(b, &mut box_chunks);
-                let frame = &mut self.parent_frames[level * MAX_OUTLINE..][..b.len()];
+                let frame = &mut self.parent_frames[self.layout.frames_at(level)..][..b.len()];
                 for (k, v) in frame.iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, b, k);
                 }
@@ -503,7 +556,7 @@ impl Build<'_> {
         let n = self
             .builder
             .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
-                let room = tail.len().min(MAX_OUTLINE);
+                let room = tail.len().min(self.layout.outline[level]);
                 (&mut tail[..room], shared, scratch)
             })
             .map_err(|_| Full)?;
@@ -549,7 +602,7 @@ impl Build<'_> {
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
-        let (boxes, below) = boxes.split_at_mut(BOXES);
+        let (boxes, below) = boxes.split_at_mut(self.layout.boxes(level));
         {
             {
                 let outline = &self.vertices[first..first + n];
@@ -558,10 +611,10 @@ impl Build<'_> {
                 grid.fill(outline, (lo, hi));
                 let outer = Parent { outline, chunks: &boxes[..chunks], grid: grid.of(n), frame: &[] };
                 // Its outline as every child's clipping starts from it.
-                for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
+                for (k, v) in self.parent_frames[self.layout.frames_at(level)..][..n].iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, outline, k);
                 }
-                let base = level * MAX_CHILDREN;
+                let base = Layout::sites_at(level);
                 let mut count = 0;
                 for j in r[1]..=r[3] {
                     for i in r[0]..=r[2] {
@@ -632,8 +685,9 @@ impl<'a, S: Scalar> Skin<'a, S> {
             Frame::new(l, &params.level[l.min(params.levels as usize - 1)], params.seed, size, params.levels)
         });
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
-        let (clip, rest) = buffers.clip.split_at_mut(MAX_OUTLINE);
-        let (spare, parent_frames) = rest.split_at_mut(MAX_OUTLINE);
+        let layout = Layout::of(params);
+        let (clip, rest) = buffers.clip.split_at_mut(layout.longest());
+        let (spare, parent_frames) = rest.split_at_mut(layout.longest());
         let levels = &mut buffers.levels[..params.levels as usize];
         // One table per level, each level sampled where the level before was when their
         // profiles share the sampling.
@@ -651,6 +705,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
         }
         let build = Build {
             params: *params,
+            layout,
             frames,
             lattices,
             cells: buffers.cells,
@@ -659,7 +714,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             vertex_count: 0,
             sites: buffers.sites,
             parent_frames,
-            builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
+            builder: Builder { clip, spare, order: &mut buffers.words[..m.words] },
             levels,
             boxes: buffers.boxes,
             wedges: buffers.wedges,

@@ -24,7 +24,6 @@
 use core::cmp::Ordering;
 use core::ops::Range;
 
-use super::cell::MAX_OUTLINE;
 use super::profile::{ProfileTable, blend};
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
@@ -60,9 +59,6 @@ pub struct Wedge {
     inverse_apothem: f32,
     angle: f32,
 }
-
-/// Wedges a render keeps: one per outline edge and one at the front (see [`Fan`]).
-pub(super) const SLOTS: usize = MAX_OUTLINE + 1;
 
 /// A cell's wedges: `slots[1..=n]` from the corner of smallest angle on, and `slots[0]` the
 /// last one again. A pixel in direction `a` (a pseudo-angle) lies in the wedge its ray leaves
@@ -111,8 +107,9 @@ struct FanAt {
 
 /// The fans of the cell being drawn and of its ancestors, one per level.
 struct Fans<'w> {
-    /// `SLOTS` per level.
+    /// Per level, one per outline edge and one at the front (see [`Fan`]), from `first`.
     wedges: &'w [Wedge],
+    first: [usize; MAX_LEVELS],
     at: &'w [FanAt; MAX_LEVELS],
     /// The level of the cells being drawn (the finest).
     finest: usize,
@@ -121,7 +118,7 @@ struct Fans<'w> {
 impl Fans<'_> {
     fn fan(&self, level: usize) -> Fan<'_> {
         let at = &self.at[level];
-        Fan { slots: &self.wedges[level * SLOTS..][..at.len], sorted: at.sorted }
+        Fan { slots: &self.wedges[self.first[level]..][..at.len], sorted: at.sorted }
     }
 }
 
@@ -488,8 +485,8 @@ impl<S: Scalar> Skin<'_, S> {
     }
 
     /// Sets every pixel's height and normal in `sink`, summed over the levels, and writes the
-    /// cells of one level into the cell map. `wedges` holds `SLOTS` per level, `crossings` an
-    /// outline's length.
+    /// cells of one level into the cell map. `wedges` holds one more than a level's longest
+    /// outline per level, `crossings` the longest outline's length.
     ///
     /// The cells of the finest level are drawn: the cells of every coarser level are the
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
@@ -518,6 +515,8 @@ impl<S: Scalar> Skin<'_, S> {
         let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
         let levels = self.params.levels as usize;
         let finest = levels - 1;
+        let layout = self.build.layout;
+        let first = core::array::from_fn(|l| layout.wedges_at(l.min(levels)));
         let ridges: [Ridge<S>; MAX_LEVELS] = core::array::from_fn(|level| {
             let table = &self.build.levels[level.min(levels - 1)].table;
             let roundness = S::from_f32(self.params.level[level].roundness);
@@ -528,15 +527,15 @@ impl<S: Scalar> Skin<'_, S> {
             let level = c.level as usize;
             if level < finest && batch.len > 0 {
                 // The queued pixels lie in the cell this one follows.
-                batch.flush(&Fans { wedges, at: &fans, finest }, ridges, sink);
+                batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
             }
-            let fan = self.prepare(c, &mut wedges[level * SLOTS..][..SLOTS]);
+            let fan = self.prepare(c, &mut wedges[first[level]..][..layout.outline[level] + 1]);
             let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
             fans[level] = FanAt { len: fan.slots.len(), sorted: fan.sorted, centre, cell: index as u32 };
             if level < finest {
                 continue;
             }
-            let view = Fans { wedges, at: &fans, finest };
+            let view = Fans { wedges, first, at: &fans, finest };
             let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
             self.for_each_run(c, crossings, |y, x0, x1, wx, wy| {
                 let i0 = wy as usize * width + wx as usize;
@@ -547,7 +546,7 @@ impl<S: Scalar> Skin<'_, S> {
             });
             batch.close_cell(&view);
         }
-        batch.flush(&Fans { wedges, at: &fans, finest }, ridges, sink);
+        batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
         batch.evaluate(ridges, sink);
     }
 

@@ -189,12 +189,12 @@ const GLASS_EDGES: usize = 16384;
 const GLASS_WORDS: usize = 265941;
 const SKIN_CELLS: usize = 2292;
 const SKIN_VERTICES: usize = 108408;
-const SKIN_SITES: usize = 12288;
-const SKIN_CLIP: usize = 10240;
+const SKIN_SITES: usize = 8273;
+const SKIN_CLIP: usize = 6792;
 const SKIN_WORDS: usize = 4096;
 const SKIN_LEVELS: usize = 3;
-const SKIN_BOXES: usize = 1026;
-const SKIN_WEDGES: usize = 6147;
+const SKIN_BOXES: usize = 675;
+const SKIN_WEDGES: usize = 4743;
 const SKIN_CROSSINGS: usize = 2048;
 const WORDS: usize = max(max(MUD_LARGE_MEMORY.words, MUD_IRREGULAR_MEMORY.words), max(GLASS_WORDS, SKIN_WORDS));
 const NETWORK_VERTICES: usize = 2048;
@@ -422,12 +422,14 @@ fn segments_hash<S: Scalar>(mud: &Mud<'_, S>) -> u64 {
     h.finish()
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn mud_segments<S: Scalar>(params: &MudParams, scalars: &mut [S], words: &mut [u32]) -> Outcome {
     Ok(segments_hash(&mud_run(params, scalars, words)?))
 }
 
 /// One mud run and every output of it: segments, network, cells, the mask, time and height
 /// rasters, and the statistics.
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn mud_outputs<S: Scalar>(
     params: &MudParams,
     scalars: &mut [S],
@@ -505,6 +507,7 @@ fn rings_hash(rings: &[FragmentRing], points: &[[f32; 2]]) -> Fnv {
     h
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let names = ["glass.plate160.cracks", "glass.plate160.fragments", "glass.plate160.mask", "glass.plate160.time"];
     let side = PLATE as f32;
@@ -546,6 +549,7 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit(names[3], time.map_err(refused).map(|()| floats_hash(&out.floats[..pixels])));
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let names = [
         "skin.fig19a64.outlines",
@@ -651,6 +655,7 @@ fn maps<S: Scalar>(skin: &mut Skin<'_, S>, height: &mut [f32], normals: &mut [[f
     Ok(h.finish())
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn rng(emit: &mut dyn FnMut(&'static str, Outcome)) {
     for (stream, name) in STREAMS {
         let mut rng = Rng::new(SEED, stream);
@@ -694,6 +699,7 @@ fn backend_table<S: Scalar>() -> u64 {
     h.finish()
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit("scalar.f32", Ok(backend_table::<f32>()));
     emit("scalar.micromath", Ok(backend_table::<micromath::F32>()));
