@@ -603,49 +603,45 @@ impl Build<'_> {
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
         let (boxes, below) = boxes.split_at_mut(self.layout.boxes(level));
-        {
-            {
-                let outline = &self.vertices[first..first + n];
-                let chunks = cell::chunk_boxes(outline, boxes);
-                let grid = &mut self.levels[level].grid;
-                grid.fill(outline, (lo, hi));
-                let outer = Parent { outline, chunks: &boxes[..chunks], grid: grid.of(n), frame: &[] };
-                // Its outline as every child's clipping starts from it.
-                for (k, v) in self.parent_frames[self.layout.frames_at(level)..][..n].iter_mut().enumerate() {
-                    *v = cell::parent_vertex(&f, outline, k);
-                }
-                let base = Layout::sites_at(level);
-                let mut count = 0;
-                for j in r[1]..=r[3] {
-                    for i in r[0]..=r[2] {
-                        let s = lattice.site(i, j);
-                        let p = f.site_fixed(&s);
-                        let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
-                        if in_box && outer.contains(p) {
-                            if count == MAX_CHILDREN {
-                                return Err(Full);
-                            }
-                            self.sites[base + count] = s;
-                            count += 1;
-                        }
+        let outline = &self.vertices[first..first + n];
+        let chunks = cell::chunk_boxes(outline, boxes);
+        let grid = &mut self.levels[level].grid;
+        grid.fill(outline, (lo, hi));
+        let outer = Parent { outline, chunks: &boxes[..chunks], grid: grid.of(n), frame: &[] };
+        // Its outline as every child's clipping starts from it.
+        for (k, v) in self.parent_frames[self.layout.frames_at(level)..][..n].iter_mut().enumerate() {
+            *v = cell::parent_vertex(&f, outline, k);
+        }
+        let base = Layout::sites_at(level);
+        let mut count = 0;
+        for j in r[1]..=r[3] {
+            for i in r[0]..=r[2] {
+                let s = lattice.site(i, j);
+                let p = f.site_fixed(&s);
+                let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
+                if in_box && outer.contains(p) {
+                    if count == MAX_CHILDREN {
+                        return Err(Full);
                     }
+                    self.sites[base + count] = s;
+                    count += 1;
                 }
-                if count == 0 {
-                    // No centre point fell inside: the parent is one cell of this level,
-                    // centred where the parent is.
-                    let c = self.cells[parent as usize].centre;
-                    let at = f.in_frame(c);
-                    self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
-                    count = 1;
-                }
-                for k in 0..count {
-                    let s = self.sites[base + k];
-                    let outline = ParentOutline::Stored(first, n, &boxes[..chunks]);
-                    self.cell(level, s, (base, count), (outline, parent), below)?;
-                }
-                Ok(())
             }
         }
+        if count == 0 {
+            // No centre point fell inside: the parent is one cell of this level,
+            // centred where the parent is.
+            let c = self.cells[parent as usize].centre;
+            let at = f.in_frame(c);
+            self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
+            count = 1;
+        }
+        for k in 0..count {
+            let s = self.sites[base + k];
+            let outline = ParentOutline::Stored(first, n, &boxes[..chunks]);
+            self.cell(level, s, (base, count), (outline, parent), below)?;
+        }
+        Ok(())
     }
 }
 
