@@ -24,7 +24,7 @@ static void report(const char *what, hibi_status status) {
 }
 
 /* Renders the height and normal maps of `skin` and shades them into `rgb`. */
-static hibi_status preview(const hibi_skin *skin, size_t pixels, float *height, float *normal, unsigned char *rgb) {
+static hibi_status preview(hibi_skin *skin, size_t pixels, float *height, float *normal, unsigned char *rgb) {
     hibi_skin_shade_params light = hibi_skin_shade_params_default();
     hibi_status status = hibi_skin_render(skin, height, pixels, normal, 3 * pixels, NULL, 0, 0);
     if (status != HIBI_OK) return status;

@@ -1942,9 +1942,8 @@ size_t hibi_skin_memory_align(void);
 
 /**
  * Creates a skin in library memory, building every cell outline of every level. Free it
- * with `hibi_skin_destroy`. `*out` is written only on success. Uses about 100 KiB of the
- * calling thread's stack in an optimised build of the library (about 190 KiB in a debug
- * build).
+ * with `hibi_skin_destroy`. `*out` is written only on success. Every scratch array is in
+ * the skin's block: the calling thread's stack needs no more than 16 KiB.
  *
  * # Safety
  * `params` must be NULL or readable; `out` NULL or writable.
@@ -1981,17 +1980,15 @@ void hibi_skin_destroy(struct hibi_skin *skin);
  * OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
  * cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
  * without it). Pass NULL and length 0 for a map you do not want. If any map is short or
- * misaligned, or `cell_level` is not below `levels`, nothing is written.
- *
- * Uses about 160 KiB of the calling thread's stack in an optimised build of the library
- * (more in a debug build): a thread that creates and renders skins needs about 184 KiB
- * (248 KiB with a debug build of the library); 256 KiB is enough.
+ * misaligned, or `cell_level` is not below `levels`, nothing is written. The render's
+ * scratch (wedges, crossings) is in the skin's memory, so the skin is written to; its cells
+ * are only read.
  *
  * # Safety
- * `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for
- * its length, and the maps must not overlap.
+ * `skin` must be NULL or a live skin, not used by another thread during the call; each map
+ * NULL (only with length 0) or writable for its length, and the maps must not overlap.
  */
-hibi_status hibi_skin_render(const struct hibi_skin *skin,
+hibi_status hibi_skin_render(struct hibi_skin *skin,
                              float *height,
                              size_t height_len,
                              float *normal,

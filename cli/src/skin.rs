@@ -183,7 +183,7 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
         counts[c.level as usize] += 1;
     }
     let image = match layer {
-        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&skin)?) },
+        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&mut skin)?) },
         Layer::Height | Layer::Normal | Layer::Shaded => {
             let mut h = vec![0.0f32; pixels];
             let mut n = vec![[0.0f32; 3]; pixels];
@@ -211,8 +211,8 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
 
 /// The furrow net: 255 on the outline of every level-1 cell, fainter for finer levels (a
 /// pixel is on an outline when its right or lower neighbour lies in another cell).
-fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
-    let p = skin.params();
+fn furrows(skin: &mut Skin) -> Result<Vec<u8>, Failure> {
+    let p = *skin.params();
     let (w, h) = (p.width as usize, p.height as usize);
     let mut mask = vec![0u8; w * h];
     let mut cell = vec![0u32; w * h];

@@ -261,6 +261,10 @@ impl Object for hibi_skin {
             sites: arena.take(m.sites),
             clip: arena.take(m.clip),
             words: arena.take(m.words),
+            levels: arena.take(m.levels),
+            boxes: arena.take(m.boxes),
+            wedges: arena.take(m.wedges),
+            crossings: arena.take(m.crossings),
         }
     }
 
@@ -330,9 +334,8 @@ pub extern "C" fn hibi_skin_memory_align() -> usize {
 }
 
 /// Creates a skin in library memory, building every cell outline of every level. Free it
-/// with `hibi_skin_destroy`. `*out` is written only on success. Uses about 100 KiB of the
-/// calling thread's stack in an optimised build of the library (about 190 KiB in a debug
-/// build).
+/// with `hibi_skin_destroy`. `*out` is written only on success. Every scratch array is in
+/// the skin's block: the calling thread's stack needs no more than 16 KiB.
 ///
 /// # Safety
 /// `params` must be NULL or readable; `out` NULL or writable.
@@ -389,19 +392,17 @@ unsafe fn layer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<O
 /// OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
 /// cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
 /// without it). Pass NULL and length 0 for a map you do not want. If any map is short or
-/// misaligned, or `cell_level` is not below `levels`, nothing is written.
-///
-/// Uses about 160 KiB of the calling thread's stack in an optimised build of the library
-/// (more in a debug build): a thread that creates and renders skins needs about 184 KiB
-/// (248 KiB with a debug build of the library); 256 KiB is enough.
+/// misaligned, or `cell_level` is not below `levels`, nothing is written. The render's
+/// scratch (wedges, crossings) is in the skin's memory, so the skin is written to; its cells
+/// are only read.
 ///
 /// # Safety
-/// `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for
-/// its length, and the maps must not overlap.
+/// `skin` must be NULL or a live skin, not used by another thread during the call; each map
+/// NULL (only with length 0) or writable for its length, and the maps must not overlap.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_skin_render(
-    skin: *const hibi_skin,
+    skin: *mut hibi_skin,
     height: *mut f32,
     height_len: usize,
     normal: *mut f32,
@@ -412,7 +413,7 @@ pub unsafe extern "C" fn hibi_skin_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin, c"skin") }?;
+        let skin = unsafe { object(skin, c"skin") }?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
         // and a trailing partial pixel of `normal` is not used.
         let layers = unsafe {
@@ -782,7 +783,7 @@ mod tests {
             );
             let odd = n.cast::<u8>().add(1).cast::<f32>();
             assert_eq!(hibi_skin_render(skin, h, pixels, odd, 3 * pixels - 3, c, pixels, 0), HIBI_ERROR_MISALIGNED);
-            assert_eq!(hibi_skin_render(null(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_render(null_mut(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
             assert!(untouched(&height, &normal, &cells));
 
             // Only the cell map; the level is checked only when the map is wanted.

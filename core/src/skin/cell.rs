@@ -59,6 +59,7 @@ fn next(i: usize, n: usize) -> usize {
 pub(super) const CHUNK: usize = 4;
 
 /// Scratch for one bisector edge: its pieces and one piece's points.
+#[derive(Clone)]
 pub(super) struct EdgeScratch {
     pieces: [Corner; MAX_CROSSINGS + 2],
     points: [[i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
@@ -421,7 +422,7 @@ impl Builder<'_> {
             push(start.fixed, &mut written)?;
             let (key, forward, image) = edge_key(f, a, b, &start, &end);
             let to_surface = |p: [i64; 2]| [p[0] + image[0], p[1] + image[1]];
-            if let Some((points, m)) = shared.take(f.level, &key) {
+            if let Some((points, m)) = shared.take(&key) {
                 for i in 0..m {
                     push(to_surface(points[if forward { i } else { m - 1 - i }]), &mut written)?;
                 }
@@ -462,7 +463,7 @@ impl Builder<'_> {
                 if !forward {
                     kept[..m].reverse();
                 }
-                shared.keep(f.level, key, &kept[..m]);
+                shared.keep(key, &kept[..m]);
             }
             start = end;
         }

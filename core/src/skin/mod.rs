@@ -45,7 +45,7 @@ pub use params::{
 pub use presets::{PRESETS, preset};
 pub use shade::{ShadeError, ShadeParams, shade};
 pub use sites::Site;
-pub use surface::{SkinLayers, SkinRender};
+pub use surface::{SkinLayers, SkinRender, Wedge};
 
 use cell::{Builder, Frame, Parent};
 use grid::EdgeGrid;
@@ -62,8 +62,6 @@ use crate::scalar::Scalar;
 const WINDOW: i64 = 4;
 /// Most centre points one parent can hold, or one level-1 window.
 pub const MAX_CHILDREN: usize = 4096;
-/// Outlines up to this long keep their scratch (chunk boxes, crossings) in a small array.
-const SHORT_OUTLINE: usize = 256;
 /// No cell (a parent of a level-1 cell).
 pub const NO_CELL: u32 = u32::MAX;
 
@@ -87,6 +85,81 @@ pub struct SkinCell {
     pub centre: [i64; 2],
 }
 
+/// One level's state in caller memory (opaque; caller memory for [`SkinBuffers`]): its
+/// profile table, the shared edges kept for its cells' neighbours, its parent outline's edge
+/// grid, and scratch for one bisector edge.
+#[derive(Clone)]
+pub struct SkinLevel {
+    table: ProfileTable,
+    shared: SharedEdges,
+    grid: EdgeGrid,
+    scratch: cell::EdgeScratch,
+}
+
+impl Default for SkinLevel {
+    fn default() -> Self {
+        SkinLevel {
+            table: ProfileTable::default(),
+            shared: SharedEdges::new(),
+            grid: EdgeGrid::new(),
+            scratch: cell::EdgeScratch::new(),
+        }
+    }
+}
+
+/// Where each level's scratch lies in the caller's arrays, sized by the parameters: the
+/// longest outline a level can have, and from it the clip vertices, chunk boxes and wedges.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    levels: usize,
+    /// Per level, the most vertices one of its outlines can have: at level 0, a cell is
+    /// clipped to a rectangle (4 corners, convex) by the bisectors of at most
+    /// `WINDOW_SITES − 1` neighbours, each adding at most one edge, perturbed into
+    /// `2^depth` pieces (level 0 crosses no parent edges); finer levels inherit their
+    /// parent's corners and cross its edges: [`MAX_OUTLINE`].
+    outline: [usize; MAX_LEVELS],
+}
+
+impl Layout {
+    fn of(p: &SkinParams) -> Layout {
+        let depth = p.level[0].perturbation_depth;
+        let first = (((WINDOW_SITES - 1) << depth) + 4).min(MAX_OUTLINE);
+        let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
+        Layout { levels: p.levels as usize, outline }
+    }
+
+    /// The longest outline of any level (the clip, spare and crossing scratch).
+    fn longest(&self) -> usize {
+        self.outline[..self.levels].iter().copied().max().unwrap_or(0)
+    }
+
+    /// The vertices of a level's parent outline: the 4 corners of a rectangle at level 0.
+    fn parent(&self, level: usize) -> usize {
+        if level == 0 { 4 } else { self.outline[level - 1] }
+    }
+
+    /// Where level `level`'s parent outline, as clip vertices, starts in `parent_frames`.
+    fn frames_at(&self, level: usize) -> usize {
+        (0..level).map(|l| self.parent(l)).sum()
+    }
+
+    /// Chunk boxes of level `level`'s parent outline (levels from 1).
+    fn boxes(&self, level: usize) -> usize {
+        self.parent(level) / cell::CHUNK + 1
+    }
+
+    /// Where level `level`'s wedges start (one per outline edge, one in front).
+    fn wedges_at(&self, level: usize) -> usize {
+        (0..level).map(|l| self.outline[l] + 1).sum()
+    }
+
+    /// Where level `level`'s centre points start in `sites`: level 0 holds one neighbour
+    /// window, each finer level one parent's children.
+    fn sites_at(level: usize) -> usize {
+        if level == 0 { 0 } else { WINDOW_SITES + (level - 1) * MAX_CHILDREN }
+    }
+}
+
 /// How much caller memory a skin needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SkinMemory {
@@ -100,6 +173,14 @@ pub struct SkinMemory {
     pub clip: usize,
     /// `u32` words.
     pub words: usize,
+    /// [`SkinLevel`] records, one per level.
+    pub levels: usize,
+    /// Chunk boxes (`[i64; 4]`) of the parent outlines being divided.
+    pub boxes: usize,
+    /// [`Wedge`] records, for [`Skin::render`].
+    pub wedges: usize,
+    /// `u64` words: one outline's crossings of a pixel row.
+    pub crossings: usize,
 }
 
 /// Caller memory for a skin.
@@ -114,6 +195,14 @@ pub struct SkinBuffers<'a> {
     pub clip: &'a mut [ClipVertex],
     /// At least [`SkinMemory::words`].
     pub words: &'a mut [u32],
+    /// At least [`SkinMemory::levels`].
+    pub levels: &'a mut [SkinLevel],
+    /// At least [`SkinMemory::boxes`].
+    pub boxes: &'a mut [[i64; 4]],
+    /// At least [`SkinMemory::wedges`].
+    pub wedges: &'a mut [Wedge],
+    /// At least [`SkinMemory::crossings`].
+    pub crossings: &'a mut [u64],
 }
 
 /// Owned memory for a skin (the `alloc` feature), from [`SkinMemory::allocate`].
@@ -124,6 +213,10 @@ pub struct SkinStore {
     sites: alloc::vec::Vec<Site>,
     clip: alloc::vec::Vec<ClipVertex>,
     words: alloc::vec::Vec<u32>,
+    levels: alloc::vec::Vec<SkinLevel>,
+    boxes: alloc::vec::Vec<[i64; 4]>,
+    wedges: alloc::vec::Vec<Wedge>,
+    crossings: alloc::vec::Vec<u64>,
 }
 
 #[cfg(feature = "alloc")]
@@ -136,6 +229,10 @@ impl SkinMemory {
             sites: alloc::vec![Site::default(); self.sites],
             clip: alloc::vec![ClipVertex::default(); self.clip],
             words: alloc::vec![0; self.words],
+            levels: alloc::vec![SkinLevel::default(); self.levels],
+            boxes: alloc::vec![[0; 4]; self.boxes],
+            wedges: alloc::vec![Wedge::default(); self.wedges],
+            crossings: alloc::vec![0; self.crossings],
         }
     }
 }
@@ -150,6 +247,10 @@ impl SkinStore {
             sites: &mut self.sites,
             clip: &mut self.clip,
             words: &mut self.words,
+            levels: &mut self.levels,
+            boxes: &mut self.boxes,
+            wedges: &mut self.wedges,
+            crossings: &mut self.crossings,
         }
     }
 }
@@ -162,6 +263,10 @@ pub struct SkinStorage<
     const SITES: usize,
     const CLIP: usize,
     const WORDS: usize,
+    const LEVELS: usize,
+    const BOXES: usize,
+    const WEDGES: usize,
+    const CROSSINGS: usize,
 > {
     /// Cell records.
     pub cells: [SkinCell; CELLS],
@@ -173,10 +278,27 @@ pub struct SkinStorage<
     pub clip: [ClipVertex; CLIP],
     /// Words.
     pub words: [u32; WORDS],
+    /// Level records.
+    pub levels: [SkinLevel; LEVELS],
+    /// Chunk boxes.
+    pub boxes: [[i64; 4]; BOXES],
+    /// Wedges.
+    pub wedges: [Wedge; WEDGES],
+    /// Crossings.
+    pub crossings: [u64; CROSSINGS],
 }
 
-impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: usize, const WORDS: usize>
-    SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS>
+impl<
+    const CELLS: usize,
+    const VERTICES: usize,
+    const SITES: usize,
+    const CLIP: usize,
+    const WORDS: usize,
+    const LEVELS: usize,
+    const BOXES: usize,
+    const WEDGES: usize,
+    const CROSSINGS: usize,
+> SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES, WEDGES, CROSSINGS>
 {
     /// Empty storage.
     pub fn new() -> Self {
@@ -186,6 +308,10 @@ impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: 
             sites: [Site::default(); SITES],
             clip: [ClipVertex::default(); CLIP],
             words: [0; WORDS],
+            levels: core::array::from_fn(|_| SkinLevel::default()),
+            boxes: [[0; 4]; BOXES],
+            wedges: [Wedge::default(); WEDGES],
+            crossings: [0; CROSSINGS],
         }
     }
 
@@ -197,12 +323,25 @@ impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: 
             sites: &mut self.sites,
             clip: &mut self.clip,
             words: &mut self.words,
+            levels: &mut self.levels,
+            boxes: &mut self.boxes,
+            wedges: &mut self.wedges,
+            crossings: &mut self.crossings,
         }
     }
 }
 
-impl<const CELLS: usize, const VERTICES: usize, const SITES: usize, const CLIP: usize, const WORDS: usize> Default
-    for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS>
+impl<
+    const CELLS: usize,
+    const VERTICES: usize,
+    const SITES: usize,
+    const CLIP: usize,
+    const WORDS: usize,
+    const LEVELS: usize,
+    const BOXES: usize,
+    const WEDGES: usize,
+    const CROSSINGS: usize,
+> Default for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES, WEDGES, CROSSINGS>
 {
     fn default() -> Self {
         Self::new()
@@ -293,13 +432,19 @@ impl SkinParams {
         if vertices > i32::MAX as usize || cells > i32::MAX as usize {
             return Err(SkinParamError::Capacity);
         }
+        let layout = Layout::of(self);
         Ok(SkinMemory {
             cells,
             vertices,
-            sites: MAX_CHILDREN * levels,
+            sites: Layout::sites_at(levels),
             // Two outlines being clipped, and each level's parent outline as its children start.
-            clip: (2 + levels) * MAX_OUTLINE,
-            words: MAX_CHILDREN + MAX_OUTLINE,
+            clip: 2 * layout.longest() + layout.frames_at(levels),
+            // The order of a cell's neighbours: a window at level 0, a parent's children below.
+            words: if levels > 1 { MAX_CHILDREN } else { WINDOW_SITES },
+            levels,
+            boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
+            wedges: layout.wedges_at(levels),
+            crossings: layout.longest(),
         })
     }
 }
@@ -310,7 +455,6 @@ impl SkinParams {
 pub struct Skin<'a, S: Scalar = f32> {
     params: SkinParams,
     build: Build<'a>,
-    tables: [ProfileTable; MAX_LEVELS],
     /// The level-0 lattice indices that can reach the surface (inclusive: i0, j0, i1, j1).
     range: [i64; 4],
     /// The next level-0 index (i, j) to build.
@@ -351,6 +495,7 @@ const WINDOW_SITES: usize = ((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize;
 /// The state of a build: the buffers and how far they are filled.
 struct Build<'b> {
     params: SkinParams,
+    layout: Layout,
     frames: [Frame; MAX_LEVELS],
     lattices: [Lattice; MAX_LEVELS],
     cells: &'b mut [SkinCell],
@@ -359,41 +504,49 @@ struct Build<'b> {
     vertex_count: usize,
     sites: &'b mut [Site],
     /// Per level, the parent outline of the cells being built, as their clipping starts from
-    /// it ([`MAX_OUTLINE`] each).
+    /// it ([`Layout::frames_at`]).
     parent_frames: &'b mut [ClipVertex],
-    /// Per level, the edges of the parent outline of the cells being built, binned (when it is
-    /// short enough: [`EdgeGrid::of`]).
-    grids: [EdgeGrid; MAX_LEVELS],
+    /// Per level: its profile table, the edges of the parent outline of the cells being built,
+    /// binned (when it is short enough: [`EdgeGrid::of`]), its shared edges and edge scratch.
+    levels: &'b mut [SkinLevel],
+    /// Per level from 1, the chunk boxes of the parent outline being divided
+    /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
+    boxes: &'b mut [[i64; 4]],
+    /// Per level, the wedges of the cell being drawn ([`Layout::wedges_at`]), for
+    /// [`Skin::render`].
+    wedges: &'b mut [Wedge],
+    /// One outline's crossings of a pixel row, for [`Skin::render`] and
+    /// [`Skin::for_each_pixel`].
+    crossings: &'b mut [u64],
     builder: Builder<'b>,
-    shared: SharedEdges,
-    scratch: cell::EdgeScratch,
 }
 
 impl Build<'_> {
     /// Builds `site`'s outline in level `level` among `neighbours` (sites[range]) inside the
     /// outline `parent` (vertices[parent range] or the given one), stores the cell and its
-    /// descendants.
+    /// descendants; `boxes` holds the chunk boxes of the levels below.
     fn cell(
         &mut self,
         level: usize,
         site: Site,
         neighbours: (usize, usize),
-        parent: ParentOutline,
-        parent_index: u32,
+        (parent, parent_index): (ParentOutline, u32),
+        boxes: &mut [[i64; 4]],
     ) -> Result<(), Full> {
         let f = self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
+        let SkinLevel { grid, shared, scratch, .. } = &mut self.levels[level];
         let outline = match parent {
             ParentOutline::Stored(first, count, chunks) => Parent {
                 outline: &head[first..first + count],
                 chunks,
-                grid: self.grids[level].of(count),
-                frame: &self.parent_frames[level * MAX_OUTLINE..][..count],
+                grid: grid.of(count),
+                frame: &self.parent_frames[self.layout.frames_at(level)..][..count],
             },
             ParentOutline::Box(ref b) => {
                 let count = cell::chunk_boxes(b, &mut box_chunks);
-                let frame = &mut self.parent_frames[level * MAX_OUTLINE..][..b.len()];
+                let frame = &mut self.parent_frames[self.layout.frames_at(level)..][..b.len()];
                 for (k, v) in frame.iter_mut().enumerate() {
                     *v = cell::parent_vertex(&f, b, k);
                 }
@@ -403,8 +556,8 @@ impl Build<'_> {
         let n = self
             .builder
             .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
-                let room = tail.len().min(MAX_OUTLINE);
-                (&mut tail[..room], &mut self.shared, &mut self.scratch)
+                let room = tail.len().min(self.layout.outline[level]);
+                (&mut tail[..room], shared, scratch)
             })
             .map_err(|_| Full)?;
         if n < 3 {
@@ -426,13 +579,20 @@ impl Build<'_> {
         let first = self.vertex_count;
         self.vertex_count += n;
         if level + 1 < self.params.levels as usize {
-            self.children(level + 1, index as u32, first, n)?;
+            self.children(level + 1, index as u32, (first, n), boxes)?;
         }
         Ok(())
     }
 
-    /// Divides cell `parent` (outline vertices[first..first + n]) into the cells of `level`.
-    fn children(&mut self, level: usize, parent: u32, first: usize, n: usize) -> Result<(), Full> {
+    /// Divides cell `parent` (outline vertices[first..first + n]) into the cells of `level`;
+    /// `boxes` holds the chunk boxes of this level and those below.
+    fn children(
+        &mut self,
+        level: usize,
+        parent: u32,
+        (first, n): (usize, usize),
+        boxes: &mut [[i64; 4]],
+    ) -> Result<(), Full> {
         let (f, lattice) = (self.frames[level], self.lattices[level]);
         let outline = &self.vertices[first..first + n];
         let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
@@ -442,61 +602,47 @@ impl Build<'_> {
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
-        let short = n <= SHORT_OUTLINE;
-        with_scratch::<_, _, { SHORT_OUTLINE / cell::CHUNK + 1 }, { MAX_OUTLINE / cell::CHUNK + 1 }>(
-            short,
-            [0i64; 4],
-            |boxes| {
-                let outline = &self.vertices[first..first + n];
-                let chunks = cell::chunk_boxes(outline, boxes);
-                self.grids[level].fill(outline, (lo, hi));
-                let outer = Parent { outline, chunks: &boxes[..chunks], grid: self.grids[level].of(n), frame: &[] };
-                // Its outline as every child's clipping starts from it.
-                for (k, v) in self.parent_frames[level * MAX_OUTLINE..][..n].iter_mut().enumerate() {
-                    *v = cell::parent_vertex(&f, outline, k);
-                }
-                let base = level * MAX_CHILDREN;
-                let mut count = 0;
-                for j in r[1]..=r[3] {
-                    for i in r[0]..=r[2] {
-                        let s = lattice.site(i, j);
-                        let p = f.site_fixed(&s);
-                        let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
-                        if in_box && outer.contains(p) {
-                            if count == MAX_CHILDREN {
-                                return Err(Full);
-                            }
-                            self.sites[base + count] = s;
-                            count += 1;
-                        }
+        let (boxes, below) = boxes.split_at_mut(self.layout.boxes(level));
+        let outline = &self.vertices[first..first + n];
+        let chunks = cell::chunk_boxes(outline, boxes);
+        let grid = &mut self.levels[level].grid;
+        grid.fill(outline, (lo, hi));
+        let outer = Parent { outline, chunks: &boxes[..chunks], grid: grid.of(n), frame: &[] };
+        // Its outline as every child's clipping starts from it.
+        for (k, v) in self.parent_frames[self.layout.frames_at(level)..][..n].iter_mut().enumerate() {
+            *v = cell::parent_vertex(&f, outline, k);
+        }
+        let base = Layout::sites_at(level);
+        let mut count = 0;
+        for j in r[1]..=r[3] {
+            for i in r[0]..=r[2] {
+                let s = lattice.site(i, j);
+                let p = f.site_fixed(&s);
+                let in_box = (lo[0] <= p[0]) & (p[0] <= hi[0]) & (lo[1] <= p[1]) & (p[1] <= hi[1]);
+                if in_box && outer.contains(p) {
+                    if count == MAX_CHILDREN {
+                        return Err(Full);
                     }
+                    self.sites[base + count] = s;
+                    count += 1;
                 }
-                if count == 0 {
-                    // No centre point fell inside: the parent is one cell of this level,
-                    // centred where the parent is.
-                    let c = self.cells[parent as usize].centre;
-                    let at = f.in_frame(c);
-                    self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
-                    count = 1;
-                }
-                for k in 0..count {
-                    let s = self.sites[base + k];
-                    self.cell(level, s, (base, count), ParentOutline::Stored(first, n, &boxes[..chunks]), parent)?;
-                }
-                Ok(())
-            },
-        )
+            }
+        }
+        if count == 0 {
+            // No centre point fell inside: the parent is one cell of this level,
+            // centred where the parent is.
+            let c = self.cells[parent as usize].centre;
+            let at = f.in_frame(c);
+            self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
+            count = 1;
+        }
+        for k in 0..count {
+            let s = self.sites[base + k];
+            let outline = ParentOutline::Stored(first, n, &boxes[..chunks]);
+            self.cell(level, s, (base, count), (outline, parent), below)?;
+        }
+        Ok(())
     }
-}
-
-/// Calls `f` with zeroed scratch on the stack, `SMALL` elements if `small`, else `LARGE`
-/// (most outlines are short, and a small array spares clearing a large one).
-fn with_scratch<T: Copy, R, const SMALL: usize, const LARGE: usize>(
-    small: bool,
-    zero: T,
-    f: impl FnOnce(&mut [T]) -> R,
-) -> R {
-    if small { f(&mut [zero; SMALL]) } else { f(&mut [zero; LARGE]) }
 }
 
 /// A cell outline, a parent's centre points or the cell buffer outgrew its capacity.
@@ -522,6 +668,10 @@ impl<'a, S: Scalar> Skin<'a, S> {
             (buffers.sites.len(), m.sites),
             (buffers.clip.len(), m.clip),
             (buffers.words.len(), m.words),
+            (buffers.levels.len(), m.levels),
+            (buffers.boxes.len(), m.boxes),
+            (buffers.wedges.len(), m.wedges),
+            (buffers.crossings.len(), m.crossings),
         ];
         if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
             return Err(SkinError::BufferTooSmall { needed });
@@ -531,10 +681,27 @@ impl<'a, S: Scalar> Skin<'a, S> {
             Frame::new(l, &params.level[l.min(params.levels as usize - 1)], params.seed, size, params.levels)
         });
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
-        let (clip, rest) = buffers.clip.split_at_mut(MAX_OUTLINE);
-        let (spare, parent_frames) = rest.split_at_mut(MAX_OUTLINE);
+        let layout = Layout::of(params);
+        let (clip, rest) = buffers.clip.split_at_mut(layout.longest());
+        let (spare, parent_frames) = rest.split_at_mut(layout.longest());
+        let levels = &mut buffers.levels[..params.levels as usize];
+        // One table per level, each level sampled where the level before was when their
+        // profiles share the sampling.
+        let profile = |l: usize| &params.level[l].profile;
+        let mut sampling = Sampling::of(profile(0));
+        for (l, level) in levels.iter_mut().enumerate() {
+            if l > 0 && !Sampling::shared(profile(l - 1), profile(l)) {
+                sampling = Sampling::of(profile(l));
+            }
+            // (Field by field, each built in place: a level is a few KiB.)
+            level.table.sample(profile(l), &sampling);
+            level.shared = SharedEdges::new();
+            level.grid = EdgeGrid::new();
+            level.scratch = cell::EdgeScratch::new();
+        }
         let build = Build {
             params: *params,
+            layout,
             frames,
             lattices,
             cells: buffers.cells,
@@ -543,31 +710,16 @@ impl<'a, S: Scalar> Skin<'a, S> {
             vertex_count: 0,
             sites: buffers.sites,
             parent_frames,
-            builder: Builder { clip, spare, order: &mut buffers.words[..MAX_CHILDREN] },
-            shared: SharedEdges::new(),
-            grids: [const { EdgeGrid::new() }; MAX_LEVELS],
-            scratch: cell::EdgeScratch::new(),
+            builder: Builder { clip, spare, order: &mut buffers.words[..m.words] },
+            levels,
+            boxes: buffers.boxes,
+            wedges: buffers.wedges,
+            crossings: buffers.crossings,
         };
-        // One table per level in use (the rest repeat the last; they are never read), each
-        // level sampled where the level before was when their profiles share the sampling.
-        let profile = |l: usize| &params.level[l].profile;
-        let mut sampling = Sampling::of(profile(0));
-        let mut tables = [ProfileTable::sampled(profile(0), &sampling); MAX_LEVELS];
-        for l in 1..MAX_LEVELS {
-            tables[l] = if l < params.levels as usize {
-                if !Sampling::shared(profile(l - 1), profile(l)) {
-                    sampling = Sampling::of(profile(l));
-                }
-                ProfileTable::sampled(profile(l), &sampling)
-            } else {
-                tables[l - 1]
-            };
-        }
         let range = params.level0_indices(&lattices[0]);
         Ok(Skin {
             params: *params,
             build,
-            tables,
             range,
             next: [range[0], range[1]],
             window: None,
@@ -656,7 +808,9 @@ impl<'a, S: Scalar> Skin<'a, S> {
             ParentOutline::Box([[0, 0], [w, 0], [w, h], [0, h]])
         };
         let before = self.build.vertex_count;
-        let built = self.build.cell(0, site, (0, WINDOW_SITES), parent, NO_CELL);
+        let boxes = core::mem::take(&mut self.build.boxes);
+        let built = self.build.cell(0, site, (0, WINDOW_SITES), (parent, NO_CELL), &mut *boxes);
+        self.build.boxes = boxes;
         self.work += (self.build.vertex_count - before) as u64 + 1;
         built
     }
@@ -691,11 +845,10 @@ impl<'a, S: Scalar> Skin<'a, S> {
     /// Calls `visit(column, row)` for every pixel whose centre lies in `cell` (wrapped onto
     /// the surface when periodic). Across the cells of one level every pixel is visited
     /// exactly once.
-    pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
-        // Scratch for the outline's crossings.
-        let short = cell.vertex_count as usize <= SHORT_OUTLINE;
-        with_scratch::<_, _, SHORT_OUTLINE, MAX_OUTLINE>(short, 0u64, |crossings| {
-            self.for_each_pixel_unwrapped(cell, crossings, |_, _, x, y| visit(x, y))
-        });
+    pub fn for_each_pixel(&mut self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
+        // Scratch for the outline's crossings, in caller memory.
+        let crossings = core::mem::take(&mut self.build.crossings);
+        self.for_each_pixel_unwrapped(cell, &mut *crossings, |_, _, x, y| visit(x, y));
+        self.build.crossings = crossings;
     }
 }

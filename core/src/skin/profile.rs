@@ -18,6 +18,13 @@ pub(super) struct ProfileTable {
     samples: [[f32; 2]; SAMPLES + 1],
 }
 
+impl Default for ProfileTable {
+    /// A flat table (every sample 0), until one is sampled.
+    fn default() -> Self {
+        ProfileTable { end: 0.0, scale: 0.0, samples: [[0.0; 2]; SAMPLES + 1] }
+    }
+}
+
 /// A cubic Bézier coordinate at t: B(t) = (1−t)³p0 + 3(1−t)²t p1 + 3(1−t)t² p2 + t³p3.
 fn bezier(p: [f64; 4], t: f64) -> f64 {
     let s = 1.0 - t;
@@ -44,34 +51,29 @@ impl Sampling {
         let points = profile.used();
         let end = points[points.len() - 1][0];
         let segments = points.len() / 3;
-        // Each sample's x and segment (the last one that starts at or before it).
-        let mut x = [0.0f64; SAMPLES + 1];
-        let mut segment = [0usize; SAMPLES + 1];
+        let (mut segment, mut t) = ([0usize; SAMPLES + 1], [0.0f64; SAMPLES + 1]);
         for k in 0..=SAMPLES {
-            x[k] = f64::from(end) * k as f64 / SAMPLES as f64;
+            // The sample's x and segment (the last one that starts at or before it).
+            let x = f64::from(end) * k as f64 / SAMPLES as f64;
             let mut s = 0;
-            while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x[k] {
+            while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x {
                 s += 1;
             }
             segment[k] = s;
-        }
-        // x'(t) is monotone (control x' never decrease): bisection finds t, every sample's
-        // step in turn (so that the processor overlaps them).
-        let (mut lo, mut hi) = ([0.0f64; SAMPLES + 1], [1.0f64; SAMPLES + 1]);
-        // The control x' by point, a plain array each (so that the steps go several at once).
-        let c: [[f64; SAMPLES + 1]; 4] =
-            core::array::from_fn(|i| core::array::from_fn(|k| controls(points, segment[k], 0)[i]));
-        for _ in 0..48 {
-            let bounds = lo.iter_mut().zip(hi.iter_mut());
-            let curve = c[0].iter().zip(&c[1]).zip(c[2].iter().zip(&c[3])).zip(&x);
-            for ((lo, hi), (((&c0, &c1), (&c2, &c3)), &x)) in bounds.zip(curve) {
-                let mid = 0.5 * (*lo + *hi);
-                let below = bezier([c0, c1, c2, c3], mid) < x;
-                *lo = if below { mid } else { *lo };
-                *hi = if below { *hi } else { mid };
+            // x'(t) is monotone (control x' never decrease): bisection finds t. (One sample
+            // at a time: a few hundred samples once per skin, with no arrays of them on the
+            // stack.)
+            let c = controls(points, s, 0);
+            let (mut lo, mut hi) = (0.0f64, 1.0f64);
+            for _ in 0..48 {
+                let mid = 0.5 * (lo + hi);
+                let below = bezier(c, mid) < x;
+                lo = if below { mid } else { lo };
+                hi = if below { hi } else { mid };
             }
+            t[k] = 0.5 * (lo + hi);
         }
-        Sampling { segment, t: core::array::from_fn(|k| 0.5 * (lo[k] + hi[k])) }
+        Sampling { segment, t }
     }
 
     /// Whether `a` and `b` have the same sampling: the same segments and control x'.
@@ -91,34 +93,36 @@ impl ProfileTable {
     /// Samples `profile` (validated: x' starts at 0 and never decreases).
     #[cfg(test)]
     pub(super) fn new(profile: &Profile) -> ProfileTable {
-        ProfileTable::sampled(profile, &Sampling::of(profile))
+        let mut table = ProfileTable::default();
+        table.sample(profile, &Sampling::of(profile));
+        table
     }
 
     /// Samples `profile` where `sampling` (its own, or one it [shares](Sampling::shared))
-    /// places the samples.
-    pub(super) fn sampled(profile: &Profile, sampling: &Sampling) -> ProfileTable {
+    /// places the samples, in place.
+    pub(super) fn sample(&mut self, profile: &Profile, sampling: &Sampling) {
         let points = profile.used();
         let end = points[points.len() - 1][0];
-        let (mut height, mut slope) = ([0.0f32; SAMPLES + 1], [0.0f32; SAMPLES + 1]);
         for k in 0..=SAMPLES {
             let (s, t) = (sampling.segment[k], sampling.t[k]);
             let pz = controls(points, s, 1);
             let dx = bezier_derivative(controls(points, s, 0), t);
             let dz = bezier_derivative(pz, t);
-            height[k] = bezier(pz, t) as f32;
             // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
             // clamp it to a steep but finite value.
-            slope[k] = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
+            let slope = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
+            self.samples[k] = [bezier(pz, t) as f32, slope];
         }
         // Fill vertical tangents with their neighbours' slope.
+        let samples = &mut self.samples;
         for k in 0..=SAMPLES {
-            if slope[k] == 0.0 {
-                let neighbour = if k > 0 { slope[k - 1] } else { slope[(k + 1).min(SAMPLES)] };
-                let dz = (height[k.min(SAMPLES - 1) + 1] - height[k.min(SAMPLES - 1)]) * SAMPLES as f32 / end;
-                slope[k] = if dz != 0.0 { dz } else { neighbour };
+            if samples[k][1] == 0.0 {
+                let neighbour = if k > 0 { samples[k - 1][1] } else { samples[(k + 1).min(SAMPLES)][1] };
+                let dz = (samples[k.min(SAMPLES - 1) + 1][0] - samples[k.min(SAMPLES - 1)][0]) * SAMPLES as f32 / end;
+                samples[k][1] = if dz != 0.0 { dz } else { neighbour };
             }
         }
-        ProfileTable { end, scale: SAMPLES as f32 / end, samples: core::array::from_fn(|k| [height[k], slope[k]]) }
+        (self.end, self.scale) = (end, SAMPLES as f32 / end);
     }
 
     /// Height and slope at `x` ∈ [0, end], linearly interpolated: what `interval`, `ends` and
@@ -192,15 +196,20 @@ mod tests {
         let fig19 = crate::skin::preset("fig19a").expect("a preset");
         let levels = fig19.level.map(|l| l.profile);
         let first = Sampling::of(&levels[0]);
+        let sampled = |profile: &Profile, sampling: &Sampling| {
+            let mut table = ProfileTable::default();
+            table.sample(profile, sampling);
+            table
+        };
         for profile in &levels[..fig19.levels as usize] {
             assert!(Sampling::shared(&levels[0], profile));
-            assert_eq!(ProfileTable::sampled(profile, &first), ProfileTable::new(profile));
+            assert_eq!(sampled(profile, &first), ProfileTable::new(profile));
         }
         // Moving one control point along x' (or adding a segment) gives another sampling.
         let mut moved = levels[1];
         moved.points[2][0] = 8.0;
         assert!(!Sampling::shared(&levels[1], &moved));
-        assert_ne!(ProfileTable::sampled(&moved, &first), ProfileTable::new(&moved));
+        assert_ne!(sampled(&moved, &first), ProfileTable::new(&moved));
         // (A second segment after the same first one: the x' agree as far as both go.)
         let two = Profile::two(
             [[0.0, 2.0], [5.0, 2.0], [9.0, 1.5], [10.0, 0.5]],

@@ -5,13 +5,11 @@
 //! built one after another), takes them instead of computing them again. Keeping is only a
 //! shortcut: a neighbour that finds nothing computes the same points itself.
 
-use super::params::MAX_LEVELS;
-
 /// Inner points one kept edge can hold (perturbation depth 2 with no crossing: the finer
 /// levels, where nearly all edges are).
 pub(super) const KEPT_POINTS: usize = 3;
 /// Edges kept per level.
-const SLOTS: usize = 16;
+pub(super) const SLOTS: usize = 16;
 
 /// What identifies an edge from both sides: the two sites' ids, lower first, the higher one's
 /// periodic image relative to the lower's, and the edge's ends relative to the lower's image,
@@ -50,66 +48,61 @@ struct Kept {
     points: [[i64; 2]; KEPT_POINTS],
 }
 
-/// The edges kept for the neighbours still to be built, per level (a level's siblings are
-/// built between the cells of finer levels).
+/// The edges kept for the neighbours still to be built, on one level (each level keeps its
+/// own: a level's siblings are built between the cells of finer levels).
+#[derive(Clone)]
 pub(super) struct SharedEdges {
-    kept: [[Kept; SLOTS]; MAX_LEVELS],
+    kept: [Kept; SLOTS],
     /// Each slot's key folded into a word ([`EdgeKey::tag`]), 0 where the slot is free: the
     /// slots are searched by these, side by side.
-    tags: [[u64; SLOTS]; MAX_LEVELS],
-    /// The slot each level overwrites next when none is free.
-    next: [usize; MAX_LEVELS],
+    tags: [u64; SLOTS],
+    /// The slot overwritten next when none is free.
+    next: usize,
 }
 
 impl SharedEdges {
     pub(super) fn new() -> SharedEdges {
-        SharedEdges {
-            kept: [[Kept::default(); SLOTS]; MAX_LEVELS],
-            tags: [[0; SLOTS]; MAX_LEVELS],
-            next: [0; MAX_LEVELS],
-        }
+        SharedEdges { kept: [Kept::default(); SLOTS], tags: [0; SLOTS], next: 0 }
     }
 
-    /// The inner points kept for `key` on `level` (each edge is taken once: it has two sides).
-    pub(super) fn take(&mut self, level: u32, key: &EdgeKey) -> Option<([[i64; 2]; KEPT_POINTS], usize)> {
-        let l = level as usize;
+    /// The inner points kept for `key` (each edge is taken once: it has two sides).
+    pub(super) fn take(&mut self, key: &EdgeKey) -> Option<([[i64; 2]; KEPT_POINTS], usize)> {
         // The last slot with the key's tag, without branches (which slot holds the edge, if
         // any, follows no pattern a processor could learn); then the key itself, and every
         // slot should two keys share a tag.
         let tag = key.tag();
         let mut found = SLOTS;
-        for (i, &t) in self.tags[l].iter().enumerate() {
+        for (i, &t) in self.tags.iter().enumerate() {
             found = if t == tag { i } else { found };
         }
-        let slot = match self.kept[l].get(found) {
+        let slot = match self.kept.get(found) {
             Some(k) if k.key == *key => found,
-            Some(_) => self.kept[l].iter().position(|k| k.valid && k.key == *key)?,
+            Some(_) => self.kept.iter().position(|k| k.valid && k.key == *key)?,
             None => return None,
         };
-        let kept = &mut self.kept[l][slot];
+        let kept = &mut self.kept[slot];
         kept.valid = false;
-        self.tags[l][slot] = 0;
+        self.tags[slot] = 0;
         Some((kept.points, usize::from(kept.count)))
     }
 
-    /// Keeps `points` for `key` on `level`, in a free slot or over the oldest-written one.
-    pub(super) fn keep(&mut self, level: u32, key: EdgeKey, points: &[[i64; 2]]) {
+    /// Keeps `points` for `key`, in a free slot or over the oldest-written one.
+    pub(super) fn keep(&mut self, key: EdgeKey, points: &[[i64; 2]]) {
         if points.len() > KEPT_POINTS {
             return;
         }
-        let l = level as usize;
-        let slot = match self.kept[l].iter().position(|k| !k.valid) {
+        let slot = match self.kept.iter().position(|k| !k.valid) {
             Some(free) => free,
             None => {
-                let s = self.next[l];
-                self.next[l] = (s + 1) % SLOTS;
+                let s = self.next;
+                self.next = (s + 1) % SLOTS;
                 s
             }
         };
         let mut kept = Kept { key, count: points.len() as u8, valid: true, points: [[0; 2]; KEPT_POINTS] };
         kept.points[..points.len()].copy_from_slice(points);
-        self.kept[l][slot] = kept;
-        self.tags[l][slot] = key.tag();
+        self.kept[slot] = kept;
+        self.tags[slot] = key.tag();
     }
 }
 
@@ -122,14 +115,14 @@ mod tests {
         // Ids (0, 0) and (0, 1) fold to the same tag.
         let key = |id: u32| EdgeKey { ids: [0, id], ..EdgeKey::default() };
         assert_eq!(key(0).tag(), key(1).tag());
-        let mut shared = SharedEdges::new();
-        shared.keep(1, key(0), &[[1, 2]]);
-        shared.keep(1, key(1), &[[3, 4], [5, 6]]);
-        assert!(shared.take(0, &key(0)).is_none(), "another level");
-        let (points, count) = shared.take(1, &key(0)).expect("kept");
+        let (mut shared, other) = (SharedEdges::new(), SharedEdges::new());
+        shared.keep(key(0), &[[1, 2]]);
+        shared.keep(key(1), &[[3, 4], [5, 6]]);
+        assert!(other.clone().take(&key(0)).is_none(), "another level");
+        let (points, count) = shared.take(&key(0)).expect("kept");
         assert_eq!(&points[..count], &[[1, 2]]);
-        assert!(shared.take(1, &key(0)).is_none(), "taken once");
-        let (points, count) = shared.take(1, &key(1)).expect("kept");
+        assert!(shared.take(&key(0)).is_none(), "taken once");
+        let (points, count) = shared.take(&key(1)).expect("kept");
         assert_eq!(&points[..count], &[[3, 4], [5, 6]]);
     }
 }

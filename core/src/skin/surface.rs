@@ -24,7 +24,6 @@
 use core::cmp::Ordering;
 use core::ops::Range;
 
-use super::cell::MAX_OUTLINE;
 use super::profile::{ProfileTable, blend};
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
@@ -53,15 +52,13 @@ pub struct SkinRender {
 
 /// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), 1 / apothem, and
 /// the pseudo-angle of the edge's first vertex seen from the centre.
-#[derive(Clone, Copy, Default)]
-struct Wedge {
+/// (Opaque; caller memory for [`super::SkinBuffers`].)
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wedge {
     g: [f32; 2],
     inverse_apothem: f32,
     angle: f32,
 }
-
-/// Wedges a render keeps: one per outline edge and one at the front (see [`Fan`]).
-const SLOTS: usize = MAX_OUTLINE + 1;
 
 /// A cell's wedges: `slots[1..=n]` from the corner of smallest angle on, and `slots[0]` the
 /// last one again. A pixel in direction `a` (a pseudo-angle) lies in the wedge its ray leaves
@@ -94,8 +91,9 @@ const LANES: usize = BATCH + 8;
 /// Outline edges whose wedges are made together.
 const EDGES: usize = 8;
 
-/// Pixels whose heights and normals are evaluated together.
-const QUEUE: usize = 128;
+/// Pixels whose heights and normals are evaluated together (a batch's worth: the queue's
+/// arrays are on the stack, and each pixel's sums are its own, whatever the queue's length).
+const QUEUE: usize = BATCH;
 
 /// Where a level's fan is kept while its cell's descendants are drawn: its length (with the
 /// front slot), whether its angles ascend, its centre (pixels) and its cell.
@@ -109,7 +107,9 @@ struct FanAt {
 
 /// The fans of the cell being drawn and of its ancestors, one per level.
 struct Fans<'w> {
-    wedges: &'w [[Wedge; SLOTS]; MAX_LEVELS],
+    /// Per level, one per outline edge and one at the front (see [`Fan`]), from `first`.
+    wedges: &'w [Wedge],
+    first: [usize; MAX_LEVELS],
     at: &'w [FanAt; MAX_LEVELS],
     /// The level of the cells being drawn (the finest).
     finest: usize,
@@ -118,7 +118,7 @@ struct Fans<'w> {
 impl Fans<'_> {
     fn fan(&self, level: usize) -> Fan<'_> {
         let at = &self.at[level];
-        Fan { slots: &self.wedges[level][..at.len], sorted: at.sorted }
+        Fan { slots: &self.wedges[self.first[level]..][..at.len], sorted: at.sorted }
     }
 }
 
@@ -441,11 +441,10 @@ impl<S: Scalar> Ridge<'_, S> {
 
 impl<S: Scalar> Skin<'_, S> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written. Uses about 160 KiB of stack for
-    /// the wedges of one outline per level, one outline's crossings and a batch of pixels (in
-    /// an optimised build; a thread that builds and renders needs about 184 KiB, 248 KiB in a
-    /// debug build).
-    pub fn render(&self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
+    /// cell level is not below `levels`, nothing is written. The wedges of one outline per
+    /// level and one outline's crossings are scratch in the skin's caller memory (hence
+    /// `&mut self`; the cells are only read).
+    pub fn render(&mut self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { height, normal, cell } = layers;
         let cell_level = render.cell_level;
@@ -463,54 +462,63 @@ impl<S: Scalar> Skin<'_, S> {
         });
         // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
         let flat = unit_normal([0.0; 2]);
+        let (wedges, crossings) = (core::mem::take(&mut self.build.wedges), core::mem::take(&mut self.build.crossings));
+        let scratch = (&mut *wedges, &mut *crossings);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
-            (None, None) => self.draw(&mut NoMaps, cell),
+            (None, None) => self.draw(&mut NoMaps, cell, scratch),
             (Some(h), None) => {
                 h.fill(0.0);
-                self.draw(&mut Heights(h), cell);
+                self.draw(&mut Heights(h), cell, scratch);
             }
             (None, Some(n)) => {
                 n.fill(flat);
-                self.draw(&mut Normals(n), cell);
+                self.draw(&mut Normals(n), cell, scratch);
             }
             (Some(h), Some(n)) => {
                 h.fill(0.0);
                 n.fill(flat);
-                self.draw(&mut Both(h, n), cell);
+                self.draw(&mut Both(h, n), cell, scratch);
             }
         }
+        (self.build.wedges, self.build.crossings) = (wedges, crossings);
         Ok(())
     }
 
     /// Sets every pixel's height and normal in `sink`, summed over the levels, and writes the
-    /// cells of one level into the cell map.
+    /// cells of one level into the cell map. `wedges` holds one more than a level's longest
+    /// outline per level, `crossings` the longest outline's length.
     ///
     /// The cells of the finest level are drawn: the cells of every coarser level are the
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
     /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
     /// while its descendants are drawn.
-    fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
+    fn draw<K: Sink>(
+        &self,
+        sink: &mut K,
+        mut cell: Option<(&mut [u32], u32)>,
+        (wedges, crossings): (&mut [Wedge], &mut [u64]),
+    ) {
         let width = self.params.width as usize;
-        let mut crossings = [0u64; MAX_OUTLINE];
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
             let Some((map, level)) = cell else { return };
             for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
-                self.for_each_run(c, &mut crossings, |_, x0, x1, wx, wy| {
+                self.for_each_run(c, crossings, |_, x0, x1, wx, wy| {
                     let i0 = wy as usize * width + wx as usize;
                     map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
                 });
             }
             return;
         }
-        let mut wedges = [[Wedge::default(); SLOTS]; MAX_LEVELS];
         let mut fans = [FanAt::default(); MAX_LEVELS];
         let mut batch = Batch::<S>::new();
         let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
         let levels = self.params.levels as usize;
         let finest = levels - 1;
+        let layout = self.build.layout;
+        let first = core::array::from_fn(|l| layout.wedges_at(l.min(levels)));
         let ridges: [Ridge<S>; MAX_LEVELS] = core::array::from_fn(|level| {
-            let table = &self.tables[level];
+            let table = &self.build.levels[level.min(levels - 1)].table;
             let roundness = S::from_f32(self.params.level[level].roundness);
             Ridge { table, end: S::from_f32(table.end), roundness, flat: S::ONE - roundness }
         });
@@ -519,17 +527,17 @@ impl<S: Scalar> Skin<'_, S> {
             let level = c.level as usize;
             if level < finest && batch.len > 0 {
                 // The queued pixels lie in the cell this one follows.
-                batch.flush(&Fans { wedges: &wedges, at: &fans, finest }, ridges, sink);
+                batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
             }
-            let fan = self.prepare(c, &mut wedges[level]);
+            let fan = self.prepare(c, &mut wedges[first[level]..][..layout.outline[level] + 1]);
             let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
             fans[level] = FanAt { len: fan.slots.len(), sorted: fan.sorted, centre, cell: index as u32 };
             if level < finest {
                 continue;
             }
-            let view = Fans { wedges: &wedges, at: &fans, finest };
+            let view = Fans { wedges, first, at: &fans, finest };
             let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
-            self.for_each_run(c, &mut crossings, |y, x0, x1, wx, wy| {
+            self.for_each_run(c, crossings, |y, x0, x1, wx, wy| {
                 let i0 = wy as usize * width + wx as usize;
                 if let Some((map, owner)) = map.as_mut() {
                     map[i0..i0 + (x1 - x0) as usize].fill(*owner);
@@ -538,7 +546,7 @@ impl<S: Scalar> Skin<'_, S> {
             });
             batch.close_cell(&view);
         }
-        batch.flush(&Fans { wedges: &wedges, at: &fans, finest }, ridges, sink);
+        batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
         batch.evaluate(ridges, sink);
     }
 

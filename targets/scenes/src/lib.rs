@@ -25,7 +25,8 @@ use hibi_core::mud::{
 };
 use hibi_core::scalar::Q16;
 use hibi_core::skin::{
-    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinParams, SkinRender, shade,
+    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender, Wedge,
+    shade,
 };
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
@@ -188,9 +189,13 @@ const GLASS_EDGES: usize = 16384;
 const GLASS_WORDS: usize = 265941;
 const SKIN_CELLS: usize = 2292;
 const SKIN_VERTICES: usize = 108408;
-const SKIN_SITES: usize = 12288;
-const SKIN_CLIP: usize = 10240;
-const SKIN_WORDS: usize = 6144;
+const SKIN_SITES: usize = 8273;
+const SKIN_CLIP: usize = 6792;
+const SKIN_WORDS: usize = 4096;
+const SKIN_LEVELS: usize = 3;
+const SKIN_BOXES: usize = 675;
+const SKIN_WEDGES: usize = 4743;
+const SKIN_CROSSINGS: usize = 2048;
 const WORDS: usize = max(max(MUD_LARGE_MEMORY.words, MUD_IRREGULAR_MEMORY.words), max(GLASS_WORDS, SKIN_WORDS));
 const NETWORK_VERTICES: usize = 2048;
 const NETWORK_EDGES: usize = 2048;
@@ -243,6 +248,10 @@ pub struct Memory {
     skin_vertices: &'static mut [[i64; 2]],
     sites: &'static mut [Site],
     clip: &'static mut [ClipVertex],
+    skin_levels: &'static mut [SkinLevel],
+    boxes: &'static mut [[i64; 4]],
+    wedges: &'static mut [Wedge],
+    crossings: &'static mut [u64],
     normals: &'static mut [[f32; 3]],
     rgb: &'static mut [[u8; 3]],
     cell_map: &'static mut [u32],
@@ -278,6 +287,10 @@ impl Memory {
         static SKIN_VERTEX: Slot<[i64; 2], SKIN_VERTICES> = Slot::new();
         static SITES: Slot<Site, SKIN_SITES> = Slot::new();
         static CLIP: Slot<ClipVertex, SKIN_CLIP> = Slot::new();
+        static SKIN_LEVEL: Slot<SkinLevel, SKIN_LEVELS> = Slot::new();
+        static BOXES: Slot<[i64; 4], SKIN_BOXES> = Slot::new();
+        static WEDGES: Slot<Wedge, SKIN_WEDGES> = Slot::new();
+        static CROSSINGS: Slot<u64, SKIN_CROSSINGS> = Slot::new();
         static MASK: Slot<u8, PIXELS> = Slot::new();
         static FLOATS: Slot<f32, PIXELS> = Slot::new();
         static NORMALS: Slot<[f32; 3], SKIN_PIXELS> = Slot::new();
@@ -308,6 +321,10 @@ impl Memory {
                 skin_vertices: SKIN_VERTEX.init(),
                 sites: SITES.init(),
                 clip: CLIP.init(),
+                skin_levels: SKIN_LEVEL.init(),
+                boxes: BOXES.init(),
+                wedges: WEDGES.init(),
+                crossings: CROSSINGS.init(),
                 normals: NORMALS.init(),
                 rgb: RGB.init(),
                 cell_map: CELL_MAP.init(),
@@ -332,6 +349,10 @@ impl Memory {
             + SKIN_VERTICES * 16
             + SKIN_SITES * size_of::<Site>()
             + SKIN_CLIP * size_of::<ClipVertex>()
+            + SKIN_LEVELS * size_of::<SkinLevel>()
+            + SKIN_BOXES * 32
+            + SKIN_WEDGES * size_of::<Wedge>()
+            + SKIN_CROSSINGS * 8
             + PIXELS * 5
             + SKIN_PIXELS * 19
     }
@@ -401,12 +422,14 @@ fn segments_hash<S: Scalar>(mud: &Mud<'_, S>) -> u64 {
     h.finish()
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn mud_segments<S: Scalar>(params: &MudParams, scalars: &mut [S], words: &mut [u32]) -> Outcome {
     Ok(segments_hash(&mud_run(params, scalars, words)?))
 }
 
 /// One mud run and every output of it: segments, network, cells, the mask, time and height
 /// rasters, and the statistics.
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn mud_outputs<S: Scalar>(
     params: &MudParams,
     scalars: &mut [S],
@@ -484,6 +507,7 @@ fn rings_hash(rings: &[FragmentRing], points: &[[f32; 2]]) -> Fnv {
     h
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let names = ["glass.plate160.cracks", "glass.plate160.fragments", "glass.plate160.mask", "glass.plate160.time"];
     let side = PLATE as f32;
@@ -525,6 +549,7 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit(names[3], time.map_err(refused).map(|()| floats_hash(&out.floats[..pixels])));
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let names = [
         "skin.fig19a64.outlines",
@@ -537,24 +562,53 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         return names.into_iter().for_each(|name| emit(name, Err(Failure("skin: no preset fig19a"))));
     };
     let params = SkinParams { width: SKIN, height: SKIN, ..preset };
-    let Memory { skin_cells, skin_vertices, sites, clip, words, out, normals, rgb, cell_map, .. } = memory;
+    let Memory {
+        skin_cells,
+        skin_vertices,
+        sites,
+        clip,
+        words,
+        skin_levels,
+        boxes,
+        wedges,
+        crossings,
+        out,
+        normals,
+        rgb,
+        cell_map,
+        ..
+    } = memory;
     let pixels = SKIN_PIXELS;
     let (height, normals) = (&mut out.floats[..pixels], &mut normals[..pixels]);
     // The Q16 maps first, from a skin built in the same memory, so that the f32 maps are what
     // the shading reads.
-    let q16 = Skin::<Q16>::new(&params, SkinBuffers { cells: skin_cells, vertices: skin_vertices, sites, clip, words })
-        .map_err(|_| Failure("skin: Skin::new refused (memory too small?)"))
-        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&skin, height, normals)));
-    let mut skin =
-        match Skin::<f32>::new(&params, SkinBuffers { cells: skin_cells, vertices: skin_vertices, sites, clip, words })
-        {
-            Ok(skin) => skin,
-            Err(_) => {
-                return names
-                    .into_iter()
-                    .for_each(|name| emit(name, Err(Failure("skin: Skin::new refused (memory too small?)"))));
+    // The same static memory for both skins, one after the other.
+    macro_rules! buffers {
+        () => {
+            SkinBuffers {
+                cells: &mut **skin_cells,
+                vertices: &mut **skin_vertices,
+                sites: &mut **sites,
+                clip: &mut **clip,
+                words: &mut **words,
+                levels: &mut **skin_levels,
+                boxes: &mut **boxes,
+                wedges: &mut **wedges,
+                crossings: &mut **crossings,
             }
         };
+    }
+    let q16 = Skin::<Q16>::new(&params, buffers!())
+        .map_err(|_| Failure("skin: Skin::new refused (memory too small?)"))
+        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&mut skin, height, normals)));
+    let mut skin = match Skin::<f32>::new(&params, buffers!()) {
+        Ok(skin) => skin,
+        Err(_) => {
+            return names
+                .into_iter()
+                .for_each(|name| emit(name, Err(Failure("skin: Skin::new refused (memory too small?)"))));
+        }
+    };
     if let Err(e) = built(&mut skin) {
         return names.into_iter().for_each(|name| emit(name, Err(e)));
     }
@@ -568,7 +622,7 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         }
     }
     emit(names[0], Ok(h.finish()));
-    let f32 = maps(&skin, height, normals);
+    let f32 = maps(&mut skin, height, normals);
     emit(names[1], f32);
     emit(names[2], q16);
     let rgb = &mut rgb[..pixels];
@@ -592,7 +646,7 @@ fn built<S: Scalar>(skin: &mut Skin<'_, S>) -> Result<(), Failure> {
 }
 
 /// The hash of a skin's height and normal maps, rendered into `height` and `normals`.
-fn maps<S: Scalar>(skin: &Skin<'_, S>, height: &mut [f32], normals: &mut [[f32; 3]]) -> Outcome {
+fn maps<S: Scalar>(skin: &mut Skin<'_, S>, height: &mut [f32], normals: &mut [[f32; 3]]) -> Outcome {
     let layers = SkinLayers { height: Some(&mut *height), normal: Some(&mut *normals), ..SkinLayers::default() };
     skin.render(&SkinRender::default(), layers).map_err(|_| Failure("skin: render refused"))?;
     let mut h = Fnv::new();
@@ -601,6 +655,7 @@ fn maps<S: Scalar>(skin: &Skin<'_, S>, height: &mut [f32], normals: &mut [[f32; 
     Ok(h.finish())
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn rng(emit: &mut dyn FnMut(&'static str, Outcome)) {
     for (stream, name) in STREAMS {
         let mut rng = Rng::new(SEED, stream);
@@ -644,6 +699,7 @@ fn backend_table<S: Scalar>() -> u64 {
     h.finish()
 }
 
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
 fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit("scalar.f32", Ok(backend_table::<f32>()));
     emit("scalar.micromath", Ok(backend_table::<micromath::F32>()));

@@ -1,0 +1,140 @@
+//! Memory that follows the work (issue 24 item 3): each model's memory need is a function of
+//! its parameters, the one `new` (Rust) and `*_create_in` (C) check, and it is exact: one
+//! element (one byte) less is refused with a clear status, the need itself suffices to build
+//! and render. A 64×64 one-level skin needs about 122 KiB (its outline vertices, bounded by
+//! Euler's formula, are half of it), not the 434 KB of fixed capacities it needed before.
+
+use core::ffi::c_void;
+
+use hibi::*;
+use hibi_core::skin::{Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, preset};
+
+/// Bytes of a skin's arrays.
+fn skin_bytes(m: &SkinMemory) -> usize {
+    use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinLevel, Wedge};
+    m.cells * size_of::<SkinCell>()
+        + m.vertices * 16
+        + m.sites * size_of::<Site>()
+        + m.clip * size_of::<ClipVertex>()
+        + m.words * 4
+        + m.levels * size_of::<SkinLevel>()
+        + m.boxes * 32
+        + m.wedges * size_of::<Wedge>()
+        + m.crossings * 8
+}
+
+/// Builds and renders `params` in buffers of exactly `m` elements, or with the array `short`
+/// (0 to 8, in `SkinBuffers` order) one element short.
+fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<(), SkinError> {
+    let less = |k: usize, n: usize| if short == Some(k) { n - 1 } else { n };
+    let mut cells = vec![Default::default(); less(0, m.cells)];
+    let mut vertices = vec![[0; 2]; less(1, m.vertices)];
+    let mut sites = vec![Default::default(); less(2, m.sites)];
+    let mut clip = vec![Default::default(); less(3, m.clip)];
+    let mut words = vec![0; less(4, m.words)];
+    let mut levels = vec![Default::default(); less(5, m.levels)];
+    let mut boxes = vec![[0; 4]; less(6, m.boxes)];
+    let mut wedges = vec![Default::default(); less(7, m.wedges)];
+    let mut crossings = vec![0; less(8, m.crossings)];
+    let buffers = SkinBuffers {
+        cells: &mut cells,
+        vertices: &mut vertices,
+        sites: &mut sites,
+        clip: &mut clip,
+        words: &mut words,
+        levels: &mut levels,
+        boxes: &mut boxes,
+        wedges: &mut wedges,
+        crossings: &mut crossings,
+    };
+    let mut skin = Skin::<f32>::new(params, buffers)?;
+    assert!(!skin.run().capacity_reached, "the capacities suffice");
+    let pixels = (params.width * params.height) as usize;
+    let (mut height, mut cell) = (vec![0.0; pixels], vec![0u32; pixels]);
+    let layers = SkinLayers { height: Some(&mut height), cell: Some(&mut cell), ..SkinLayers::default() };
+    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers)?;
+    assert!(cell.iter().all(|&c| c != hibi_core::skin::NO_CELL), "every pixel lies in a cell");
+    Ok(())
+}
+
+#[test]
+fn a_skin_needs_exactly_its_memory() {
+    let one = SkinParams { width: 64, height: 64, ..SkinParams::default() };
+    let three = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
+    for params in [one, three] {
+        let m = params.memory().expect("valid");
+        skin_in(&params, &m, None).expect("the exact need suffices");
+        let needs = [m.cells, m.vertices, m.sites, m.clip, m.words, m.levels, m.boxes, m.wedges, m.crossings];
+        for (k, &needed) in needs.iter().enumerate().filter(|(_, n)| **n > 0) {
+            assert_eq!(skin_in(&params, &m, Some(k)), Err(SkinError::BufferTooSmall { needed }), "array {k} short");
+        }
+    }
+}
+
+#[test]
+fn a_64_by_64_one_level_skin_needs_its_own_capacities_only() {
+    let params = SkinParams { width: 64, height: 64, ..SkinParams::default() };
+    assert_eq!(params.levels, 1);
+    let bytes = skin_bytes(&params.memory().expect("valid"));
+    let fig19a = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
+    let three = skin_bytes(&fig19a.memory().expect("valid"));
+    println!("skin 64x64: one level (default) {bytes} bytes; fig19a (three levels) {three} bytes");
+    assert!(bytes < 128 * 1024, "{bytes} bytes");
+    // The C library's need: the arrays, the object's header and alignment.
+    let mut c = hibi_skin_params_default();
+    (c.width, c.height) = (64, 64);
+    let mut size = 0;
+    // SAFETY: valid pointers.
+    assert_eq!(unsafe { hibi_skin_memory_size(&c, &mut size) }, HIBI_OK);
+    assert!(size >= bytes && size < bytes + 4096, "{size} bytes for {bytes} of arrays");
+}
+
+/// Creates an object in caller memory of `len` bytes; its status (the object destroyed).
+///
+/// # Safety
+/// `create_in` and `destroy` must be a model's pair.
+unsafe fn create_in<P, T>(
+    params: &P,
+    len: usize,
+    create_in: unsafe extern "C" fn(*const P, *mut c_void, usize, *mut *mut T) -> hibi_status,
+    destroy: unsafe extern "C" fn(*mut T),
+) -> hibi_status {
+    let mut memory = vec![0u64; len.div_ceil(8)];
+    let mut out = core::ptr::null_mut();
+    // SAFETY: `memory` holds `len` bytes, aligned to 8.
+    let status = unsafe { create_in(params, memory.as_mut_ptr().cast(), len, &mut out) };
+    if !out.is_null() {
+        // SAFETY: made above, in `memory`, which is still alive.
+        unsafe { destroy(out) };
+    }
+    status
+}
+
+#[test]
+fn every_model_in_c_needs_exactly_its_memory_size() {
+    let mut mud = hibi_mud_params_default();
+    (mud.columns, mud.rows) = (16, 16);
+    let mut glass = hibi_glass_params_default();
+    (glass.width, glass.height, glass.impact) = (128.0, 128.0, [64.0; 2]);
+    let mut skin = hibi_skin_params_default();
+    (skin.width, skin.height) = (64, 64);
+    let (mut sizes, mut size) = (Vec::new(), 0);
+    // SAFETY: valid pointers; each create_in with its destroy.
+    unsafe {
+        assert_eq!(hibi_mud_memory_size(&mud, &mut size), HIBI_OK);
+        assert_eq!(create_in(&mud, size - 1, hibi_mud_create_in, hibi_mud_destroy), HIBI_ERROR_BUFFER_TOO_SMALL);
+        assert_eq!(create_in(&mud, size, hibi_mud_create_in, hibi_mud_destroy), HIBI_OK);
+        sizes.push(("mud 16x16", size));
+        assert_eq!(hibi_glass_memory_size(&glass, &mut size), HIBI_OK);
+        let (make, destroy) = (hibi_glass_create_in, hibi_glass_destroy);
+        assert_eq!(create_in(&glass, size - 1, make, destroy), HIBI_ERROR_BUFFER_TOO_SMALL);
+        assert_eq!(create_in(&glass, size, make, destroy), HIBI_OK);
+        sizes.push(("glass 128x128", size));
+        assert_eq!(hibi_skin_memory_size(&skin, &mut size), HIBI_OK);
+        let (make, destroy) = (hibi_skin_create_in, hibi_skin_destroy);
+        assert_eq!(create_in(&skin, size - 1, make, destroy), HIBI_ERROR_BUFFER_TOO_SMALL);
+        assert_eq!(create_in(&skin, size, make, destroy), HIBI_OK);
+        sizes.push(("skin 64x64, one level", size));
+    }
+    println!("{sizes:?}");
+}

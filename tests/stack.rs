@@ -1,0 +1,189 @@
+//! Stack (issue 24 item 2): every model's scratch lives in caller memory, and no public
+//! function needs more than 16 KiB of stack. A thread with a 32 KiB stack runs every model end
+//! to end (create, step, run, every output, render, on both backends; an overflow aborts the
+//! test process); the same calls on a larger thread are each measured on their own: the stack
+//! is painted below the call, and the deepest painted word it overwrote gives its peak, which
+//! must stay within 16 KiB. The golden scenes, whose harness adds frames of its own (about
+//! 13 KB in release), run in a thread of 64 KiB and must match. The README gives the figures
+//! (in release: `cargo test --release --test stack -- --nocapture`).
+
+use std::hint::black_box;
+
+use hibi_scenes::{Memory, check};
+
+/// The models' thread's stack: 32 KiB in an optimised build (as glibc counts it: its guard
+/// page and the thread's TLS come out of it). A debug build of the library (debug assertions,
+/// overflow checks) has larger frames (Skin::new 14 KB against 4 KB) and gets 64 KiB.
+const THREAD_STACK: usize = if cfg!(debug_assertions) { 64 * 1024 } else { 32 * 1024 };
+/// The golden scenes' thread's stack.
+const SCENES_STACK: usize = 64 * 1024;
+/// The most stack one public function may use, from its caller's frame.
+const LIMIT: usize = 16 * 1024;
+/// What the painted words hold.
+const PAINT: u64 = 0x5eed_57ac_c0de_d00d;
+
+/// An address in the caller's frame (about its stack pointer).
+#[inline(never)]
+fn stack_pointer() -> usize {
+    let marker = 0u8;
+    black_box(&marker) as *const u8 as usize
+}
+
+/// Paints the stack from `bottom` up to a little below this function's own frame.
+#[inline(never)]
+fn paint(bottom: usize) {
+    let top = (stack_pointer() - 256) & !7;
+    let mut at = bottom;
+    while at < top {
+        // SAFETY: [bottom, top) lies in this thread's stack (1 MiB; `bottom` is MEASURED below
+        // the measuring frame) below every live frame; nothing else uses it.
+        unsafe { std::ptr::with_exposed_provenance_mut::<u64>(at).write_volatile(PAINT) };
+        at += 8;
+    }
+}
+
+/// The lowest address above `bottom` whose paint was overwritten.
+#[inline(never)]
+fn deepest(bottom: usize) -> usize {
+    let mut at = bottom;
+    // SAFETY: as in `paint`: reads of this thread's stack below every live frame.
+    while unsafe { std::ptr::with_exposed_provenance::<u64>(at).read_volatile() } == PAINT {
+        at += 8;
+    }
+    at
+}
+
+#[test]
+fn every_golden_scene_runs_in_a_thread_of_64_kib() {
+    let report = std::thread::Builder::new()
+        .stack_size(SCENES_STACK)
+        .spawn(|| {
+            let mut memory = Memory::take().expect("the only test that takes the scenes' memory");
+            let mut report = String::new();
+            let differ = check(&mut memory, "host, 64 KiB thread", &mut report).expect("a String takes every line");
+            (differ, report)
+        })
+        .expect("a thread")
+        .join()
+        .expect("the scenes ran");
+    assert_eq!(report.0, 0, "golden scenes differ:\n{}", report.1);
+}
+
+/// The calls made and, when measuring, each one's stack peak.
+struct Calls {
+    measure: bool,
+    peaks: Vec<(&'static str, usize)>,
+}
+
+/// Runs `f` on this thread (with the stack painted below this frame when measuring, and its
+/// peak recorded).
+#[inline(never)]
+fn measured<R>(calls: &mut Calls, name: &'static str, f: impl FnOnce() -> R) -> R {
+    if !calls.measure {
+        return f();
+    }
+    let base = stack_pointer();
+    let bottom = (base - MEASURED) & !7;
+    paint(bottom);
+    let result = black_box(f());
+    calls.peaks.push((name, base - deepest(bottom)));
+    result
+}
+
+/// Bytes painted below a measured call (its thread has a stack of 1 MiB).
+const MEASURED: usize = 512 * 1024;
+
+/// Every public function of every model, each measured on its own (new, run, step, every
+/// output, render), on both backends where there are two.
+fn every_public_function(peaks: &mut Calls) {
+    use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+    use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender};
+    use hibi_core::scalar::Q16;
+    use hibi_core::skin::{ShadeParams, Skin, SkinLayers, SkinParams, SkinRender, preset, shade};
+
+    let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
+    let mut store = params.memory().expect("valid").allocate::<f32>();
+    let mut mud = measured(peaks, "Mud::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
+    measured(peaks, "Mud::step", || mud.step(1000));
+    measured(peaks, "Mud::run", || mud.run());
+    let counts = mud.network_counts();
+    let (mut v, mut e, mut p) = (
+        vec![Default::default(); counts.vertices],
+        vec![Default::default(); counts.edges],
+        vec![Default::default(); counts.points],
+    );
+    measured(peaks, "Mud::network", || mud.network(&mut v, &mut e, &mut p).expect("sized"));
+    let (mut rings, mut points) = (vec![Default::default(); 4096], vec![[0.0; 2]; 65536]);
+    measured(peaks, "Mud::cells", || mud.cells(&mut rings, &mut points).expect("sized"));
+    measured(peaks, "Mud::statistics", || mud.statistics());
+    let (mut mask, mut time, mut height) = (vec![0u8; 128 * 128], vec![0.0; 128 * 128], vec![0.0; 128 * 128]);
+    let render = MudRender { width: 128, height: 128, ..MudRender::default() };
+    let layers = MudLayers { mask: Some(&mut mask), time: Some(&mut time), height: Some(&mut height) };
+    measured(peaks, "Mud::render", || mud.render(&render, layers).expect("sized"));
+    let mut store = params.memory().expect("valid").allocate::<Q16>();
+    let mut mud = measured(peaks, "Mud<Q16>::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
+    measured(peaks, "Mud<Q16>::run", || mud.run());
+    let irregular = MudParams { topology: hibi_core::mud::Topology::Irregular, ..params };
+    let mut store = irregular.memory().expect("valid").allocate::<f32>();
+    let mut mud = measured(peaks, "Mud::new (irregular)", || Mud::new(&irregular, store.buffers()).expect("memory"));
+    measured(peaks, "Mud::run (irregular)", || mud.run());
+
+    let params = GlassParams { width: 160.0, height: 160.0, impact: [80.0; 2], seed: 7, ..GlassParams::default() };
+    let mut store = params.memory().expect("valid").allocate();
+    let mut glass = measured(peaks, "Glass::new", || Glass::new(&params, store.buffers()).expect("memory suffices"));
+    measured(peaks, "Glass::step", || glass.step(1000));
+    measured(peaks, "Glass::run", || glass.run());
+    measured(peaks, "Glass::fragments", || glass.fragments(&mut rings, &mut points).expect("sized"));
+    let render = GlassRender { width: 160, height: 160, ..GlassRender::default() };
+    let (mut mask, mut time) = (vec![0u8; 160 * 160], vec![0.0; 160 * 160]);
+    let layers = GlassLayers { mask: Some(&mut mask), time: Some(&mut time) };
+    measured(peaks, "Glass::render", || glass.render(&render, layers).expect("sized"));
+
+    let params = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
+    let memory = measured(peaks, "SkinParams::memory", || params.memory().expect("valid"));
+    let mut store = memory.allocate();
+    let mut skin = measured(peaks, "Skin::new", || Skin::<f32>::new(&params, store.buffers()).expect("memory"));
+    measured(peaks, "Skin::step", || skin.step(1000));
+    measured(peaks, "Skin::run", || skin.run());
+    let (mut height, mut normal, mut cell) = (vec![0.0; 64 * 64], vec![[0.0; 3]; 64 * 64], vec![0u32; 64 * 64]);
+    let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), cell: Some(&mut cell) };
+    measured(peaks, "Skin::render", || skin.render(&SkinRender { cell_level: 2 }, layers).expect("sized"));
+    let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
+    measured(peaks, "Skin::render (cells)", || skin.render(&SkinRender::default(), layers).expect("sized"));
+    let longest = *skin.cells().iter().max_by_key(|c| c.vertex_count).expect("cells");
+    measured(peaks, "Skin::for_each_pixel", || skin.for_each_pixel(&longest, |x, y| _ = black_box((x, y))));
+    let mut rgb = vec![[0u8; 3]; 64 * 64];
+    measured(peaks, "skin::shade", || shade(&height, &normal, &ShadeParams::default(), &mut rgb).expect("sized"));
+    let mut skin = measured(peaks, "Skin<Q16>::new", || Skin::<Q16>::new(&params, store.buffers()).expect("memory"));
+    measured(peaks, "Skin<Q16>::run", || skin.run());
+    let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
+    measured(peaks, "Skin<Q16>::render", || skin.render(&SkinRender::default(), layers).expect("sized"));
+}
+
+#[test]
+fn every_model_runs_end_to_end_in_a_thread_of_32_kib_in_release() {
+    std::thread::Builder::new()
+        .stack_size(THREAD_STACK)
+        .spawn(|| every_public_function(&mut Calls { measure: false, peaks: Vec::new() }))
+        .expect("a thread")
+        .join()
+        .expect("every model ran");
+}
+
+#[test]
+fn no_public_function_of_a_model_needs_more_than_16_kib_of_stack() {
+    let peaks = std::thread::Builder::new()
+        .stack_size(1 << 20)
+        .spawn(|| {
+            let mut calls = Calls { measure: true, peaks: Vec::new() };
+            every_public_function(&mut calls);
+            calls.peaks
+        })
+        .expect("a thread")
+        .join()
+        .expect("every model ran");
+    let report: String = peaks.iter().map(|(name, peak)| format!("{name:28} {peak:6} bytes of stack\n")).collect();
+    println!("{report}");
+    let over: Vec<_> = peaks.iter().filter(|(_, peak)| *peak > LIMIT).collect();
+    assert!(over.is_empty(), "functions over {LIMIT} bytes of stack: {over:?}\n{report}");
+}
