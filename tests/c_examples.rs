@@ -74,7 +74,9 @@ fn build_and_run_capturing(
     let lib = library_dir();
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
-    let exe = out_dir.join(format!("{stem}_{linkage:?}"));
+    // Named by compiler too: the same source may be built by two compilers at once.
+    let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
+    let exe = out_dir.join(format!("{stem}_{by}_{linkage:?}"));
     let mut cc = Command::new(compiler);
     cc.arg(format!("-std={standard}"))
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
@@ -505,6 +507,17 @@ fn c_tests_are_clean_under_valgrind() {
     for source in sources {
         let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", &source, Linkage::Valgrind, &[]);
         assert!(stderr.is_empty(), "{source} under Valgrind printed on stderr:\n{stderr}");
+        assert!(!stdout.is_empty(), "{source} printed nothing");
+    }
+}
+
+/// Every C program in `tests/c/` also runs clean when clang builds it under ASan and UBSan
+/// (the tests above use the system's `cc`, usually gcc): exit 0, nothing on stderr.
+#[test]
+fn c_tests_are_clean_under_clang_sanitizers() {
+    for source in c_tests() {
+        let (stdout, stderr) = build_and_run_capturing("clang", "c99", &source, Linkage::Sanitized, &[]);
+        assert!(stderr.is_empty(), "{source} built by clang printed on stderr:\n{stderr}");
         assert!(!stdout.is_empty(), "{source} printed nothing");
     }
 }
