@@ -1,7 +1,10 @@
 //! The C99 and C++17 examples in `c_examples/` compile against `include/hibi.h` with
 //! `-Wall -Wextra -Wpedantic -Werror`, link the static and the shared library the way an
 //! engine does, run, and print exactly what hibi's Rust API computes. A third build links the
-//! static library under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer.
+//! static library under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer, a
+//! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
+//! programs in `tests/c/` (issue 25) run under the sanitizers and under Valgrind; one of them,
+//! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -38,7 +41,15 @@ enum Linkage {
     Shared,
     /// Static, with `-fsanitize=address,undefined`; any report fails the run.
     Sanitized,
+    /// Static, run under `valgrind --error-exitcode=1 --leak-check=full`; any error or leak
+    /// fails the run.
+    Valgrind,
 }
+
+/// Valgrind's command line: quiet (it prints only what it finds), and any error or leak a
+/// failing exit status.
+/// (Still-reachable blocks are not errors: the panic hook hibi installs once stays.)
+const VALGRIND: &[&str] = &["valgrind", "-q", "--error-exitcode=1", "--leak-check=full"];
 
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
 /// returns what it printed.
@@ -63,7 +74,9 @@ fn build_and_run_capturing(
     let lib = library_dir();
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
-    let exe = out_dir.join(format!("{stem}_{linkage:?}"));
+    // Named by compiler too: the same source may be built by two compilers at once.
+    let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
+    let exe = out_dir.join(format!("{stem}_{by}_{linkage:?}"));
     let mut cc = Command::new(compiler);
     cc.arg(format!("-std={standard}"))
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
@@ -72,7 +85,7 @@ fn build_and_run_capturing(
         .arg("-o")
         .arg(&exe);
     match linkage {
-        Linkage::Static => {
+        Linkage::Static | Linkage::Valgrind => {
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Sanitized => {
@@ -92,7 +105,22 @@ fn build_and_run_capturing(
     );
     // cargo points LD_LIBRARY_PATH at its own target directories, which may hold another
     // libhibi.so; the program must load the one it was linked with (its rpath).
-    let run = Command::new(&exe).args(args).env_remove("LD_LIBRARY_PATH").output().expect("run the example");
+    let mut command = match linkage {
+        Linkage::Valgrind => {
+            let mut valgrind = Command::new(VALGRIND[0]);
+            valgrind.args(&VALGRIND[1..]).arg(&exe);
+            valgrind
+        }
+        Linkage::Sanitized => {
+            let mut sanitized = Command::new(&exe);
+            // A refused allocation is a null pointer (hibi reports HIBI_ERROR_OUT_OF_MEMORY),
+            // as from the C library, not an abort.
+            sanitized.env("ASAN_OPTIONS", "allocator_may_return_null=1");
+            sanitized
+        }
+        Linkage::Static | Linkage::Shared => Command::new(&exe),
+    };
+    let run = command.args(args).env_remove("LD_LIBRARY_PATH").output().expect("run the example");
     let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
     let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
     assert!(run.status.success(), "{source} ({linkage:?}) exited with {}:\n{stdout}\n{stderr}", run.status);
@@ -178,8 +206,18 @@ fn c99_example_is_clean_under_sanitizers() {
 }
 
 #[test]
+fn c99_example_is_clean_under_valgrind() {
+    check_c_output(&build_and_run(&c_compiler(), "c99", "c_examples/rng.c", Linkage::Valgrind));
+}
+
+#[test]
 fn cpp17_example_is_clean_under_sanitizers() {
     check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Sanitized));
+}
+
+#[test]
+fn cpp17_example_is_clean_under_valgrind() {
+    check_cpp_output(&build_and_run(&cpp_compiler(), "c++17", "c_examples/rng.cpp", Linkage::Valgrind));
 }
 
 #[test]
@@ -265,6 +303,11 @@ fn mud_example_is_clean_under_sanitizers() {
     check_mud(Linkage::Sanitized);
 }
 
+#[test]
+fn mud_example_is_clean_under_valgrind() {
+    check_mud(Linkage::Valgrind);
+}
+
 /// The glass example's mask, as Rust draws it for the same parameters, and its fragment ring
 /// and point counts.
 fn expected_glass() -> (Vec<u8>, (usize, usize)) {
@@ -329,6 +372,11 @@ fn glass_example_links_shared_library() {
 #[test]
 fn glass_example_is_clean_under_sanitizers() {
     check_glass(Linkage::Sanitized);
+}
+
+#[test]
+fn glass_example_is_clean_under_valgrind() {
+    check_glass(Linkage::Valgrind);
 }
 
 /// What the skin example computes, as Rust computes it for the same parameters: the shaded
@@ -423,12 +471,55 @@ fn skin_example_is_clean_under_sanitizers() {
     check_skin(Linkage::Sanitized);
 }
 
+#[test]
+fn skin_example_is_clean_under_valgrind() {
+    check_skin(Linkage::Valgrind);
+}
+
 /// Issue 25's C regression programs in `tests/c/`, statically linked under the sanitizers:
 /// what they printed, after checking that they printed nothing on stderr.
 fn regression(source: &str) -> String {
     let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Sanitized, &[]);
     assert!(stderr.is_empty(), "{source} printed on stderr:\n{stderr}");
     stdout
+}
+
+/// Every C program in `tests/c/`, with the path the tests run it by.
+fn c_tests() -> Vec<String> {
+    let dir = workspace_root().join("tests/c");
+    let mut sources: Vec<String> = std::fs::read_dir(&dir)
+        .expect("read tests/c")
+        .map(|entry| entry.expect("a tests/c entry").file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".c"))
+        .map(|name| format!("tests/c/{name}"))
+        .collect();
+    sources.sort();
+    sources
+}
+
+/// Every C program in `tests/c/` runs clean under Valgrind: no error, no leak, nothing on
+/// stderr. (What each prints is checked under the sanitizers by its own test; some time
+/// themselves, which Valgrind's slowdown would spoil.)
+#[test]
+fn c_tests_are_clean_under_valgrind() {
+    let sources = c_tests();
+    assert!(sources.len() >= 5, "{sources:?}");
+    for source in sources {
+        let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", &source, Linkage::Valgrind, &[]);
+        assert!(stderr.is_empty(), "{source} under Valgrind printed on stderr:\n{stderr}");
+        assert!(!stdout.is_empty(), "{source} printed nothing");
+    }
+}
+
+/// Every C program in `tests/c/` also runs clean when clang builds it under ASan and UBSan
+/// (the tests above use the system's `cc`, usually gcc): exit 0, nothing on stderr.
+#[test]
+fn c_tests_are_clean_under_clang_sanitizers() {
+    for source in c_tests() {
+        let (stdout, stderr) = build_and_run_capturing("clang", "c99", &source, Linkage::Sanitized, &[]);
+        assert!(stderr.is_empty(), "{source} built by clang printed on stderr:\n{stderr}");
+        assert!(!stdout.is_empty(), "{source} printed nothing");
+    }
 }
 
 /// Defect 1: a huge ring count formula is bounded by `max_cracks` (it ran for minutes).
@@ -518,5 +609,97 @@ fn c_refusals_name_what_the_caller_wrote() {
     for want in expected {
         let (prefix, _) = want.split_once(": status").unwrap();
         assert_eq!(line(&output, &format!("{prefix}: ")), want);
+    }
+}
+
+/// The status constants `include/hibi.h` declares (`HIBI_OK` and every `HIBI_ERROR_*`), by
+/// name.
+fn header_statuses() -> Vec<(String, u32)> {
+    let header = std::fs::read_to_string(workspace_root().join("include/hibi.h")).expect("read include/hibi.h");
+    let statuses: Vec<(String, u32)> = header
+        .lines()
+        .filter_map(|l| l.strip_prefix("#define "))
+        .filter(|l| l.starts_with("HIBI_OK ") || l.starts_with("HIBI_ERROR_"))
+        .map(|l| {
+            let (name, value) = l.split_once(' ').unwrap_or_else(|| panic!("#define {l}"));
+            (name.to_owned(), value.trim().parse().unwrap_or_else(|_| panic!("#define {l}: not a number")))
+        })
+        .collect();
+    assert!(statuses.iter().any(|(name, _)| name == "HIBI_OK"), "no HIBI_OK in the header");
+    statuses
+}
+
+/// The rows of `docs/bad-input.md`: (row, status constant) for each case, and the constants
+/// listed as unreachable.
+fn bad_input_table() -> (Vec<(String, String)>, Vec<String>) {
+    let doc = std::fs::read_to_string(workspace_root().join("docs/bad-input.md")).expect("read docs/bad-input.md");
+    let (mut rows, mut unreachable) = (Vec::new(), Vec::new());
+    for l in doc.lines().filter(|l| l.starts_with("| `")) {
+        let cells: Vec<&str> = l.trim_matches('|').split(" | ").map(str::trim).collect();
+        let code = |cell: &str| cell.trim_matches('`').to_owned();
+        if cells[0].starts_with("`HIBI_") {
+            unreachable.push(code(cells[0]));
+        } else {
+            assert_eq!(cells.len(), 4, "a row has four cells: {l}");
+            rows.push((code(cells[0]), code(cells[3])));
+        }
+    }
+    (rows, unreachable)
+}
+
+/// Deliverable 4 of issue 25: each row of docs/bad-input.md gets the status it names from
+/// tests/c/bad_input.c (run under the sanitizers), no failing call wrote its output, the
+/// program has no case the table lacks, and every status the header declares is reached by
+/// a row or listed as unreachable (and then reached by none).
+#[test]
+fn c_bad_input_table() {
+    let statuses = header_statuses();
+    let value = |name: &str| {
+        statuses
+            .iter()
+            .find(|(n, _)| n == name)
+            .unwrap_or_else(|| panic!("docs/bad-input.md names {name}, which include/hibi.h does not declare"))
+            .1
+    };
+    let (rows, unreachable) = bad_input_table();
+    assert!(rows.len() >= statuses.len(), "{} rows", rows.len());
+    let output = regression("tests/c/bad_input.c");
+    let mut got = std::collections::BTreeMap::new();
+    for l in output.lines() {
+        let (row, rest) = l.split_once(": status ").unwrap_or_else(|| panic!("not a row: {l:?}"));
+        let (status, outcome) = rest.split_once(", ").unwrap_or((rest, ""));
+        let status: u32 = status.parse().unwrap_or_else(|_| panic!("not a status: {l:?}"));
+        assert!(
+            ["", "output untouched: yes", "output written: yes"].contains(&outcome),
+            "{row}: {outcome} (a failing call must leave its output alone)"
+        );
+        assert!(got.insert(row.to_owned(), status).is_none(), "row {row} printed twice");
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for (row, constant) in &rows {
+        assert!(seen.insert(row), "row {row} is in the table twice");
+        let status = *got.get(row).unwrap_or_else(|| panic!("row {row}: tests/c/bad_input.c has no such case"));
+        assert_eq!(status, value(constant), "row {row}: status {status}, the table says {constant}");
+    }
+    let undocumented: Vec<&String> = got.keys().filter(|row| !seen.contains(row)).collect();
+    assert!(undocumented.is_empty(), "cases not in docs/bad-input.md: {undocumented:?}");
+    let reached: std::collections::BTreeSet<u32> = got.values().copied().collect();
+    let missing: Vec<&str> = statuses
+        .iter()
+        .filter(|(name, v)| !reached.contains(v) && !unreachable.contains(name))
+        .map(|(name, _)| name.as_str())
+        .collect();
+    assert!(missing.is_empty(), "statuses no C test reaches and the table does not call unreachable: {missing:?}");
+    for name in &unreachable {
+        assert!(!reached.contains(&value(name)), "{name} is listed as unreachable but a row reaches it");
+    }
+}
+
+/// Every C program in `tests/c/` has a test that runs it under the sanitizers.
+#[test]
+fn every_c_test_runs_under_the_sanitizers() {
+    let this = include_str!("c_examples.rs");
+    for source in c_tests() {
+        assert!(this.contains(&format!("regression(\"{source}\")")), "no test runs {source} under the sanitizers");
     }
 }
