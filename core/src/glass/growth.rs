@@ -21,6 +21,16 @@ const MIN_UPDATE: f32 = 0.5;
 /// segment is one whose computed distance could not have passed the bound.
 const SLACK: f32 = 1.0 / 64.0;
 
+/// The box (x0, y0, x1, y1) of the segment `a`–`z`, its ends' coordinates sorted by plain
+/// comparisons (for the finite coordinates of the plate, what `min` and `max` give, without
+/// their NaN handling).
+#[inline(always)]
+fn span_of(a: [f32; 2], z: [f32; 2]) -> [f32; 4] {
+    let (lx, hx) = if a[0] <= z[0] { (a[0], z[0]) } else { (z[0], a[0]) };
+    let (ly, hy) = if a[1] <= z[1] { (a[1], z[1]) } else { (z[1], a[1]) };
+    [lx, ly, hx, hy]
+}
+
 /// What a step ran into.
 enum Hit {
     /// Nothing: the tip moves the whole step.
@@ -333,7 +343,7 @@ impl Glass<'_> {
         let rays = self.wedge(direction);
         let radius = p.sector_radius;
         self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
-            let edge = glass.edges[e as usize];
+            let edge = &glass.edges[e as usize];
             let owner = edge.crack;
             // Not its own crack, nor pieces other tips grew earlier in this time step (all
             // tips move at once).
@@ -342,7 +352,8 @@ impl Glass<'_> {
             }
             let (a, z) = glass.edge_points(e);
             // Outside the sector's box: no point of it is in the sector.
-            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
+            let [lx, ly, hx, hy] = span_of(a, z);
+            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                 return;
             }
             // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
@@ -350,9 +361,16 @@ impl Glass<'_> {
             // point found so far (it would not replace it). The box's distance is a lower
             // bound on the segment's (up to rounding, which SLACK covers many times over).
             let slot = near[..count].iter().position(|n| n.0 == owner);
-            let gap = |lo: f32, hi: f32, at: f32| (lo - at).max(at - hi).max(0.0);
-            let gx = gap(a[0].min(z[0]), a[0].max(z[0]), w[0]);
-            let gy = gap(a[1].min(z[1]), a[1].max(z[1]), w[1]);
+            let gap = |lo: f32, hi: f32, at: f32| {
+                if at < lo {
+                    lo - at
+                } else if at > hi {
+                    at - hi
+                } else {
+                    0.0
+                }
+            };
+            let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
             let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
             if gx * gx + gy * gy > bound * bound {
                 return;
@@ -583,7 +601,8 @@ impl Glass<'_> {
             }
             let (a, z) = glass.edge_points(e);
             // Boxes apart: no meeting.
-            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
+            let [lx, ly, hx, hy] = span_of(a, z);
+            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                 return;
             }
             let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
