@@ -16,6 +16,21 @@ const APPROACH_SHARE: f32 = 0.25;
 /// The shortest update \[px\] near a crack or edge.
 const MIN_UPDATE: f32 = 0.5;
 
+/// A margin \[px\] on the distance bounds that let a sector query skip a segment: far larger
+/// than the rounding of a distance on the plate (about 1e-4 px at 640 px), so that a skipped
+/// segment is one whose computed distance could not have passed the bound.
+const SLACK: f32 = 1.0 / 64.0;
+
+/// The box (x0, y0, x1, y1) of the segment `a`–`z`, its ends' coordinates sorted by plain
+/// comparisons (for the finite coordinates of the plate, what `min` and `max` give, without
+/// their NaN handling).
+#[inline(always)]
+fn span_of(a: [f32; 2], z: [f32; 2]) -> [f32; 4] {
+    let (lx, hx) = if a[0] <= z[0] { (a[0], z[0]) } else { (z[0], a[0]) };
+    let (ly, hy) = if a[1] <= z[1] { (a[1], z[1]) } else { (z[1], a[1]) };
+    [lx, ly, hx, hy]
+}
+
 /// What a step ran into.
 enum Hit {
     /// Nothing: the tip moves the whole step.
@@ -164,10 +179,11 @@ impl Glass<'_> {
         }
         let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
         let cell = self.index.grid.cell;
-        let (c, s, b) = (self.sector.cosine, self.sector.sine, self.params.sector_radius);
+        let (c, b) = (self.sector.cosine, self.params.sector_radius);
+        let rays = sector.map(|(_, direction)| self.wedge(direction));
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
-                if let Some((w, [dx, dy])) = sector {
+                if let (Some((w, _)), Some([left, right])) = (sector, rays) {
                     // The cell's corners relative to the apex.
                     let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
                     let (bx, by) = (ax + cell, ay + cell);
@@ -191,8 +207,6 @@ impl Glass<'_> {
                     }
                     if c >= 0.0 {
                         // Beyond a side of the wedge: every corner on the outer side of it.
-                        let left = [dx * c - dy * s, dx * s + dy * c];
-                        let right = [dx * c + dy * s, -dx * s + dy * c];
                         let corners = [[ax, ay], [bx, ay], [ax, by], [bx, by]];
                         let outside_right = corners.iter().all(|q| right[0] * q[1] - right[1] * q[0] < 0.0);
                         let outside_left = corners.iter().all(|q| left[0] * q[1] - left[1] * q[0] > 0.0);
@@ -215,6 +229,14 @@ impl Glass<'_> {
         }
     }
 
+    /// The unit directions of the left and right boundary rays of the sector S of a tip
+    /// heading `direction` (its heading turned by ±φ/2).
+    fn wedge(&self, direction: [f32; 2]) -> [[f32; 2]; 2] {
+        let (c, s) = (self.sector.cosine, self.sector.sine);
+        let [dx, dy] = direction;
+        [[dx * c - dy * s, dx * s + dy * c], [dx * c + dy * s, -dx * s + dy * c]]
+    }
+
     /// The endpoints of edge `e`.
     fn edge_points(&self, e: u32) -> ([f32; 2], [f32; 2]) {
         let ends = self.edges[e as usize].ends;
@@ -224,17 +246,24 @@ impl Glass<'_> {
     /// The point of segment `a`–`z` inside the sector S ahead of a tip at `w` heading
     /// `direction` that is nearest the tip: its offset from `w` and its distance (the paper's
     /// "shortest distance" from the tip to a crack or edge in S). The segment is clipped to the
-    /// sector's wedge first, so a crack that only crosses a corner of S is seen there.
-    fn nearest_in_sector(&self, w: [f32; 2], direction: [f32; 2], a: [f32; 2], z: [f32; 2]) -> Option<([f32; 2], f32)> {
-        let (c, s) = (self.sector.cosine, self.sector.sine);
+    /// sector's wedge first, so a crack that only crosses a corner of S is seen there. `rays`
+    /// is [`Self::wedge`] of `direction`.
+    #[inline(always)]
+    fn nearest_in_sector(
+        &self,
+        w: [f32; 2],
+        direction: [f32; 2],
+        rays: [[f32; 2]; 2],
+        a: [f32; 2],
+        z: [f32; 2],
+    ) -> Option<([f32; 2], f32)> {
+        let c = self.sector.cosine;
         let (ea, ez) = ([a[0] - w[0], a[1] - w[1]], [z[0] - w[0], z[1] - w[1]]);
         let d = [ez[0] - ea[0], ez[1] - ea[1]];
         let (mut t0, mut t1) = (0.0f32, 1.0f32);
         if c >= 0.0 {
             // A wedge of half-angle ≤ 90°: inside both boundary rays' half-planes.
-            let [dx, dy] = direction;
-            let left = [dx * c - dy * s, dx * s + dy * c];
-            let right = [dx * c + dy * s, -dx * s + dy * c];
+            let [left, right] = rays;
             let planes = [(right, 1.0f32), (left, -1.0f32)];
             for (ray, sign) in planes {
                 let f0 = sign * (ray[0] * ea[1] - ray[1] * ea[0]);
@@ -311,8 +340,10 @@ impl Glass<'_> {
         let crack = i as u32;
         let mut extra = [0.0f32; 2];
         let now = self.clock.time as f32;
+        let rays = self.wedge(direction);
+        let radius = p.sector_radius;
         self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
-            let edge = glass.edges[e as usize];
+            let edge = &glass.edges[e as usize];
             let owner = edge.crack;
             // Not its own crack, nor pieces other tips grew earlier in this time step (all
             // tips move at once).
@@ -321,17 +352,37 @@ impl Glass<'_> {
             }
             let (a, z) = glass.edge_points(e);
             // Outside the sector's box: no point of it is in the sector.
-            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
+            let [lx, ly, hx, hy] = span_of(a, z);
+            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                 return;
             }
-            let Some((v, d)) = glass.nearest_in_sector(w, direction, a, z) else { return };
+            // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
+            // than B from the tip (it has no point in S), or farther than its crack's nearest
+            // point found so far (it would not replace it). The box's distance is a lower
+            // bound on the segment's (up to rounding, which SLACK covers many times over).
+            let slot = near[..count].iter().position(|n| n.0 == owner);
+            let gap = |lo: f32, hi: f32, at: f32| {
+                if at < lo {
+                    lo - at
+                } else if at > hi {
+                    at - hi
+                } else {
+                    0.0
+                }
+            };
+            let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
+            let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
+            if gx * gx + gy * gy > bound * bound {
+                return;
+            }
+            let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };
             let normal = glass.normal_towards(a, z, v, d);
             // Only a crack the tip is closing in on can be met; one it runs alongside or away
             // from (a neighbour from the same impact, diverging) does not pull.
             if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
                 return;
             }
-            match near[..count].iter_mut().find(|n| n.0 == owner) {
+            match slot.map(|k| &mut near[k]) {
                 Some(n) if d < n.1 => *n = (owner, d, normal),
                 Some(_) => {}
                 None if count < NEAR => {
@@ -358,7 +409,7 @@ impl Glass<'_> {
         let corners = [[0.0, 0.0], [p.width, 0.0], [p.width, p.height], [0.0, p.height]];
         for k in 0..4 {
             let (a, z) = (corners[k], corners[(k + 1) % 4]);
-            if let Some((v, d)) = self.nearest_in_sector(w, direction, a, z) {
+            if let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) {
                 let normal = self.normal_towards(a, z, v, d);
                 nearest = nearest.min(d);
                 let k = p.crack_attraction / (d * d);
@@ -550,7 +601,8 @@ impl Glass<'_> {
             }
             let (a, z) = glass.edge_points(e);
             // Boxes apart: no meeting.
-            if a[0].max(z[0]) < x0 || a[0].min(z[0]) > x1 || a[1].max(z[1]) < y0 || a[1].min(z[1]) > y1 {
+            let [lx, ly, hx, hy] = span_of(a, z);
+            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                 return;
             }
             let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
