@@ -37,7 +37,8 @@ int main(int argc, char **argv) {
     hibi_status status;
     size_t cracks = 0, bytes = 0, i, large_at_edge = 0, large = 0;
     size_t pixels = (size_t)render.width * render.height;
-    size_t ring_count = 0, point_count = 0, holes = 0;
+    size_t ring_count = 0, point_count = 0, holes = 0, scratch_size = 0;
+    void *scratch;
     hibi_glass_fragment_ring *rings;
     hibi_vec2 *points;
     double area = 0.0;
@@ -85,15 +86,22 @@ int main(int argc, char **argv) {
     fclose(file);
     printf("wrote %s\n", path);
 
-    /* The fragments: ask for the counts, then hand buffers that fit. */
-    status = hibi_glass_fragment_counts(glass, &ring_count, &point_count);
+    /* The fragments: ask for the counts, then hand buffers that fit. The queries only read the
+       plate; they work in scratch memory of the caller's. */
+    status = hibi_glass_scratch_size(glass, &scratch_size);
+    if (status != HIBI_OK) return fail("hibi_glass_scratch_size", status);
+    scratch = malloc(scratch_size); /* malloc's alignment suffices (hibi_glass_memory_align(): 8) */
+    if (scratch == NULL) return 1;
+    status = hibi_glass_fragment_counts(glass, scratch, scratch_size, &ring_count, &point_count);
     if (status != HIBI_OK) return fail("hibi_glass_fragment_counts", status);
     rings = malloc(ring_count * sizeof *rings);
     points = malloc(point_count * sizeof *points);
     if (rings == NULL || points == NULL) return 1;
-    status = hibi_glass_fragments(glass, rings, ring_count, points, point_count - 1, &ring_count, &point_count);
+    status = hibi_glass_fragments(glass, scratch, scratch_size, rings, ring_count, points, point_count - 1,
+                                  &ring_count, &point_count);
     printf("fragments into a short buffer: status %u, %s\n", (unsigned)status, hibi_status_string(status));
-    status = hibi_glass_fragments(glass, rings, ring_count, points, point_count, &ring_count, &point_count);
+    status = hibi_glass_fragments(glass, scratch, scratch_size, rings, ring_count, points, point_count,
+                                  &ring_count, &point_count);
     if (status != HIBI_OK) return fail("hibi_glass_fragments", status);
     for (i = 0; i < ring_count; i++) {
         area += rings[i].area; /* holes count negative */
@@ -102,6 +110,7 @@ int main(int argc, char **argv) {
     printf("fragments: %lu, holes: %lu, points: %lu, covering %.1f of %.1f square pixels\n",
            (unsigned long)(ring_count - holes), (unsigned long)holes, (unsigned long)point_count, area,
            (double)params.width * params.height);
+    free(scratch);
     free(rings);
     free(points);
 

@@ -1583,27 +1583,47 @@ hibi_status hibi_glass_points(const struct hibi_glass *glass,
                               size_t *written);
 
 /**
- * Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
- * network as it stands.
+ * Writes the bytes of scratch (aligned to `hibi_glass_memory_align()`) that
+ * `hibi_glass_fragment_counts` and `hibi_glass_fragments` work in. The scratch is the
+ * caller's so that those queries only read the plate: several threads may query one plate
+ * at once, each with its own scratch.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `rings` and `points` NULL or writable.
+ * `glass` must be NULL or a live plate; `size` NULL or writable.
  */
-hibi_status hibi_glass_fragment_counts(struct hibi_glass *glass, size_t *rings, size_t *points);
+hibi_status hibi_glass_scratch_size(const struct hibi_glass *glass, size_t *size);
+
+/**
+ * Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
+ * network as it stands. Works in `scratch` (`scratch_size` bytes, at least
+ * `hibi_glass_scratch_size`); the plate is only read.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `scratch` NULL or writable for `scratch_size` bytes
+ * and used by no other call meanwhile; `rings` and `points` NULL or writable.
+ */
+hibi_status hibi_glass_fragment_counts(const struct hibi_glass *glass,
+                                       void *scratch,
+                                       size_t scratch_size,
+                                       size_t *rings,
+                                       size_t *points);
 
 /**
  * Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
  * record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
  * the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
  * do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
- * written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+ * written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
+ * `hibi_glass_fragment_counts` does; the plate is only read.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
- * writable for their lengths; `rings_written` and `points_written` NULL (refused) or
- * writable.
+ * `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
+ * `rings` and `points` NULL (only with length 0) or writable for their lengths;
+ * `rings_written` and `points_written` NULL (refused) or writable.
  */
-hibi_status hibi_glass_fragments(struct hibi_glass *glass,
+hibi_status hibi_glass_fragments(const struct hibi_glass *glass,
+                                 void *scratch,
+                                 size_t scratch_size,
                                  struct hibi_glass_fragment_ring *rings,
                                  size_t rings_len,
                                  struct hibi_vec2 *points,
@@ -1974,21 +1994,34 @@ hibi_status hibi_skin_create_in(const struct hibi_skin_params *params,
 void hibi_skin_destroy(struct hibi_skin *skin);
 
 /**
+ * Writes the bytes of scratch (aligned to `hibi_skin_memory_align()`) that `hibi_skin_render`
+ * works in. The scratch is the caller's so that renders only read the skin: several threads
+ * may render one skin at once, each with its own scratch.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `size` NULL or writable.
+ */
+hibi_status hibi_skin_scratch_size(const struct hibi_skin *skin, size_t *size);
+
+/**
  * Draws the surface's maps, each row-major over `width × height` pixels of the params:
  * `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
  * (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
  * OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
  * cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
- * without it). Pass NULL and length 0 for a map you do not want. If any map is short or
- * misaligned, or `cell_level` is not below `levels`, nothing is written. The render's
- * scratch (wedges, crossings) is in the skin's memory, so the skin is written to; its cells
- * are only read.
+ * without it). Pass NULL and length 0 for a map you do not want. Works in `scratch`
+ * (`scratch_size` bytes, at least `hibi_skin_scratch_size`); the skin is only read. If the
+ * scratch or any map is short or misaligned, or `cell_level` is not below `levels`, nothing
+ * is written.
  *
  * # Safety
- * `skin` must be NULL or a live skin, not used by another thread during the call; each map
- * NULL (only with length 0) or writable for its length, and the maps must not overlap.
+ * `skin` must be NULL or a live skin; `scratch` NULL or writable for `scratch_size` bytes
+ * and used by no other call meanwhile; each map NULL (only with length 0) or writable for its
+ * length, and the maps must not overlap.
  */
-hibi_status hibi_skin_render(struct hibi_skin *skin,
+hibi_status hibi_skin_render(const struct hibi_skin *skin,
+                             void *scratch,
+                             size_t scratch_size,
                              float *height,
                              size_t height_len,
                              float *normal,

@@ -321,7 +321,7 @@ fn expected_glass() -> (Vec<u8>, (usize, usize)) {
     while !glass.step(100).finished {}
     let mut mask = vec![0u8; 640 * 640];
     glass.render(&GlassRender::default(), GlassLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
-    (mask.iter().map(|v| 255 - v).collect(), glass.fragment_counts())
+    (mask.iter().map(|v| 255 - v).collect(), glass.fragment_counts(&mut vec![0; m.scratch]).unwrap())
 }
 
 fn check_glass(linkage: Linkage) {
@@ -387,17 +387,18 @@ fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
 
     let params = SkinParams { width: 200, height: 200, ..preset("fig19a").unwrap() };
     let m = params.memory().unwrap();
-    let mut memory = m.allocate();
+    let (mut memory, mut scratch) = (m.allocate(), m.allocate_scratch());
     let buffers = memory.buffers();
     let mut skin = Skin::<f32>::new(&params, buffers).unwrap();
     assert!(skin.run().finished);
     let pixels = 200 * 200;
     let (mut height, mut normal, mut map) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
-    skin.render(&SkinRender::default(), layers).unwrap();
+    skin.render(&SkinRender::default(), layers, &mut scratch.scratch()).unwrap();
     let mut rgb = vec![[0u8; 3]; pixels];
     shade(&height, &normal, &ShadeParams::default(), &mut rgb).unwrap();
-    skin.render(&SkinRender { cell_level: 2 }, SkinLayers { cell: Some(&mut map), ..SkinLayers::default() }).unwrap();
+    let layers = SkinLayers { cell: Some(&mut map), ..SkinLayers::default() };
+    skin.render(&SkinRender { cell_level: 2 }, layers, &mut scratch.scratch()).unwrap();
     let mut per_level = [0; 3];
     for c in skin.cells() {
         per_level[c.level as usize] += 1;
@@ -594,6 +595,8 @@ fn c_refusals_name_what_the_caller_wrote() {
         "shade without params: status 1, a required pointer argument is NULL [params]",
         "shade into NULL rgb: status 1, a required pointer argument is NULL [rgb]",
         "fragment_counts with NULL points: status 1, a required pointer argument is NULL [points]",
+        "fragment_counts with NULL scratch: status 1, a required pointer argument is NULL [scratch]",
+        "fragment_counts with a 1-byte scratch: status 3, a buffer is smaller than the call needs [scratch]",
         "a call that succeeds clears the name: status 0, ok []",
         "glass points with NULL written: status 1, a required pointer argument is NULL [written]",
         "glass step with NULL progress: status 0, ok []",

@@ -92,9 +92,9 @@ fn running_out_of_capacity_is_reported_not_a_panic() {
 #[test]
 fn a_plate_out_of_capacity_stays_usable_down_to_two_vertices() {
     let fragments = |g: &mut Glass| {
-        let (rings, points) = g.fragment_counts();
+        let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
         let (mut ring_out, mut point_out) = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
-        assert_eq!(g.fragments(&mut ring_out, &mut point_out), Ok((rings, points)));
+        assert_eq!(g.fragments(&mut scratch(g), &mut ring_out, &mut point_out), Ok((rings, points)));
         ring_out.iter().map(|r| r.area).sum::<f64>()
     };
     for (max_vertices, max_cracks, seed) in (0..6).flat_map(|s| [(2, 512, s), (3, 2, s), (5, 1, s), (40, 7, s)]) {
@@ -199,11 +199,21 @@ fn rasters_draw_the_network_and_date_its_pixels() {
     });
 }
 
+/// Scratch for a fragment query on `g`.
+fn scratch(g: &Glass) -> Vec<u32> {
+    vec![0; g.params().memory().expect("valid").scratch]
+}
+
 /// The fragments of a plate: ring records and each ring's points.
 fn fragments(g: &mut Glass) -> Vec<(FragmentRing, Vec<[f32; 2]>)> {
-    let (rings, points) = g.fragment_counts();
+    fragments_of(g)
+}
+
+/// [`fragments`] through a shared reference.
+fn fragments_of(g: &Glass) -> Vec<(FragmentRing, Vec<[f32; 2]>)> {
+    let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
     let mut out = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
-    assert_eq!(g.fragments(&mut out.0, &mut out.1), Ok((rings, points)));
+    assert_eq!(g.fragments(&mut scratch(g), &mut out.0, &mut out.1), Ok((rings, points)));
     out.0.iter().map(|r| (*r, out.1[r.first_point as usize..][..r.point_count as usize].to_vec())).collect()
 }
 
@@ -300,15 +310,40 @@ fn fragments_of_several_impacts_and_of_a_cut_short_run_still_tile_the_plate() {
     }
 }
 
+/// Fragment queries only read the plate: four threads query one plate at once, each with
+/// its own scratch, and get what one query alone gets. A short scratch is refused, naming the
+/// words it needs.
+#[test]
+fn fragment_queries_share_the_plate_across_threads() {
+    with_plate(&GlassParams { seed: 4, ..GlassParams::default() }, |g| {
+        let alone = fragments(g);
+        let g = &*g;
+        let together: Vec<_> = std::thread::scope(|s| {
+            let threads: Vec<_> = (0..4).map(|_| s.spawn(|| fragments_of(g))).collect();
+            threads.into_iter().map(|t| t.join().expect("no panic")).collect()
+        });
+        assert!(together.iter().all(|f| *f == alone));
+        let needed = g.params().memory().unwrap().scratch;
+        let mut short = vec![0; needed - 1];
+        assert_eq!(g.fragment_counts(&mut short), Err(GlassError::BufferTooSmall { needed }));
+    });
+}
+
 #[test]
 fn fragments_are_written_only_into_buffers_that_fit() {
     with_plate(&GlassParams { seed: 2, ..GlassParams::default() }, |g| {
-        let (rings, points) = g.fragment_counts();
+        let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
         let mut short = (vec![FragmentRing::default(); rings], vec![[9.0f32; 2]; points - 1]);
-        assert_eq!(g.fragments(&mut short.0, &mut short.1), Err(GlassError::BufferTooSmall { needed: points }));
+        assert_eq!(
+            g.fragments(&mut scratch(g), &mut short.0, &mut short.1),
+            Err(GlassError::BufferTooSmall { needed: points })
+        );
         assert!(short.0.iter().all(|r| *r == FragmentRing::default()) && short.1.iter().all(|q| *q == [9.0; 2]));
         let mut short = (vec![FragmentRing::default(); rings - 1], vec![[9.0f32; 2]; points]);
-        assert_eq!(g.fragments(&mut short.0, &mut short.1), Err(GlassError::BufferTooSmall { needed: rings }));
+        assert_eq!(
+            g.fragments(&mut scratch(g), &mut short.0, &mut short.1),
+            Err(GlassError::BufferTooSmall { needed: rings })
+        );
         assert!(short.1.iter().all(|q| *q == [9.0; 2]));
         // Asking twice gives the same answer: the walk leaves no trace in the plate.
         assert_eq!(fragments(g), fragments(g));

@@ -7,7 +7,9 @@
 use core::ffi::c_void;
 
 use hibi::*;
-use hibi_core::skin::{Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, preset};
+use hibi_core::skin::{
+    Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, SkinScratch, preset,
+};
 
 /// Bytes of a skin's arrays.
 fn skin_bytes(m: &SkinMemory) -> usize {
@@ -24,7 +26,7 @@ fn skin_bytes(m: &SkinMemory) -> usize {
 }
 
 /// Builds and renders `params` in buffers of exactly `m` elements, or with the array `short`
-/// (0 to 8, in `SkinBuffers` order) one element short.
+/// (0 to 8, in `SkinBuffers` then `SkinScratch` order) one element short.
 fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<(), SkinError> {
     let less = |k: usize, n: usize| if short == Some(k) { n - 1 } else { n };
     let mut cells = vec![Default::default(); less(0, m.cells)];
@@ -44,15 +46,14 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
         words: &mut words,
         levels: &mut levels,
         boxes: &mut boxes,
-        wedges: &mut wedges,
-        crossings: &mut crossings,
     };
     let mut skin = Skin::<f32>::new(params, buffers)?;
     assert!(!skin.run().capacity_reached, "the capacities suffice");
     let pixels = (params.width * params.height) as usize;
     let (mut height, mut cell) = (vec![0.0; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), cell: Some(&mut cell), ..SkinLayers::default() };
-    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers)?;
+    let mut scratch = SkinScratch { wedges: &mut wedges, crossings: &mut crossings };
+    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers, &mut scratch)?;
     assert!(cell.iter().all(|&c| c != hibi_core::skin::NO_CELL), "every pixel lies in a cell");
     Ok(())
 }
@@ -87,6 +88,12 @@ fn a_64_by_64_one_level_skin_needs_its_own_capacities_only() {
     // SAFETY: valid pointers.
     assert_eq!(unsafe { hibi_skin_memory_size(&c, &mut size) }, HIBI_OK);
     assert!(size >= bytes && size < bytes + 4096, "{size} bytes for {bytes} of arrays");
+}
+
+/// The argument the last refused call named.
+fn refused() -> String {
+    // SAFETY: hibi_error_argument returns a static NUL-terminated string.
+    unsafe { core::ffi::CStr::from_ptr(hibi_error_argument()) }.to_str().unwrap().to_string()
 }
 
 /// Creates an object in caller memory of `len` bytes; its status (the object destroyed).
@@ -135,6 +142,48 @@ fn every_model_in_c_needs_exactly_its_memory_size() {
         assert_eq!(create_in(&skin, size - 1, make, destroy), HIBI_ERROR_BUFFER_TOO_SMALL);
         assert_eq!(create_in(&skin, size, make, destroy), HIBI_OK);
         sizes.push(("skin 64x64, one level", size));
+    }
+    // The scratch of the read-only queries, exact too: one byte less is refused, naming it.
+    // SAFETY: valid pointers; each object destroyed once.
+    unsafe {
+        let mut g = core::ptr::null_mut();
+        assert_eq!(hibi_glass_create(&glass, &mut g), HIBI_OK);
+        let mut progress = hibi_glass_progress::default();
+        while hibi_glass_step(g, 100_000, &mut progress) == HIBI_OK && progress.finished == 0 {}
+        assert_eq!(hibi_glass_scratch_size(g, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let (mut rings, mut points) = (0, 0);
+        let short = hibi_glass_fragment_counts(g, scratch.as_mut_ptr().cast(), size - 1, &mut rings, &mut points);
+        assert_eq!((short, refused()), (HIBI_ERROR_BUFFER_TOO_SMALL, "scratch".into()));
+        let fits = hibi_glass_fragment_counts(g, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points);
+        assert!(fits == HIBI_OK && rings > 0 && points > 0);
+        sizes.push(("glass 128x128 fragment scratch", size));
+        hibi_glass_destroy(g);
+        let mut k = core::ptr::null_mut();
+        assert_eq!(hibi_skin_create(&skin, &mut k), HIBI_OK);
+        assert_eq!(hibi_skin_step(k, u64::MAX, core::ptr::null_mut()), HIBI_OK);
+        assert_eq!(hibi_skin_scratch_size(k, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let mut height = vec![0.0f32; 64 * 64];
+        let nothing = core::ptr::null_mut();
+        let mut render = |len| {
+            hibi_skin_render(
+                k,
+                scratch.as_mut_ptr().cast(),
+                len,
+                height.as_mut_ptr(),
+                64 * 64,
+                nothing,
+                0,
+                nothing.cast(),
+                0,
+                0,
+            )
+        };
+        assert_eq!((render(size - 1), refused()), (HIBI_ERROR_BUFFER_TOO_SMALL, "scratch".into()));
+        assert_eq!(render(size), HIBI_OK);
+        sizes.push(("skin 64x64 render scratch", size));
+        hibi_skin_destroy(k);
     }
     println!("{sizes:?}");
 }

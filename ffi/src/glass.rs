@@ -218,6 +218,8 @@ impl Outcome for hibi_glass_render_params {
 pub struct hibi_glass {
     glass: Glass<'static>,
     origin: Origin,
+    /// `u32` words of a fragment query's scratch.
+    scratch: usize,
 }
 
 convert!(hibi_glass_params <=> GlassParams, cookie: PARAMS_COOKIE {
@@ -265,8 +267,8 @@ impl Object for hibi_glass {
         }
     }
 
-    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
-        Ok(hibi_glass { glass: Glass::new(params, buffers).map_err(glass_status)?, origin })
+    fn make((params, m): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_glass { glass: Glass::new(params, buffers).map_err(glass_status)?, origin, scratch: m.scratch })
     }
 
     fn origin(&self) -> Origin {
@@ -499,23 +501,61 @@ const _: () =
 /// `hibi_glass_fragment_ring.hole_of` of an outer ring.
 pub const HIBI_GLASS_NOT_A_HOLE: u32 = u32::MAX;
 
-/// Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
-/// network as it stands.
+/// Writes the bytes of scratch (aligned to `hibi_glass_memory_align()`) that
+/// `hibi_glass_fragment_counts` and `hibi_glass_fragments` work in. The scratch is the
+/// caller's so that those queries only read the plate: several threads may query one plate
+/// at once, each with its own scratch.
 ///
 /// # Safety
-/// `glass` must be NULL or a live plate; `rings` and `points` NULL or writable.
+/// `glass` must be NULL or a live plate; `size` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_scratch_size(glass: *const hibi_glass, size: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        let bytes = object::scratch_size(|arena| arena.take::<u32>(glass.scratch))?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(size, c"size", bytes) }
+    })
+}
+
+/// The plate and its fragment scratch, checked.
+///
+/// # Safety
+/// As `hibi_glass_fragment_counts`.
+unsafe fn fragment_query<'a>(
+    glass: *const hibi_glass,
+    scratch: *mut c_void,
+    scratch_size: usize,
+) -> Result<(&'a Glass<'static>, &'a mut [u32]), hibi_status> {
+    // SAFETY: the caller's contract.
+    let glass = unsafe { object_ref(glass, c"glass") }?;
+    // SAFETY: the caller's contract.
+    let words = unsafe { object::scratch(scratch, scratch_size, |arena| arena.take::<u32>(glass.scratch)) }?;
+    Ok((&glass.glass, words))
+}
+
+/// Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
+/// network as it stands. Works in `scratch` (`scratch_size` bytes, at least
+/// `hibi_glass_scratch_size`); the plate is only read.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `scratch` NULL or writable for `scratch_size` bytes
+/// and used by no other call meanwhile; `rings` and `points` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_fragment_counts(
-    glass: *mut hibi_glass,
+    glass: *const hibi_glass,
+    scratch: *mut c_void,
+    scratch_size: usize,
     rings: *mut usize,
     points: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass, c"glass") }?;
         check_pointer(rings, c"rings")?;
         check_pointer(points, c"points")?;
-        let (r, p) = glass.glass.fragment_counts();
+        // SAFETY: the caller's contract.
+        let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
+        let (r, p) = glass.fragment_counts(scratch).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(rings, c"rings", r) }?;
         // SAFETY: checked; the caller's contract.
@@ -527,15 +567,19 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 /// record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
 /// the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
 /// do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
-/// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`.
+/// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
+/// `hibi_glass_fragment_counts` does; the plate is only read.
 ///
 /// # Safety
-/// `glass` must be NULL or a live plate; `rings` and `points` NULL (only with length 0) or
-/// writable for their lengths; `rings_written` and `points_written` NULL (refused) or
-/// writable.
+/// `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
+/// `rings` and `points` NULL (only with length 0) or writable for their lengths;
+/// `rings_written` and `points_written` NULL (refused) or writable.
 #[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_glass_fragments(
-    glass: *mut hibi_glass,
+    glass: *const hibi_glass,
+    scratch: *mut c_void,
+    scratch_size: usize,
     rings: *mut FragmentRing,
     rings_len: usize,
     points: *mut hibi_vec2,
@@ -544,16 +588,16 @@ pub unsafe extern "C" fn hibi_glass_fragments(
     points_written: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass, c"glass") }?;
         check_pointer(rings_written, c"rings_written")?;
         check_pointer(points_written, c"points_written")?;
+        // SAFETY: the caller's contract.
+        let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
         // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
         // and hibi_vec2 as [f32; 2] (asserted below).
         let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
         // SAFETY: as above.
         let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
-        let (r, p) = glass.glass.fragments(ring_out, point_out).map_err(|_| HIBI_ERROR_BUFFER_TOO_SMALL)?;
+        let (r, p) = glass.fragments(scratch, ring_out, point_out).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(rings_written, c"rings_written", r) }?;
         // SAFETY: checked; the caller's contract.
@@ -701,19 +745,25 @@ mod tests {
                 assert_eq!(hibi_glass_step(glass, 10_000, &mut progress), HIBI_OK);
             }
             let (mut ring_count, mut point_count) = (0usize, 0usize);
-            assert_eq!(hibi_glass_fragment_counts(glass, &mut ring_count, null_mut()), HIBI_ERROR_NULL_POINTER);
+            let mut ss = 0;
+            assert_eq!(hibi_glass_scratch_size(glass, &mut ss), HIBI_OK);
+            let mut scratch = vec![0u64; ss.div_ceil(8)];
+            let sp = scratch.as_mut_ptr().cast::<c_void>();
+            assert_eq!(hibi_glass_fragment_counts(glass, sp, ss, &mut ring_count, null_mut()), HIBI_ERROR_NULL_POINTER);
             assert_eq!(
-                hibi_glass_fragment_counts(null_mut(), &mut ring_count, &mut point_count),
+                hibi_glass_fragment_counts(null_mut(), sp, ss, &mut ring_count, &mut point_count),
                 HIBI_ERROR_NULL_POINTER
             );
             assert_eq!(ring_count, 0);
-            assert_eq!(hibi_glass_fragment_counts(glass, &mut ring_count, &mut point_count), HIBI_OK);
+            assert_eq!(hibi_glass_fragment_counts(glass, sp, ss, &mut ring_count, &mut point_count), HIBI_OK);
             assert!(ring_count > 10 && point_count > 3 * ring_count);
             let mut rings = vec![FragmentRing::default(); ring_count];
             let mut points = vec![hibi_vec2 { x: 9.0, y: 9.0 }; point_count];
             let (mut r, mut n) = (7usize, 7usize);
             let status = hibi_glass_fragments(
                 glass,
+                sp,
+                ss,
                 rings.as_mut_ptr(),
                 ring_count,
                 points.as_mut_ptr(),
@@ -725,6 +775,8 @@ mod tests {
             assert!((r, n) == (7, 7) && rings.iter().all(|x| x.point_count == 0) && points.iter().all(|q| q.x == 9.0));
             let status = hibi_glass_fragments(
                 glass,
+                sp,
+                ss,
                 rings.as_mut_ptr(),
                 ring_count,
                 points.as_mut_ptr(),

@@ -7,7 +7,7 @@
 //! (`*_create`, freed by `*_destroy`) or handed in by the caller (`*_create_in`), as engines
 //! with their own allocators need.
 
-use core::ffi::c_void;
+use core::ffi::{CStr, c_void};
 use core::mem::{align_of, size_of};
 use std::alloc::{Layout, alloc, dealloc};
 
@@ -195,20 +195,51 @@ pub(crate) unsafe fn create_in<T: Object>(
     check_pointer(out, c"out")?;
     // SAFETY: the caller's contract, passed on.
     let (plan, size) = unsafe { plan::<T>(input) }?;
-    let block = memory.cast::<u8>();
-    if block.is_null() {
-        return Err(refuse_argument(c"memory", HIBI_ERROR_NULL_POINTER));
-    }
-    if block.align_offset(BLOCK_ALIGN) != 0 {
-        return Err(refuse_argument(c"memory", HIBI_ERROR_MISALIGNED));
-    }
-    if memory_len < size {
-        return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
-    }
+    let block = caller_block(memory, memory_len, size, c"memory")?;
     // SAFETY: checked to hold the planned size, aligned; the caller's contract.
     let object = unsafe { place::<T>(block, &plan, Origin::Caller) }?;
     // SAFETY: checked above; the caller's contract.
     unsafe { write_out(out, c"out", object) }
+}
+
+/// Caller memory `memory` of `len` bytes, checked to be non-null, aligned to [`BLOCK_ALIGN`]
+/// and at least `needed` bytes long (each refusal names `name`).
+fn caller_block(memory: *mut c_void, len: usize, needed: usize, name: &'static CStr) -> Result<*mut u8, hibi_status> {
+    let block = memory.cast::<u8>();
+    if block.is_null() {
+        return Err(refuse_argument(name, HIBI_ERROR_NULL_POINTER));
+    }
+    if block.align_offset(BLOCK_ALIGN) != 0 {
+        return Err(refuse_argument(name, HIBI_ERROR_MISALIGNED));
+    }
+    if len < needed {
+        return Err(refuse_argument(name, HIBI_ERROR_BUFFER_TOO_SMALL));
+    }
+    Ok(block)
+}
+
+/// The bytes of a call's scratch whose arrays `carve` takes (`*_scratch_size`).
+pub(crate) fn scratch_size<A>(carve: impl Fn(&mut Arena) -> A) -> Result<usize, hibi_status> {
+    let mut arena = Arena { base: core::ptr::null_mut(), at: 0, overflow: false };
+    carve(&mut arena);
+    if arena.overflow { Err(HIBI_ERROR_SIZE_OVERFLOW) } else { Ok(arena.at) }
+}
+
+/// A call's scratch in caller memory (`scratch`, `scratch_size` bytes, checked as in
+/// `*_create_in`): the arrays `carve` takes, each element set to its default. Scratch makes a
+/// read-only query's working memory the caller's, so that the object itself is only read.
+///
+/// # Safety
+/// `memory` must be NULL or writable for `len` bytes, and not otherwise used while the
+/// arrays live.
+pub(crate) unsafe fn scratch<A>(
+    memory: *mut c_void,
+    len: usize,
+    carve: impl Fn(&mut Arena) -> A,
+) -> Result<A, hibi_status> {
+    let needed = scratch_size(&carve)?;
+    let base = caller_block(memory, len, needed, c"scratch")?;
+    Ok(carve(&mut Arena { base, at: 0, overflow: false }))
 }
 
 /// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is

@@ -22,8 +22,8 @@ use core::mem::size_of;
 
 use hibi_core::skin::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams,
-    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, preset,
-    shade,
+    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender,
+    SkinScratch, preset, shade,
 };
 
 use crate::fields::{Field, convert, enumeration};
@@ -214,6 +214,8 @@ impl Outcome for hibi_skin_shade_params {
 pub struct hibi_skin {
     skin: Skin<'static>,
     origin: Origin,
+    /// The sizes of a render's scratch.
+    memory: SkinMemory,
 }
 
 enumeration!(SiteLayout: SiteLayout::Triangular, SiteLayout::Square, SiteLayout::Random);
@@ -263,13 +265,11 @@ impl Object for hibi_skin {
             words: arena.take(m.words),
             levels: arena.take(m.levels),
             boxes: arena.take(m.boxes),
-            wedges: arena.take(m.wedges),
-            crossings: arena.take(m.crossings),
         }
     }
 
-    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
-        Ok(hibi_skin { skin: Skin::new(params, buffers).map_err(skin_status)?, origin })
+    fn make((params, memory): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_skin { skin: Skin::new(params, buffers).map_err(skin_status)?, origin, memory: *memory })
     }
 
     fn origin(&self) -> Origin {
@@ -386,23 +386,50 @@ unsafe fn layer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<O
     unsafe { buffer(ptr, len, name) }.map(Some)
 }
 
+impl hibi_skin {
+    /// Takes a render's scratch from `arena`.
+    fn scratch(&self, arena: &mut Arena) -> SkinScratch<'static> {
+        SkinScratch { wedges: arena.take(self.memory.wedges), crossings: arena.take(self.memory.crossings) }
+    }
+}
+
+/// Writes the bytes of scratch (aligned to `hibi_skin_memory_align()`) that `hibi_skin_render`
+/// works in. The scratch is the caller's so that renders only read the skin: several threads
+/// may render one skin at once, each with its own scratch.
+///
+/// # Safety
+/// `skin` must be NULL or a live skin; `size` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_skin_scratch_size(skin: *const hibi_skin, size: *mut usize) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let skin = unsafe { object_ref(skin, c"skin") }?;
+        let bytes = object::scratch_size(|arena| skin.scratch(arena))?;
+        // SAFETY: the caller's contract.
+        unsafe { write_out(size, c"size", bytes) }
+    })
+}
+
 /// Draws the surface's maps, each row-major over `width × height` pixels of the params:
 /// `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
 /// (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
 /// OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
 /// cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
-/// without it). Pass NULL and length 0 for a map you do not want. If any map is short or
-/// misaligned, or `cell_level` is not below `levels`, nothing is written. The render's
-/// scratch (wedges, crossings) is in the skin's memory, so the skin is written to; its cells
-/// are only read.
+/// without it). Pass NULL and length 0 for a map you do not want. Works in `scratch`
+/// (`scratch_size` bytes, at least `hibi_skin_scratch_size`); the skin is only read. If the
+/// scratch or any map is short or misaligned, or `cell_level` is not below `levels`, nothing
+/// is written.
 ///
 /// # Safety
-/// `skin` must be NULL or a live skin, not used by another thread during the call; each map
-/// NULL (only with length 0) or writable for its length, and the maps must not overlap.
+/// `skin` must be NULL or a live skin; `scratch` NULL or writable for `scratch_size` bytes
+/// and used by no other call meanwhile; each map NULL (only with length 0) or writable for its
+/// length, and the maps must not overlap.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_skin_render(
-    skin: *mut hibi_skin,
+    skin: *const hibi_skin,
+    scratch: *mut c_void,
+    scratch_size: usize,
     height: *mut f32,
     height_len: usize,
     normal: *mut f32,
@@ -413,7 +440,7 @@ pub unsafe extern "C" fn hibi_skin_render(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin, c"skin") }?;
+        let skin = unsafe { object_ref(skin, c"skin") }?;
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
         // and a trailing partial pixel of `normal` is not used.
         let layers = unsafe {
@@ -423,7 +450,9 @@ pub unsafe extern "C" fn hibi_skin_render(
                 cell: layer(cells, cells_len, c"cells")?,
             }
         };
-        skin.skin.render(&SkinRender { cell_level }, layers).map_err(skin_status)
+        // SAFETY: the caller's contract.
+        let mut scratch = unsafe { object::scratch(scratch, scratch_size, |arena| skin.scratch(arena)) }?;
+        skin.skin.render(&SkinRender { cell_level }, layers, &mut scratch).map_err(skin_status)
     })
 }
 
@@ -760,6 +789,10 @@ mod tests {
         unsafe {
             assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
             assert_eq!(hibi_skin_step(skin, u64::MAX, null_mut()), HIBI_OK);
+            let mut ss = 0;
+            assert_eq!(hibi_skin_scratch_size(skin, &mut ss), HIBI_OK);
+            let mut scratch = vec![0u64; ss.div_ceil(8)];
+            let sp = scratch.as_mut_ptr().cast::<c_void>();
             let mut height = vec![7.0f32; pixels];
             let mut normal = vec![7.0f32; 3 * pixels];
             let mut cells = vec![7u32; pixels];
@@ -774,20 +807,26 @@ mod tests {
                 (pixels, 0, pixels),
             ];
             for (hl, nl, cl) in short {
-                assert_eq!(hibi_skin_render(skin, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
+                assert_eq!(hibi_skin_render(skin, sp, ss, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
             }
-            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
+            assert_eq!(hibi_skin_render(skin, sp, ss, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
             assert_eq!(
-                hibi_skin_render(skin, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
+                hibi_skin_render(skin, sp, ss, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
                 HIBI_ERROR_NULL_POINTER
             );
             let odd = n.cast::<u8>().add(1).cast::<f32>();
-            assert_eq!(hibi_skin_render(skin, h, pixels, odd, 3 * pixels - 3, c, pixels, 0), HIBI_ERROR_MISALIGNED);
-            assert_eq!(hibi_skin_render(null_mut(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(
+                hibi_skin_render(skin, sp, ss, h, pixels, odd, 3 * pixels - 3, c, pixels, 0),
+                HIBI_ERROR_MISALIGNED
+            );
+            assert_eq!(
+                hibi_skin_render(null_mut(), sp, ss, h, pixels, n, 3 * pixels, c, pixels, 0),
+                HIBI_ERROR_NULL_POINTER
+            );
             assert!(untouched(&height, &normal, &cells));
 
             // Only the cell map; the level is checked only when the map is wanted.
-            assert_eq!(hibi_skin_render(skin, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
+            assert_eq!(hibi_skin_render(skin, sp, ss, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
             assert!(untouched(&height, &normal, &[]));
             let mut count = 0;
             assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
@@ -796,7 +835,7 @@ mod tests {
                 assert_eq!(hibi_skin_cell_info(skin, index as usize, &mut info), HIBI_OK);
                 assert_eq!(info.level, 1);
             }
-            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
+            assert_eq!(hibi_skin_render(skin, sp, ss, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
             assert!(height.iter().all(|&v| v >= 0.0) && height.iter().any(|&v| v > 2.0));
             assert!(normal.chunks(3).all(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-4));
 

@@ -183,15 +183,24 @@ static void calls_and_buffers(void) {
         size_t rings = 0, points = 0;
         hibi_glass_fragment_ring ring;
         hibi_vec2 point;
-        size_t rings_written = 777, points_written = 777;
-        if (hibi_glass_fragment_counts(glass, &rings, &points) != HIBI_OK) {
+        size_t rings_written = 777, points_written = 777, scratch_size = 0;
+        void *scratch = NULL;
+        if (hibi_glass_scratch_size(glass, &scratch_size) != HIBI_OK || (scratch = malloc(scratch_size)) == NULL ||
+            hibi_glass_fragment_counts(glass, scratch, scratch_size, &rings, &points) != HIBI_OK) {
             printf("fragment counts failed\n");
             exit(1);
         }
         /* The fresh plate has one fragment, the whole plate: a point buffer of one is short. */
         row_kept("short-output-buffer",
-                 hibi_glass_fragments(glass, &ring, 1, &point, points > 0 ? 1 : 0, &rings_written, &points_written),
+                 hibi_glass_fragments(glass, scratch, scratch_size, &ring, 1, &point, points > 0 ? 1 : 0,
+                                      &rings_written, &points_written),
                  rings_written == 777 && points_written == 777);
+        rings = points = 777;
+        row_kept("short-scratch", hibi_glass_fragment_counts(glass, scratch, scratch_size - 1, &rings, &points),
+                 rings == 777 && points == 777);
+        row_kept("null-scratch", hibi_glass_fragment_counts(glass, NULL, scratch_size, &rings, &points),
+                 rings == 777 && points == 777);
+        free(scratch);
     }
     row("null-optional-glass-progress", hibi_glass_step(glass, 1, NULL));
     row("null-optional-glass-counts", hibi_glass_impact(glass, 100.0f, 120.0f, NULL));
@@ -285,6 +294,8 @@ static void calls_and_buffers(void) {
         hibi_skin_cell cell;
         double xy[4] = {KEPT, KEPT, KEPT, KEPT};
         uint32_t *cells = malloc(64 * 48 * sizeof *cells);
+        size_t scratch_size = 0;
+        void *scratch = NULL;
         if (cells == NULL) {
             exit(1);
         }
@@ -297,9 +308,17 @@ static void calls_and_buffers(void) {
         written = 777;
         row_kept("outline-index-huge", hibi_skin_outline(skin, SIZE_MAX, xy, 4, &written),
                  written == 777 && xy[0] == KEPT);
-        row_kept("cell-level-past-the-levels", hibi_skin_render(skin, NULL, 0, NULL, 0, cells, 64 * 48, 2),
+        if (hibi_skin_scratch_size(skin, &scratch_size) != HIBI_OK || (scratch = malloc(scratch_size)) == NULL) {
+            exit(1);
+        }
+        row_kept("cell-level-past-the-levels",
+                 hibi_skin_render(skin, scratch, scratch_size, NULL, 0, NULL, 0, cells, 64 * 48, 2), cells[0] == 777);
+        row_kept("short-cell-map", hibi_skin_render(skin, scratch, scratch_size, NULL, 0, NULL, 0, cells, 4, 0),
                  cells[0] == 777);
-        row_kept("short-cell-map", hibi_skin_render(skin, NULL, 0, NULL, 0, cells, 4, 0), cells[0] == 777);
+        row_kept("short-render-scratch",
+                 hibi_skin_render(skin, scratch, scratch_size - 1, NULL, 0, NULL, 0, cells, 64 * 48, 0),
+                 cells[0] == 777);
+        free(scratch);
         free(cells);
     }
     {

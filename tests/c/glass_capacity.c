@@ -14,7 +14,8 @@ static void plate(unsigned max_vertices, unsigned max_cracks, unsigned long seed
     hibi_glass *glass = NULL;
     hibi_glass_progress progress;
     hibi_status status = HIBI_OK, first = HIBI_OK;
-    size_t rings = 0, points = 0, rings_written = 0, points_written = 0, cracks = 0, i;
+    size_t rings = 0, points = 0, rings_written = 0, points_written = 0, cracks = 0, i, scratch_size = 0;
+    void *scratch = NULL;
     hibi_glass_fragment_ring *ring_buffer;
     hibi_vec2 *point_buffer;
     unsigned char *mask;
@@ -35,13 +36,15 @@ static void plate(unsigned max_vertices, unsigned max_cracks, unsigned long seed
     status = hibi_glass_step(glass, 50, NULL);
     printf("max_vertices %u, max_cracks %u, seed %lu: step %u then %u", max_vertices, max_cracks, seed,
            (unsigned)first, (unsigned)status);
-    status = hibi_glass_fragment_counts(glass, &rings, &points);
+    if (hibi_glass_scratch_size(glass, &scratch_size) != HIBI_OK || (scratch = malloc(scratch_size)) == NULL) abort();
+    status = hibi_glass_fragment_counts(glass, scratch, scratch_size, &rings, &points);
     printf(", fragment_counts %u", (unsigned)status);
     ring_buffer = malloc((rings + 1) * sizeof *ring_buffer);
     point_buffer = malloc((points + 1) * sizeof *point_buffer);
     mask = malloc((size_t)render.width * render.height);
     if (ring_buffer == NULL || point_buffer == NULL || mask == NULL) abort();
-    status = hibi_glass_fragments(glass, ring_buffer, rings, point_buffer, points, &rings_written, &points_written);
+    status = hibi_glass_fragments(glass, scratch, scratch_size, ring_buffer, rings, point_buffer, points,
+                                  &rings_written, &points_written);
     for (i = 0; i < rings_written; i++) area += ring_buffer[i].area;
     printf(", fragments %u covering %.1f", (unsigned)status, area);
     status = hibi_glass_crack_count(glass, &cracks);
@@ -57,6 +60,7 @@ static void plate(unsigned max_vertices, unsigned max_cracks, unsigned long seed
     printf(", cracks %u", (unsigned)status);
     status = hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, mask, (size_t)render.width * render.height);
     printf(", render %u\n", (unsigned)status);
+    free(scratch);
     free(ring_buffer);
     free(point_buffer);
     free(mask);

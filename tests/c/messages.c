@@ -32,6 +32,7 @@ int main(void) {
     hibi_glass_point points[4];
     hibi_mud_segment segments[1];
     size_t rings = 0, count = 0, written = 0;
+    unsigned long long scratch[1] = {0};
     hibi_mud_params p;
 
     p = mud_params;
@@ -62,7 +63,9 @@ int main(void) {
     report("shade without params", hibi_skin_shade(height, 4, normal, 12, NULL, rgb, 12));
     report("shade into NULL rgb", hibi_skin_shade(height, 4, normal, 12, &light, NULL, 12));
 
-    report("fragment_counts with NULL points", hibi_glass_fragment_counts(glass, &rings, NULL));
+    report("fragment_counts with NULL points", hibi_glass_fragment_counts(glass, scratch, 1, &rings, NULL));
+    report("fragment_counts with NULL scratch", hibi_glass_fragment_counts(glass, NULL, 1, &rings, &rings));
+    report("fragment_counts with a 1-byte scratch", hibi_glass_fragment_counts(glass, scratch, 1, &rings, &rings));
     report("a call that succeeds clears the name", hibi_glass_crack_count(glass, &count));
     report("glass points with NULL written", hibi_glass_points(glass, 0, points, 4, NULL));
     report("glass step with NULL progress", hibi_glass_step(glass, 1, NULL));

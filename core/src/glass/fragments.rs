@@ -68,16 +68,22 @@ impl<'a> FragmentScratch<'a> {
         nodes.checked_mul(3)?.checked_add(vertices.div_ceil(32))?.checked_add(half_edges.div_ceil(32))
     }
 
-    /// Cuts the scratch off the front of `words`.
-    pub(super) fn new(words: &mut &'a mut [u32], vertices: usize) -> Self {
+    /// The scratch in the caller's `words` for a plate of `vertices` vertices, or how many
+    /// words it needs if `words` is shorter.
+    fn new(mut words: &'a mut [u32], vertices: usize) -> Result<Self, GlassError> {
+        let needed = Self::words(vertices).unwrap_or(usize::MAX);
+        if words.len() < needed {
+            return Err(GlassError::BufferTooSmall { needed });
+        }
         let nodes = vertices + 4;
-        FragmentScratch {
+        let words = &mut words;
+        Ok(FragmentScratch {
             degree: take(words, nodes),
             border: take(words, nodes),
             border_index: take(words, nodes),
             alive: take(words, vertices.div_ceil(32)),
             visited: take(words, (2 * (vertices + nodes)).div_ceil(32)),
-        }
+        })
     }
 }
 
@@ -156,12 +162,11 @@ struct Ring {
 
 impl Glass<'_> {
     /// Prunes dead ends and lays out the border; returns the number of border vertices.
-    fn prepare_fragments(&mut self) -> usize {
+    fn prepare_fragments(&self, s: &mut FragmentScratch) -> usize {
         let (vertices, edges) = (self.vertex_count, self.edge_count);
         let (w, h) = (self.params.width, self.params.height);
         let corners = [[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]];
         let on_border = |p: [f32; 2]| p[0] == 0.0 || p[1] == 0.0 || p[0] == w || p[1] == h;
-        let s = &mut self.walk.fragments;
         s.degree[..vertices + 4].fill(0);
         s.alive.fill(0);
         for (e, edge) in self.edges[..edges].iter().enumerate() {
@@ -240,11 +245,12 @@ impl Glass<'_> {
     }
 
     /// Walks every face of the plate once; calls `visit` with each fragment ring (not the
-    /// outside of the plate) in a fixed order.
-    fn for_each_ring(&mut self, mut visit: impl FnMut(&PlateGraph, Ring)) {
-        let n = self.prepare_fragments();
+    /// outside of the plate) in a fixed order, working in the caller's `scratch`.
+    fn for_each_ring(&self, scratch: &mut [u32], mut visit: impl FnMut(&PlateGraph, Ring)) -> Result<(), GlassError> {
+        let mut s = FragmentScratch::new(scratch, self.params.max_vertices as usize)?;
+        let n = self.prepare_fragments(&mut s);
         let (w, h) = (self.params.width, self.params.height);
-        let FragmentScratch { alive, border, border_index, visited, .. } = &mut self.walk.fragments;
+        let FragmentScratch { alive, border, border_index, visited, .. } = s;
         let g = PlateGraph {
             cracks: CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] },
             alive,
@@ -272,35 +278,40 @@ impl Glass<'_> {
                 visit(&g, ring);
             }
         }
+        Ok(())
     }
 
     /// The number of fragment rings and of their points: the buffer lengths
-    /// [`Glass::fragments`] needs.
-    pub fn fragment_counts(&mut self) -> (usize, usize) {
+    /// [`Glass::fragments`] needs. The walk works in `scratch`, at least
+    /// [`GlassMemory::scratch`](super::GlassMemory::scratch) words (else
+    /// [`GlassError::BufferTooSmall`] with that number); the plate is only read.
+    pub fn fragment_counts(&self, scratch: &mut [u32]) -> Result<(usize, usize), GlassError> {
         let (mut rings, mut points) = (0, 0);
-        self.for_each_ring(|_, ring| {
+        self.for_each_ring(scratch, |_, ring| {
             rings += 1;
             points += ring.points;
-        });
-        (rings, points)
+        })?;
+        Ok((rings, points))
     }
 
     /// Writes the fragments of the network as it stands: each ring's record into `rings` and
     /// its points into `points`, and returns how many of each. Nothing is written if either
-    /// buffer is shorter than [`Glass::fragment_counts`] says.
+    /// buffer is shorter than [`Glass::fragment_counts`] says, or `scratch` shorter than
+    /// [`GlassMemory::scratch`](super::GlassMemory::scratch).
     pub fn fragments(
-        &mut self,
+        &self,
+        scratch: &mut [u32],
         rings: &mut [FragmentRing],
         points: &mut [[f32; 2]],
     ) -> Result<(usize, usize), GlassError> {
-        let (ring_count, point_count) = self.fragment_counts();
+        let (ring_count, point_count) = self.fragment_counts(scratch)?;
         for (have, needed) in [(rings.len(), ring_count), (points.len(), point_count)] {
             if have < needed {
                 return Err(GlassError::BufferTooSmall { needed });
             }
         }
         let (mut r, mut p) = (0, 0);
-        self.for_each_ring(|g, ring| {
+        self.for_each_ring(scratch, |g, ring| {
             rings[r] =
                 FragmentRing { area: ring.area, first_point: p as u32, point_count: ring.points as u32, hole_of: NONE };
             walk_face(g, ring.start, |h| {
@@ -308,7 +319,7 @@ impl Glass<'_> {
                 p += 1;
             });
             r += 1;
-        });
+        })?;
         let (rings, points) = (&mut rings[..r], &points[..p]);
         let outline = |ring: &FragmentRing| &points[ring.first_point as usize..][..ring.point_count as usize];
         // A hole lies in the smallest outer ring around its first point that it does not touch.

@@ -144,6 +144,10 @@ pub struct GlassMemory {
     pub edges: usize,
     /// `u32` words (spatial grids).
     pub words: usize,
+    /// `u32` words of scratch for one fragment query ([`Glass::fragment_counts`],
+    /// [`Glass::fragments`]): the caller's, not the plate's, so that queries only read the
+    /// plate and may run at once on one plate, each with its own scratch.
+    pub scratch: usize,
 }
 
 /// Caller memory for a plate.
@@ -318,18 +322,18 @@ impl GlassParams {
         let (cracks, vertices) = (self.max_cracks as usize, self.max_vertices as usize);
         // Segment grid: heads, entry item and next; tip grid: heads, entry item and next;
         // one stamp per edge (to visit each segment once per query); per vertex a face mark
-        // and a component root; the fragment scratch.
+        // and a component root.
         let words = (|| {
             let segment = grid.cells().checked_add(vertices.checked_mul(2 * ENTRIES_PER_VERTEX)?)?;
             let tip = grid.cells().checked_add(cracks.checked_mul(2)?)?;
-            segment
-                .checked_add(tip)?
-                .checked_add(vertices.checked_mul(3)?)?
-                .checked_add(FragmentScratch::words(vertices)?)
+            segment.checked_add(tip)?.checked_add(vertices.checked_mul(3)?)
         })()
         .filter(|&w| w <= isize::MAX as usize / 64)
         .ok_or(GlassParamError::Capacity)?;
-        Ok(GlassMemory { cracks, vertices, edges: vertices, words })
+        let scratch = FragmentScratch::words(vertices)
+            .filter(|&w| w <= isize::MAX as usize / 64)
+            .ok_or(GlassParamError::Capacity)?;
+        Ok(GlassMemory { cracks, vertices, edges: vertices, words, scratch })
     }
 }
 
@@ -388,7 +392,6 @@ struct FaceWalk<'a> {
     mark: u32,
     /// Per vertex: its parent in the union–find forest of connected cracks.
     roots: &'a mut [u32],
-    fragments: FragmentScratch<'a>,
 }
 
 /// The sector S ahead of a tip, angle φ (paper §4.2.2).
@@ -455,7 +458,6 @@ impl<'a> Glass<'a> {
         let marks = take(&mut words, vertices);
         marks.fill(0);
         let roots = take(&mut words, vertices);
-        let fragments = FragmentScratch::new(&mut words, vertices);
         let mut glass = Glass {
             params: *params,
             cracks: &mut buffers.cracks[..cracks],
@@ -474,7 +476,7 @@ impl<'a> Glass<'a> {
                 work: 0,
                 stepping: false,
             },
-            walk: FaceWalk { marks, mark: 0, roots, fragments },
+            walk: FaceWalk { marks, mark: 0, roots },
             sector: Sector {
                 cosine: libm::cosf(0.5 * params.sector_angle),
                 sine: libm::sinf(0.5 * params.sector_angle),
@@ -625,6 +627,11 @@ impl<'a> Glass<'a> {
     /// The counts drawn by the latest impact.
     pub fn impact_counts(&self) -> ImpactCounts {
         self.counts
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &GlassParams {
+        &self.params
     }
 
     /// Number of cracks.

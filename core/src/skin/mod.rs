@@ -177,9 +177,9 @@ pub struct SkinMemory {
     pub levels: usize,
     /// Chunk boxes (`[i64; 4]`) of the parent outlines being divided.
     pub boxes: usize,
-    /// [`Wedge`] records, for [`Skin::render`].
+    /// [`Wedge`] records of [`SkinScratch`] (not in [`SkinBuffers`]).
     pub wedges: usize,
-    /// `u64` words: one outline's crossings of a pixel row.
+    /// `u64` words of [`SkinScratch`]: one outline's crossings of a pixel row.
     pub crossings: usize,
 }
 
@@ -199,10 +199,31 @@ pub struct SkinBuffers<'a> {
     pub levels: &'a mut [SkinLevel],
     /// At least [`SkinMemory::boxes`].
     pub boxes: &'a mut [[i64; 4]],
-    /// At least [`SkinMemory::wedges`].
+}
+
+/// Scratch for one render or pixel walk ([`Skin::render`], [`Skin::for_each_pixel`]): the
+/// caller's, not the skin's, so that those calls only read the skin and may run at once on
+/// one skin, each with its own scratch.
+pub struct SkinScratch<'a> {
+    /// At least [`SkinMemory::wedges`]: the wedges of one outline per level.
     pub wedges: &'a mut [Wedge],
-    /// At least [`SkinMemory::crossings`].
+    /// At least [`SkinMemory::crossings`]: one outline's crossings of a pixel row.
     pub crossings: &'a mut [u64],
+}
+
+/// The buffers of a [`SkinStore`] or [`SkinStorage`], field by field.
+macro_rules! buffers_of {
+    ($store:expr) => {
+        SkinBuffers {
+            cells: &mut $store.cells,
+            vertices: &mut $store.vertices,
+            sites: &mut $store.sites,
+            clip: &mut $store.clip,
+            words: &mut $store.words,
+            levels: &mut $store.levels,
+            boxes: &mut $store.boxes,
+        }
+    };
 }
 
 /// Owned memory for a skin (the `alloc` feature), from [`SkinMemory::allocate`].
@@ -215,6 +236,11 @@ pub struct SkinStore {
     words: alloc::vec::Vec<u32>,
     levels: alloc::vec::Vec<SkinLevel>,
     boxes: alloc::vec::Vec<[i64; 4]>,
+}
+
+/// Owned scratch (the `alloc` feature), from [`SkinMemory::allocate_scratch`].
+#[cfg(feature = "alloc")]
+pub struct SkinScratchStore {
     wedges: alloc::vec::Vec<Wedge>,
     crossings: alloc::vec::Vec<u64>,
 }
@@ -231,6 +257,12 @@ impl SkinMemory {
             words: alloc::vec![0; self.words],
             levels: alloc::vec![SkinLevel::default(); self.levels],
             boxes: alloc::vec![[0; 4]; self.boxes],
+        }
+    }
+
+    /// Owned scratch of this size.
+    pub fn allocate_scratch(&self) -> SkinScratchStore {
+        SkinScratchStore {
             wedges: alloc::vec![Wedge::default(); self.wedges],
             crossings: alloc::vec![0; self.crossings],
         }
@@ -238,20 +270,18 @@ impl SkinMemory {
 }
 
 #[cfg(feature = "alloc")]
+impl SkinScratchStore {
+    /// The scratch, for [`Skin::render`] and [`Skin::for_each_pixel`].
+    pub fn scratch(&mut self) -> SkinScratch<'_> {
+        SkinScratch { wedges: &mut self.wedges, crossings: &mut self.crossings }
+    }
+}
+
+#[cfg(feature = "alloc")]
 impl SkinStore {
     /// The buffers, for [`Skin::new`].
     pub fn buffers(&mut self) -> SkinBuffers<'_> {
-        SkinBuffers {
-            cells: &mut self.cells,
-            vertices: &mut self.vertices,
-            sites: &mut self.sites,
-            clip: &mut self.clip,
-            words: &mut self.words,
-            levels: &mut self.levels,
-            boxes: &mut self.boxes,
-            wedges: &mut self.wedges,
-            crossings: &mut self.crossings,
-        }
+        buffers_of!(self)
     }
 }
 
@@ -265,8 +295,6 @@ pub struct SkinStorage<
     const WORDS: usize,
     const LEVELS: usize,
     const BOXES: usize,
-    const WEDGES: usize,
-    const CROSSINGS: usize,
 > {
     /// Cell records.
     pub cells: [SkinCell; CELLS],
@@ -282,10 +310,6 @@ pub struct SkinStorage<
     pub levels: [SkinLevel; LEVELS],
     /// Chunk boxes.
     pub boxes: [[i64; 4]; BOXES],
-    /// Wedges.
-    pub wedges: [Wedge; WEDGES],
-    /// Crossings.
-    pub crossings: [u64; CROSSINGS],
 }
 
 impl<
@@ -296,9 +320,7 @@ impl<
     const WORDS: usize,
     const LEVELS: usize,
     const BOXES: usize,
-    const WEDGES: usize,
-    const CROSSINGS: usize,
-> SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES, WEDGES, CROSSINGS>
+> SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES>
 {
     /// Empty storage.
     pub fn new() -> Self {
@@ -310,24 +332,12 @@ impl<
             words: [0; WORDS],
             levels: core::array::from_fn(|_| SkinLevel::default()),
             boxes: [[0; 4]; BOXES],
-            wedges: [Wedge::default(); WEDGES],
-            crossings: [0; CROSSINGS],
         }
     }
 
     /// The buffers, for [`Skin::new`].
     pub fn buffers(&mut self) -> SkinBuffers<'_> {
-        SkinBuffers {
-            cells: &mut self.cells,
-            vertices: &mut self.vertices,
-            sites: &mut self.sites,
-            clip: &mut self.clip,
-            words: &mut self.words,
-            levels: &mut self.levels,
-            boxes: &mut self.boxes,
-            wedges: &mut self.wedges,
-            crossings: &mut self.crossings,
-        }
+        buffers_of!(self)
     }
 }
 
@@ -339,9 +349,7 @@ impl<
     const WORDS: usize,
     const LEVELS: usize,
     const BOXES: usize,
-    const WEDGES: usize,
-    const CROSSINGS: usize,
-> Default for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES, WEDGES, CROSSINGS>
+> Default for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES>
 {
     fn default() -> Self {
         Self::new()
@@ -512,12 +520,6 @@ struct Build<'b> {
     /// Per level from 1, the chunk boxes of the parent outline being divided
     /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
     boxes: &'b mut [[i64; 4]],
-    /// Per level, the wedges of the cell being drawn ([`Layout::wedges_at`]), for
-    /// [`Skin::render`].
-    wedges: &'b mut [Wedge],
-    /// One outline's crossings of a pixel row, for [`Skin::render`] and
-    /// [`Skin::for_each_pixel`].
-    crossings: &'b mut [u64],
     builder: Builder<'b>,
 }
 
@@ -670,8 +672,6 @@ impl<'a, S: Scalar> Skin<'a, S> {
             (buffers.words.len(), m.words),
             (buffers.levels.len(), m.levels),
             (buffers.boxes.len(), m.boxes),
-            (buffers.wedges.len(), m.wedges),
-            (buffers.crossings.len(), m.crossings),
         ];
         if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
             return Err(SkinError::BufferTooSmall { needed });
@@ -713,8 +713,6 @@ impl<'a, S: Scalar> Skin<'a, S> {
             builder: Builder { clip, spare, order: &mut buffers.words[..m.words] },
             levels,
             boxes: buffers.boxes,
-            wedges: buffers.wedges,
-            crossings: buffers.crossings,
         };
         let range = params.level0_indices(&lattices[0]);
         Ok(Skin {
@@ -844,11 +842,29 @@ impl<'a, S: Scalar> Skin<'a, S> {
 
     /// Calls `visit(column, row)` for every pixel whose centre lies in `cell` (wrapped onto
     /// the surface when periodic). Across the cells of one level every pixel is visited
-    /// exactly once.
-    pub fn for_each_pixel(&mut self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
-        // Scratch for the outline's crossings, in caller memory.
-        let crossings = core::mem::take(&mut self.build.crossings);
-        self.for_each_pixel_unwrapped(cell, &mut *crossings, |_, _, x, y| visit(x, y));
-        self.build.crossings = crossings;
+    /// exactly once. Works in `scratch`'s crossings; the skin is only read. A scratch shorter
+    /// than [`SkinMemory::crossings`] gives [`SkinError::BufferTooSmall`] and visits nothing.
+    pub fn for_each_pixel(
+        &self,
+        cell: &SkinCell,
+        scratch: &mut SkinScratch,
+        mut visit: impl FnMut(u32, u32),
+    ) -> Result<(), SkinError> {
+        self.check_scratch(scratch)?;
+        self.for_each_pixel_unwrapped(cell, scratch.crossings, |_, _, x, y| visit(x, y));
+        Ok(())
+    }
+
+    /// Whether `scratch` holds what [`SkinMemory`] asks for this skin's parameters.
+    fn check_scratch(&self, scratch: &SkinScratch) -> Result<(), SkinError> {
+        let layout = self.build.layout;
+        let needed = [
+            (scratch.wedges.len(), layout.wedges_at(self.params.levels as usize)),
+            (scratch.crossings.len(), layout.longest()),
+        ];
+        match needed.iter().find(|(have, need)| have < need) {
+            Some(&(_, needed)) => Err(SkinError::BufferTooSmall { needed }),
+            None => Ok(()),
+        }
     }
 }

@@ -25,7 +25,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use super::profile::{ProfileTable, blend};
-use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
+use super::{MAX_LEVELS, Skin, SkinCell, SkinError, SkinScratch};
 use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
 
@@ -52,7 +52,7 @@ pub struct SkinRender {
 
 /// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), 1 / apothem, and
 /// the pseudo-angle of the edge's first vertex seen from the centre.
-/// (Opaque; caller memory for [`super::SkinBuffers`].)
+/// (Opaque; caller memory for [`super::SkinScratch`].)
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Wedge {
     g: [f32; 2],
@@ -440,11 +440,12 @@ impl<S: Scalar> Ridge<'_, S> {
 }
 
 impl<S: Scalar> Skin<'_, S> {
-    /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written. The wedges of one outline per
-    /// level and one outline's crossings are scratch in the skin's caller memory (hence
-    /// `&mut self`; the cells are only read).
-    pub fn render(&mut self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
+    /// Writes the requested maps. Every buffer is checked first: if one is too short (the
+    /// scratch included), or the cell level is not below `levels`, nothing is written. The
+    /// wedges of one outline per level and one outline's crossings are in the caller's
+    /// `scratch`; the skin is only read.
+    pub fn render(&self, render: &SkinRender, layers: SkinLayers, scratch: &mut SkinScratch) -> Result<(), SkinError> {
+        self.check_scratch(scratch)?;
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { height, normal, cell } = layers;
         let cell_level = render.cell_level;
@@ -462,8 +463,7 @@ impl<S: Scalar> Skin<'_, S> {
         });
         // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
         let flat = unit_normal([0.0; 2]);
-        let (wedges, crossings) = (core::mem::take(&mut self.build.wedges), core::mem::take(&mut self.build.crossings));
-        let scratch = (&mut *wedges, &mut *crossings);
+        let scratch = (&mut *scratch.wedges, &mut *scratch.crossings);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
             (None, None) => self.draw(&mut NoMaps, cell, scratch),
             (Some(h), None) => {
@@ -480,7 +480,6 @@ impl<S: Scalar> Skin<'_, S> {
                 self.draw(&mut Both(h, n), cell, scratch);
             }
         }
-        (self.build.wedges, self.build.crossings) = (wedges, crossings);
         Ok(())
     }
 

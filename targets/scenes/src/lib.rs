@@ -25,8 +25,8 @@ use hibi_core::mud::{
 };
 use hibi_core::scalar::Q16;
 use hibi_core::skin::{
-    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender, Wedge,
-    shade,
+    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender,
+    SkinScratch, Wedge, shade,
 };
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
@@ -186,7 +186,8 @@ const MUD_SCALARS: usize = max(MUD_LARGE_MEMORY.scalars, MUD_IRREGULAR_MEMORY.sc
 const GLASS_CRACKS: usize = 512;
 const GLASS_VERTICES: usize = 16384;
 const GLASS_EDGES: usize = 16384;
-const GLASS_WORDS: usize = 265941;
+const GLASS_WORDS: usize = 214216;
+const GLASS_SCRATCH: usize = 51725;
 const SKIN_CELLS: usize = 2292;
 const SKIN_VERTICES: usize = 108408;
 const SKIN_SITES: usize = 8273;
@@ -196,7 +197,8 @@ const SKIN_LEVELS: usize = 3;
 const SKIN_BOXES: usize = 675;
 const SKIN_WEDGES: usize = 4743;
 const SKIN_CROSSINGS: usize = 2048;
-const WORDS: usize = max(max(MUD_LARGE_MEMORY.words, MUD_IRREGULAR_MEMORY.words), max(GLASS_WORDS, SKIN_WORDS));
+const WORDS: usize =
+    max(max(MUD_LARGE_MEMORY.words, MUD_IRREGULAR_MEMORY.words), max(GLASS_WORDS + GLASS_SCRATCH, SKIN_WORDS));
 const NETWORK_VERTICES: usize = 2048;
 const NETWORK_EDGES: usize = 2048;
 const NETWORK_POINTS: usize = 8192;
@@ -512,8 +514,9 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let names = ["glass.plate160.cracks", "glass.plate160.fragments", "glass.plate160.mask", "glass.plate160.time"];
     let side = PLATE as f32;
     let params = GlassParams { width: side, height: side, impact: [side / 2.0; 2], seed: 7, ..GlassParams::default() };
-    let buffers =
-        GlassBuffers { cracks: memory.cracks, vertices: memory.vertices, edges: memory.edges, words: memory.words };
+    // The plate's words, then the fragment queries' scratch.
+    let (words, scratch) = memory.words.split_at_mut(GLASS_WORDS);
+    let buffers = GlassBuffers { cracks: memory.cracks, vertices: memory.vertices, edges: memory.edges, words };
     let mut glass = match Glass::new(&params, buffers) {
         Ok(glass) => glass,
         Err(_) => {
@@ -536,7 +539,7 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit(names[0], Ok(h.finish()));
     let out = &mut memory.out;
     let fragments = glass
-        .fragments(out.rings, out.ring_points)
+        .fragments(scratch, out.rings, out.ring_points)
         .map_err(|_| Failure("glass: fragment buffers too small"))
         .map(|(rings, points)| rings_hash(&out.rings[..rings], &out.ring_points[..points]).finish());
     emit(names[1], fragments);
@@ -593,14 +596,13 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
                 words: &mut **words,
                 levels: &mut **skin_levels,
                 boxes: &mut **boxes,
-                wedges: &mut **wedges,
-                crossings: &mut **crossings,
             }
         };
     }
+    let mut scratch = SkinScratch { wedges: &mut **wedges, crossings: &mut **crossings };
     let q16 = Skin::<Q16>::new(&params, buffers!())
         .map_err(|_| Failure("skin: Skin::new refused (memory too small?)"))
-        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&mut skin, height, normals)));
+        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&skin, &mut scratch, height, normals)));
     let mut skin = match Skin::<f32>::new(&params, buffers!()) {
         Ok(skin) => skin,
         Err(_) => {
@@ -622,7 +624,7 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         }
     }
     emit(names[0], Ok(h.finish()));
-    let f32 = maps(&mut skin, height, normals);
+    let f32 = maps(&skin, &mut scratch, height, normals);
     emit(names[1], f32);
     emit(names[2], q16);
     let rgb = &mut rgb[..pixels];
@@ -632,7 +634,8 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         let mut h = Fnv::new();
         for level in 0..params.levels {
             let layers = SkinLayers { cell: Some(&mut **cell_map), ..SkinLayers::default() };
-            skin.render(&SkinRender { cell_level: level }, layers).map_err(|_| Failure("skin: cell map refused"))?;
+            skin.render(&SkinRender { cell_level: level }, layers, &mut scratch)
+                .map_err(|_| Failure("skin: cell map refused"))?;
             cell_map.iter().for_each(|&c| h.u32(c));
         }
         Ok(h.finish())
@@ -646,9 +649,14 @@ fn built<S: Scalar>(skin: &mut Skin<'_, S>) -> Result<(), Failure> {
 }
 
 /// The hash of a skin's height and normal maps, rendered into `height` and `normals`.
-fn maps<S: Scalar>(skin: &mut Skin<'_, S>, height: &mut [f32], normals: &mut [[f32; 3]]) -> Outcome {
+fn maps<S: Scalar>(
+    skin: &Skin<'_, S>,
+    scratch: &mut SkinScratch,
+    height: &mut [f32],
+    normals: &mut [[f32; 3]],
+) -> Outcome {
     let layers = SkinLayers { height: Some(&mut *height), normal: Some(&mut *normals), ..SkinLayers::default() };
-    skin.render(&SkinRender::default(), layers).map_err(|_| Failure("skin: render refused"))?;
+    skin.render(&SkinRender::default(), layers, scratch).map_err(|_| Failure("skin: render refused"))?;
     let mut h = Fnv::new();
     height.iter().for_each(|&v| h.f32(v));
     normals.iter().flatten().for_each(|&v| h.f32(v));
