@@ -11,9 +11,9 @@ use hibi_core::skin::{
     Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, SkinScratch, preset,
 };
 
-/// Bytes of a skin's arrays.
+/// Bytes of a skin's arrays (its render scratch, [`SkinScratch`], is apart: [`scratch_bytes`]).
 fn skin_bytes(m: &SkinMemory) -> usize {
-    use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinLevel, Wedge};
+    use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinLevel};
     m.cells * size_of::<SkinCell>()
         + m.vertices * 16
         + m.sites * size_of::<Site>()
@@ -21,8 +21,11 @@ fn skin_bytes(m: &SkinMemory) -> usize {
         + m.words * 4
         + m.levels * size_of::<SkinLevel>()
         + m.boxes * 32
-        + m.wedges * size_of::<Wedge>()
-        + m.crossings * 8
+}
+
+/// Bytes of a skin's render scratch.
+fn scratch_bytes(m: &SkinMemory) -> usize {
+    m.wedges * size_of::<hibi_core::skin::Wedge>() + m.crossings * 8
 }
 
 /// Builds and renders `params` in buffers of exactly `m` elements, or with the array `short`
@@ -79,7 +82,11 @@ fn a_64_by_64_one_level_skin_needs_its_own_capacities_only() {
     let bytes = skin_bytes(&params.memory().expect("valid"));
     let fig19a = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     let three = skin_bytes(&fig19a.memory().expect("valid"));
-    println!("skin 64x64: one level (default) {bytes} bytes; fig19a (three levels) {three} bytes");
+    let scratch = scratch_bytes(&params.memory().expect("valid"));
+    println!(
+        "skin 64x64: one level (default) {bytes} bytes (render scratch {scratch} apart); fig19a (three levels) \
+         {three} bytes"
+    );
     assert!(bytes < 128 * 1024, "{bytes} bytes");
     // The C library's need: the arrays, the object's header and alignment.
     let mut c = hibi_skin_params_default();

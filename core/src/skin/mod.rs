@@ -23,7 +23,9 @@
 //! while !skin.step(100_000).finished {}
 //! let mut height = vec![0.0f32; 64 * 64];
 //! let render = SkinRender::default();
-//! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }).unwrap();
+//! let mut scratch = params.memory().unwrap().allocate_scratch(); // a render only reads the skin
+//! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }, &mut scratch.scratch())
+//!     .unwrap();
 //! assert!(height.iter().any(|&h| h > 2.0));
 //! ```
 
