@@ -15,6 +15,13 @@
  * hibi_error_argument() then names it) except the few outputs marked "optional" (the step
  * functions' progress, hibi_glass_impact's counts), which are skipped when NULL. A buffer
  * of length 0 may be NULL. The *_written counts are required.
+ *
+ * Threads: objects are independent; calls on different objects may run on any threads at
+ * once. On one object, the functions that take a const pointer (counts, queries, renders,
+ * fragments) only read it and may run concurrently with each other; those that take a
+ * non-const pointer (step, impact, destroy) need the object to themselves. The read-only
+ * calls that need working memory (hibi_glass_fragment_counts, hibi_glass_fragments,
+ * hibi_skin_render) take a caller scratch of *_scratch_size bytes: one per thread.
  */
 
 #ifndef HIBI_H

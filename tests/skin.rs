@@ -3,7 +3,7 @@
 use hibi_core::Scalar;
 use hibi_core::skin::{
     PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, SkinRender,
-    SkinScratchStore, preset, shade,
+    SkinScratch, SkinScratchStore, preset, shade,
 };
 use hibi_tests::fnv1a64;
 
@@ -206,7 +206,7 @@ fn more_levels_give_more_cells() {
 }
 
 /// Height and normal maps of a skin.
-fn maps<S: Scalar>(skin: &mut Skin<S>) -> (Vec<f32>, Vec<[f32; 3]>) {
+fn maps<S: Scalar>(skin: &Skin<S>) -> (Vec<f32>, Vec<[f32; 3]>) {
     let n = (skin.params().width * skin.params().height) as usize;
     let (mut h, mut nm) = (vec![0.0f32; n], vec![[0.0f32; 3]; n]);
     skin.render(
@@ -216,6 +216,30 @@ fn maps<S: Scalar>(skin: &mut Skin<S>) -> (Vec<f32>, Vec<[f32; 3]>) {
     )
     .unwrap();
     (h, nm)
+}
+
+/// A render only reads the skin: four threads render one skin at once, each with its own
+/// scratch, and get the maps one render alone gets; a short scratch is refused, naming the
+/// elements it needs, and nothing is written.
+#[test]
+fn renders_share_the_skin_across_threads() {
+    with_skin(&sized("fig19a", 96), |skin| {
+        let alone = maps(skin);
+        let skin = &*skin;
+        let together: Vec<_> = std::thread::scope(|s| {
+            let threads: Vec<_> = (0..4).map(|_| s.spawn(|| maps(skin))).collect();
+            threads.into_iter().map(|t| t.join().expect("no panic")).collect()
+        });
+        assert!(together.iter().all(|m| *m == alone));
+        let m = skin.params().memory().unwrap();
+        let (mut wedges, mut crossings) = (vec![Default::default(); m.wedges - 1], vec![0; m.crossings]);
+        let mut h = vec![5.0f32; 96 * 96];
+        let layers = SkinLayers { height: Some(&mut h), ..SkinLayers::default() };
+        let mut short = SkinScratch { wedges: &mut wedges, crossings: &mut crossings };
+        let refused = skin.render(&SkinRender::default(), layers, &mut short);
+        assert_eq!(refused, Err(SkinError::BufferTooSmall { needed: m.wedges }));
+        assert!(h.iter().all(|&v| v == 5.0));
+    });
 }
 
 /// The render draws the finest cells and reads each pixel's coarser cells as their

@@ -21,7 +21,9 @@ use hibi_core::glass::{
 };
 
 use crate::fields::{Field, convert};
-use crate::guard::{Outcome, buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
+use crate::guard::{
+    Outcome, Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out, write_preset,
+};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
@@ -374,16 +376,10 @@ pub unsafe extern "C" fn hibi_glass_impact(
     guard(|| {
         // SAFETY: the caller's contract.
         let glass = unsafe { object(glass, c"glass") }?;
-        if !counts.is_null() {
-            check_pointer(counts, c"counts")?;
-        }
+        let out = optional(counts, c"counts")?;
         let c = glass.glass.impact([x, y]).map_err(glass_status)?;
-        if !counts.is_null() {
-            let value = hibi_glass_counts::from_core(&c);
-            // SAFETY: checked; the caller's contract.
-            unsafe { write_out(counts, c"counts", value) }?;
-        }
-        Ok(())
+        // SAFETY: checked; the caller's contract.
+        out.map_or(Ok(()), |out| unsafe { out.write([hibi_glass_counts::from_core(&c)]) })
     })
 }
 
@@ -404,17 +400,13 @@ pub unsafe extern "C" fn hibi_glass_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let glass = unsafe { object(glass, c"glass") }?;
-        if !progress.is_null() {
-            check_pointer(progress, c"progress")?;
-        }
+        let out = optional(progress, c"progress")?;
         if glass.glass.step(budget).capacity_reached {
             return Err(HIBI_ERROR_GLASS_CAPACITY);
         }
-        if !progress.is_null() {
-            // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, c"progress", hibi_glass_progress::from_core(&glass.glass.progress())) }?;
-        }
-        Ok(())
+        let p = hibi_glass_progress::from_core(&glass.glass.progress());
+        // SAFETY: checked; the caller's contract.
+        out.map_or(Ok(()), |out| unsafe { out.write([p]) })
     })
 }
 
@@ -551,15 +543,12 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
     points: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        check_pointer(rings, c"rings")?;
-        check_pointer(points, c"points")?;
+        let outs = Outs::check([(rings, c"rings"), (points, c"points")])?;
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
         let (r, p) = glass.fragment_counts(scratch).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings, c"rings", r) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, c"points", p) }
+        unsafe { outs.write([r, p]) }
     })
 }
 
@@ -588,8 +577,7 @@ pub unsafe extern "C" fn hibi_glass_fragments(
     points_written: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        check_pointer(rings_written, c"rings_written")?;
-        check_pointer(points_written, c"points_written")?;
+        let outs = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
         // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
@@ -599,9 +587,7 @@ pub unsafe extern "C" fn hibi_glass_fragments(
         let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
         let (r, p) = glass.fragments(scratch, ring_out, point_out).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings_written, c"rings_written", r) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, c"points_written", p) }
+        unsafe { outs.write([r, p]) }
     })
 }
 

@@ -177,6 +177,35 @@ pub(crate) unsafe fn write_out<T>(ptr: *mut T, name: &'static CStr, value: T) ->
     Ok(())
 }
 
+/// Out-parameters of one call, checked together before the call does anything and written
+/// together once it has succeeded, so that nothing is written on failure.
+pub(crate) struct Outs<T, const N: usize>([(*mut T, &'static CStr); N]);
+
+impl<T, const N: usize> Outs<T, N> {
+    /// Checks every pointer (required: non-null and aligned).
+    pub(crate) fn check(outs: [(*mut T, &'static CStr); N]) -> Result<Self, hibi_status> {
+        outs.iter().try_for_each(|&(ptr, name)| check_pointer(ptr, name))?;
+        Ok(Outs(outs))
+    }
+
+    /// Writes `values`, in order.
+    ///
+    /// # Safety
+    /// Every pointer must be valid for a write of `T` (they were checked non-null and aligned).
+    pub(crate) unsafe fn write(self, values: [T; N]) -> Result<(), hibi_status> {
+        for ((ptr, _), value) in self.0.into_iter().zip(values) {
+            // SAFETY: checked; the caller's contract.
+            unsafe { ptr.write(value) };
+        }
+        Ok(())
+    }
+}
+
+/// An optional out-parameter: NULL (skipped) or checked as a required one.
+pub(crate) fn optional<T>(ptr: *mut T, name: &'static CStr) -> Result<Option<Outs<T, 1>>, hibi_status> {
+    if ptr.is_null() { Ok(None) } else { Outs::check([(ptr, name)]).map(Some) }
+}
+
 /// Checks caller buffer `name` of `len` elements of `T` at a non-empty `ptr`: non-null,
 /// aligned, and its size in bytes fits `isize`.
 fn check_buffer<T>(ptr: *const T, len: usize, name: &'static CStr) -> Result<(), hibi_status> {

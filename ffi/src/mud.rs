@@ -28,7 +28,7 @@ use hibi_core::mud::{
 
 use crate::fields::{Field, convert, enumeration};
 use crate::glass::hibi_vec2;
-use crate::guard::{buffer, check_pointer, guard, object, object_ref, write_out, write_preset};
+use crate::guard::{Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out, write_preset};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
@@ -404,16 +404,10 @@ pub unsafe extern "C" fn hibi_mud_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object(mud, c"mud") }?;
-        if !progress.is_null() {
-            check_pointer(progress, c"progress")?;
-        }
+        let out = optional(progress, c"progress")?;
         let p = mud.mud.step(budget);
-        if !progress.is_null() {
-            let value = hibi_mud_progress::from_core(&p);
-            // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, c"progress", value) }?;
-        }
-        Ok(())
+        // SAFETY: checked; the caller's contract.
+        out.map_or(Ok(()), |out| unsafe { out.write([hibi_mud_progress::from_core(&p)]) })
     })
 }
 
@@ -498,16 +492,10 @@ pub unsafe extern "C" fn hibi_mud_network_counts(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        check_pointer(vertices, c"vertices")?;
-        check_pointer(edges, c"edges")?;
-        check_pointer(points, c"points")?;
+        let outs = Outs::check([(vertices, c"vertices"), (edges, c"edges"), (points, c"points")])?;
         let counts = mud.mud.network_counts();
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(vertices, c"vertices", counts.vertices) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(edges, c"edges", counts.edges) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, c"points", counts.points) }
+        unsafe { outs.write([counts.vertices, counts.edges, counts.points]) }
     })
 }
 
@@ -539,9 +527,11 @@ pub unsafe extern "C" fn hibi_mud_network(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        check_pointer(vertices_written, c"vertices_written")?;
-        check_pointer(edges_written, c"edges_written")?;
-        check_pointer(points_written, c"points_written")?;
+        let outs = Outs::check([
+            (vertices_written, c"vertices_written"),
+            (edges_written, c"edges_written"),
+            (points_written, c"points_written"),
+        ])?;
         // SAFETY: the caller's contract; the C structs are laid out as the core's (asserted
         // above).
         let vertex_out = unsafe { buffer(vertices, vertices_len, c"vertices") }?;
@@ -551,11 +541,7 @@ pub unsafe extern "C" fn hibi_mud_network(
         let point_out = unsafe { buffer(points, points_len, c"points") }?;
         let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(vertices_written, c"vertices_written", counts.vertices) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(edges_written, c"edges_written", counts.edges) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, c"points_written", counts.points) }
+        unsafe { outs.write([counts.vertices, counts.edges, counts.points]) }
     })
 }
 
@@ -575,16 +561,10 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        check_pointer(rings, c"rings")?;
-        check_pointer(points, c"points")?;
-        check_pointer(wrapping, c"wrapping")?;
+        let outs = Outs::check([(rings, c"rings"), (points, c"points"), (wrapping, c"wrapping")])?;
         let counts = mud.mud.cell_counts();
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings, c"rings", counts.rings) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points, c"points", counts.points) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(wrapping, c"wrapping", counts.wrapping) }
+        unsafe { outs.write([counts.rings, counts.points, counts.wrapping]) }
     })
 }
 
@@ -613,8 +593,7 @@ pub unsafe extern "C" fn hibi_mud_cells(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        check_pointer(rings_written, c"rings_written")?;
-        check_pointer(points_written, c"points_written")?;
+        let outs = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
         // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
         // hibi_vec2 as [f32; 2] (asserted above and in glass).
         let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
@@ -622,9 +601,7 @@ pub unsafe extern "C" fn hibi_mud_cells(
         let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
         let counts = mud.mud.cells(ring_out, point_out).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { write_out(rings_written, c"rings_written", counts.rings) }?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { write_out(points_written, c"points_written", counts.points) }
+        unsafe { outs.write([counts.rings, counts.points]) }
     })
 }
 

@@ -27,7 +27,9 @@ use hibi_core::skin::{
 };
 
 use crate::fields::{Field, convert, enumeration};
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out, write_preset};
+use crate::guard::{
+    Outcome, buffer, check_pointer, guard, input, object, object_ref, optional, write_out, write_preset,
+};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -472,18 +474,13 @@ pub unsafe extern "C" fn hibi_skin_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let skin = unsafe { object(skin, c"skin") }?;
-        if !progress.is_null() {
-            check_pointer(progress, c"progress")?;
-        }
+        let out = optional(progress, c"progress")?;
         let p = skin.skin.step(budget);
         if p.capacity_reached {
             return Err(HIBI_ERROR_SKIN_CAPACITY);
         }
-        if !progress.is_null() {
-            // SAFETY: checked; the caller's contract.
-            unsafe { write_out(progress, c"progress", hibi_skin_progress::from_core(&p)) }?;
-        }
-        Ok(())
+        // SAFETY: checked; the caller's contract.
+        out.map_or(Ok(()), |out| unsafe { out.write([hibi_skin_progress::from_core(&p)]) })
     })
 }
 
