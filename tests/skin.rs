@@ -368,7 +368,7 @@ fn f32_and_q16_agree_and_each_has_its_golden() {
             fnv1a64(&bytes)
         };
         let f = maps(skin);
-        let q = with_skin_in::<hibi_core::scalar::Q16, _>(&p, maps);
+        let q = with_skin_in::<hibi_core::scalar::Q16, _>(&p, |s| maps(s));
         let worst = f.0.iter().zip(&q.0).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
         println!("Q16 vs f32 height: worst {worst}");
         assert!(worst < 0.02, "{worst}");

@@ -599,7 +599,7 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
             }
         };
     }
-    let mut scratch = SkinScratch { wedges: &mut **wedges, crossings: &mut **crossings };
+    let mut scratch = SkinScratch { wedges, crossings };
     let q16 = Skin::<Q16>::new(&params, buffers!())
         .map_err(|_| Failure("skin: Skin::new refused (memory too small?)"))
         .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&skin, &mut scratch, height, normals)));
