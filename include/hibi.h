@@ -327,7 +327,7 @@ typedef struct hibi_glass_params {
    */
   float crack_attraction;
   /**
-   * Spread of F3's direction per 10 px of growth [radians] (default 22°).
+   * Spread of F3's direction per 10 px of growth at weight(t) = 1 [radians] (default 45°).
    */
   float wander;
   /**

@@ -126,7 +126,7 @@ pub struct hibi_glass_params {
     pub tip_repulsion: f32,
     /// k2 of F2 = k2/d², the pull to meet a crack or edge at a right angle [px²] (default 400).
     pub crack_attraction: f32,
-    /// Spread of F3's direction per 10 px of growth [radians] (default 22°).
+    /// Spread of F3's direction per 10 px of growth at weight(t) = 1 [radians] (default 45°).
     pub wander: f32,
     /// How hard ring cracks keep to their circle (default 2).
     pub ring_adherence: f32,

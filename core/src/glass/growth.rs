@@ -485,18 +485,19 @@ impl Glass<'_> {
         let length = (APPROACH_SHARE * closing).max(MIN_UPDATE).min(planned);
         // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
         // per 10 px (scaled by the square root of the update's length, so that the random
-        // turning per unit length does not depend on how a step is cut), around the direction
+        // turning per unit length does not depend on how a step is cut, and for a radial crack
+        // by weight(t), so that young cracks wander little, rule 3), around the direction
         // the crack started in (a radial crack keeps its course on the whole: adjacent large
         // cracks stay at nearly equal angles) or, for a ring crack, around its course.
-        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH);
+        let age = c.age as f32 + done / c.speed;
+        let weight = 1.0 - libm::expf(-age / p.turn_delay);
+        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
         let mean = if ring { course } else { c.start_heading };
         let angle = mean + spread * self.forces.normal_f32();
         f[0] += libm::cosf(angle);
         f[1] += libm::sinf(angle);
         // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
         let difference = wrap(libm::atan2f(f[1], f[0]) - course).clamp(-p.turn_limit, p.turn_limit);
-        let age = c.age as f32 + done / c.speed;
-        let weight = 1.0 - libm::expf(-age / p.turn_delay);
         let heading = wrap(course + difference * weight);
         // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
         let stopped = self.move_tip(i, heading, length, done);

@@ -74,12 +74,15 @@ pub struct GlassParams {
     /// 52.5 % of meetings within 60°–90°.
     pub crack_attraction: f32,
     /// Standard deviation of the direction of F3, a unit force, per 10 px of growth
-    /// \[radians\] (per update it is scaled by √(update length / 10 px)). F3's direction is
-    /// drawn around the direction a radial crack started in (so radial cracks turn both ways
-    /// but keep their course on the whole) and around a ring crack's course. The paper gives
-    /// none; ours: 22°, the smallest whole degree whose turns between successive 10 px pieces
-    /// of radial cracks spread like its Fig. 5 (seeds 0–99: 1st and 99th percentiles −19.3°
-    /// and 22.5°, mean 0.1°; the paper: −22.5° to 27.5°).
+    /// \[radians\] (per update it is scaled by √(update length / 10 px)), for a crack of
+    /// weight(t) = 1: it is scaled by weight(t) as well, so that young cracks wander little
+    /// (rule 3) and the radial cracks run straight out of the impact instead of drifting into
+    /// their neighbours 3.6° away. F3's direction is drawn around the direction a radial crack
+    /// started in (so radial cracks turn both ways but keep their course on the whole) and
+    /// around a ring crack's course (ring cracks are not scaled by weight(t)). The paper gives
+    /// none; ours: 45°, a whole multiple of 5° whose turns between successive 10 px pieces of
+    /// radial cracks spread like its Fig. 5 (seeds 0–99: 1st and 99th percentiles −19.6° and
+    /// 21.5°, mean 0.06°; the paper: −22.5° to 27.5°).
     pub wander: f32,
     /// How hard a ring crack keeps to its circle (rule 5): a force of this size along its
     /// course, the chord of its circle one update long, turned towards radius d_i by up to a
@@ -119,7 +122,7 @@ impl Default for GlassParams {
             sector_radius: 50.0,
             tip_repulsion: 400.0,
             crack_attraction: 400.0,
-            wander: 22.0 * core::f32::consts::PI / 180.0,
+            wander: 45.0 * core::f32::consts::PI / 180.0,
             ring_adherence: 2.0,
             max_cracks: 512,
             max_vertices: 16_384,
