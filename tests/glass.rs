@@ -159,7 +159,7 @@ fn golden_cracks() {
         }
         fnv1a64(&bytes)
     });
-    assert_eq!(hash, 5304344469049265301, "the glass scene changed");
+    assert_eq!(hash, 18150720215393610777, "the glass scene changed");
 }
 
 #[test]
@@ -613,29 +613,24 @@ fn tips_meet_cracks_at_right_angles() {
 fn ring_cracks_follow_their_circle() {
     let g = geometry();
     let worst = g.rings.iter().map(|r| r.0).fold(0.0, f64::max);
-    let short: Vec<_> = g.rings.iter().filter(|r| r.1 < r.2).collect();
+    // Rounding of the f32 vertices: a crack that keeps exactly to its chords may measure a
+    // hair under its arc.
+    const ROUNDING: f64 = 1e-3;
+    let short: Vec<_> = g.rings.iter().filter(|r| r.1 < r.2 - ROUNDING).collect();
     let (turning, arc) = g.rings.iter().fold((0.0, 0.0), |a, r| (a.0 + r.1, a.1 + r.2));
-    let shortfall = short.iter().map(|r| (r.2 - r.1).to_degrees()).fold(0.0, f64::max);
+    let least = g.rings.iter().map(|r| (r.1 - r.2).to_degrees()).fold(f64::INFINITY, f64::min);
     println!(
-        "{PLATES} plates: {} ring cracks; every vertex within {:.1} % of d_i; mean turning {:.1} deg over mean arc {:.1} deg; {} turn less than their arc (by at most {shortfall:.1} deg)",
+        "{PLATES} plates: {} ring cracks; every vertex within {:.1} % of d_i; mean turning {:.1} deg over mean arc {:.1} deg; each turns at least its arc plus {least:.2} deg",
         g.rings.len(),
         100.0 * worst,
         turning.to_degrees() / g.rings.len() as f64,
         arc.to_degrees() / g.rings.len() as f64,
-        short.len()
     );
     assert!(g.rings.len() > 5 * PLATES as usize);
     assert!(worst <= 0.1, "a ring crack's vertex strays {:.1} % from its radius", 100.0 * worst);
-    // A chord turns 0 while its arc is 10-40 deg: every ring crack turning less than its arc
-    // would be a chord. Issue 23 asks that each turns at least as much; not all do (a ring
-    // crack's last updates turn it to meet a bent crack at a right angle, rule 8).
-    assert!(turning >= arc, "ring cracks turn {turning} rad in all, less than their arcs' {arc}");
-    assert!(
-        short.len() * 100 <= 3 * g.rings.len(),
-        "{} of {} ring cracks turn less than their arc",
-        short.len(),
-        g.rings.len()
-    );
+    // A chord turns 0 while its arc is 10-40 deg. Each ring crack turns at least as much as
+    // the arc it spans: no update turns it outwards of the chord of its circle it spans.
+    assert!(short.is_empty(), "{} of {} ring cracks turn less than their arc", short.len(), g.rings.len());
 }
 
 /// Rule 6 and Fig. 5: the turning between successive 10 px pieces of radial cracks is spread

@@ -446,6 +446,17 @@ impl Glass<'_> {
         }
     }
 
+    /// Where ring crack `c`'s tip is on its circle: its angle and distance about the impact,
+    /// and the sense it grows in (1 counter-clockwise, −1 clockwise).
+    fn ring_frame(c: &super::Crack) -> (f32, f32, f32) {
+        let centre = c.ring.0;
+        let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
+        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
+        let angle = libm::atan2f(rel[1], rel[0]);
+        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        (angle, r, sense)
+    }
+
     /// The course of ring crack `c` (rule 5: ring cracks grow along their circle): the
     /// direction of the chord of the circle through its tip (about the impact) that spans one
     /// full update, |v| cut into pieces of at most 10 px, turned towards radius d_i by up to a
@@ -453,11 +464,8 @@ impl Glass<'_> {
     /// tangent, so that a ring crack turns at least as much as the arc it runs along, and
     /// returns to its circle without ever turning outwards.
     fn ring_course(c: &super::Crack) -> f32 {
-        let (centre, radius) = c.ring;
-        let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
-        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
-        let angle = libm::atan2f(rel[1], rel[0]);
-        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        let radius = c.ring.1;
+        let (angle, r, sense) = Self::ring_frame(c);
         let update = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
         // Half the angle the chord of length `update` subtends.
         let half = libm::asinf((0.5 * update / r).min(1.0));
@@ -498,7 +506,17 @@ impl Glass<'_> {
         f[1] += libm::sinf(angle);
         // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
         let difference = wrap(libm::atan2f(f[1], f[0]) - course).clamp(-p.turn_limit, p.turn_limit);
-        let heading = wrap(course + difference * weight);
+        let mut heading = wrap(course + difference * weight);
+        if ring {
+            // Rule 5: a ring crack never turns outwards of the chord of its circle (about the
+            // impact, through its tip) that this update spans, so that it turns at least as
+            // much as the arc it runs along, right up to where it meets a crack.
+            let (angle, r, sense) = Self::ring_frame(&c);
+            let chord = angle + sense * (core::f32::consts::FRAC_PI_2 + libm::asinf((0.5 * length / r).min(1.0)));
+            if sense * wrap(heading - chord) < 0.0 {
+                heading = wrap(chord);
+            }
+        }
         // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
         let stopped = self.move_tip(i, heading, length, done);
         let left = left - length;
