@@ -13,8 +13,12 @@ pub(super) const UPDATE_LENGTH: f32 = 10.0;
 /// tip is closing in on, so that F2 turns it several times before it meets it (rule 8).
 const APPROACH_SHARE: f32 = 0.25;
 
-/// The shortest update \[px\] near a crack or edge.
+/// The shortest update \[px\] near a crack or edge the tip heads at squarely; shorter, down
+/// to MIN_SQUARENESS of it, the more shallowly it heads at it.
 const MIN_UPDATE: f32 = 0.5;
+
+/// The least share of MIN_UPDATE an update near a crack covers.
+const MIN_SQUARENESS: f32 = 0.25;
 
 /// A margin \[px\] on the distance bounds that let a sector query skip a segment: far larger
 /// than the rounding of a distance on the plate (about 1e-4 px at 640 px), so that a skipped
@@ -297,7 +301,7 @@ impl Glass<'_> {
 
     /// The sum F1 + F2 + F3 on crack `i`'s tip heading `heading` (its course for a ring
     /// crack, with the ring's pull along it added).
-    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], f32) {
+    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], (f32, f32)) {
         let c = self.cracks[i];
         let p = self.params;
         let w = c.tip;
@@ -396,9 +400,16 @@ impl Glass<'_> {
                 }
             }
         });
-        let mut nearest = f32::INFINITY;
+        // The nearest crack or edge closed in on: its distance, and the cosine between the
+        // tip's heading and its normal (1 head-on, near 0 alongside).
+        let mut nearest = (f32::INFINITY, 1.0f32);
+        let mut closer = |d: f32, normal: [f32; 2]| {
+            if d < nearest.0 {
+                nearest = (d, normal[0] * direction[0] + normal[1] * direction[1]);
+            }
+        };
         for &(_, d, normal) in &near[..count] {
-            nearest = nearest.min(d);
+            closer(d, normal);
             let k = p.crack_attraction / (d * d);
             f[0] += k * normal[0];
             f[1] += k * normal[1];
@@ -411,7 +422,7 @@ impl Glass<'_> {
             let (a, z) = (corners[k], corners[(k + 1) % 4]);
             if let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) {
                 let normal = self.normal_towards(a, z, v, d);
-                nearest = nearest.min(d);
+                closer(d, normal);
                 let k = p.crack_attraction / (d * d);
                 f[0] += k * normal[0];
                 f[1] += k * normal[1];
@@ -476,7 +487,8 @@ impl Glass<'_> {
     /// One update of crack `i` (Eqs. 12–17); true when its time step is complete (or it
     /// stopped). A time step moves the tip |v|·dt with dt = 1 in updates of at most
     /// UPDATE_LENGTH; an update is cut shorter while a crack or edge the tip is closing in on
-    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE), so that F2 can turn
+    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE scaled by how squarely the
+    /// tip heads at it, down to MIN_SQUARENESS of it), so that F2 can turn
     /// the tip to meet it at a right angle (rule 8). The tip stops exactly on a crack or the
     /// edge.
     fn update(&mut self, i: usize) -> bool {
@@ -490,7 +502,12 @@ impl Glass<'_> {
         let (mut f, closing) = self.force(i, course);
         let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
         let planned = full.min(left);
-        let length = (APPROACH_SHARE * closing).max(MIN_UPDATE).min(planned);
+        // Near a crack, an update covers a quarter of the distance to it, and at least
+        // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
+        // coming in at a shallow angle needs more turns before it arrives.
+        let (gap, squareness) = closing;
+        let least = MIN_UPDATE * squareness.max(MIN_SQUARENESS);
+        let length = (APPROACH_SHARE * gap).max(least).min(planned);
         // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
         // per 10 px (scaled by the square root of the update's length, so that the random
         // turning per unit length does not depend on how a step is cut, and for a radial crack
