@@ -568,9 +568,10 @@ fn sorted(values: impl Iterator<Item = f64>) -> Vec<f64> {
 }
 
 /// Rule 8: tips meet other cracks at right angles (F2 turns them, over updates cut short as
-/// they close in). The hub is included: its short radial cracks end on a neighbour (at the
-/// angle printed for r < 60 px), on a ring crack, in an enclosed region, or at the end of
-/// generation.
+/// they close in). The hub is included: its short radial cracks run straight out (F3 scaled
+/// by weight(t)) and end on a large crack, a neighbour or a ring crack (at the angles printed
+/// per distance from the impact), in a region enclosed by cracks, or at the end of generation
+/// (the counts are printed).
 #[test]
 fn tips_meet_cracks_at_right_angles() {
     let g = geometry();
