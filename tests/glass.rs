@@ -609,6 +609,63 @@ fn tips_meet_cracks_at_right_angles() {
     assert!(square >= 0.5, "{:.1} % of meetings within 60-90 deg (issue 23 asks >= 50 %)", 100.0 * square);
 }
 
+/// Of the growing tips farther than 60 px from the impact at the end of each time step (seeds
+/// 0–99), the share within 10 px of another growing tip.
+fn close_tips(tip_repulsion: f32) -> (usize, f64) {
+    let (mut close, mut total) = (0usize, 0usize);
+    for seed in 0..PLATES {
+        let p = GlassParams { seed, tip_repulsion, ..GlassParams::default() };
+        with_plate_stepped(&p, |g| {
+            let tips: Vec<[f32; 2]> =
+                (0..g.crack_count()).filter_map(|i| g.crack(i)).filter(|c| c.growing).map(|c| c.tip).collect();
+            for (i, &a) in tips.iter().enumerate() {
+                let r = sub(a, p.impact);
+                if (r[0] * r[0] + r[1] * r[1]).sqrt() < 60.0 {
+                    continue;
+                }
+                total += 1;
+                close += usize::from(tips.iter().enumerate().any(|(j, &b)| {
+                    let d = sub(a, b);
+                    j != i && d[0] * d[0] + d[1] * d[1] < 100.0
+                }));
+            }
+        });
+    }
+    (total, close as f64 / total as f64)
+}
+
+/// Runs a plate to its end, calling `at_step` after every time step.
+fn with_plate_stepped(p: &GlassParams, mut at_step: impl FnMut(&Glass)) {
+    let m = p.memory().unwrap();
+    let mut memory = m.allocate();
+    let mut g = Glass::new(p, memory.buffers()).unwrap();
+    let mut time = 0;
+    loop {
+        let progress = g.step(1);
+        if progress.time != time || progress.finished {
+            time = progress.time;
+            at_step(&g);
+        }
+        if progress.finished {
+            break;
+        }
+    }
+}
+
+/// Rule 7: growing tips move away from each other. F1 (from tips in S growing towards the
+/// tip) leaves fewer tips close to another than no F1 does.
+#[test]
+fn tips_move_away_from_each_other() {
+    let (samples, with) = close_tips(GlassParams::default().tip_repulsion);
+    let (_, without) = close_tips(0.0);
+    println!(
+        "{PLATES} plates, {samples} tip positions beyond 60 px: {:.2} % within 10 px of another growing tip, {:.2} % without F1",
+        100.0 * with,
+        100.0 * without
+    );
+    assert!(with <= 0.95 * without, "F1 does not keep tips apart: {with:.4} against {without:.4} without it");
+}
+
 /// Rule 5: ring cracks grow along their circle of radius d_i: arcs, not chords.
 #[test]
 fn ring_cracks_follow_their_circle() {
