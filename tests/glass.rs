@@ -532,6 +532,9 @@ struct Geometry {
     turns: Vec<(f64, f64)>,
     /// Large cracks, and how many reached the edge.
     large: (usize, usize),
+    /// Per crack that stopped on the plate's edge: the angle (degrees, 0–90) between its last
+    /// piece and the edge.
+    edge_meetings: Vec<f64>,
     /// How the other radial cracks ended: on the edge, on a crack, at the end of generation,
     /// enclosed (indexed by `CrackEnd`).
     radial_ends: [usize; 5],
@@ -542,16 +545,28 @@ const PLATES: u64 = 100;
 fn geometry() -> &'static Geometry {
     static GEOMETRY: std::sync::OnceLock<Geometry> = std::sync::OnceLock::new();
     GEOMETRY.get_or_init(|| {
-        let mut g =
-            Geometry { meetings: Vec::new(), rings: Vec::new(), turns: Vec::new(), large: (0, 0), radial_ends: [0; 5] };
+        let mut g = Geometry {
+            meetings: Vec::new(),
+            rings: Vec::new(),
+            turns: Vec::new(),
+            large: (0, 0),
+            edge_meetings: Vec::new(),
+            radial_ends: [0; 5],
+        };
         for seed in 0..PLATES {
-            let pl = plate(&GlassParams { seed, ..GlassParams::default() });
+            let p = GlassParams { seed, ..GlassParams::default() };
+            let pl = plate(&p);
             g.meetings.extend(meeting_angles(&pl));
             g.rings.extend(ring_figures(&pl));
             g.turns.extend(radial_turns(&pl));
             for (c, _) in pl.cracks.iter().filter(|(c, _)| c.kind == CrackKind::Large) {
                 g.large.0 += 1;
                 g.large.1 += usize::from(c.end == CrackEnd::Edge);
+            }
+            for (_, pts) in pl.cracks.iter().filter(|(c, _)| c.end == CrackEnd::Edge) {
+                let (q, before) = (pts[pts.len() - 1], pts[pts.len() - 2]);
+                let edge = if q[0] == 0.0 || q[0] == p.width { [0.0, 1.0] } else { [1.0, 0.0] };
+                g.edge_meetings.push(line_angle(sub(q, before), edge));
             }
             for (c, _) in pl.cracks.iter().filter(|(c, _)| c.kind == CrackKind::Radial) {
                 g.radial_ends[c.end as usize] += 1;
@@ -707,14 +722,23 @@ fn radial_cracks_turn_like_the_papers_fig_5() {
     assert!(mean.abs() <= 2.0, "mean turn {mean:.2} deg");
 }
 
-/// Rules 2 and 3: large cracks reach the edge; radial cracks are nearly straight near the
-/// impact and bend further out.
+/// Rules 2, 3 and 8: large cracks reach the edge, and meet it at right angles; radial cracks
+/// are nearly straight near the impact and bend further out.
 #[test]
 fn large_cracks_reach_the_edge_and_radial_cracks_are_straighter_near_the_impact() {
     let g = geometry();
     let (large, reached) = g.large;
-    println!("{PLATES} plates: {reached} of {large} large cracks reach the edge");
+    let edge = sorted(g.edge_meetings.iter().copied());
+    let square = edge.iter().filter(|&&a| a >= 60.0).count() as f64 / edge.len() as f64;
+    println!(
+        "{PLATES} plates: {reached} of {large} large cracks reach the edge; {} cracks meet the edge at a median {:.1} deg, {:.1} % within 60-90 deg",
+        edge.len(),
+        percentile(&edge, 0.5),
+        100.0 * square
+    );
     assert!(reached * 100 >= large * 99, "{reached} of {large}");
+    // Rule 8 at the plate's edge.
+    assert!(percentile(&edge, 0.5) >= 60.0 && square >= 0.5, "edge meetings: median {:.1}", percentile(&edge, 0.5));
     let mean_turn = |lo: f64, hi: f64| {
         let t: Vec<f64> = g.turns.iter().filter(|t| t.1 >= lo && t.1 < hi).map(|t| t.0.abs()).collect();
         t.iter().sum::<f64>() / t.len() as f64
