@@ -797,7 +797,7 @@ fn table_1_fits_hold_over_m_40_to_200() {
 }
 
 /// The budget of `step` bounds its work whatever the parameters: every call does at most its
-/// budget plus one update's queries (bounded by the grid entries there are), and the plate
+/// budget plus one update's queries (bounded by the grid cells and entries there are), and the plate
 /// grows the same whatever the budgets.
 #[test]
 fn step_budgets_bound_the_work() {
@@ -807,15 +807,17 @@ fn step_budgets_bound_the_work() {
         ("large speed 1e-30", GlassParams { large_speed: 1e-30, ..base }),
         ("huge wander", GlassParams { wander: 1e6, ..base }),
         ("fast cracks", GlassParams { large_speed: 1e6, radial_speed: 1e5, ring_speed: 1e5, ..base }),
+        ("sector over the whole plate", GlassParams { sector_radius: 1e4, sector_angle: 6.28, ..base }),
     ];
     for (what, p) in cases {
         let m = p.memory().unwrap();
         let mut memory = m.allocate();
         let mut g = Glass::new(&p, memory.buffers()).unwrap();
-        // One update examines at most every grid entry twice (its sector and its move) and
-        // every tip entry once, plus the step loop's look at each crack.
-        let entries = 5 * m.vertices as u64;
-        let bound = 100 + 2 * entries + 3 * m.cracks as u64 + 2;
+        // One update examines at most every grid cell and entry twice (its sector and its
+        // move) and every cell and tip entry once more, plus the step loop's look at each
+        // crack. The grid has 40 × 40 cells of 16 px.
+        let (entries, cells) = (5 * m.vertices as u64, 40 * 40);
+        let bound = 100 + 2 * entries + 3 * cells + 3 * m.cracks as u64 + 2;
         let mut worst = 0;
         for _ in 0..2000 {
             let before = g.work();

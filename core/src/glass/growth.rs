@@ -51,9 +51,9 @@ impl Glass<'_> {
         self.step(u64::MAX)
     }
 
-    /// Advances growth by about `budget` units of work (at least one). A unit is a grid entry
-    /// examined by a distance or crossing query (a segment or a tip), or a crack looked at by
-    /// the step loop. The budget is checked before every update of a tip, so a call overruns
+    /// Advances growth by about `budget` units of work (at least one). A unit is a grid cell
+    /// or a grid entry (a segment or a tip) examined by a distance or crossing query, or a
+    /// crack looked at by the step loop. The budget is checked before every update of a tip, so a call overruns
     /// it by at most one update's queries, whatever the parameters (speeds, forces, plate
     /// size); generation resumes exactly where it stopped, so the result does not depend on
     /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
@@ -185,6 +185,8 @@ impl Glass<'_> {
         let cell = self.index.grid.cell;
         let (c, b) = (self.sector.cosine, self.params.sector_radius);
         let rays = sector.map(|(_, direction)| self.wedge(direction));
+        // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
+        self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 if let (Some((w, _)), Some([left, right])) = (sector, rays) {
@@ -310,7 +312,7 @@ impl Glass<'_> {
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
         // F1: away from every other tip in S, |F1| = k1/r².
         let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
-        let mut work = 0u64;
+        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 self.index.tips.for_each(cy * self.index.grid.columns + cx, |j| {
