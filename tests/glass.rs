@@ -807,7 +807,10 @@ fn step_budgets_bound_the_work() {
         ("large speed 1e-30", GlassParams { large_speed: 1e-30, ..base }),
         ("huge wander", GlassParams { wander: 1e6, ..base }),
         ("fast cracks", GlassParams { large_speed: 1e6, radial_speed: 1e5, ring_speed: 1e5, ..base }),
-        ("sector over the whole plate", GlassParams { sector_radius: 1e4, sector_angle: 6.28, ..base }),
+        (
+            "sector over the whole plate",
+            GlassParams { sector_radius: 1e4, sector_angle: std::f32::consts::TAU, ..base },
+        ),
     ];
     for (what, p) in cases {
         let m = p.memory().unwrap();
