@@ -334,7 +334,7 @@ typedef struct hibi_glass_params {
    */
   float crack_attraction;
   /**
-   * Spread of F3's direction per 10 px of growth [radians] (default 22°).
+   * Spread of F3's direction per 10 px of growth at weight(t) = 1 [radians] (default 45°).
    */
   float wander;
   /**
@@ -1544,11 +1544,11 @@ hibi_status hibi_glass_impact(struct hibi_glass *glass,
                               struct hibi_glass_counts *counts);
 
 /**
- * Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
- * a query examines, or a crack the step loop looks at; a call overruns by at most one tip
- * update's queries, and the plate does not depend on the budgets); writes where it stands to
- * `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
- * once a capacity has run out; the plate then stays as it was drawn, usable.
+ * Advances growth by about `budget` units of work (at least one; a unit is a grid cell,
+ * segment or tip a query examines, or a crack the step loop looks at; a call overruns by at
+ * most one tip update's queries, and the plate does not depend on the budgets); writes where
+ * it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes
+ * nothing) once a capacity has run out; the plate then stays as it was drawn, usable.
  *
  * # Safety
  * `glass` must be NULL or a live plate; `progress` optional: NULL (not written) or writable.

@@ -159,7 +159,7 @@ fn golden_cracks() {
         }
         fnv1a64(&bytes)
     });
-    assert_eq!(hash, 5635764176024274577, "the glass scene changed");
+    assert_eq!(hash, 6505504096250619495, "the glass scene changed");
 }
 
 #[test]
@@ -289,7 +289,7 @@ fn fragments_of_several_impacts_and_of_a_cut_short_run_still_tile_the_plate() {
     });
     // Capacity runs out before the large cracks reach the edge: dead ends are pruned, the
     // closed loops left are fragments, and whatever they do not cover is the plate's own.
-    let p = GlassParams { seed: 5, max_vertices: 300, ..GlassParams::default() };
+    let p = GlassParams { seed: 5, max_vertices: 400, ..GlassParams::default() };
     with_plate(&p, |g| {
         assert!(g.progress().capacity_reached);
         let frags = fragments(g);
@@ -567,6 +567,12 @@ struct Geometry {
     turns: Vec<(f64, f64)>,
     /// Large cracks, and how many reached the edge.
     large: (usize, usize),
+    /// Per crack that stopped on the plate's edge: the angle (degrees, 0–90) between its last
+    /// piece and the edge.
+    edge_meetings: Vec<f64>,
+    /// How the other radial cracks ended: on the edge, on a crack, at the end of generation,
+    /// enclosed (indexed by `CrackEnd`).
+    radial_ends: [usize; 5],
 }
 
 const PLATES: u64 = 100;
@@ -574,15 +580,31 @@ const PLATES: u64 = 100;
 fn geometry() -> &'static Geometry {
     static GEOMETRY: std::sync::OnceLock<Geometry> = std::sync::OnceLock::new();
     GEOMETRY.get_or_init(|| {
-        let mut g = Geometry { meetings: Vec::new(), rings: Vec::new(), turns: Vec::new(), large: (0, 0) };
+        let mut g = Geometry {
+            meetings: Vec::new(),
+            rings: Vec::new(),
+            turns: Vec::new(),
+            large: (0, 0),
+            edge_meetings: Vec::new(),
+            radial_ends: [0; 5],
+        };
         for seed in 0..PLATES {
-            let pl = plate(&GlassParams { seed, ..GlassParams::default() });
+            let p = GlassParams { seed, ..GlassParams::default() };
+            let pl = plate(&p);
             g.meetings.extend(meeting_angles(&pl));
             g.rings.extend(ring_figures(&pl));
             g.turns.extend(radial_turns(&pl));
             for (c, _) in pl.cracks.iter().filter(|(c, _)| c.kind == CrackKind::Large) {
                 g.large.0 += 1;
                 g.large.1 += usize::from(c.end == CrackEnd::Edge);
+            }
+            for (_, pts) in pl.cracks.iter().filter(|(c, _)| c.end == CrackEnd::Edge) {
+                let (q, before) = (pts[pts.len() - 1], pts[pts.len() - 2]);
+                let edge = if q[0] == 0.0 || q[0] == p.width { [0.0, 1.0] } else { [1.0, 0.0] };
+                g.edge_meetings.push(line_angle(sub(q, before), edge));
+            }
+            for (c, _) in pl.cracks.iter().filter(|(c, _)| c.kind == CrackKind::Radial) {
+                g.radial_ends[c.end as usize] += 1;
             }
         }
         g
@@ -596,9 +618,10 @@ fn sorted(values: impl Iterator<Item = f64>) -> Vec<f64> {
 }
 
 /// Rule 8: tips meet other cracks at right angles (F2 turns them, over updates cut short as
-/// they close in). The hub is included: its short radial cracks end on a neighbour (at the
-/// angle printed for r < 60 px), on a ring crack, in an enclosed region, or at the end of
-/// generation.
+/// they close in). The hub is included: its short radial cracks run straight out (F3 scaled
+/// by weight(t)) and end on a large crack, a neighbour or a ring crack (at the angles printed
+/// per distance from the impact), in a region enclosed by cracks, or at the end of generation
+/// (the counts are printed).
 #[test]
 fn tips_meet_cracks_at_right_angles() {
     let g = geometry();
@@ -622,9 +645,75 @@ fn tips_meet_cracks_at_right_angles() {
             );
         }
     }
+    let e = g.radial_ends;
+    println!(
+        "  the {} short radial cracks end: {} on a crack, {} at the end of generation, {} enclosed, {} on the edge",
+        e.iter().sum::<usize>(),
+        e[CrackEnd::Crack as usize],
+        e[CrackEnd::Generation as usize],
+        e[CrackEnd::Enclosed as usize],
+        e[CrackEnd::Edge as usize]
+    );
     assert!(all.len() > 20 * PLATES as usize, "only {} meetings", all.len());
     assert!(median >= 60.0, "median meeting angle {median:.1} deg (issue 23 asks >= 60)");
     assert!(square >= 0.5, "{:.1} % of meetings within 60-90 deg (issue 23 asks >= 50 %)", 100.0 * square);
+}
+
+/// Of the growing tips farther than 60 px from the impact at the end of each time step (seeds
+/// 0–99), the share within 10 px of another growing tip.
+fn close_tips(tip_repulsion: f32) -> (usize, f64) {
+    let (mut close, mut total) = (0usize, 0usize);
+    for seed in 0..PLATES {
+        let p = GlassParams { seed, tip_repulsion, ..GlassParams::default() };
+        with_plate_stepped(&p, |g| {
+            let tips: Vec<[f32; 2]> =
+                (0..g.crack_count()).filter_map(|i| g.crack(i)).filter(|c| c.growing).map(|c| c.tip).collect();
+            for (i, &a) in tips.iter().enumerate() {
+                let r = sub(a, p.impact);
+                if (r[0] * r[0] + r[1] * r[1]).sqrt() < 60.0 {
+                    continue;
+                }
+                total += 1;
+                close += usize::from(tips.iter().enumerate().any(|(j, &b)| {
+                    let d = sub(a, b);
+                    j != i && d[0] * d[0] + d[1] * d[1] < 100.0
+                }));
+            }
+        });
+    }
+    (total, close as f64 / total as f64)
+}
+
+/// Runs a plate to its end, calling `at_step` after every time step.
+fn with_plate_stepped(p: &GlassParams, mut at_step: impl FnMut(&Glass)) {
+    let m = p.memory().unwrap();
+    let mut memory = m.allocate();
+    let mut g = Glass::new(p, memory.buffers()).unwrap();
+    let mut time = 0;
+    loop {
+        let progress = g.step(1);
+        if progress.time != time || progress.finished {
+            time = progress.time;
+            at_step(&g);
+        }
+        if progress.finished {
+            break;
+        }
+    }
+}
+
+/// Rule 7: growing tips move away from each other. F1 (from tips in S growing towards the
+/// tip) leaves fewer tips close to another than no F1 does.
+#[test]
+fn tips_move_away_from_each_other() {
+    let (samples, with) = close_tips(GlassParams::default().tip_repulsion);
+    let (_, without) = close_tips(0.0);
+    println!(
+        "{PLATES} plates, {samples} tip positions beyond 60 px: {:.2} % within 10 px of another growing tip, {:.2} % without F1",
+        100.0 * with,
+        100.0 * without
+    );
+    assert!(with <= 0.95 * without, "F1 does not keep tips apart: {with:.4} against {without:.4} without it");
 }
 
 /// Rule 5: ring cracks grow along their circle of radius d_i: arcs, not chords.
@@ -632,29 +721,24 @@ fn tips_meet_cracks_at_right_angles() {
 fn ring_cracks_follow_their_circle() {
     let g = geometry();
     let worst = g.rings.iter().map(|r| r.0).fold(0.0, f64::max);
-    let short: Vec<_> = g.rings.iter().filter(|r| r.1 < r.2).collect();
+    // Rounding of the f32 vertices: a crack that keeps exactly to its chords may measure a
+    // hair under its arc.
+    const ROUNDING: f64 = 1e-3;
+    let short: Vec<_> = g.rings.iter().filter(|r| r.1 < r.2 - ROUNDING).collect();
     let (turning, arc) = g.rings.iter().fold((0.0, 0.0), |a, r| (a.0 + r.1, a.1 + r.2));
-    let shortfall = short.iter().map(|r| (r.2 - r.1).to_degrees()).fold(0.0, f64::max);
+    let least = g.rings.iter().map(|r| (r.1 - r.2).to_degrees()).fold(f64::INFINITY, f64::min);
     println!(
-        "{PLATES} plates: {} ring cracks; every vertex within {:.1} % of d_i; mean turning {:.1} deg over mean arc {:.1} deg; {} turn less than their arc (by at most {shortfall:.1} deg)",
+        "{PLATES} plates: {} ring cracks; every vertex within {:.1} % of d_i; mean turning {:.1} deg over mean arc {:.1} deg; each turns at least its arc plus {least:.2} deg",
         g.rings.len(),
         100.0 * worst,
         turning.to_degrees() / g.rings.len() as f64,
         arc.to_degrees() / g.rings.len() as f64,
-        short.len()
     );
     assert!(g.rings.len() > 5 * PLATES as usize);
     assert!(worst <= 0.1, "a ring crack's vertex strays {:.1} % from its radius", 100.0 * worst);
-    // A chord turns 0 while its arc is 10-40 deg: every ring crack turning less than its arc
-    // would be a chord. Issue 23 asks that each turns at least as much; not all do (a ring
-    // crack's last updates turn it to meet a bent crack at a right angle, rule 8).
-    assert!(turning >= arc, "ring cracks turn {turning} rad in all, less than their arcs' {arc}");
-    assert!(
-        short.len() * 100 <= 3 * g.rings.len(),
-        "{} of {} ring cracks turn less than their arc",
-        short.len(),
-        g.rings.len()
-    );
+    // A chord turns 0 while its arc is 10-40 deg. Each ring crack turns at least as much as
+    // the arc it spans: no update turns it outwards of the chord of its circle it spans.
+    assert!(short.is_empty(), "{} of {} ring cracks turn less than their arc", short.len(), g.rings.len());
 }
 
 /// Rule 6 and Fig. 5: the turning between successive 10 px pieces of radial cracks is spread
@@ -673,14 +757,23 @@ fn radial_cracks_turn_like_the_papers_fig_5() {
     assert!(mean.abs() <= 2.0, "mean turn {mean:.2} deg");
 }
 
-/// Rules 2 and 3: large cracks reach the edge; radial cracks are nearly straight near the
-/// impact and bend further out.
+/// Rules 2, 3 and 8: large cracks reach the edge, and meet it at right angles; radial cracks
+/// are nearly straight near the impact and bend further out.
 #[test]
 fn large_cracks_reach_the_edge_and_radial_cracks_are_straighter_near_the_impact() {
     let g = geometry();
     let (large, reached) = g.large;
-    println!("{PLATES} plates: {reached} of {large} large cracks reach the edge");
+    let edge = sorted(g.edge_meetings.iter().copied());
+    let square = edge.iter().filter(|&&a| a >= 60.0).count() as f64 / edge.len() as f64;
+    println!(
+        "{PLATES} plates: {reached} of {large} large cracks reach the edge; {} cracks meet the edge at a median {:.1} deg, {:.1} % within 60-90 deg",
+        edge.len(),
+        percentile(&edge, 0.5),
+        100.0 * square
+    );
     assert!(reached * 100 >= large * 99, "{reached} of {large}");
+    // Rule 8 at the plate's edge.
+    assert!(percentile(&edge, 0.5) >= 60.0 && square >= 0.5, "edge meetings: median {:.1}", percentile(&edge, 0.5));
     let mean_turn = |lo: f64, hi: f64| {
         let t: Vec<f64> = g.turns.iter().filter(|t| t.1 >= lo && t.1 < hi).map(|t| t.0.abs()).collect();
         t.iter().sum::<f64>() / t.len() as f64
@@ -739,7 +832,7 @@ fn table_1_fits_hold_over_m_40_to_200() {
 }
 
 /// The budget of `step` bounds its work whatever the parameters: every call does at most its
-/// budget plus one update's queries (bounded by the grid entries there are), and the plate
+/// budget plus one update's queries (bounded by the grid cells and entries there are), and the plate
 /// grows the same whatever the budgets.
 #[test]
 fn step_budgets_bound_the_work() {
@@ -749,15 +842,20 @@ fn step_budgets_bound_the_work() {
         ("large speed 1e-30", GlassParams { large_speed: 1e-30, ..base }),
         ("huge wander", GlassParams { wander: 1e6, ..base }),
         ("fast cracks", GlassParams { large_speed: 1e6, radial_speed: 1e5, ring_speed: 1e5, ..base }),
+        (
+            "sector over the whole plate",
+            GlassParams { sector_radius: 1e4, sector_angle: std::f32::consts::TAU, ..base },
+        ),
     ];
     for (what, p) in cases {
         let m = p.memory().unwrap();
         let mut memory = m.allocate();
         let mut g = Glass::new(&p, memory.buffers()).unwrap();
-        // One update examines at most every grid entry twice (its sector and its move) and
-        // every tip entry once, plus the step loop's look at each crack.
-        let entries = 5 * m.vertices as u64;
-        let bound = 100 + 2 * entries + 3 * m.cracks as u64 + 2;
+        // One update examines at most every grid cell and entry twice (its sector and its
+        // move) and every cell and tip entry once more, plus the step loop's look at each
+        // crack. The grid has 40 × 40 cells of 16 px.
+        let (entries, cells) = (5 * m.vertices as u64, 40 * 40);
+        let bound = 100 + 2 * entries + 3 * cells + 3 * m.cracks as u64 + 2;
         let mut worst = 0;
         for _ in 0..2000 {
             let before = g.work();

@@ -366,7 +366,7 @@ pub struct GlassOptions {
     /// k2 of F2, the pull towards cracks and edges [px²] [default: 400].
     #[arg(long, value_name = "K2")]
     pub crack_attraction: Option<f32>,
-    /// Standard deviation of F3's direction per 10 px of growth [degrees] [default: 22].
+    /// Standard deviation of F3's direction per 10 px of growth at weight(t) = 1 [degrees] [default: 45].
     #[arg(long, value_name = "DEGREES")]
     pub wander: Option<f32>,
     /// How hard a ring crack keeps to its circle [default: 2].

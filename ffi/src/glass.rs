@@ -128,7 +128,7 @@ pub struct hibi_glass_params {
     pub tip_repulsion: f32,
     /// k2 of F2 = k2/d², the pull to meet a crack or edge at a right angle [px²] (default 400).
     pub crack_attraction: f32,
-    /// Spread of F3's direction per 10 px of growth [radians] (default 22°).
+    /// Spread of F3's direction per 10 px of growth at weight(t) = 1 [radians] (default 45°).
     pub wander: f32,
     /// How hard ring cracks keep to their circle (default 2).
     pub ring_adherence: f32,
@@ -383,11 +383,11 @@ pub unsafe extern "C" fn hibi_glass_impact(
     })
 }
 
-/// Advances growth by about `budget` units of work (at least one; a unit is a segment or tip
-/// a query examines, or a crack the step loop looks at; a call overruns by at most one tip
-/// update's queries, and the plate does not depend on the budgets); writes where it stands to
-/// `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing)
-/// once a capacity has run out; the plate then stays as it was drawn, usable.
+/// Advances growth by about `budget` units of work (at least one; a unit is a grid cell,
+/// segment or tip a query examines, or a crack the step loop looks at; a call overruns by at
+/// most one tip update's queries, and the plate does not depend on the budgets); writes where
+/// it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes
+/// nothing) once a capacity has run out; the plate then stays as it was drawn, usable.
 ///
 /// # Safety
 /// `glass` must be NULL or a live plate; `progress` optional: NULL (not written) or writable.

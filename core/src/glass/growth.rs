@@ -13,8 +13,12 @@ pub(super) const UPDATE_LENGTH: f32 = 10.0;
 /// tip is closing in on, so that F2 turns it several times before it meets it (rule 8).
 const APPROACH_SHARE: f32 = 0.25;
 
-/// The shortest update \[px\] near a crack or edge.
+/// The shortest update \[px\] near a crack or edge the tip heads at squarely; shorter, down
+/// to MIN_SQUARENESS of it, the more shallowly it heads at it.
 const MIN_UPDATE: f32 = 0.5;
+
+/// The least share of MIN_UPDATE an update near a crack covers.
+const MIN_SQUARENESS: f32 = 0.25;
 
 /// A margin \[px\] on the distance bounds that let a sector query skip a segment: far larger
 /// than the rounding of a distance on the plate (about 1e-4 px at 640 px), so that a skipped
@@ -47,9 +51,9 @@ impl Glass<'_> {
         self.step(u64::MAX)
     }
 
-    /// Advances growth by about `budget` units of work (at least one). A unit is a grid entry
-    /// examined by a distance or crossing query (a segment or a tip), or a crack looked at by
-    /// the step loop. The budget is checked before every update of a tip, so a call overruns
+    /// Advances growth by about `budget` units of work (at least one). A unit is a grid cell
+    /// or a grid entry (a segment or a tip) examined by a distance or crossing query, or a
+    /// crack looked at by the step loop. The budget is checked before every update of a tip, so a call overruns
     /// it by at most one update's queries, whatever the parameters (speeds, forces, plate
     /// size); generation resumes exactly where it stopped, so the result does not depend on
     /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
@@ -181,6 +185,8 @@ impl Glass<'_> {
         let cell = self.index.grid.cell;
         let (c, b) = (self.sector.cosine, self.params.sector_radius);
         let rays = sector.map(|(_, direction)| self.wedge(direction));
+        // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
+        self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 if let (Some((w, _)), Some([left, right])) = (sector, rays) {
@@ -297,7 +303,7 @@ impl Glass<'_> {
 
     /// The sum F1 + F2 + F3 on crack `i`'s tip heading `heading` (its course for a ring
     /// crack, with the ring's pull along it added).
-    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], f32) {
+    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], (f32, f32)) {
         let c = self.cracks[i];
         let p = self.params;
         let w = c.tip;
@@ -306,7 +312,7 @@ impl Glass<'_> {
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
         // F1: away from every other tip in S, |F1| = k1/r².
         let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
-        let mut work = 0u64;
+        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
                 self.index.tips.for_each(cy * self.index.grid.columns + cx, |j| {
@@ -396,9 +402,16 @@ impl Glass<'_> {
                 }
             }
         });
-        let mut nearest = f32::INFINITY;
+        // The nearest crack or edge closed in on: its distance, and the cosine between the
+        // tip's heading and its normal (1 head-on, near 0 alongside).
+        let mut nearest = (f32::INFINITY, 1.0f32);
+        let mut closer = |d: f32, normal: [f32; 2]| {
+            if d < nearest.0 {
+                nearest = (d, normal[0] * direction[0] + normal[1] * direction[1]);
+            }
+        };
         for &(_, d, normal) in &near[..count] {
-            nearest = nearest.min(d);
+            closer(d, normal);
             let k = p.crack_attraction / (d * d);
             f[0] += k * normal[0];
             f[1] += k * normal[1];
@@ -411,7 +424,7 @@ impl Glass<'_> {
             let (a, z) = (corners[k], corners[(k + 1) % 4]);
             if let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) {
                 let normal = self.normal_towards(a, z, v, d);
-                nearest = nearest.min(d);
+                closer(d, normal);
                 let k = p.crack_attraction / (d * d);
                 f[0] += k * normal[0];
                 f[1] += k * normal[1];
@@ -446,6 +459,17 @@ impl Glass<'_> {
         }
     }
 
+    /// Where ring crack `c`'s tip is on its circle: its angle and distance about the impact,
+    /// and the sense it grows in (1 counter-clockwise, −1 clockwise).
+    fn ring_frame(c: &super::Crack) -> (f32, f32, f32) {
+        let centre = c.ring.0;
+        let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
+        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
+        let angle = libm::atan2f(rel[1], rel[0]);
+        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        (angle, r, sense)
+    }
+
     /// The course of ring crack `c` (rule 5: ring cracks grow along their circle): the
     /// direction of the chord of the circle through its tip (about the impact) that spans one
     /// full update, |v| cut into pieces of at most 10 px, turned towards radius d_i by up to a
@@ -453,11 +477,8 @@ impl Glass<'_> {
     /// tangent, so that a ring crack turns at least as much as the arc it runs along, and
     /// returns to its circle without ever turning outwards.
     fn ring_course(c: &super::Crack) -> f32 {
-        let (centre, radius) = c.ring;
-        let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
-        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
-        let angle = libm::atan2f(rel[1], rel[0]);
-        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        let radius = c.ring.1;
+        let (angle, r, sense) = Self::ring_frame(c);
         let update = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
         // Half the angle the chord of length `update` subtends.
         let half = libm::asinf((0.5 * update / r).min(1.0));
@@ -468,7 +489,8 @@ impl Glass<'_> {
     /// One update of crack `i` (Eqs. 12–17); true when its time step is complete (or it
     /// stopped). A time step moves the tip |v|·dt with dt = 1 in updates of at most
     /// UPDATE_LENGTH; an update is cut shorter while a crack or edge the tip is closing in on
-    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE), so that F2 can turn
+    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE scaled by how squarely the
+    /// tip heads at it, down to MIN_SQUARENESS of it), so that F2 can turn
     /// the tip to meet it at a right angle (rule 8). The tip stops exactly on a crack or the
     /// edge.
     fn update(&mut self, i: usize) -> bool {
@@ -482,22 +504,38 @@ impl Glass<'_> {
         let (mut f, closing) = self.force(i, course);
         let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
         let planned = full.min(left);
-        let length = (APPROACH_SHARE * closing).max(MIN_UPDATE).min(planned);
+        // Near a crack, an update covers a quarter of the distance to it, and at least
+        // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
+        // coming in at a shallow angle needs more turns before it arrives.
+        let (gap, squareness) = closing;
+        let least = MIN_UPDATE * squareness.max(MIN_SQUARENESS);
+        let length = (APPROACH_SHARE * gap).max(least).min(planned);
         // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
         // per 10 px (scaled by the square root of the update's length, so that the random
-        // turning per unit length does not depend on how a step is cut), around the direction
+        // turning per unit length does not depend on how a step is cut, and for a radial crack
+        // by weight(t), so that young cracks wander little, rule 3), around the direction
         // the crack started in (a radial crack keeps its course on the whole: adjacent large
         // cracks stay at nearly equal angles) or, for a ring crack, around its course.
-        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH);
+        let age = c.age as f32 + done / c.speed;
+        let weight = 1.0 - libm::expf(-age / p.turn_delay);
+        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
         let mean = if ring { course } else { c.start_heading };
         let angle = mean + spread * self.forces.normal_f32();
         f[0] += libm::cosf(angle);
         f[1] += libm::sinf(angle);
         // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
         let difference = wrap(libm::atan2f(f[1], f[0]) - course).clamp(-p.turn_limit, p.turn_limit);
-        let age = c.age as f32 + done / c.speed;
-        let weight = 1.0 - libm::expf(-age / p.turn_delay);
-        let heading = wrap(course + difference * weight);
+        let mut heading = wrap(course + difference * weight);
+        if ring {
+            // Rule 5: a ring crack never turns outwards of the chord of its circle (about the
+            // impact, through its tip) that this update spans, so that it turns at least as
+            // much as the arc it runs along, right up to where it meets a crack.
+            let (angle, r, sense) = Self::ring_frame(&c);
+            let chord = angle + sense * (core::f32::consts::FRAC_PI_2 + libm::asinf((0.5 * length / r).min(1.0)));
+            if sense * wrap(heading - chord) < 0.0 {
+                heading = wrap(chord);
+            }
+        }
         // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
         let stopped = self.move_tip(i, heading, length, done);
         let left = left - length;

@@ -378,7 +378,7 @@ struct Clock {
     time_limit: u32,
     finished: bool,
     capacity_reached: bool,
-    /// Units of work done so far (grid entries examined, cracks looked at): what
+    /// Units of work done so far (grid cells and entries examined, cracks looked at): what
     /// [`Glass::step`]'s budget counts.
     work: u64,
     /// A time step is under way (its tips' positions were filed).

@@ -70,10 +70,10 @@ pub const GOLDENS: [(&str, u64); 40] = [
     // The irregular (jittered Delaunay) lattice, 32×32.
     ("mud.irregular32.f32.segments", 14948481408847612946),
     // A 160×160 plate hit at its centre, seed 7.
-    ("glass.plate160.cracks", 10794970349233861267),
-    ("glass.plate160.fragments", 679147713355531113),
-    ("glass.plate160.mask", 13645325520639060209),
-    ("glass.plate160.time", 9471383570816441372),
+    ("glass.plate160.cracks", 18304982762648171983),
+    ("glass.plate160.fragments", 495088161804579311),
+    ("glass.plate160.mask", 15999852202410915357),
+    ("glass.plate160.time", 3124480184357136588),
     // Skin fig19a at 64×64: outlines, height and normal maps on both backends, shading, the
     // cell map of every level.
     ("skin.fig19a64.outlines", 16065892686752697251),
