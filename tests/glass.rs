@@ -318,10 +318,7 @@ fn fragment_queries_share_the_plate_across_threads() {
     with_plate(&GlassParams { seed: 4, ..GlassParams::default() }, |g| {
         let alone = fragments(g);
         let g = &*g;
-        let together: Vec<_> = std::thread::scope(|s| {
-            let threads: Vec<_> = (0..4).map(|_| s.spawn(|| fragments_of(g))).collect();
-            threads.into_iter().map(|t| t.join().expect("no panic")).collect()
-        });
+        let together = hibi_tests::on_four_threads(|| fragments_of(g));
         assert!(together.iter().all(|f| *f == alone));
         let needed = g.params().memory().unwrap().scratch;
         let mut short = vec![0; needed - 1];

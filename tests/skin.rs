@@ -226,10 +226,7 @@ fn renders_share_the_skin_across_threads() {
     with_skin(&sized("fig19a", 96), |skin| {
         let alone = maps(skin);
         let skin = &*skin;
-        let together: Vec<_> = std::thread::scope(|s| {
-            let threads: Vec<_> = (0..4).map(|_| s.spawn(|| maps(skin))).collect();
-            threads.into_iter().map(|t| t.join().expect("no panic")).collect()
-        });
+        let together = hibi_tests::on_four_threads(|| maps(skin));
         assert!(together.iter().all(|m| *m == alone));
         let m = skin.params().memory().unwrap();
         let (mut wedges, mut crossings) = (vec![Default::default(); m.wedges - 1], vec![0; m.crossings]);

@@ -39,3 +39,12 @@ pub fn profile_dir() -> PathBuf {
 
 /// FNV-1a, 64-bit: the hash of golden snapshots (one definition, in the scenes crate).
 pub use hibi_scenes::fnv1a64;
+
+/// Runs `call` on four threads at once and returns what each gave (for the read-only calls
+/// that may share one object).
+pub fn on_four_threads<T: Send>(call: impl Fn() -> T + Sync) -> Vec<T> {
+    std::thread::scope(|s| {
+        let threads: Vec<_> = (0..4).map(|_| s.spawn(&call)).collect();
+        threads.into_iter().map(|t| t.join().expect("no panic")).collect()
+    })
+}
