@@ -11,7 +11,8 @@ fn main() {
         // cortex-m-rt's link.x includes memory.x (from the linker's working directory, this
         // one, or the search path): the part's layout, copied to OUT_DIR under that name (so
         // no memory.x may lie here).
-        let (layout, small) = if target.starts_with("thumbv7m-") { ("lm3s6965.x", true) } else { ("mps2-an386.x", false) };
+        let (layout, small) =
+            if target.starts_with("thumbv7m-") { ("lm3s6965.x", true) } else { ("mps2-an386.x", false) };
         let out = PathBuf::from(std::env::var("OUT_DIR").unwrap());
         std::fs::copy(dir.join(layout), out.join("memory.x")).unwrap();
         println!("cargo:rustc-link-search={}", out.display());

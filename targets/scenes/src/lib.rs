@@ -860,7 +860,9 @@ fn small_glass(arena: &mut [u64], emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit(names[0], Ok(cracks_hash(&glass)));
     let mask = arena.take::<u8>(pixels, "glass: arena too small for the mask").and_then(|mask| {
         let render = GlassRender { width: SMALL_MASK, height: SMALL_MASK, ..GlassRender::default() };
-        glass.render(&render, GlassLayers { mask: Some(&mut *mask), time: None }).map_err(|_| Failure("glass: render refused"))?;
+        glass
+            .render(&render, GlassLayers { mask: Some(&mut *mask), time: None })
+            .map_err(|_| Failure("glass: render refused"))?;
         Ok(fnv1a64(mask))
     });
     emit(names[1], mask);
@@ -949,6 +951,9 @@ pub fn check(memory: &mut Memory, target: &str, out: &mut dyn Write) -> Result<u
     check_scenes(&GOLDENS, &mut |emit| run(memory, emit), Memory::bytes(), target, out, None)
 }
 
+/// Where a scene run hands each scene's name and outcome.
+pub type Emit<'a> = dyn FnMut(&'static str, Outcome) + 'a;
+
 /// A counter read after each scene (instructions, cycles, ticks) and its unit's name.
 pub type Meter<'a> = (&'a mut dyn FnMut() -> u64, &'a str);
 
@@ -967,7 +972,7 @@ pub fn check_small(
 
 fn check_scenes(
     goldens: &[(&str, u64)],
-    scenes: &mut dyn FnMut(&mut dyn FnMut(&'static str, Outcome)),
+    scenes: &mut dyn FnMut(&mut Emit<'_>),
     memory_bytes: usize,
     target: &str,
     out: &mut dyn Write,
