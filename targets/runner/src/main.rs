@@ -119,8 +119,8 @@ mod platform {
 
     /// An instruction counter: SysTick on the core clock, which under QEMU's `-icount shift=0`
     /// advances with the instructions executed (1 ns of virtual time each), scaled by a
-    /// calibration against a loop of known length (cortex-m's `delay`: `subs` and `bne`,
-    /// 2·(n/2 + 1) instructions for `delay(n)`). Writes the calibration to `out`.
+    /// calibration against a loop of known length (cortex-m 0.7.10's `delay(n)`: n + 1 times
+    /// `subs` and `bne`, 2·(n + 1) instructions). Writes the calibration to `out`.
     #[cfg(hibi_small)]
     pub(super) fn meter(out: &mut dyn Write) -> impl FnMut() -> u64 + use<> {
         use cortex_m::peripheral::syst::SystClkSource;
@@ -129,11 +129,6 @@ mod platform {
             debug::exit(debug::EXIT_FAILURE);
             loop {}
         };
-        // QEMU gives SysTick its clock when the system control's RCC register is written:
-        // write back its reset value.
-        const RCC: *mut u32 = 0x400f_e060 as *mut u32;
-        // SAFETY: the LM3S6965's run-mode clock configuration register.
-        unsafe { RCC.write_volatile(RCC.read_volatile()) };
         let syst = &mut peripherals.SYST;
         syst.set_clock_source(SystClkSource::Core);
         syst.set_reload(0x00ff_ffff);
@@ -143,7 +138,7 @@ mod platform {
         // Cleared, the counter reads 0 until its first tick reloads it.
         while cortex_m::peripheral::SYST::get_current() == 0 {}
         const LOOP: u32 = 20_000_000;
-        let looped = 2 * u64::from(LOOP / 2 + 1);
+        let looped = 2 * (u64::from(LOOP) + 1);
         let t0 = ticks();
         cortex_m::asm::delay(LOOP);
         let t1 = ticks();
