@@ -9,11 +9,23 @@ use core::fmt::Write;
 const TARGET: &str = env!("HIBI_TARGET");
 
 /// Runs every scene, writing the report to `out`; true when all match.
+#[cfg(not(hibi_small))]
 fn scenes(out: &mut dyn Write) -> bool {
     let Some(mut memory) = hibi_scenes::Memory::take() else {
         return false;
     };
     matches!(hibi_scenes::check(&mut memory, TARGET, out), Ok(0))
+}
+
+/// The 64 KiB part: the 64 KiB scenes only, in their arena, each with its instruction count.
+#[cfg(hibi_small)]
+fn scenes(out: &mut dyn Write) -> bool {
+    let Some(arena) = hibi_scenes::small_arena() else {
+        return false;
+    };
+    let mut instructions = platform::meter(out);
+    let meter: hibi_scenes::Meter<'_> = (&mut instructions, "instructions");
+    matches!(hibi_scenes::check_small(arena, TARGET, out, Some(meter)), Ok(0))
 }
 
 #[cfg(not(target_os = "none"))]
@@ -29,8 +41,8 @@ fn main() {
     std::process::exit(if ok { 0 } else { 1 });
 }
 
-/// Cortex-M (mps2-an386 under qemu-system-arm): semihosting for output and exit; the stack
-/// is painted at reset (cortex-m-rt's `paint-stack`) and its peak reported.
+/// Cortex-M (mps2-an386 or lm3s6965evb under qemu-system-arm): semihosting for output and
+/// exit; the stack is painted at reset (cortex-m-rt's `paint-stack`) and its peak reported.
 #[cfg(all(target_os = "none", target_arch = "arm"))]
 mod platform {
     use core::fmt::Write;
@@ -70,9 +82,74 @@ mod platform {
         };
         let mut out = Out(stdout);
         let ok = super::scenes(&mut out);
-        let _ = writeln!(out, "stack peak {} bytes", stack_peak());
-        debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+        let peak = stack_peak();
+        let region = &raw const _stack_start as usize - &raw const _stack_end as usize;
+        let _ = writeln!(out, "stack peak {peak} bytes of {region}");
+        // A stack that reached the end of its region has run into the static memory below it.
+        let fits = peak < region;
+        if !fits {
+            let _ = writeln!(out, "FAILED   the stack overflowed its {region} bytes");
+        }
+        debug::exit(if ok && fits { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
         loop {}
+    }
+
+    /// SysTick reloads (every 2^24 ticks), counted by its exception.
+    #[cfg(hibi_small)]
+    static WRAPS: core::sync::atomic::AtomicU32 = core::sync::atomic::AtomicU32::new(0);
+
+    #[cfg(hibi_small)]
+    #[cortex_m_rt::exception]
+    fn SysTick() {
+        WRAPS.fetch_add(1, core::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// SysTick ticks since `meter` started it.
+    #[cfg(hibi_small)]
+    fn ticks() -> u64 {
+        use core::sync::atomic::Ordering::Relaxed;
+        loop {
+            let wraps = WRAPS.load(Relaxed);
+            let current = cortex_m::peripheral::SYST::get_current();
+            if WRAPS.load(Relaxed) == wraps {
+                return u64::from(wraps) * (1 << 24) + u64::from(0x00ff_ffff - current);
+            }
+        }
+    }
+
+    /// An instruction counter: SysTick on the core clock, which under QEMU's `-icount shift=0`
+    /// advances with the instructions executed (1 ns of virtual time each), scaled by a
+    /// calibration against a loop of known length (cortex-m 0.7.10's `delay(n)`: n + 1 times
+    /// `subs` and `bne`, 2·(n + 1) instructions). Writes the calibration to `out`.
+    #[cfg(hibi_small)]
+    pub(super) fn meter(out: &mut dyn Write) -> impl FnMut() -> u64 + use<> {
+        use cortex_m::peripheral::syst::SystClkSource;
+        let Some(mut peripherals) = cortex_m::Peripherals::take() else {
+            let _ = writeln!(out, "meter: the core peripherals are taken");
+            debug::exit(debug::EXIT_FAILURE);
+            loop {}
+        };
+        let syst = &mut peripherals.SYST;
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(0x00ff_ffff);
+        syst.clear_current();
+        syst.enable_interrupt();
+        syst.enable_counter();
+        // Cleared, the counter reads 0 until its first tick reloads it.
+        while cortex_m::peripheral::SYST::get_current() == 0 {}
+        const LOOP: u32 = 20_000_000;
+        let looped = 2 * (u64::from(LOOP) + 1);
+        let t0 = ticks();
+        cortex_m::asm::delay(LOOP);
+        let t1 = ticks();
+        if t1 <= t0 || t1 - t0 > looped {
+            let _ = writeln!(out, "meter: SysTick does not count ({t0} then {t1} ticks)");
+            debug::exit(debug::EXIT_FAILURE);
+            loop {}
+        }
+        let per = t1 - t0;
+        let _ = writeln!(out, "meter: SysTick, {per} ticks for a loop of {looped} instructions");
+        move || ticks() * looped / per
     }
 
     #[panic_handler]

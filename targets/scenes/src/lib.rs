@@ -31,7 +31,7 @@ use hibi_core::skin::{
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
 /// Every scene's name and the FNV-1a 64 hash of its bytes, in the order [`run`] produces them.
-pub const GOLDENS: [(&str, u64); 40] = [
+pub const GOLDENS: [(&str, u64); 47] = [
     // The first four 32-bit outputs of each stream for seed 2026 (tests/goldens.rs lists them).
     ("rng.stream.break_stretch", 1769533495125578143),
     ("rng.stream.lattice_jitter", 9541135610860920612),
@@ -81,7 +81,22 @@ pub const GOLDENS: [(&str, u64); 40] = [
     ("skin.fig19a64.q16.maps", 11898630028135427798),
     ("skin.fig19a64.shade", 4422298828594955254),
     ("skin.fig19a64.cell_maps", 8055995322159811074),
+    // The 64 KiB scenes ([`run_small`], [`SMALL`]): one small run of each model in a 64 KiB
+    // part's memory. Mud on a 16×16 lattice on both backends; glass on a 128×128 plate
+    // (radial_mean lowered), its cracks and a 64×64 mask; a one-level skin 64×64
+    // (perturbation depth lowered), its outlines; the same skin 32×32, its height map on both
+    // backends (a 64×64 map does not fit beside the skin).
+    ("small.mud.hex16.f32.segments", 9881299432880165650),
+    ("small.mud.hex16.q16.segments", 1540136574276529383),
+    ("small.glass128.cracks", 11831547883248774143),
+    ("small.glass128.mask", 8762638642845285862),
+    ("small.skin64.outlines", 10842965642735640003),
+    ("small.skin32.f32.height", 10256831097620967060),
+    ("small.skin32.q16.height", 6105839403915704060),
 ];
+
+/// Where the 64 KiB scenes ([`run_small`]) lie in [`GOLDENS`].
+pub const SMALL: core::ops::Range<usize> = 40..47;
 
 /// The streams in [`Stream::ALL`] order, with their scene names.
 const STREAMS: [(Stream, &str); 10] = [
@@ -257,6 +272,7 @@ pub struct Memory {
     normals: &'static mut [[f32; 3]],
     rgb: &'static mut [[u8; 3]],
     cell_map: &'static mut [u32],
+    arena: &'static mut [u64],
 }
 
 /// Output buffers shared by the models.
@@ -301,6 +317,7 @@ impl Memory {
         if TAKEN.swap(true, Ordering::AcqRel) {
             return None;
         }
+        let arena = small_arena()?;
         // SAFETY: TAKEN was false, so this is the one call that reaches the slots.
         unsafe {
             Some(Memory {
@@ -330,6 +347,7 @@ impl Memory {
                 normals: NORMALS.init(),
                 rgb: RGB.init(),
                 cell_map: CELL_MAP.init(),
+                arena,
             })
         }
     }
@@ -357,6 +375,7 @@ impl Memory {
             + SKIN_CROSSINGS * 8
             + PIXELS * 5
             + SKIN_PIXELS * 19
+            + SMALL_ARENA_WORDS * 8
     }
 }
 
@@ -399,6 +418,7 @@ pub fn run(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit("mud.irregular32.f32.segments", mud_segments(&irregular, memory.mud_f32, memory.words));
     glass(memory, emit);
     skin(memory, emit);
+    run_small(memory.arena, emit);
 }
 
 /// Runs a mud scene to its end in `scalars` and `words`.
@@ -713,16 +733,265 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
     emit("scalar.micromath", Ok(backend_table::<micromath::F32>()));
     emit("scalar.q16", Ok(backend_table::<Q16>()));
 }
+// --- The 64 KiB scenes ------------------------------------------------------------------------
+
+/// `u64` words of the arena the 64 KiB scenes share: each scene takes its model's memory and
+/// its outputs from it and gives them back when it ends, so the arena is the largest scene's
+/// need, not the sum: the 64×64 skin, 41,880 bytes on x86_64 (the mud scenes take 27,904, the
+/// glass plate and its mask 41,104, the 32×32 skin and its height map 40,096). The rest of
+/// the 64 KiB is the stack's: on the Cortex-M3 the scenes reach 19,488 bytes of it (the
+/// 32×32 skin's height map; the 64×64 skin's build 16,856).
+pub const SMALL_ARENA_WORDS: usize = 5235;
+
+/// Lattice of the small mud scenes.
+const SMALL_MUD: u32 = 16;
+/// Side of the small glass plate.
+const SMALL_PLATE: u32 = 128;
+/// Side of its mask (the plate stretched over it): a 128×128 mask (16 KiB) does not fit beside
+/// the plate and the skin's stack.
+const SMALL_MASK: u32 = 64;
+/// M_ave of the small plate. The paper's 100 draws M = 102 here and needs 1571 vertices and
+/// about 215 KiB; 40 draws M = 44 (no ring cracks: those need M > 70) and 218 vertices.
+const SMALL_RADIAL_MEAN: f32 = 40.0;
+/// Crack and vertex capacities of the small plate: what it uses (44 and 218) and a margin.
+const SMALL_GLASS_CRACKS: u32 = 48;
+const SMALL_GLASS_VERTICES: u32 = 240;
+/// Side of the small skin.
+const SMALL_SKIN: u32 = 64;
+/// Side of the small skin whose height maps are drawn.
+const SMALL_SKIN_MAPS: u32 = 32;
+/// Perturbation depth of the small skin (fig13a's is 3): its outline capacity, which
+/// `SkinParams::memory` sizes for the worst case, grows with 2^depth. At depth 0 (straight
+/// cell edges) the 64×64 skin needs 41,880 bytes; at depth 1, 53,784, which leaves no room
+/// for the stack.
+const SMALL_SKIN_DEPTH: u32 = 0;
+
+/// The 64 KiB scenes' arena; `None` after the first call (and to the runner once
+/// [`Memory::take`] has it).
+pub fn small_arena() -> Option<&'static mut [u64]> {
+    static TAKEN: AtomicBool = AtomicBool::new(false);
+    static ARENA: Slot<u64, SMALL_ARENA_WORDS> = Slot::new();
+    if TAKEN.swap(true, Ordering::AcqRel) {
+        return None;
+    }
+    // SAFETY: TAKEN was false, so this is the one call that reaches the slot.
+    Some(unsafe { ARENA.init() })
+}
+
+/// Typed slices cut from the front of a `u64` arena, each filled with default values.
+struct Arena<'a> {
+    rest: &'a mut [u64],
+}
+
+impl<'a> Arena<'a> {
+    fn new(words: &'a mut [u64]) -> Self {
+        Arena { rest: words }
+    }
+
+    /// `n` default values of `T` from the arena, or `Failure(short)` if it has too little left.
+    fn take<T: Default>(&mut self, n: usize, short: &'static str) -> Result<&'a mut [T], Failure> {
+        const {
+            assert!(core::mem::align_of::<T>() <= core::mem::align_of::<u64>());
+            assert!(!core::mem::needs_drop::<T>());
+        }
+        let words = n.checked_mul(core::mem::size_of::<T>()).ok_or(Failure(short))?.div_ceil(8);
+        if words > self.rest.len() {
+            return Err(Failure(short));
+        }
+        let (head, tail) = core::mem::take(&mut self.rest).split_at_mut(words);
+        self.rest = tail;
+        let first = head.as_mut_ptr().cast::<T>();
+        for i in 0..n {
+            // SAFETY: `head` holds `n` values of `T` (size checked above, alignment by the
+            // const assertion) and nothing else references it.
+            unsafe { first.add(i).write(T::default()) };
+        }
+        // SAFETY: all `n` values are initialised; `head`'s borrow moves into the slice (T
+        // needs no drop, so the u64 words may simply be reused after it).
+        Ok(unsafe { core::slice::from_raw_parts_mut(first, n) })
+    }
+}
+
+/// Runs the 64 KiB scenes (`GOLDENS[SMALL]`) in `arena`, calling `emit` with each scene's
+/// name and hash.
+pub fn run_small(arena: &mut [u64], emit: &mut dyn FnMut(&'static str, Outcome)) {
+    let mud = MudParams { columns: SMALL_MUD, rows: SMALL_MUD, ..MudParams::default() };
+    emit("small.mud.hex16.f32.segments", small_mud::<f32>(&mud, arena));
+    emit("small.mud.hex16.q16.segments", small_mud::<Q16>(&mud, arena));
+    small_glass(arena, emit);
+    small_skin(arena, emit);
+}
+
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
+fn small_mud<S: Scalar + Default>(params: &MudParams, arena: &mut [u64]) -> Outcome {
+    let memory = params.memory().map_err(|_| Failure("mud: parameters refused"))?;
+    let mut arena = Arena::new(arena);
+    let scalars = arena.take::<S>(memory.scalars, "mud: arena too small for its scalars")?;
+    let words = arena.take::<u32>(memory.words, "mud: arena too small for its words")?;
+    Ok(segments_hash(&mud_run(params, scalars, words)?))
+}
+
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
+fn small_glass(arena: &mut [u64], emit: &mut dyn FnMut(&'static str, Outcome)) {
+    let names = ["small.glass128.cracks", "small.glass128.mask"];
+    let side = SMALL_PLATE as f32;
+    let params = GlassParams {
+        width: side,
+        height: side,
+        impact: [side / 2.0; 2],
+        seed: 7,
+        radial_mean: SMALL_RADIAL_MEAN,
+        max_cracks: SMALL_GLASS_CRACKS,
+        max_vertices: SMALL_GLASS_VERTICES,
+        ..GlassParams::default()
+    };
+    let pixels = (SMALL_MASK * SMALL_MASK) as usize;
+    let mut arena = Arena::new(arena);
+    let glass = (|| {
+        let memory = params.memory().map_err(|_| Failure("glass: parameters refused"))?;
+        let buffers = GlassBuffers {
+            cracks: arena.take(memory.cracks, "glass: arena too small for its cracks")?,
+            vertices: arena.take(memory.vertices, "glass: arena too small for its vertices")?,
+            edges: arena.take(memory.edges, "glass: arena too small for its edges")?,
+            words: arena.take(memory.words, "glass: arena too small for its words")?,
+        };
+        let mut glass = Glass::new(&params, buffers).map_err(|_| Failure("glass: Glass::new refused"))?;
+        while !glass.step(100_000).finished {}
+        if glass.progress().capacity_reached {
+            return Err(Failure("glass: a capacity ran out"));
+        }
+        Ok(glass)
+    })();
+    let glass = match glass {
+        Ok(glass) => glass,
+        Err(e) => return names.into_iter().for_each(|name| emit(name, Err(e))),
+    };
+    emit(names[0], Ok(cracks_hash(&glass)));
+    let mask = arena.take::<u8>(pixels, "glass: arena too small for the mask").and_then(|mask| {
+        let render = GlassRender { width: SMALL_MASK, height: SMALL_MASK, ..GlassRender::default() };
+        glass
+            .render(&render, GlassLayers { mask: Some(&mut *mask), time: None })
+            .map_err(|_| Failure("glass: render refused"))?;
+        Ok(fnv1a64(mask))
+    });
+    emit(names[1], mask);
+}
+
+/// The skin of the 64 KiB scenes: fig13a (one level) on `side`², perturbation depth lowered.
+fn small_skin_params(side: u32) -> Result<SkinParams, Failure> {
+    let mut params = hibi_core::skin::preset("fig13a").ok_or(Failure("skin: no preset fig13a"))?;
+    params.width = side;
+    params.height = side;
+    params.level[0].perturbation_depth = SMALL_SKIN_DEPTH;
+    Ok(params)
+}
+
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
+fn small_skin(arena: &mut [u64], emit: &mut dyn FnMut(&'static str, Outcome)) {
+    emit("small.skin64.outlines", small_skin_run::<f32>(arena, SMALL_SKIN, false));
+    emit("small.skin32.f32.height", small_skin_run::<f32>(arena, SMALL_SKIN_MAPS, true));
+    emit("small.skin32.q16.height", small_skin_run::<Q16>(arena, SMALL_SKIN_MAPS, true));
+}
+
+/// Builds the small skin `side`² in `arena` with backend `S` and hashes its outlines, or
+/// (`height`) its height map.
+#[inline(never)] // each scene's frame apart: the stack a run needs is its deepest scene's
+fn small_skin_run<S: Scalar>(arena: &mut [u64], side: u32, height: bool) -> Outcome {
+    let params = small_skin_params(side)?;
+    let memory = params.memory().map_err(|_| Failure("skin: parameters refused"))?;
+    let mut arena = Arena::new(arena);
+    let short = "skin: arena too small";
+    let buffers = SkinBuffers {
+        cells: arena.take(memory.cells, short)?,
+        vertices: arena.take(memory.vertices, short)?,
+        sites: arena.take(memory.sites, short)?,
+        clip: arena.take(memory.clip, short)?,
+        words: arena.take(memory.words, short)?,
+        levels: arena.take(memory.levels, short)?,
+        boxes: arena.take(memory.boxes, short)?,
+        wedges: arena.take(memory.wedges, short)?,
+        crossings: arena.take(memory.crossings, short)?,
+    };
+    let mut skin = Skin::<S>::new(&params, buffers).map_err(|_| Failure("skin: Skin::new refused"))?;
+    built(&mut skin)?;
+    let mut h = Fnv::new();
+    if height {
+        let map = arena.take::<f32>((side * side) as usize, "skin: arena too small for the height map")?;
+        let layers = SkinLayers { height: Some(&mut *map), ..SkinLayers::default() };
+        skin.render(&SkinRender::default(), layers).map_err(|_| Failure("skin: render refused"))?;
+        map.iter().for_each(|&v| h.f32(v));
+    } else {
+        outlines_hash(&mut h, &skin);
+    }
+    Ok(h.finish())
+}
+
+/// As tests/glass.rs's golden: each crack's end, then its points (position and time).
+fn cracks_hash(glass: &Glass<'_>) -> u64 {
+    let mut h = Fnv::new();
+    for i in 0..glass.crack_count() {
+        h.u32(glass.crack(i).map_or(u32::MAX, |c| c.end as u32));
+        glass.for_each_point(i, |q| {
+            for v in [q.at[0], q.at[1], q.time] {
+                h.f32(v);
+            }
+        });
+    }
+    h.finish()
+}
+
+/// As tests/skin.rs's golden: each cell's site id and outline.
+fn outlines_hash<S: Scalar>(h: &mut Fnv, skin: &Skin<'_, S>) {
+    for c in skin.cells() {
+        h.u32(c.site);
+        for v in skin.outline(c) {
+            h.bytes(&v[0].to_le_bytes());
+            h.bytes(&v[1].to_le_bytes());
+        }
+    }
+}
+
 /// Runs every scene and writes one line per scene to `out` (`ok`, `DIFFERS` with both hashes,
 /// or `FAILED` with the reason, `MISSING` for a scene that did not run), the static memory the
 /// scenes use, then a summary line
 /// `hibi-scenes on TARGET: N scenes, M differ`. Returns the number of scenes that differ,
 /// failed or are missing.
 pub fn check(memory: &mut Memory, target: &str, out: &mut dyn Write) -> Result<usize, fmt::Error> {
+    check_scenes(&GOLDENS, &mut |emit| run(memory, emit), Memory::bytes(), target, out, None)
+}
+
+/// Where a scene run hands each scene's name and outcome.
+pub type Emit<'a> = dyn FnMut(&'static str, Outcome) + 'a;
+
+/// A counter read after each scene (instructions, cycles, ticks) and its unit's name.
+pub type Meter<'a> = (&'a mut dyn FnMut() -> u64, &'a str);
+
+/// As [`check`], for the 64 KiB scenes only (`GOLDENS[SMALL]`) in `arena` (from
+/// [`small_arena`]); with a meter, also a line `cost     NAME N UNIT` per scene, N the
+/// meter's count since the previous scene ended.
+pub fn check_small(
+    arena: &mut [u64],
+    target: &str,
+    out: &mut dyn Write,
+    meter: Option<Meter<'_>>,
+) -> Result<usize, fmt::Error> {
+    let bytes = arena.len() * 8;
+    check_scenes(&GOLDENS[SMALL], &mut |emit| run_small(arena, emit), bytes, target, out, meter)
+}
+
+fn check_scenes(
+    goldens: &[(&str, u64)],
+    scenes: &mut dyn FnMut(&mut Emit<'_>),
+    memory_bytes: usize,
+    target: &str,
+    out: &mut dyn Write,
+    mut meter: Option<Meter<'_>>,
+) -> Result<usize, fmt::Error> {
     let (mut index, mut differ) = (0, 0);
     let mut result = Ok(());
-    run(memory, &mut |name, outcome| {
-        let expected = GOLDENS.get(index).copied();
+    let mut last = meter.as_mut().map_or(0, |(read, _)| read());
+    scenes(&mut |name, outcome| {
+        let expected = goldens.get(index).copied();
         index += 1;
         let line = match (expected, outcome) {
             (Some((want, hash)), Ok(got)) if want == name && hash == got => writeln!(out, "ok       {name} {got}"),
@@ -744,13 +1013,18 @@ pub fn check(memory: &mut Memory, target: &str, out: &mut dyn Write) -> Result<u
             }
         };
         result = result.and(line);
+        if let Some((read, unit)) = meter.as_mut() {
+            let now = read();
+            result = result.and(writeln!(out, "cost     {name} {} {unit}", now.wrapping_sub(last)));
+            last = read();
+        }
     });
     result?;
-    for (name, _) in GOLDENS.iter().skip(index) {
+    for (name, _) in goldens.iter().skip(index) {
         differ += 1;
         writeln!(out, "MISSING  {name}")?;
     }
-    writeln!(out, "scene memory {} bytes (static)", Memory::bytes())?;
-    writeln!(out, "hibi-scenes on {target}: {} scenes, {differ} differ", GOLDENS.len())?;
+    writeln!(out, "scene memory {memory_bytes} bytes (static)")?;
+    writeln!(out, "hibi-scenes on {target}: {} scenes, {differ} differ", goldens.len())?;
     Ok(differ)
 }
