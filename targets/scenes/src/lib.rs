@@ -546,17 +546,7 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         }
     };
     while !glass.step(100_000).finished {}
-    // As tests/glass.rs's golden: each crack's end, then its points (position and time).
-    let mut h = Fnv::new();
-    for i in 0..glass.crack_count() {
-        h.u32(glass.crack(i).map_or(u32::MAX, |c| c.end as u32));
-        glass.for_each_point(i, |q| {
-            for v in [q.at[0], q.at[1], q.time] {
-                h.f32(v);
-            }
-        });
-    }
-    emit(names[0], Ok(h.finish()));
+    emit(names[0], Ok(cracks_hash(&glass)));
     let out = &mut memory.out;
     let fragments = glass
         .fragments(scratch, out.rings, out.ring_points)
@@ -634,15 +624,8 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     if let Err(e) = built(&mut skin) {
         return names.into_iter().for_each(|name| emit(name, Err(e)));
     }
-    // As tests/skin.rs's golden: each cell's site id and outline.
     let mut h = Fnv::new();
-    for c in skin.cells() {
-        h.u32(c.site);
-        for v in skin.outline(c) {
-            h.bytes(&v[0].to_le_bytes());
-            h.bytes(&v[1].to_le_bytes());
-        }
-    }
+    outlines_hash(&mut h, &skin);
     emit(names[0], Ok(h.finish()));
     let f32 = maps(&skin, &mut scratch, height, normals);
     emit(names[1], f32);
