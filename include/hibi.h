@@ -677,7 +677,7 @@ typedef struct hibi_mud_segment {
 /**
  * Crack statistics of the traced network: density, the cells it encloses, and its vertices.
  */
-typedef struct hibi_mud_statistics {
+typedef struct hibi_mud_crack_statistics {
   /**
    * Crack length per area [1/cm]: the network's length (branches included) over the
    * plate's area.
@@ -715,7 +715,7 @@ typedef struct hibi_mud_statistics {
    * [degrees]: 180 for a perfect T, 120 for a symmetric Y.
    */
   float mean_widest_junction_angle;
-} hibi_mud_statistics;
+} hibi_mud_crack_statistics;
 
 /**
  * A junction or an end of the crack network. In C: `hibi_mud_network_vertex`.
@@ -1760,7 +1760,7 @@ hibi_status hibi_mud_segments(const struct hibi_mud *mud,
  * # Safety
  * `mud` must be NULL or a live run; `out` NULL or writable.
  */
-hibi_status hibi_mud_measure(const struct hibi_mud *mud, struct hibi_mud_statistics *out);
+hibi_status hibi_mud_statistics(const struct hibi_mud *mud, struct hibi_mud_crack_statistics *out);
 
 /**
  * Writes how many vertices, edges and points `hibi_mud_network` will write for the network

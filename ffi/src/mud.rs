@@ -163,7 +163,7 @@ pub struct hibi_mud_progress {
 /// Crack statistics of the traced network: density, the cells it encloses, and its vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-pub struct hibi_mud_statistics {
+pub struct hibi_mud_crack_statistics {
     /// Crack length per area [1/cm]: the network's length (branches included) over the
     /// plate's area.
     pub crack_density: f32,
@@ -266,7 +266,7 @@ convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     stiffness_anisotropy_ratio, target_shrink, target_crack_density,
 });
 convert!(hibi_mud_progress <=> MudProgress { shrink, time, broken_springs, crack_density, work, finished });
-convert!(hibi_mud_statistics <=> CrackStatistics {
+convert!(hibi_mud_crack_statistics <=> CrackStatistics {
     crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
     mean_widest_junction_angle,
 });
@@ -458,12 +458,12 @@ pub unsafe extern "C" fn hibi_mud_segments(
 /// # Safety
 /// `mud` must be NULL or a live run; `out` NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_mud_statistics) -> hibi_status {
+pub unsafe extern "C" fn hibi_mud_statistics(mud: *const hibi_mud, out: *mut hibi_mud_crack_statistics) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
         check_pointer(out, c"out")?;
-        let value = hibi_mud_statistics::from_core(&mud.mud.statistics());
+        let value = hibi_mud_crack_statistics::from_core(&mud.mud.statistics());
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, c"out", value) }
     })
@@ -784,8 +784,8 @@ mod tests {
             assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1024), HIBI_OK);
             assert!(heights.iter().any(|&v| v < 1.0) && heights.iter().all(|&v| (0.0..=1.0).contains(&v)));
             assert_eq!(hibi_mud_render(null(), &render, HIBI_MUD_LAYER_MASK, h, 4096), HIBI_ERROR_NULL_POINTER);
-            let mut stats = hibi_mud_statistics::default();
-            assert_eq!(hibi_mud_measure(mud, &mut stats), HIBI_OK);
+            let mut stats = hibi_mud_crack_statistics::default();
+            assert_eq!(hibi_mud_statistics(mud, &mut stats), HIBI_OK);
             assert!(stats.crack_density > 0.0);
             hibi_mud_destroy(mud);
         }
@@ -952,9 +952,9 @@ mod tests {
             assert!(points.iter().zip(&want_points).all(|(c, w)| [c.x, c.y] == *w));
             assert_eq!(rings[..nr].iter().map(|x| x.point_count as usize).sum::<usize>(), np);
             // The statistics C sees are the core's.
-            let mut stats = hibi_mud_statistics::default();
+            let mut stats = hibi_mud_crack_statistics::default();
             // SAFETY: a live run and a writable struct.
-            assert_eq!(unsafe { hibi_mud_measure(mud, &mut stats) }, HIBI_OK);
+            assert_eq!(unsafe { hibi_mud_statistics(mud, &mut stats) }, HIBI_OK);
             let s = core.statistics();
             assert_eq!(
                 (stats.crack_density, stats.cells, stats.mean_cell_area, stats.cell_area_spread),
