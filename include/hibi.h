@@ -1550,8 +1550,9 @@ hibi_status hibi_glass_impact(struct hibi_glass *glass,
 
 /**
  * Advances growth by about `budget` units of work (at least one; a unit is a grid cell,
- * segment or tip a query examines, or a crack the step loop looks at; a call overruns by at
- * most one tip update's queries, and the plate does not depend on the budgets); writes where
+ * segment or tip a query examines, a crack the step loop looks at, or a half-edge a face walk
+ * passes when a crack closes a cycle; a call overruns by at most one tip update's queries and
+ * one face walk, and the plate does not depend on the budgets); writes where
  * it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes
  * nothing) once a capacity has run out; the plate then stays as it was drawn, usable.
  *

@@ -850,9 +850,13 @@ fn step_budgets_bound_the_work() {
         let mut g = Glass::new(&p, memory.buffers()).unwrap();
         // One update examines at most every grid cell and entry twice (its sector and its
         // move) and every cell and tip entry once more, plus the step loop's look at each
-        // crack. The grid has 40 × 40 cells of 16 px.
-        let (entries, cells) = (5 * m.vertices as u64, 40 * 40);
-        let bound = 100 + 2 * entries + 3 * cells + 3 * m.cracks as u64 + 2;
+        // crack. The grid has 40 × 40 cells of 16 px. A stop that closes a cycle adds one
+        // face walk (stop condition 2): the two faces in lockstep, measured and marked, and
+        // each crack looked at and perhaps tested against the face, at most H half-edges each.
+        let (entries, cells, cracks) = (5 * m.vertices as u64, 40 * 40, m.cracks as u64);
+        let half_edges = 2 * m.vertices as u64;
+        let face_walk = 2 * (half_edges + 1) + 3 * half_edges + cracks * (half_edges + 1);
+        let bound = 100 + 2 * entries + 3 * cells + 3 * cracks + 2 + face_walk;
         let mut worst = 0;
         for _ in 0..2000 {
             let before = g.work();

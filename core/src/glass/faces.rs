@@ -84,12 +84,15 @@ pub(super) struct FaceShape {
     /// Smallest and largest x and y of its vertices.
     pub(super) min: [f32; 2],
     pub(super) max: [f32; 2],
+    /// Its half-edges: the steps of a walk around it.
+    pub(super) edges: usize,
 }
 
 /// The shape of the face left of `start` (None if the walk is broken).
 pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge) -> Option<FaceShape> {
-    let mut shape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2] };
+    let mut shape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2], edges: 0 };
     let closed = walk_face(g, start, |h| {
+        shape.edges += 1;
         let (u, w) = g.ends(h);
         let (a, b) = (g.point(u), g.point(w));
         shape.area += 0.5 * shoelace(a, b);
@@ -194,7 +197,7 @@ impl Glass<'_> {
     /// smaller one counts as closed, so that a later impact inside an enclosed fragment keeps
     /// growing after its first cycle.
     pub(super) fn enclose(&mut self, h: HalfEdge) {
-        let (first, second) = {
+        let (first, second, steps) = {
             let g = self.crack_graph();
             let (mut a, mut b) = (h, h ^ 1);
             let mut steps = 0;
@@ -203,19 +206,27 @@ impl Glass<'_> {
                 b = next_around_face(&g, b);
                 steps += 1;
                 if a == h || steps > g.half_edge_bound() {
-                    break (h, h ^ 1);
+                    break (h, h ^ 1, steps);
                 }
                 if b == h ^ 1 {
-                    break (h ^ 1, h);
+                    break (h ^ 1, h, steps);
                 }
             }
         };
         let g = CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] };
-        let Some((start, shape)) =
-            [first, second].into_iter().find_map(|s| face_shape(&g, s).filter(|f| f.area > 0.0).map(|f| (s, f)))
-        else {
+        // Work (Glass::step's budget): the walks in lockstep, the faces measured, the marking
+        // walk, the cracks looked at and the crossing-number walks.
+        let mut work = 2 * steps;
+        let mut shapes = [first, second].into_iter().map(|s| (s, face_shape(&g, s)));
+        let found = shapes.find_map(|(s, f)| {
+            work += f.map_or(g.half_edge_bound(), |f| f.edges);
+            f.filter(|f| f.area > 0.0).map(|f| (s, f))
+        });
+        let Some((start, shape)) = found else {
+            self.clock.work += work as u64;
             return;
         };
+        work += shape.edges + self.crack_count;
         self.walk.mark = self.walk.mark.wrapping_add(1);
         if self.walk.mark == 0 {
             self.walk.marks.fill(0);
@@ -240,6 +251,7 @@ impl Glass<'_> {
                 let p = self.vertices[tip as usize].at;
                 let in_box =
                     p[0] >= shape.min[0] && p[0] <= shape.max[0] && p[1] >= shape.min[1] && p[1] <= shape.max[1];
+                work += usize::from(in_box) * shape.edges;
                 in_box && face_contains(&self.crack_graph(), start, p)
             };
             if inside {
@@ -248,6 +260,7 @@ impl Glass<'_> {
                 c.end = CrackEnd::Enclosed;
             }
         }
+        self.clock.work += work as u64;
     }
 }
 

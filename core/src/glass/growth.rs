@@ -52,9 +52,10 @@ impl Glass<'_> {
     }
 
     /// Advances growth by about `budget` units of work (at least one). A unit is a grid cell
-    /// or a grid entry (a segment or a tip) examined by a distance or crossing query, or a
-    /// crack looked at by the step loop. The budget is checked before every update of a tip, so a call overruns
-    /// it by at most one update's queries, whatever the parameters (speeds, forces, plate
+    /// or a grid entry (a segment or a tip) examined by a distance or crossing query, a crack
+    /// looked at by the step loop, or a half-edge passed by a face walk of stop condition 2.
+    /// The budget is checked before every update of a tip, so a call overruns it by at most
+    /// one update's queries and one face walk, whatever the parameters (speeds, forces, plate
     /// size); generation resumes exactly where it stopped, so the result does not depend on
     /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
     /// in updates of at most 10 px.
