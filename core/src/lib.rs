@@ -23,6 +23,7 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+mod enumeration;
 mod error;
 mod geom;
 pub mod glass;

@@ -11,6 +11,7 @@
 //! small-mean pieces (exact for any mean up to [`POISSON_MAX_MEAN`]), and the papers'
 //! `Rand(x)`.
 
+use crate::enumeration::enumeration;
 use rand_core::{Rng as _, SeedableRng};
 use rand_xoshiro::Xoshiro128PlusPlus;
 
@@ -63,15 +64,15 @@ impl Stream {
     }
 }
 
-/// The shape of the papers' `Rand(x)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Spread {
-    /// Uniform over [(1 − z)·x, (1 + z)·x].
-    Uniform = 0,
-    /// Normal with mean x and standard deviation z·x/3, redrawn until it falls within
-    /// [(1 − z)·x, (1 + z)·x] (so ±3σ spans the paper's range).
-    Normal = 1,
+enumeration! {
+    /// The shape of the papers' `Rand(x)`.
+    pub enum Spread {
+        /// Uniform over [(1 − z)·x, (1 + z)·x].
+        Uniform = 0,
+        /// Normal with mean x and standard deviation z·x/3, redrawn until it falls within
+        /// [(1 − z)·x, (1 + z)·x] (so ±3σ spans the paper's range).
+        Normal = 1,
+    }
 }
 
 /// Largest mean [`Rng::poisson`] accepts. The cost is proportional to the mean.

@@ -52,22 +52,28 @@ impl Field<bool> for u32 {
     }
 }
 
-/// An enumeration of the core as its discriminant in C.
+/// The core's enumerations as their numbers in C (`from_u32` is declared with each).
 macro_rules! enumeration {
-    ($t:ty: $($variant:path),+ $(,)?) => {
-        impl $crate::fields::Field<$t> for u32 {
+    ($($t:ty),+ $(,)?) => {$(
+        impl Field<$t> for u32 {
             fn to_core(&self) -> Option<$t> {
-                [$($variant),+].into_iter().find(|v| *v as u32 == *self)
+                <$t>::from_u32(*self)
             }
             fn from_core(core: &$t) -> Self {
                 *core as u32
             }
         }
-    };
+    )+};
 }
-pub(crate) use enumeration;
 
-enumeration!(hibi_core::Spread: hibi_core::Spread::Uniform, hibi_core::Spread::Normal);
+enumeration!(
+    hibi_core::Spread,
+    hibi_core::mud::Topology,
+    hibi_core::mud::Boundary,
+    hibi_core::mud::Solver,
+    hibi_core::mud::Drive,
+    hibi_core::skin::SiteLayout,
+);
 
 /// [`Field`] for a C struct whose fields are the core struct's, listed once. With a cookie,
 /// the C struct also carries the marker its `_default` function sets: `from_core` sets it;

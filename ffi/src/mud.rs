@@ -26,7 +26,7 @@ use hibi_core::mud::{
     MudProgress, MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
 
-use crate::fields::{Field, convert, enumeration};
+use crate::fields::{Field, convert};
 use crate::glass::hibi_vec2;
 use crate::guard::{Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
@@ -242,10 +242,6 @@ pub struct hibi_mud {
     origin: Origin,
 }
 
-enumeration!(Topology: Topology::Square, Topology::Hexagonal, Topology::Irregular);
-enumeration!(Boundary: Boundary::Open, Boundary::Periodic);
-enumeration!(Solver: Solver::Explicit, Solver::QuasiStatic);
-enumeration!(Drive: Drive::Shrink, Drive::Growth);
 convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     topology, boundary, solver, drive, columns, rows, seed, layer_thickness, element_size, long_step, short_step,
     shrink_ratio, displacement_tolerance, damping_factor, density, young_modulus, shear_modulus, break_stretch_mean,

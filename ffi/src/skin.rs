@@ -26,7 +26,7 @@ use hibi_core::skin::{
     SkinScratch, preset, shade,
 };
 
-use crate::fields::{Field, convert, enumeration};
+use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, optional, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
@@ -206,7 +206,6 @@ pub struct hibi_skin {
     memory: SkinMemory,
 }
 
-enumeration!(SiteLayout: SiteLayout::Triangular, SiteLayout::Square, SiteLayout::Random);
 convert!(hibi_skin_profile <=> Profile { segments, points });
 convert!(hibi_skin_level <=> LevelParams {
     spacing, perturbation, perturbation_decay, perturbation_depth, stretch, profile, roundness,

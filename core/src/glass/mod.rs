@@ -23,6 +23,8 @@
 //! assert!(mask.iter().any(|&m| m > 0));
 //! ```
 
+use crate::enumeration::enumeration;
+
 mod grid;
 mod params;
 mod presets;
@@ -34,37 +36,39 @@ use grid::{Buckets, Grid, NONE};
 
 use crate::rng::{Rng, Stream};
 
-/// What kind of crack a polyline is.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum CrackKind {
-    /// A large radial crack: fast, reaches the edge (speed V1).
-    #[default]
-    Large = 0,
-    /// Another radial crack (speed V2).
-    Radial = 1,
-    /// A ring crack growing counter-clockwise from its start point (speed V3).
-    RingCounterClockwise = 2,
-    /// A ring crack growing clockwise from its start point (speed V3).
-    RingClockwise = 3,
+enumeration! {
+    /// What kind of crack a polyline is.
+    #[derive(Default)]
+    pub enum CrackKind {
+        /// A large radial crack: fast, reaches the edge (speed V1).
+        #[default]
+        Large = 0,
+        /// Another radial crack (speed V2).
+        Radial = 1,
+        /// A ring crack growing counter-clockwise from its start point (speed V3).
+        RingCounterClockwise = 2,
+        /// A ring crack growing clockwise from its start point (speed V3).
+        RingClockwise = 3,
+    }
 }
 
-/// Why a crack is no longer growing.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum CrackEnd {
-    /// It still grows.
-    #[default]
-    Growing = 0,
-    /// Its tip reached the plate's edge and stops exactly on it.
-    Edge = 1,
-    /// Its tip reached another crack and stops on it, sharing the vertex.
-    Crack = 2,
-    /// Generation of its impact ended (every large and ring crack had stopped), or a later
-    /// impact began.
-    Generation = 3,
-    /// Other cracks closed a region around its tip (paper §4.2.3, stop condition 2).
-    Enclosed = 4,
+enumeration! {
+    /// Why a crack is no longer growing.
+    #[derive(Default)]
+    pub enum CrackEnd {
+        /// It still grows.
+        #[default]
+        Growing = 0,
+        /// Its tip reached the plate's edge and stops exactly on it.
+        Edge = 1,
+        /// Its tip reached another crack and stops on it, sharing the vertex.
+        Crack = 2,
+        /// Generation of its impact ended (every large and ring crack had stopped), or a later
+        /// impact began.
+        Generation = 3,
+        /// Other cracks closed a region around its tip (paper §4.2.3, stop condition 2).
+        Enclosed = 4,
+    }
 }
 
 /// One crack: its kind, its tip and how it grows.

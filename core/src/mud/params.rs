@@ -1,54 +1,56 @@
 //! Parameters of the drying-mud model (Hirota et al. §2–3), in the paper's physical units
 //! (cm, g, s), with the paper's defaults and one validation that names the wrong field.
 
-/// Mesh topology (paper Fig. 4).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Topology {
-    /// Square elements: 4 neighbours, no in-plane shear; axis-aligned, short, fine cracks.
-    Square = 0,
-    /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours; isotropic cracks.
-    Hexagonal = 1,
-    /// Beyond the paper: the triangular lattice's nodes jittered and joined by their Delaunay
-    /// triangulation, each spring with its own length and face (its Voronoi edge), so cracks
-    /// run in any direction (see `mud::irregular`). Periodic: columns ≥ 8, rows even and ≥ 8.
-    /// Both solvers run on it (the explicit one spring by spring, without the regular
-    /// lattices' vectorised rows).
-    Irregular = 2,
+use crate::enumeration::enumeration;
+
+enumeration! {
+    /// Mesh topology (paper Fig. 4).
+    pub enum Topology {
+        /// Square elements: 4 neighbours, no in-plane shear; axis-aligned, short, fine cracks.
+        Square = 0,
+        /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours; isotropic cracks.
+        Hexagonal = 1,
+        /// Beyond the paper: the triangular lattice's nodes jittered and joined by their Delaunay
+        /// triangulation, each spring with its own length and face (its Voronoi edge), so cracks
+        /// run in any direction (see `mud::irregular`). Periodic: columns ≥ 8, rows even and ≥ 8.
+        /// Both solvers run on it (the explicit one spring by spring, without the regular
+        /// lattices' vectorised rows).
+        Irregular = 2,
+    }
 }
 
-/// What happens at the lattice's edges.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Boundary {
-    /// Free edges: the outermost nodes have fewer springs.
-    Open = 0,
-    /// The lattice wraps around (a torus): tileable patterns. Hexagonal lattices need an even
-    /// number of rows.
-    Periodic = 1,
+enumeration! {
+    /// What happens at the lattice's edges.
+    pub enum Boundary {
+        /// Free edges: the outermost nodes have fewer springs.
+        Open = 0,
+        /// The lattice wraps around (a torus): tileable patterns. Hexagonal lattices need an even
+        /// number of rows.
+        Periodic = 1,
+    }
 }
 
-/// How the lattice is brought to equilibrium.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Solver {
-    /// The paper's loop exactly (Fig. 2): forces, stability test, exact damped short steps,
-    /// breaking after every short step, shrinking by long steps.
-    Explicit = 0,
-    /// Linear quasi-static equilibrium with event-driven breaking: the shrink jumps straight
-    /// to the next break, local relaxation after each break. Same statistics, far faster.
-    QuasiStatic = 1,
+enumeration! {
+    /// How the lattice is brought to equilibrium.
+    pub enum Solver {
+        /// The paper's loop exactly (Fig. 2): forces, stability test, exact damped short steps,
+        /// breaking after every short step, shrinking by long steps.
+        Explicit = 0,
+        /// Linear quasi-static equilibrium with event-driven breaking: the shrink jumps straight
+        /// to the next break, local relaxation after each break. Same statistics, far faster.
+        QuasiStatic = 1,
+    }
 }
 
-/// What drives the misfit between the two layers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Drive {
-    /// The surface dries and shrinks: rest lengths l0·r(t), r(t) = γ^(t/T) (Eq. 1).
-    Shrink = 0,
-    /// The deep layer grows (tree bark): its node spacing expands by 1/r(t), surface rest
-    /// lengths stay; the pattern is drawn in the growing frame.
-    Growth = 1,
+enumeration! {
+    /// What drives the misfit between the two layers.
+    pub enum Drive {
+        /// The surface dries and shrinks: rest lengths l0·r(t), r(t) = γ^(t/T) (Eq. 1).
+        Shrink = 0,
+        /// The deep layer grows (tree bark): its node spacing expands by 1/r(t), surface rest
+        /// lengths stay; the pattern is drawn in the growing frame.
+        Growth = 1,
+    }
 }
 
 /// The parameters of a drying-mud run. `Default` gives the paper's values and ours where the

@@ -1,5 +1,6 @@
 //! The six parameters of the skin model (Ishii et al. §4.2, Fig. 11) and their checks.
 
+use crate::enumeration::enumeration;
 use crate::rng::Spread;
 
 /// Most hierarchy levels a skin can have.
@@ -9,19 +10,20 @@ pub const MAX_SEGMENTS: usize = 4;
 /// Most midpoint-displacement subdivisions of an edge (2^depth pieces).
 pub const MAX_PERTURBATION_DEPTH: u32 = 5;
 
-/// Parameter 1, the centre-point layout.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum SiteLayout {
-    /// Triangular lattice: rows `spacing·√3/2` apart, every other row shifted by half.
-    #[default]
-    Triangular = 0,
-    /// Square lattice.
-    Square = 1,
-    /// Uniform random: each centre uniformly placed in its own square of side `spacing` (a
-    /// stratified uniform layout, so that every neighbourhood is bounded). The jitter fields
-    /// are ignored.
-    Random = 2,
+enumeration! {
+    /// Parameter 1, the centre-point layout.
+    #[derive(Default)]
+    pub enum SiteLayout {
+        /// Triangular lattice: rows `spacing·√3/2` apart, every other row shifted by half.
+        #[default]
+        Triangular = 0,
+        /// Square lattice.
+        Square = 1,
+        /// Uniform random: each centre uniformly placed in its own square of side `spacing` (a
+        /// stratified uniform layout, so that every neighbourhood is bounded). The jitter fields
+        /// are ignored.
+        Random = 2,
+    }
 }
 
 /// Parameter 5, a cross-section: cubic Bézier segments in the body plane (x' from the centre
