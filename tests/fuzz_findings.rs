@@ -33,3 +33,24 @@ fn a_tiny_skin_stretch_is_too_large_not_a_panic() {
         }
     }
 }
+
+/// Finding 2: a mud lattice whose element counts fit in `size_t` but whose bytes do not
+/// (16 711 680 × 4 282 449 664 nodes, square, periodic) got the generic
+/// `HIBI_ERROR_SIZE_OVERFLOW` from `hibi_mud_memory_size` and `hibi_mud_create`, which by
+/// the header's contract names an argument, and it named none. It is now the lattice-too-large
+/// parameter status, like the larger lattice of the bad-input table.
+#[test]
+fn a_mud_lattice_too_large_for_memory_is_its_parameter_status() {
+    let mut params = hibi_mud_params_default();
+    (params.topology, params.boundary, params.solver) = (HIBI_MUD_SQUARE, HIBI_MUD_PERIODIC, HIBI_MUD_EXPLICIT);
+    (params.columns, params.rows) = (16_711_680, 4_282_449_664);
+    let mut size = usize::MAX;
+    // SAFETY: valid pointers.
+    let status = unsafe { hibi_mud_memory_size(&params, &mut size) };
+    assert_eq!(status, HIBI_ERROR_MUD_SIZE_OVERFLOW);
+    assert_eq!(size, usize::MAX, "nothing written");
+    let mut mud = core::ptr::null_mut();
+    // SAFETY: valid pointers.
+    assert_eq!(unsafe { hibi_mud_create(&params, &mut mud) }, HIBI_ERROR_MUD_SIZE_OVERFLOW);
+    assert!(mud.is_null());
+}

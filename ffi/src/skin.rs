@@ -249,6 +249,7 @@ impl Object for hibi_skin {
     type Input = *const hibi_skin_params;
     type Plan = (SkinParams, SkinMemory);
     type Arrays = SkinBuffers<'static>;
+    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_SKIN_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
         check_pointer(params, c"params")?;
