@@ -54,3 +54,62 @@ fn a_mud_lattice_too_large_for_memory_is_its_parameter_status() {
     assert_eq!(unsafe { hibi_mud_create(&params, &mut mud) }, HIBI_ERROR_MUD_SIZE_OVERFLOW);
     assert!(mud.is_null());
 }
+
+fn argument() -> String {
+    // SAFETY: a static C string.
+    unsafe { core::ffi::CStr::from_ptr(hibi_error_argument()) }.to_str().expect("ASCII").to_owned()
+}
+
+/// Finding 3: a NULL `rgb` (`hibi_skin_shade`) or `normal` (`hibi_skin_shade`,
+/// `hibi_skin_render`) whose length is 1 or 2, too short for one pixel, was accepted as an
+/// empty buffer; the header allows NULL only with length 0. Now `HIBI_ERROR_NULL_POINTER`,
+/// naming the buffer, like every other NULL buffer with a length.
+#[test]
+fn a_null_buffer_shorter_than_one_pixel_is_refused() {
+    let shade = hibi_skin_shade_params_default();
+    let (height, normal) = ([0.5f32; 1], [0.0f32, 0.0, 1.0]);
+    let mut rgb = [7u8; 3];
+    for len in [1, 2] {
+        // SAFETY: every non-null pointer is valid for its length.
+        unsafe {
+            let status =
+                hibi_skin_shade(core::ptr::null(), 0, core::ptr::null(), 0, &shade, core::ptr::null_mut(), len);
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "rgb"));
+            let status = hibi_skin_shade(core::ptr::null(), 0, core::ptr::null(), len, &shade, rgb.as_mut_ptr(), 3);
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "normal"));
+        }
+    }
+    // The same inputs with their buffers are accepted.
+    // SAFETY: valid pointers and lengths.
+    let status = unsafe { hibi_skin_shade(height.as_ptr(), 1, normal.as_ptr(), 3, &shade, rgb.as_mut_ptr(), 3) };
+    assert_eq!(status, HIBI_OK);
+
+    let mut params = hibi_skin_params_default();
+    (params.width, params.height) = (16, 16);
+    let mut skin = core::ptr::null_mut();
+    let mut size = 0;
+    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    unsafe {
+        assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let mut height = vec![-1.0f32; 16 * 16];
+        for len in [1, 2] {
+            let status = hibi_skin_render(
+                skin,
+                scratch.as_mut_ptr().cast(),
+                size,
+                height.as_mut_ptr(),
+                height.len(),
+                core::ptr::null_mut(),
+                len,
+                core::ptr::null_mut(),
+                0,
+                0,
+            );
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "normal"));
+            assert!(height.iter().all(|&h| h == -1.0), "nothing written");
+        }
+        hibi_skin_destroy(skin);
+    }
+}

@@ -457,20 +457,21 @@ fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
         let mut scratch = block(size);
         let pixels = (p.width * p.height) as usize;
         let (mut height, mut normal, mut map) = (vec![0f32; pixels], vec![0f32; 3 * pixels], vec![0u32; pixels]);
-        let render = |scratch: &mut Vec<u64>, size: usize, height: &mut Vec<f32>, normal: &mut Vec<f32>, map: &mut Vec<u32>| {
-            hibi_skin_render(
-                skin.0,
-                scratch.as_mut_ptr().cast(),
-                size,
-                height.as_mut_ptr(),
-                pixels,
-                normal.as_mut_ptr(),
-                3 * pixels,
-                map.as_mut_ptr(),
-                pixels,
-                p.levels - 1,
-            )
-        };
+        let render =
+            |scratch: &mut Vec<u64>, size: usize, height: &mut Vec<f32>, normal: &mut Vec<f32>, map: &mut Vec<u32>| {
+                hibi_skin_render(
+                    skin.0,
+                    scratch.as_mut_ptr().cast(),
+                    size,
+                    height.as_mut_ptr(),
+                    pixels,
+                    normal.as_mut_ptr(),
+                    3 * pixels,
+                    map.as_mut_ptr(),
+                    pixels,
+                    p.levels - 1,
+                )
+            };
         let status = render(&mut scratch, size - 1, &mut height, &mut normal, &mut map);
         assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "scratch one byte short");
         assert_eq!(render(&mut scratch, size, &mut height, &mut normal, &mut map), HIBI_OK);
