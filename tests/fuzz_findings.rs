@@ -113,3 +113,35 @@ fn a_null_buffer_shorter_than_one_pixel_is_refused() {
         hibi_skin_destroy(skin);
     }
 }
+
+/// Finding 4: a huge perturbation ratio (1e30, valid: finite and >= 0) overflowed the box of
+/// parent edges a bisector's perturbation can reach, a panic in `hibi_skin_step`
+/// (`HIBI_ERROR_PANIC`; the skin fuzz target and `tests/bounded.rs` found it). The box now
+/// saturates and takes in every edge; the build ends, finished or out of capacity.
+#[test]
+fn a_huge_skin_perturbation_builds() {
+    for level in 0..2 {
+        let mut params = hibi_skin_params_default();
+        (params.width, params.height, params.levels) = (48, 48, 2);
+        params.level[0].spacing = 16.0;
+        params.level[1].spacing = 16.0 / 3.0;
+        params.level[level].perturbation = 1e30;
+        let mut skin = core::ptr::null_mut();
+        let mut progress = hibi_skin_progress::default();
+        // SAFETY: valid pointers.
+        unsafe {
+            assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+            let mut calls = 0;
+            let status = loop {
+                let status = hibi_skin_step(skin, 1000, &mut progress);
+                calls += 1;
+                if status != HIBI_OK || progress.finished == 1 || calls == 10_000 {
+                    break status;
+                }
+            };
+            assert!(status == HIBI_OK || status == HIBI_ERROR_SKIN_CAPACITY, "level {level}: status {status}");
+            assert!(status != HIBI_OK || progress.finished == 1, "level {level}: unfinished");
+            hibi_skin_destroy(skin);
+        }
+    }
+}
