@@ -14,6 +14,9 @@ use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
 use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender, Solver};
 use hibi_core::skin::{Skin, SkinLayers, SkinParams, SkinRender};
 
+/// An extreme value: its name and how to set it.
+type Extreme<P> = (&'static str, fn(&mut P));
+
 /// The budget of every bounded step call below.
 const BUDGET: u64 = 20_000;
 /// Step calls per case (a run may need more; each call is what is bounded).
@@ -46,7 +49,7 @@ fn mud_base(solver: Solver) -> MudParams {
 }
 
 /// Valid extreme values of the mud fields.
-fn mud_extremes() -> Vec<(&'static str, fn(&mut MudParams))> {
+fn mud_extremes() -> Vec<Extreme<MudParams>> {
     vec![
         ("shrink_ratio just below 1", |p| p.shrink_ratio = 0.999_999_94),
         ("break_stretch_mean 1e30", |p| p.break_stretch_mean = 1e30),
@@ -131,7 +134,7 @@ fn glass_base() -> GlassParams {
     }
 }
 
-fn glass_extremes() -> Vec<(&'static str, fn(&mut GlassParams))> {
+fn glass_extremes() -> Vec<Extreme<GlassParams>> {
     vec![
         ("ring_slope 1e30", |p| p.ring_slope = 1e30),
         ("ring_offset 1e30", |p| p.ring_offset = 1e30),
@@ -216,7 +219,7 @@ fn skin_base() -> SkinParams {
     p
 }
 
-fn skin_extremes() -> Vec<(&'static str, fn(&mut SkinParams))> {
+fn skin_extremes() -> Vec<Extreme<SkinParams>> {
     vec![
         ("perturbation 1e30", |p| p.level[0].perturbation = 1e30),
         ("perturbation 1e30 on the finer level", |p| p.level[1].perturbation = 1e30),
