@@ -101,7 +101,10 @@ fn crack(u: &mut Unstructured, g: &Plate) -> Result<()> {
         for i in 0..need {
             let p: CrackPoint = points.get(i);
             assert!(finite(&[p.at[0], p.at[1], p.time]), "{p:?}");
-            assert!(p.at[0] >= 0.0 && p.at[0] <= g.width && p.at[1] >= 0.0 && p.at[1] <= g.height, "{p:?} off the plate");
+            assert!(
+                p.at[0] >= 0.0 && p.at[0] <= g.width && p.at[1] >= 0.0 && p.at[1] <= g.height,
+                "{p:?} off the plate"
+            );
         }
     } else {
         assert!(!(valid && required), "points refused a buffer that fits: {status}");
@@ -176,7 +179,10 @@ fn render(u: &mut Unstructured, g: &Plate) -> Result<()> {
         assert!(pixels.untouched_past(need));
         if layer == HIBI_GLASS_LAYER_TIME {
             let time = |i| pixels.get::<f32>(i);
-            assert!((0..need).all(|i| time(i).is_finite() || time(i) == f32::INFINITY), "a time neither finite nor +inf");
+            assert!(
+                (0..need).all(|i| time(i).is_finite() || time(i) == f32::INFINITY),
+                "a time neither finite nor +inf"
+            );
         }
     } else {
         assert!(!(valid && required), "render refused {r:?}, layer {layer}, {} pixels: {status}", pixels.len);

@@ -170,7 +170,8 @@ fn shade(u: &mut Unstructured, height: &Buffer, normal: &Buffer, pixels: usize) 
 
 fn run(u: &mut Unstructured) -> Result<()> {
     let params = skin_params(u)?;
-    let made = create(u, &params, hibi_skin_memory_size, hibi_skin_memory_align, hibi_skin_create, hibi_skin_create_in)?;
+    let made =
+        create(u, &params, hibi_skin_memory_size, hibi_skin_memory_align, hibi_skin_create, hibi_skin_create_in)?;
     let Some((skin, memory)) = made else { return Ok(()) };
     let mut surface = Surface { skin, params, work: 0, finished: false };
     let result = (|| {

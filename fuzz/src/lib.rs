@@ -40,7 +40,10 @@ pub fn check(status: hibi_status) -> bool {
     match status {
         HIBI_ERROR_NULL_POINTER | HIBI_ERROR_MISALIGNED | HIBI_ERROR_SIZE_OVERFLOW => {
             if argument.is_empty() {
-                eprintln!("status {status} names no argument; the last params were {}", LAST.with(|l| l.borrow().clone()));
+                eprintln!(
+                    "status {status} names no argument; the last params were {}",
+                    LAST.with(|l| l.borrow().clone())
+                );
             }
             assert!(!argument.is_empty(), "status {status} names no argument")
         }
