@@ -145,3 +145,68 @@ fn a_huge_skin_perturbation_builds() {
         }
     }
 }
+
+/// Finding 5: the explicit solver with a short step 1000 times the paper's (1 s; valid, within
+/// the short-step scale check) diverges, and the bit-level first guess of `inverse_sqrt` then
+/// took a NaN or negative length², whose bits overflowed the subtraction from the magic
+/// constant (a panic with overflow checks, `HIBI_ERROR_PANIC` from `hibi_mud_step`; the
+/// release library wrapped). The subtraction now wraps in every build, as it did in release
+/// (same bits).
+#[test]
+fn a_diverging_explicit_run_steps_without_a_panic() {
+    let mut params = hibi_mud_params_default();
+    (params.topology, params.boundary, params.solver) = (HIBI_MUD_HEXAGONAL, HIBI_MUD_OPEN, HIBI_MUD_EXPLICIT);
+    (params.columns, params.rows, params.short_step) = (11, 11, 1.0);
+    params.seed = 16_565_755_656_004_436_581;
+    let mut mud = core::ptr::null_mut();
+    let mut progress = hibi_mud_progress::default();
+    // SAFETY: valid pointers.
+    unsafe {
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        for _ in 0..50 {
+            assert_eq!(hibi_mud_step(mud, 1 << 14, &mut progress), HIBI_OK);
+        }
+        let mut count = 0;
+        assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
+        hibi_mud_destroy(mud);
+    }
+}
+
+/// Finding 6: `tip_repulsion` and `crack_attraction` of `FLT_MAX` (valid: finite) made the
+/// force sum inf − inf on a 86 × 2 plate, and the tip's heading and every later vertex NaN
+/// (the glass target's finite-output check). A force with no direction now turns the tip
+/// nowhere; every crack point is finite.
+#[test]
+fn glass_forces_of_flt_max_keep_the_cracks_finite() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (86.0, 2.0, [43.0, 1.0]);
+    params.seed = 69_231_806_036_407_797;
+    (params.tip_repulsion, params.crack_attraction) = (f32::MAX, f32::MAX);
+    (params.max_cracks, params.max_vertices) = (245, 488);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        while progress.finished == 0 {
+            let status = hibi_glass_step(glass, 10_000, &mut progress);
+            assert!(status == HIBI_OK || status == HIBI_ERROR_GLASS_CAPACITY, "{status}");
+            if status != HIBI_OK {
+                break;
+            }
+        }
+        let mut cracks = 0;
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            for p in &points {
+                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
+            }
+        }
+        hibi_glass_destroy(glass);
+    }
+}
