@@ -100,7 +100,7 @@ fn crack(u: &mut Unstructured, g: &Plate) -> Result<()> {
         assert!(points.untouched_past(need));
         for i in 0..need {
             let p: CrackPoint = points.get(i);
-            assert!(finite(&[p.at[0], p.at[1], p.time]), "{p:?}");
+            assert!(finite(&[p.at[0], p.at[1], p.time]), "{p:?}; params {}", LAST.with(|l| l.borrow().clone()));
             assert!(
                 p.at[0] >= 0.0 && p.at[0] <= g.width && p.at[1] >= 0.0 && p.at[1] <= g.height,
                 "{p:?} off the plate"

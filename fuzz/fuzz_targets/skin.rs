@@ -91,9 +91,9 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
             (Buffer::pick(u, need, need + 8, size)?, true)
         })
     };
-    let (mut height, h) = map(u, pixels, 4)?;
-    let (mut normal, n) = map(u, 3 * pixels, 4)?;
-    let (mut cells, c) = map(u, pixels, 4)?;
+    let (mut height, _) = map(u, pixels, 4)?;
+    let (mut normal, _) = map(u, 3 * pixels, 4)?;
+    let (mut cells, _) = map(u, pixels, 4)?;
     let level = count(u, 0..=4)?;
     // SAFETY: every buffer NULL or writable for its length; the scratch is ours.
     let status = unsafe {
@@ -110,11 +110,12 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
             level,
         )
     };
-    // A map not asked for is NULL with length 0; one asked for must hold every pixel.
-    let wanted = |b: &Buffer, on: bool, need: usize| if on && b.len > 0 { b.fits(need, 4) } else { (true, true) };
-    let [a, b, d] = [wanted(&height, h, pixels), wanted(&normal, n, 3 * pixels), wanted(&cells, c, pixels)];
+    // A map not asked for is NULL with length 0; any other must hold every pixel (a non-NULL
+    // map of length 0 is asked for, and too short).
+    let wanted = |b: &Buffer, need: usize| if b.is_null() && b.len == 0 { (true, true) } else { b.fits(need, 4) };
+    let [a, b, d] = [wanted(&height, pixels), wanted(&normal, 3 * pixels), wanted(&cells, pixels)];
     let sc = scratch.fits(size, 8);
-    let level_ok = !(c && cells.len > 0) || level < s.params.levels;
+    let level_ok = (cells.is_null() && cells.len == 0) || level < s.params.levels;
     let (possible, required) = (a.0 && b.0 && d.0 && sc.0 && level_ok, a.1 && b.1 && d.1 && sc.1 && level_ok);
     if check(status) {
         assert!(possible, "render accepted what does not fit");
@@ -144,7 +145,11 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
             shade(u, &height, &normal, pixels)?;
         }
     } else {
-        assert!(!required, "render refused what fits: {status}");
+        assert!(
+            !required,
+            "render refused what fits: {status} ({} scratch of {size}; maps {} {} {}; level {level}); params {:?}",
+            scratch.len, height.len, normal.len, cells.len, s.params
+        );
         assert!(height.untouched() && normal.untouched() && cells.untouched(), "a failing render wrote");
     }
     Ok(())

@@ -32,6 +32,9 @@ thread_local! {
 /// Checks what every call must keep: no panic reached the boundary, the status has a
 /// message, and a pointer refusal names its argument. Returns whether the call succeeded.
 pub fn check(status: hibi_status) -> bool {
+    if status == HIBI_ERROR_PANIC {
+        eprintln!("a panic; the last params were {}", LAST.with(|l| l.borrow().clone()));
+    }
     assert_ne!(status, HIBI_ERROR_PANIC, "a panic reached the C boundary");
     // SAFETY: `hibi_status_string` and `hibi_error_argument` return static C strings.
     let message = unsafe { CStr::from_ptr(hibi_status_string(status)) };
