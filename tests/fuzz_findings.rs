@@ -210,3 +210,106 @@ fn glass_forces_of_flt_max_keep_the_cracks_finite() {
         hibi_glass_destroy(glass);
     }
 }
+
+/// Finding 7: a skin level stretched by 4e21 puts its outline's fixed-point corners so far
+/// apart that their differences overflowed `i64` in the render (a panic with overflow
+/// checks, `HIBI_ERROR_PANIC` from `hibi_skin_render`; release builds wrapped). They wrap in
+/// every build now, as in release.
+#[test]
+fn a_huge_skin_stretch_renders() {
+    let mut params = hibi_skin_params_default();
+    (params.width, params.height, params.jitter, params.levels) = (14, 14, HIBI_SPREAD_NORMAL, 1);
+    params.seed = 11_672_663_176_895_373_729;
+    params.level[0].spacing = 1.000_000_1;
+    params.level[0].perturbation = 4.892_226e-24;
+    params.level[0].perturbation_depth = 2;
+    params.level[0].stretch = [4.193_125_7e21, 1.0];
+    let mut skin = core::ptr::null_mut();
+    let mut size = 0;
+    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    unsafe {
+        assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+        assert_eq!(hibi_skin_step(skin, u64::MAX, core::ptr::null_mut()), HIBI_OK);
+        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let (mut height, mut normal) = (vec![0f32; 196], vec![0f32; 3 * 196]);
+        let status = hibi_skin_render(
+            skin,
+            scratch.as_mut_ptr().cast(),
+            size,
+            height.as_mut_ptr(),
+            196,
+            normal.as_mut_ptr(),
+            3 * 196,
+            core::ptr::null_mut(),
+            0,
+            0,
+        );
+        assert_eq!(status, HIBI_OK);
+        hibi_skin_destroy(skin);
+    }
+}
+
+/// Finding 8: a large-crack speed of `FLT_MAX` is valid, but Rand((1 + z)·x) drew +inf, and
+/// an infinite speed made the crack times NaN (inf − inf). Drawn speeds and radii are now at
+/// most `FLT_MAX`; every crack point's time is finite.
+#[test]
+fn a_glass_speed_of_flt_max_keeps_the_times_finite() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (43.0, 43.0, [21.5, 21.5]);
+    params.seed = 541_134_543_218_278_400;
+    params.large_speed = f32::MAX;
+    (params.ring_radius_slope, params.ring_radius_offset) = (f32::MAX, f32::MAX);
+    (params.spread, params.sector_angle) = (HIBI_SPREAD_UNIFORM, f32::MIN_POSITIVE);
+    (params.max_cracks, params.max_vertices) = (251, 702);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        for _ in 0..100 {
+            if hibi_glass_step(glass, 10_000, &mut progress) != HIBI_OK || progress.finished == 1 {
+                break;
+            }
+        }
+        let mut cracks = 0;
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            for p in &points {
+                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
+            }
+        }
+        hibi_glass_destroy(glass);
+    }
+}
+
+/// Finding 9: with the growth drive, a subnormal `shrink_ratio` (1e-40, within (0, 1)) made
+/// the explicit solver's first long step grow by 1/γ = +inf: `progress.shrink` was infinite
+/// and the run never ended. A subnormal γ is now refused (`HIBI_ERROR_MUD_SHRINK_RATIO`);
+/// the smallest normal one ends.
+#[test]
+fn a_subnormal_shrink_ratio_is_refused() {
+    let mut params = hibi_mud_params_default();
+    (params.columns, params.rows, params.drive, params.solver) = (8, 8, HIBI_MUD_GROWTH, HIBI_MUD_EXPLICIT);
+    let mut size = 0;
+    for gamma in [1e-40f32, 1e-45] {
+        params.shrink_ratio = gamma;
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_mud_memory_size(&params, &mut size) }, HIBI_ERROR_MUD_SHRINK_RATIO, "{gamma}");
+    }
+    params.shrink_ratio = f32::MIN_POSITIVE;
+    let mut mud = core::ptr::null_mut();
+    let mut progress = hibi_mud_progress::default();
+    // SAFETY: valid pointers.
+    unsafe {
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        assert_eq!(hibi_mud_step(mud, 1 << 20, &mut progress), HIBI_OK);
+        assert!(progress.finished == 1 && progress.shrink.is_finite(), "{progress:?}");
+        hibi_mud_destroy(mud);
+    }
+}
