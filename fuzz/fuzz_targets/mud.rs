@@ -51,7 +51,11 @@ fn segments(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
         assert!(buffer.untouched_past(count));
         for i in 0..count {
             let s: CrackSegment = buffer.get(i);
-            assert!(finite(&[s.start[0], s.start[1], s.end[0], s.end[1], s.width[0], s.width[1]]), "{s:?}; params {}", LAST.with(|l| l.borrow().clone()));
+            assert!(
+                finite(&[s.start[0], s.start[1], s.end[0], s.end[1], s.width[0], s.width[1]]),
+                "{s:?}; params {}",
+                LAST.with(|l| l.borrow().clone())
+            );
             assert!(finite(&s.time), "{s:?}");
         }
     } else {
