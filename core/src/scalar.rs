@@ -139,7 +139,7 @@ impl Scalar for f32 {
     /// Relative error ≤ 3·10⁻⁷ (tests).
     fn inverse_sqrt(self) -> Self {
         let half = 0.5 * self;
-        let mut y = f32::from_bits(0x5f37_5a86 - (self.to_bits() >> 1));
+        let mut y = f32::from_bits(0x5f37_5a86u32.wrapping_sub(self.to_bits() >> 1));
         for _ in 0..3 {
             y *= 1.5 - half * y * y;
         }

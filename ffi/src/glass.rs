@@ -233,6 +233,7 @@ impl Object for hibi_glass {
     type Input = *const hibi_glass_params;
     type Plan = (GlassParams, GlassMemory);
     type Arrays = GlassBuffers<'static>;
+    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_GLASS_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_glass_params) -> Result<Self::Plan, hibi_status> {
         check_pointer(params, c"params")?;

@@ -268,6 +268,7 @@ impl Object for hibi_mud {
     type Input = *const hibi_mud_params;
     type Plan = (MudParams, MudMemory);
     type Arrays = MudBuffers<'static, f32>;
+    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_MUD_SIZE_OVERFLOW;
 
     unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
         check_pointer(params, c"params")?;

@@ -83,6 +83,11 @@ pub(crate) trait Object: Sized + 'static {
     /// The arrays it computes in.
     type Arrays;
 
+    /// The status of valid parameters whose arrays do not fit in the address space (the
+    /// model's "too large" parameter status; fuzzing found the generic
+    /// `HIBI_ERROR_SIZE_OVERFLOW` here, which names no argument).
+    const TOO_LARGE: hibi_status;
+
     /// Checks the input; every parameter error is reported here.
     ///
     /// # Safety
@@ -115,7 +120,7 @@ unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_stat
     let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false };
     T::arrays(&plan, &mut arena);
     if arena.overflow {
-        return Err(HIBI_ERROR_SIZE_OVERFLOW);
+        return Err(T::TOO_LARGE);
     }
     Ok((plan, arena.at))
 }

@@ -25,6 +25,8 @@ impl Object for hibi_rng {
     type Input = (u64, u64);
     type Plan = (u64, u64);
     type Arrays = ();
+    /// Unreachable: a stream's block has a fixed size.
+    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_SIZE_OVERFLOW;
 
     unsafe fn plan(key: (u64, u64)) -> Result<(u64, u64), hibi_status> {
         Ok(key)

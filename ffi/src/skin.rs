@@ -229,6 +229,7 @@ impl Object for hibi_skin {
     type Input = *const hibi_skin_params;
     type Plan = (SkinParams, SkinMemory);
     type Arrays = SkinBuffers<'static>;
+    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_SKIN_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
         check_pointer(params, c"params")?;
@@ -345,6 +346,11 @@ pub unsafe extern "C" fn hibi_skin_render(
     guard(|| {
         // SAFETY: the caller's contract.
         let skin = unsafe { object_ref(skin, c"skin") }?;
+        // NULL with a length (even one too short for a whole pixel) is refused, as for every
+        // buffer; so is a misaligned one (fuzzing found `normal_len` 1 or 2 with NULL accepted).
+        if normal_len > 0 {
+            check_pointer(normal.cast_const(), c"normal")?;
+        }
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
         // and a trailing partial pixel of `normal` is not used.
         let layers = unsafe {
@@ -419,6 +425,14 @@ pub unsafe extern "C" fn hibi_skin_shade(
         check_pointer(params, c"params")?;
         // SAFETY: non-null, aligned (checked); readable by the caller's contract.
         let params: ShadeParams = unsafe { &*params }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
+        // NULL with a length (even one too short for a whole pixel) is refused, as for every
+        // buffer (fuzzing found `rgb_len` 1 or 2 with NULL accepted).
+        if normal_len > 0 {
+            check_pointer(normal, c"normal")?;
+        }
+        if rgb_len > 0 {
+            check_pointer(rgb.cast_const(), c"rgb")?;
+        }
         // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`.
         let (height, normal, rgb) = unsafe {
             (

@@ -525,7 +525,11 @@ impl Glass<'_> {
         f[0] += libm::cosf(angle);
         f[1] += libm::sinf(angle);
         // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
-        let difference = wrap(libm::atan2f(f[1], f[0]) - course).clamp(-p.turn_limit, p.turn_limit);
+        let turn = wrap(libm::atan2f(f[1], f[0]) - course);
+        // Forces of FLT_MAX can meet as inf − inf: a force with no direction turns the tip
+        // nowhere (fuzzing found NaN vertices from `tip_repulsion` = `crack_attraction` = FLT_MAX).
+        let turn = if turn.is_nan() { 0.0 } else { turn };
+        let difference = turn.clamp(-p.turn_limit, p.turn_limit);
         let mut heading = wrap(course + difference * weight);
         if ring {
             // Rule 5: a ring crack never turns outwards of the chord of its circle (about the

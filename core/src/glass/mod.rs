@@ -523,7 +523,9 @@ impl<'a> Glass<'a> {
         self.clock.time_limit = (libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32).saturating_add(16);
         let tau = 2.0 * core::f32::consts::PI;
         let rotation = turn_rng.uniform_f32() * tau;
-        let rand = |rng: &mut Rng, x: f32| rng.rand(x, p.spread_ratio, p.spread).unwrap_or(x);
+        // At most FLT_MAX: Rand((1 + z)·x) of a speed or radius near FLT_MAX is +inf, and an
+        // infinite speed made the crack times NaN (inf − inf; found by fuzzing).
+        let rand = |rng: &mut Rng, x: f32| rng.rand(x, p.spread_ratio, p.spread).unwrap_or(x).min(f32::MAX);
         let centre = self.add_vertex(at);
         // Radial cracks at equal angles; the N large ones spread as evenly as possible.
         for i in 0..m {

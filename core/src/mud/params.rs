@@ -256,7 +256,9 @@ impl MudParams {
             (positive(self.element_size), ElementSize),
             (positive(self.long_step), LongStep),
             (positive(self.short_step), ShortStep),
-            (self.shrink_ratio > 0.0 && self.shrink_ratio < 1.0, ShrinkRatio),
+            // Not subnormal: the growth drive's 1/γ after one long step must be finite
+            // (fuzzing found 1e-40 growing to an infinite shrink, a run that never ended).
+            (self.shrink_ratio >= f32::MIN_POSITIVE && self.shrink_ratio < 1.0, ShrinkRatio),
             (positive(self.displacement_tolerance), DisplacementTolerance),
             (positive(self.damping_factor), DampingFactor),
             (positive(self.density), Density),

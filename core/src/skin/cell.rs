@@ -201,9 +201,12 @@ impl<'p> Nearby<'p> {
         let length = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
         let reach = f.reach * length;
         // (Plus the stay-inside test's slack, and a few units for rounding to fixed point.)
-        let widen = |k: usize| (reach * f.from_frame[k]) as i64 + f.inside_slack() + 16;
+        // Saturating: a huge perturbation ratio (1e30) reaches past i64 (`as` saturates), and
+        // the box then takes in every edge (issue 25 item 6 found the overflow).
+        let widen = |k: usize| ((reach * f.from_frame[k]) as i64).saturating_add(f.inside_slack() + 16);
         let (wx, wy) = (widen(0), widen(1));
-        let (low, high) = ([x[0].min(y[0]) - wx, x[1].min(y[1]) - wy], [x[0].max(y[0]) + wx, x[1].max(y[1]) + wy]);
+        let low = [x[0].min(y[0]).saturating_sub(wx), x[1].min(y[1]).saturating_sub(wy)];
+        let high = [x[0].max(y[0]).saturating_add(wx), x[1].max(y[1]).saturating_add(wy)];
         let (mut count, mut fits) = (0, true);
         parent.edges_near((low, high), 0, |e| {
             if count == LISTED {

@@ -406,14 +406,22 @@ impl SkinParams {
         let (mut cells, mut vertices, mut previous) = (0usize, 0usize, 0usize);
         for l in 0..levels {
             let lattice = Lattice::new(self, l);
+            // A tiny stretch puts up to i64::MAX centre points across an axis: more than any
+            // memory holds, and more than the products below could count (issue 25 fuzzing).
+            if lattice.count.iter().any(|&c| c > i64::from(i32::MAX)) {
+                return Err(SkinParamError::Capacity);
+            }
             // Every lattice point that can lie on the surface (or its margin), plus one
             // stand-in child for each parent that holds no point.
             let sites = if l == 0 {
                 let r = self.level0_indices(&lattice);
-                ((r[2] - r[0] + 1) * (r[3] - r[1] + 1)) as usize
+                usize::try_from((r[2] - r[0] + 1) * (r[3] - r[1] + 1)).map_err(|_| SkinParamError::Capacity)?
             } else {
                 let margin = 2 * (WINDOW + 4);
-                ((lattice.count[0] + margin) * (lattice.count[1] + margin)) as usize + previous
+                usize::try_from((lattice.count[0] + margin) * (lattice.count[1] + margin))
+                    .ok()
+                    .and_then(|n| n.checked_add(previous))
+                    .ok_or(SkinParamError::Capacity)?
             };
             // Euler: the Voronoi edges of n points number at most 3n; each is in two cells,
             // perturbed into 2^depth pieces, plus corners on the parent's outline, which every

@@ -54,11 +54,17 @@ impl Lattice {
             // exactly across the seam.
             count = [count[0].max(2), count[1].max(2)];
             if p.layout == SiteLayout::Triangular && count[1] % 2 == 1 {
-                count[1] += 1; // shifted rows alternate: an even number of rows tiles
+                // Shifted rows alternate: an even number of rows tiles. (Saturating: a count
+                // this large is refused by `SkinParams::memory`.)
+                count[1] = count[1].saturating_add(1);
             }
             step = [period[0] / count[0] as f64, period[1] / count[1] as f64];
         } else {
-            count = [libm::ceil(period[0] / step[0]) as i64 + 1, libm::ceil(period[1] / step[1]) as i64 + 1];
+            // Saturating: `as` saturates a huge period (a tiny stretch), and `memory` refuses it.
+            count = [
+                (libm::ceil(period[0] / step[0]) as i64).saturating_add(1),
+                (libm::ceil(period[1] / step[1]) as i64).saturating_add(1),
+            ];
         }
         let (spread, jitter) = match p.layout {
             SiteLayout::Random => (Spread::Uniform, 1.0),

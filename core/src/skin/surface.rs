@@ -573,8 +573,11 @@ impl<S: Scalar> Skin<'_, S> {
             for l in 0..out.len() {
                 let i = first + l;
                 let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
-                (va[0][l], va[1][l]) = (pixels(a[0] - c[0]), pixels(a[1] - c[1]));
-                (e[0][l], e[1][l]) = (pixels(b[0] - a[0]), pixels(b[1] - a[1]));
+                // Wrapping, as release builds always did: a stretch of 1e21 puts an outline's
+                // fixed-point corners far enough apart that the differences overflow i64
+                // (found by fuzzing; a panic with overflow checks on).
+                (va[0][l], va[1][l]) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
+                (e[0][l], e[1][l]) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
             }
             // (libm's square root is a scalar instruction, in a loop of its own.)
             let mut length = [0.0f32; EDGES];

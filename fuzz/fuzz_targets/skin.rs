@@ -1,0 +1,202 @@
+//! Model C through the C ABI: params from the input, `hibi_skin_create` or
+//! `hibi_skin_create_in` (any memory length and alignment), then any sequence of steps (any
+//! budgets), cell queries and outlines (any lengths), renders (any scratch, any map lengths,
+//! any cell level) and shading of what was rendered.
+#![no_main]
+
+use arbitrary::{Result, Unstructured};
+use hibi::*;
+use hibi_fuzz::*;
+use libfuzzer_sys::fuzz_target;
+
+const WRITTEN: usize = usize::MAX - 3;
+
+struct Surface {
+    skin: *mut hibi_skin,
+    params: hibi_skin_params,
+    work: u64,
+    finished: bool,
+}
+
+fn step(u: &mut Unstructured, s: &mut Surface) -> Result<()> {
+    let mut budget = budget(u)?;
+    if !s.finished {
+        budget = budget.min(MAX_WORK.saturating_sub(s.work));
+    }
+    let mut progress = hibi_skin_progress { finished: u32::MAX, work: u64::MAX, ..Default::default() };
+    let o = out(u, &mut progress)?;
+    // SAFETY: a live skin; `o` NULL or writable.
+    let status = unsafe { hibi_skin_step(s.skin, budget, o) };
+    if check(status) {
+        if !o.is_null() {
+            assert!(progress.finished <= 1 && progress.capacity_reached <= 1, "{progress:?}");
+            assert!(progress.roots <= progress.root_total, "{progress:?}");
+            assert!(progress.work >= s.work, "work went back");
+            s.work = progress.work;
+            s.finished = progress.finished == 1;
+        }
+    } else {
+        assert_eq!(status, HIBI_ERROR_SKIN_CAPACITY);
+        assert_eq!(progress.finished, u32::MAX, "a failing step wrote");
+        s.finished = true;
+    }
+    Ok(())
+}
+
+fn cell(u: &mut Unstructured, s: &Surface) -> Result<()> {
+    let mut count = WRITTEN;
+    // SAFETY: a live skin, a writable count.
+    assert!(check(unsafe { hibi_skin_cell_count(s.skin, &mut count) }));
+    let index = if u.ratio(1u8, 8)? { u.arbitrary()? } else { u.int_in_range(0..=count)? };
+    let mut info = hibi_skin_cell { level: u32::MAX, ..Default::default() };
+    // SAFETY: a live skin, a writable cell.
+    let status = unsafe { hibi_skin_cell_info(s.skin, index, &mut info) };
+    if check(status) {
+        assert!(index < count && info.level < s.params.levels, "{info:?}");
+        assert_eq!(info.parent == HIBI_SKIN_NO_CELL, info.level == 0, "{info:?}");
+        assert!(info.parent == HIBI_SKIN_NO_CELL || (info.parent as usize) < index, "{info:?}");
+        assert!(info.centre.iter().all(|c| c.is_finite()), "{info:?}");
+    } else {
+        assert!(status == HIBI_ERROR_SKIN_CELL_INDEX && index >= count && info.level == u32::MAX);
+    }
+    let need = if status == HIBI_OK { 2 * info.vertex_count as usize } else { 8 };
+    let mut xy = Buffer::pick(u, need, need + 8, 8)?;
+    let mut written = WRITTEN;
+    let w = out(u, &mut written)?;
+    // SAFETY: `xy` NULL or writable for its length.
+    let status = unsafe { hibi_skin_outline(s.skin, index, xy.ptr(), xy.len, w) };
+    let (possible, required) = xy.fits(need, 8);
+    let valid = index < count && !w.is_null();
+    if check(status) {
+        assert!(valid && possible && written == need);
+        assert!(xy.untouched_past(need));
+        assert!((0..need).all(|i| xy.get::<f64>(i).is_finite()), "an outline point not finite");
+    } else {
+        assert!(!(valid && required), "outline refused a buffer that fits: {status}");
+        assert!(xy.untouched() && written == WRITTEN, "a failing call wrote");
+    }
+    Ok(())
+}
+
+fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
+    let mut size = WRITTEN;
+    // SAFETY: a live skin, a writable size.
+    assert!(check(unsafe { hibi_skin_scratch_size(s.skin, &mut size) }));
+    let mut scratch = Buffer::pick(u, size, size + 64, 1)?;
+    let pixels = s.params.width as usize * s.params.height as usize;
+    let map = |u: &mut Unstructured, need: usize, size: usize| -> Result<(Buffer, bool)> {
+        Ok(if u.ratio(1u8, 3)? {
+            (Buffer::new(0, size, 0, true), false)
+        } else {
+            (Buffer::pick(u, need, need + 8, size)?, true)
+        })
+    };
+    let (mut height, _) = map(u, pixels, 4)?;
+    let (mut normal, _) = map(u, 3 * pixels, 4)?;
+    let (mut cells, _) = map(u, pixels, 4)?;
+    let level = count(u, 0..=4)?;
+    // SAFETY: every buffer NULL or writable for its length; the scratch is ours.
+    let status = unsafe {
+        hibi_skin_render(
+            s.skin,
+            scratch.ptr(),
+            scratch.len,
+            height.ptr(),
+            height.len,
+            normal.ptr(),
+            normal.len,
+            cells.ptr(),
+            cells.len,
+            level,
+        )
+    };
+    // A map not asked for is NULL with length 0; any other must hold every pixel (a non-NULL
+    // map of length 0 is asked for, and too short).
+    let wanted = |b: &Buffer, need: usize| if b.is_null() && b.len == 0 { (true, true) } else { b.fits(need, 4) };
+    let [a, b, d] = [wanted(&height, pixels), wanted(&normal, 3 * pixels), wanted(&cells, pixels)];
+    let sc = scratch.fits(size, 8);
+    let level_ok = (cells.is_null() && cells.len == 0) || level < s.params.levels;
+    let (possible, required) = (a.0 && b.0 && d.0 && sc.0 && level_ok, a.1 && b.1 && d.1 && sc.1 && level_ok);
+    if check(status) {
+        assert!(possible, "render accepted what does not fit");
+        if height.len > 0 {
+            assert!(height.untouched_past(pixels));
+            assert!((0..pixels).all(|i| height.get::<f32>(i).is_finite()), "a height not finite");
+        }
+        if normal.len > 0 {
+            assert!(normal.untouched_past(3 * pixels));
+            for i in 0..pixels {
+                let v = [normal.get::<f32>(3 * i), normal.get::<f32>(3 * i + 1), normal.get::<f32>(3 * i + 2)];
+                let length = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                assert!(finite(&v) && (length - 1.0).abs() < 1e-3, "normal {v:?} not unit");
+            }
+        }
+        if cells.len > 0 {
+            assert!(cells.untouched_past(pixels));
+            let mut count = 0;
+            // SAFETY: a live skin, a writable count.
+            assert!(check(unsafe { hibi_skin_cell_count(s.skin, &mut count) }));
+            assert!((0..pixels).all(|i| {
+                let c = cells.get::<u32>(i);
+                c == HIBI_SKIN_NO_CELL || (c as usize) < count
+            }));
+        }
+        if height.len > 0 && normal.len > 0 && u.arbitrary()? {
+            shade(u, &height, &normal, pixels)?;
+        }
+    } else {
+        assert!(
+            !required,
+            "render refused what fits: {status} ({} scratch of {size}; maps {} {} {}; level {level}); params {:?}",
+            scratch.len, height.len, normal.len, cells.len, s.params
+        );
+        assert!(height.untouched() && normal.untouched() && cells.untouched(), "a failing render wrote");
+    }
+    Ok(())
+}
+
+/// Shades rendered maps (the `shade` target shades arbitrary ones).
+fn shade(u: &mut Unstructured, height: &Buffer, normal: &Buffer, pixels: usize) -> Result<()> {
+    let h: Vec<f32> = (0..pixels).map(|i| height.get(i)).collect();
+    let n: Vec<f32> = (0..3 * pixels).map(|i| normal.get(i)).collect();
+    let params = hibi_skin_shade_params_default();
+    let mut rgb = Buffer::pick(u, 3 * pixels, 3 * pixels + 8, 1)?;
+    // SAFETY: the inputs are readable for their lengths, `rgb` writable for its length.
+    let status = unsafe { hibi_skin_shade(h.as_ptr(), h.len(), n.as_ptr(), n.len(), &params, rgb.ptr(), rgb.len) };
+    let (possible, required) = rgb.fits(3 * pixels, 1);
+    if check(status) {
+        assert!(possible && rgb.untouched_past(3 * pixels));
+    } else {
+        assert!(!required, "shade refused what fits: {status}");
+        assert!(rgb.untouched());
+    }
+    Ok(())
+}
+
+fn run(u: &mut Unstructured) -> Result<()> {
+    let params = skin_params(u)?;
+    let made =
+        create(u, &params, hibi_skin_memory_size, hibi_skin_memory_align, hibi_skin_create, hibi_skin_create_in)?;
+    let Some((skin, memory)) = made else { return Ok(()) };
+    let mut surface = Surface { skin, params, work: 0, finished: false };
+    let result = (|| {
+        for _ in 0..10 {
+            match u.int_in_range(0u8..=4)? {
+                0 | 1 => step(u, &mut surface)?,
+                2 | 3 => cell(u, &surface)?,
+                _ => render(u, &surface)?,
+            }
+        }
+        Ok(())
+    })();
+    if memory.is_empty() || u.arbitrary().unwrap_or(true) {
+        // SAFETY: a live skin, not used afterwards.
+        unsafe { hibi_skin_destroy(skin) };
+    }
+    drop(memory);
+    result
+}
+
+fuzz_target!(|data: &[u8]| {
+    let _ = run(&mut Unstructured::new(data));
+});

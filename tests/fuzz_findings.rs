@@ -1,0 +1,315 @@
+//! Regression tests for what fuzzing the C ABI found (issue 25 item 2; `docs/fuzzing.md`
+//! lists each finding). Each case is the smallest input found that reached
+//! `HIBI_ERROR_PANIC`, called through the C ABI as the fuzz target called it.
+
+use hibi::*;
+
+/// Finding 1: a skin level whose stretch is tiny (`FLT_MIN`) asks for about 1e39 centre
+/// points across an axis. Its lattice count saturated at `i64::MAX`, and sizing the memory
+/// overflowed (a panic in `hibi_skin_memory_size` and `hibi_skin_create`). It is now a
+/// surface too large for memory, on every level, periodic or not.
+#[test]
+fn a_tiny_skin_stretch_is_too_large_not_a_panic() {
+    for periodic in [0, 1] {
+        for level in 0..4 {
+            for axis in 0..2 {
+                let mut params = hibi_skin_params_default();
+                params.periodic = periodic;
+                params.width = 4;
+                params.height = 5;
+                params.levels = 4;
+                params.level[level].stretch[axis] = f32::MIN_POSITIVE;
+                let mut size = usize::MAX;
+                // SAFETY: valid pointers.
+                let status = unsafe { hibi_skin_memory_size(&params, &mut size) };
+                assert_eq!(status, HIBI_ERROR_SKIN_CAPACITY_PARAMS, "periodic {periodic}, level {level}, axis {axis}");
+                assert_eq!(size, usize::MAX, "nothing written");
+                let mut skin = core::ptr::null_mut();
+                // SAFETY: valid pointers.
+                let status = unsafe { hibi_skin_create(&params, &mut skin) };
+                assert_eq!(status, HIBI_ERROR_SKIN_CAPACITY_PARAMS);
+                assert!(skin.is_null());
+            }
+        }
+    }
+}
+
+/// Finding 2: a mud lattice whose element counts fit in `size_t` but whose bytes do not
+/// (16 711 680 × 4 282 449 664 nodes, square, periodic) got the generic
+/// `HIBI_ERROR_SIZE_OVERFLOW` from `hibi_mud_memory_size` and `hibi_mud_create`, which by
+/// the header's contract names an argument, and it named none. It is now the lattice-too-large
+/// parameter status, like the larger lattice of the bad-input table.
+#[test]
+fn a_mud_lattice_too_large_for_memory_is_its_parameter_status() {
+    let mut params = hibi_mud_params_default();
+    (params.topology, params.boundary, params.solver) = (HIBI_MUD_SQUARE, HIBI_MUD_PERIODIC, HIBI_MUD_EXPLICIT);
+    (params.columns, params.rows) = (16_711_680, 4_282_449_664);
+    let mut size = usize::MAX;
+    // SAFETY: valid pointers.
+    let status = unsafe { hibi_mud_memory_size(&params, &mut size) };
+    assert_eq!(status, HIBI_ERROR_MUD_SIZE_OVERFLOW);
+    assert_eq!(size, usize::MAX, "nothing written");
+    let mut mud = core::ptr::null_mut();
+    // SAFETY: valid pointers.
+    assert_eq!(unsafe { hibi_mud_create(&params, &mut mud) }, HIBI_ERROR_MUD_SIZE_OVERFLOW);
+    assert!(mud.is_null());
+}
+
+fn argument() -> String {
+    // SAFETY: a static C string.
+    unsafe { core::ffi::CStr::from_ptr(hibi_error_argument()) }.to_str().expect("ASCII").to_owned()
+}
+
+/// Finding 3: a NULL `rgb` (`hibi_skin_shade`) or `normal` (`hibi_skin_shade`,
+/// `hibi_skin_render`) whose length is 1 or 2, too short for one pixel, was accepted as an
+/// empty buffer; the header allows NULL only with length 0. Now `HIBI_ERROR_NULL_POINTER`,
+/// naming the buffer, like every other NULL buffer with a length.
+#[test]
+fn a_null_buffer_shorter_than_one_pixel_is_refused() {
+    let shade = hibi_skin_shade_params_default();
+    let (height, normal) = ([0.5f32; 1], [0.0f32, 0.0, 1.0]);
+    let mut rgb = [7u8; 3];
+    for len in [1, 2] {
+        // SAFETY: every non-null pointer is valid for its length.
+        unsafe {
+            let status =
+                hibi_skin_shade(core::ptr::null(), 0, core::ptr::null(), 0, &shade, core::ptr::null_mut(), len);
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "rgb"));
+            let status = hibi_skin_shade(core::ptr::null(), 0, core::ptr::null(), len, &shade, rgb.as_mut_ptr(), 3);
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "normal"));
+        }
+    }
+    // The same inputs with their buffers are accepted.
+    // SAFETY: valid pointers and lengths.
+    let status = unsafe { hibi_skin_shade(height.as_ptr(), 1, normal.as_ptr(), 3, &shade, rgb.as_mut_ptr(), 3) };
+    assert_eq!(status, HIBI_OK);
+
+    let mut params = hibi_skin_params_default();
+    (params.width, params.height) = (16, 16);
+    let mut skin = core::ptr::null_mut();
+    let mut size = 0;
+    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    unsafe {
+        assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let mut height = vec![-1.0f32; 16 * 16];
+        for len in [1, 2] {
+            let status = hibi_skin_render(
+                skin,
+                scratch.as_mut_ptr().cast(),
+                size,
+                height.as_mut_ptr(),
+                height.len(),
+                core::ptr::null_mut(),
+                len,
+                core::ptr::null_mut(),
+                0,
+                0,
+            );
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "normal"));
+            assert!(height.iter().all(|&h| h == -1.0), "nothing written");
+        }
+        hibi_skin_destroy(skin);
+    }
+}
+
+/// Finding 4: a huge perturbation ratio (1e30, valid: finite and >= 0) overflowed the box of
+/// parent edges a bisector's perturbation can reach, a panic in `hibi_skin_step`
+/// (`HIBI_ERROR_PANIC`; the skin fuzz target and `tests/bounded.rs` found it). The box now
+/// saturates and takes in every edge; the build ends, finished or out of capacity.
+#[test]
+fn a_huge_skin_perturbation_builds() {
+    for level in 0..2 {
+        let mut params = hibi_skin_params_default();
+        (params.width, params.height, params.levels) = (48, 48, 2);
+        params.level[0].spacing = 16.0;
+        params.level[1].spacing = 16.0 / 3.0;
+        params.level[level].perturbation = 1e30;
+        let mut skin = core::ptr::null_mut();
+        let mut progress = hibi_skin_progress::default();
+        // SAFETY: valid pointers.
+        unsafe {
+            assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+            let mut calls = 0;
+            let status = loop {
+                let status = hibi_skin_step(skin, 1000, &mut progress);
+                calls += 1;
+                if status != HIBI_OK || progress.finished == 1 || calls == 10_000 {
+                    break status;
+                }
+            };
+            assert!(status == HIBI_OK || status == HIBI_ERROR_SKIN_CAPACITY, "level {level}: status {status}");
+            assert!(status != HIBI_OK || progress.finished == 1, "level {level}: unfinished");
+            hibi_skin_destroy(skin);
+        }
+    }
+}
+
+/// Finding 5: the explicit solver with a short step 1000 times the paper's (1 s; valid, within
+/// the short-step scale check) diverges, and the bit-level first guess of `inverse_sqrt` then
+/// took a NaN or negative length², whose bits overflowed the subtraction from the magic
+/// constant (a panic with overflow checks, `HIBI_ERROR_PANIC` from `hibi_mud_step`; the
+/// release library wrapped). The subtraction now wraps in every build, as it did in release
+/// (same bits).
+#[test]
+fn a_diverging_explicit_run_steps_without_a_panic() {
+    let mut params = hibi_mud_params_default();
+    (params.topology, params.boundary, params.solver) = (HIBI_MUD_HEXAGONAL, HIBI_MUD_OPEN, HIBI_MUD_EXPLICIT);
+    (params.columns, params.rows, params.short_step) = (11, 11, 1.0);
+    params.seed = 16_565_755_656_004_436_581;
+    let mut mud = core::ptr::null_mut();
+    let mut progress = hibi_mud_progress::default();
+    // SAFETY: valid pointers.
+    unsafe {
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        for _ in 0..50 {
+            assert_eq!(hibi_mud_step(mud, 1 << 14, &mut progress), HIBI_OK);
+        }
+        let mut count = 0;
+        assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
+        hibi_mud_destroy(mud);
+    }
+}
+
+/// Finding 6: `tip_repulsion` and `crack_attraction` of `FLT_MAX` (valid: finite) made the
+/// force sum inf − inf on a 86 × 2 plate, and the tip's heading and every later vertex NaN
+/// (the glass target's finite-output check). A force with no direction now turns the tip
+/// nowhere; every crack point is finite.
+#[test]
+fn glass_forces_of_flt_max_keep_the_cracks_finite() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (86.0, 2.0, [43.0, 1.0]);
+    params.seed = 69_231_806_036_407_797;
+    (params.tip_repulsion, params.crack_attraction) = (f32::MAX, f32::MAX);
+    (params.max_cracks, params.max_vertices) = (245, 488);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        while progress.finished == 0 {
+            let status = hibi_glass_step(glass, 10_000, &mut progress);
+            assert!(status == HIBI_OK || status == HIBI_ERROR_GLASS_CAPACITY, "{status}");
+            if status != HIBI_OK {
+                break;
+            }
+        }
+        let mut cracks = 0;
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            for p in &points {
+                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
+            }
+        }
+        hibi_glass_destroy(glass);
+    }
+}
+
+/// Finding 7: a skin level stretched by 4e21 puts its outline's fixed-point corners so far
+/// apart that their differences overflowed `i64` in the render (a panic with overflow
+/// checks, `HIBI_ERROR_PANIC` from `hibi_skin_render`; release builds wrapped). They wrap in
+/// every build now, as in release.
+#[test]
+fn a_huge_skin_stretch_renders() {
+    let mut params = hibi_skin_params_default();
+    (params.width, params.height, params.jitter, params.levels) = (14, 14, HIBI_SPREAD_NORMAL, 1);
+    params.seed = 11_672_663_176_895_373_729;
+    params.level[0].spacing = 1.000_000_1;
+    params.level[0].perturbation = 4.892_226e-24;
+    params.level[0].perturbation_depth = 2;
+    params.level[0].stretch = [4.193_125_7e21, 1.0];
+    let mut skin = core::ptr::null_mut();
+    let mut size = 0;
+    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    unsafe {
+        assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+        assert_eq!(hibi_skin_step(skin, u64::MAX, core::ptr::null_mut()), HIBI_OK);
+        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let (mut height, mut normal) = (vec![0f32; 196], vec![0f32; 3 * 196]);
+        let status = hibi_skin_render(
+            skin,
+            scratch.as_mut_ptr().cast(),
+            size,
+            height.as_mut_ptr(),
+            196,
+            normal.as_mut_ptr(),
+            3 * 196,
+            core::ptr::null_mut(),
+            0,
+            0,
+        );
+        assert_eq!(status, HIBI_OK);
+        hibi_skin_destroy(skin);
+    }
+}
+
+/// Finding 8: a large-crack speed of `FLT_MAX` is valid, but Rand((1 + z)·x) drew +inf, and
+/// an infinite speed made the crack times NaN (inf − inf). Drawn speeds and radii are now at
+/// most `FLT_MAX`; every crack point's time is finite.
+#[test]
+fn a_glass_speed_of_flt_max_keeps_the_times_finite() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (43.0, 43.0, [21.5, 21.5]);
+    params.seed = 541_134_543_218_278_400;
+    params.large_speed = f32::MAX;
+    (params.ring_radius_slope, params.ring_radius_offset) = (f32::MAX, f32::MAX);
+    (params.spread, params.sector_angle) = (HIBI_SPREAD_UNIFORM, f32::MIN_POSITIVE);
+    (params.max_cracks, params.max_vertices) = (251, 702);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        for _ in 0..100 {
+            if hibi_glass_step(glass, 10_000, &mut progress) != HIBI_OK || progress.finished == 1 {
+                break;
+            }
+        }
+        let mut cracks = 0;
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            for p in &points {
+                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
+            }
+        }
+        hibi_glass_destroy(glass);
+    }
+}
+
+/// Finding 9: with the growth drive, a subnormal `shrink_ratio` (1e-40, within (0, 1)) made
+/// the explicit solver's first long step grow by 1/γ = +inf: `progress.shrink` was infinite
+/// and the run never ended. A subnormal γ is now refused (`HIBI_ERROR_MUD_SHRINK_RATIO`);
+/// the smallest normal one ends.
+#[test]
+fn a_subnormal_shrink_ratio_is_refused() {
+    let mut params = hibi_mud_params_default();
+    (params.columns, params.rows, params.drive, params.solver) = (8, 8, HIBI_MUD_GROWTH, HIBI_MUD_EXPLICIT);
+    let mut size = 0;
+    for gamma in [1e-40f32, 1e-45] {
+        params.shrink_ratio = gamma;
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_mud_memory_size(&params, &mut size) }, HIBI_ERROR_MUD_SHRINK_RATIO, "{gamma}");
+    }
+    params.shrink_ratio = f32::MIN_POSITIVE;
+    let mut mud = core::ptr::null_mut();
+    let mut progress = hibi_mud_progress::default();
+    // SAFETY: valid pointers.
+    unsafe {
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        assert_eq!(hibi_mud_step(mud, 1 << 20, &mut progress), HIBI_OK);
+        assert!(progress.finished == 1 && progress.shrink.is_finite(), "{progress:?}");
+        hibi_mud_destroy(mud);
+    }
+}

@@ -1,0 +1,500 @@
+//! Property tests (issue 25 item 5) over random valid parameters of small size, through the
+//! C ABI as a C caller drives it, for each model:
+//!
+//! - no NaN or infinity in any output (mud segments, network and cells; glass polylines and
+//!   fragments; skin cells and outlines; every float raster, except the break-time layers'
+//!   documented +infinity where no crack is);
+//! - every `step(budget)` call's work is bounded by its budget plus one indivisible piece
+//!   (mud: a short step or a relaxation or break event; glass: one tip update's queries;
+//!   skin: one level-0 cell's tree). The largest piece is measured by a run with budget 1,
+//!   whose calls each do exactly one piece; the run under test must then end in the same
+//!   state (the models do not depend on the budgets), so its pieces are the same ones;
+//! - the memory need is exact: `*_create_in` accepts `*_memory_size` bytes and refuses one
+//!   byte less with `HIBI_ERROR_BUFFER_TOO_SMALL`; likewise the query scratches.
+//!
+//! Glass's C progress has no work counter, so its budget property runs the Rust API
+//! (`Glass::work`), which the C library wraps.
+
+use core::ffi::c_void;
+
+use hibi::*;
+use hibi_core::glass::{CrackPoint, FragmentRing, Glass, GlassParams};
+use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
+use proptest::prelude::*;
+
+fn config() -> ProptestConfig {
+    ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() }
+}
+
+/// Caller memory: `len` bytes aligned to 8.
+fn block(len: usize) -> Vec<u64> {
+    vec![0; len.div_ceil(8).max(1)]
+}
+
+/// Checks that `create_in` takes exactly `size` bytes: one byte less is refused with
+/// `HIBI_ERROR_BUFFER_TOO_SMALL` and writes nothing.
+fn memory_is_exact<P, O>(
+    params: &P,
+    memory_size: unsafe extern "C" fn(*const P, *mut usize) -> hibi_status,
+    create_in: unsafe extern "C" fn(*const P, *mut c_void, usize, *mut *mut O) -> hibi_status,
+) {
+    let mut size = 0;
+    // SAFETY: valid pointers.
+    assert_eq!(unsafe { memory_size(params, &mut size) }, HIBI_OK);
+    let mut memory = block(size);
+    let mut object: *mut O = core::ptr::null_mut();
+    // SAFETY: `memory` holds at least `size - 1` bytes.
+    let status = unsafe { create_in(params, memory.as_mut_ptr().cast(), size - 1, &mut object) };
+    assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "one byte short");
+    assert!(object.is_null());
+    // SAFETY: `memory` holds `size` bytes, aligned to 8 (the models' alignment).
+    let status = unsafe { create_in(params, memory.as_mut_ptr().cast(), size, &mut object) };
+    assert_eq!(status, HIBI_OK, "exactly the size");
+    assert!(!object.is_null());
+}
+
+fn finite(values: &[f32]) -> bool {
+    values.iter().all(|v| v.is_finite())
+}
+
+// ---------------------------------------------------------------------------------------
+// Model A: mud
+
+prop_compose! {
+    fn mud_params()(
+        topology in 0u32..3,
+        periodic in any::<bool>(),
+        explicit in prop::bool::weighted(0.2),
+        growth in any::<bool>(),
+        columns in 8u32..=14,
+        half_rows in 4u32..=7,
+        seed in any::<u64>(),
+        mean in 1.005f32..1.05,
+        spread in 0.0f32..0.005,
+        shrink_ratio in 0.9990f32..0.99995,
+        direction in -3.2f32..3.2,
+        anisotropy in 1.0f32..3.0,
+        stiffness in 1.0f32..3.0,
+        target_shrink in 0.01f32..0.05,
+        exponent in 0.0f32..1.0,
+    ) -> hibi_mud_params {
+        let mut p = hibi_mud_params_default();
+        p.topology = topology;
+        p.boundary = if periodic { HIBI_MUD_PERIODIC } else { HIBI_MUD_OPEN };
+        p.solver = if explicit { HIBI_MUD_EXPLICIT } else { HIBI_MUD_QUASI_STATIC };
+        p.drive = if growth { HIBI_MUD_GROWTH } else { HIBI_MUD_SHRINK };
+        p.columns = columns;
+        p.rows = 2 * half_rows;
+        p.seed = seed;
+        p.break_stretch_mean = mean;
+        p.break_stretch_spread = spread;
+        p.shrink_ratio = shrink_ratio;
+        p.anisotropy_direction = direction;
+        p.anisotropy_ratio = anisotropy;
+        p.stiffness_anisotropy_ratio = stiffness;
+        p.target_shrink = target_shrink;
+        p.break_stretch_size_exponent = exponent;
+        p
+    }
+}
+
+struct Mud(*mut hibi_mud);
+
+impl Mud {
+    fn new(p: &hibi_mud_params) -> Mud {
+        let mut mud = core::ptr::null_mut();
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_mud_create(p, &mut mud) }, HIBI_OK);
+        Mud(mud)
+    }
+
+    fn step(&self, budget: u64) -> hibi_mud_progress {
+        let mut progress = hibi_mud_progress::default();
+        // SAFETY: a live run.
+        assert_eq!(unsafe { hibi_mud_step(self.0, budget, &mut progress) }, HIBI_OK);
+        progress
+    }
+
+    /// Steps with `budget` to the end; returns the largest work a call did and the end.
+    fn run(&self, budget: u64, piece: u64) -> (u64, hibi_mud_progress) {
+        let (mut work, mut largest) = (0, 0);
+        loop {
+            let progress = self.step(budget);
+            let done = progress.work - work;
+            assert!(
+                done <= budget.saturating_sub(1) + piece,
+                "a step with budget {budget} did {done} work (largest piece {piece})"
+            );
+            largest = largest.max(done);
+            work = progress.work;
+            if progress.finished == 1 {
+                return (largest, progress);
+            }
+        }
+    }
+}
+
+impl Drop for Mud {
+    fn drop(&mut self) {
+        // SAFETY: a live run, not used afterwards.
+        unsafe { hibi_mud_destroy(self.0) };
+    }
+}
+
+fn mud_outputs_are_finite(mud: &Mud) {
+    let mut n = 0;
+    // SAFETY (every call below): a live run, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_mud_segment_count(mud.0, &mut n), HIBI_OK);
+        let mut segments = vec![CrackSegment::default(); n];
+        let mut written = 0;
+        assert_eq!(hibi_mud_segments(mud.0, segments.as_mut_ptr(), n, &mut written), HIBI_OK);
+        for s in &segments {
+            assert!(finite(&[s.start[0], s.start[1], s.end[0], s.end[1], s.width[0], s.width[1]]), "{s:?}");
+            assert!(finite(&s.time), "{s:?}");
+        }
+        let (mut v, mut e, mut p) = (0, 0, 0);
+        assert_eq!(hibi_mud_network_counts(mud.0, &mut v, &mut e, &mut p), HIBI_OK);
+        let mut vertices = vec![NetworkVertex::default(); v];
+        let mut edges = vec![NetworkEdge::default(); e];
+        let mut points = vec![NetworkPoint::default(); p];
+        let (mut a, mut b, mut c) = (0, 0, 0);
+        let status = hibi_mud_network(
+            mud.0,
+            vertices.as_mut_ptr(),
+            v,
+            edges.as_mut_ptr(),
+            e,
+            points.as_mut_ptr(),
+            p,
+            &mut a,
+            &mut b,
+            &mut c,
+        );
+        assert_eq!(status, HIBI_OK);
+        assert!(vertices.iter().all(|x| finite(&x.at)));
+        assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1], x.width, x.time])));
+        let (mut r, mut q, mut wrapping) = (0, 0, 0);
+        assert_eq!(hibi_mud_cell_counts(mud.0, &mut r, &mut q, &mut wrapping), HIBI_OK);
+        let mut rings = vec![FragmentRing::default(); r];
+        let mut ring_points = vec![hibi_vec2::default(); q];
+        let status = hibi_mud_cells(mud.0, rings.as_mut_ptr(), r, ring_points.as_mut_ptr(), q, &mut a, &mut b);
+        assert_eq!(status, HIBI_OK);
+        assert!(rings.iter().all(|x| x.area.is_finite()));
+        assert!(ring_points.iter().all(|x| finite(&[x.x, x.y])));
+        let mut stats = hibi_mud_statistics::default();
+        assert_eq!(hibi_mud_measure(mud.0, &mut stats), HIBI_OK);
+        let s = stats;
+        assert!(finite(&[s.crack_density, s.mean_cell_area, s.cell_area_spread, s.mean_widest_junction_angle]));
+        let mut render = hibi_mud_render_params_default();
+        (render.width, render.height) = (40, 24);
+        let pixels = 40 * 24;
+        let mut mask = vec![0u8; pixels];
+        assert_eq!(hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_MASK, mask.as_mut_ptr().cast(), pixels), HIBI_OK);
+        let mut height = vec![0f32; pixels];
+        let status = hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels);
+        assert_eq!(status, HIBI_OK);
+        assert!(finite(&height), "height layer");
+        let mut time = vec![0f32; pixels];
+        let status = hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_TIME, time.as_mut_ptr().cast(), pixels);
+        assert_eq!(status, HIBI_OK);
+        assert!(time.iter().all(|t| t.is_finite() || *t == f32::INFINITY), "time layer");
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn mud_outputs_finite_steps_bounded_memory_exact(p in mud_params(), budget in 0u64..5000) {
+        memory_is_exact(&p, hibi_mud_memory_size, hibi_mud_create_in);
+        // Budget 1: each call does exactly one indivisible piece; the largest is the bound.
+        let single = Mud::new(&p);
+        let (piece, end) = single.run(1, u64::MAX);
+        let mud = Mud::new(&p);
+        let (_, other) = mud.run(budget, piece);
+        prop_assert_eq!((other.work, other.broken_springs), (end.work, end.broken_springs), "the budget changed the run");
+        mud_outputs_are_finite(&mud);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Model B: glass
+
+prop_compose! {
+    fn glass_params()(
+        width in 40f32..160.0,
+        height in 40f32..160.0,
+        impact in (0.05f32..0.95, 0.05f32..0.95),
+        seed in any::<u64>(),
+        radial_mean in 0f32..150.0,
+        speeds in (5f32..60.0, 2f32..20.0, 2f32..20.0),
+        spread in 0u32..2,
+        wander in 0f32..1.5,
+        max_cracks in 8u32..512,
+        max_vertices in 64u32..8192,
+    ) -> hibi_glass_params {
+        let mut p = hibi_glass_params_default();
+        (p.width, p.height) = (width, height);
+        p.impact = [impact.0 * width, impact.1 * height];
+        p.seed = seed;
+        p.radial_mean = radial_mean;
+        (p.large_speed, p.radial_speed, p.ring_speed) = speeds;
+        p.spread = spread;
+        p.wander = wander;
+        (p.max_cracks, p.max_vertices) = (max_cracks, max_vertices);
+        p
+    }
+}
+
+/// The Rust params the C library makes of `p` (field for field).
+fn glass_core(p: &hibi_glass_params) -> GlassParams {
+    GlassParams {
+        width: p.width,
+        height: p.height,
+        impact: p.impact,
+        seed: p.seed,
+        radial_mean: p.radial_mean,
+        large_speed: p.large_speed,
+        radial_speed: p.radial_speed,
+        ring_speed: p.ring_speed,
+        spread: if p.spread == HIBI_SPREAD_NORMAL { hibi_core::Spread::Normal } else { hibi_core::Spread::Uniform },
+        wander: p.wander,
+        max_cracks: p.max_cracks,
+        max_vertices: p.max_vertices,
+        ..GlassParams::default()
+    }
+}
+
+/// Steps `glass` with `budget` to the end; returns the largest work a call did.
+fn glass_run(glass: &mut Glass, budget: u64, piece: u64) -> u64 {
+    let mut largest = 0;
+    loop {
+        let before = glass.work();
+        let progress = glass.step(budget);
+        let done = glass.work() - before;
+        assert!(
+            done <= budget.saturating_sub(1) + piece,
+            "a step with budget {budget} did {done} work (largest piece {piece})"
+        );
+        largest = largest.max(done);
+        if progress.finished {
+            return largest;
+        }
+    }
+}
+
+fn glass_outputs_are_finite(p: &hibi_glass_params) {
+    let mut glass = core::ptr::null_mut();
+    // SAFETY (every call below): valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(p, &mut glass), HIBI_OK);
+        let mut progress = hibi_glass_progress::default();
+        while progress.finished == 0 {
+            let status = hibi_glass_step(glass, 100_000, &mut progress);
+            if status == HIBI_ERROR_GLASS_CAPACITY {
+                break;
+            }
+            assert_eq!(status, HIBI_OK);
+        }
+        let mut cracks = 0;
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1], x.time])), "crack {i}");
+        }
+        let mut size = 0;
+        assert_eq!(hibi_glass_scratch_size(glass, &mut size), HIBI_OK);
+        let mut scratch = block(size);
+        let (mut r, mut q) = (0, 0);
+        let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size - 1, &mut r, &mut q);
+        assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "scratch one byte short");
+        let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size, &mut r, &mut q);
+        assert_eq!(status, HIBI_OK);
+        let mut rings = vec![FragmentRing::default(); r];
+        let mut points = vec![hibi_vec2::default(); q];
+        let (mut a, mut b) = (0, 0);
+        let status = hibi_glass_fragments(
+            glass,
+            scratch.as_mut_ptr().cast(),
+            size,
+            rings.as_mut_ptr(),
+            r,
+            points.as_mut_ptr(),
+            q,
+            &mut a,
+            &mut b,
+        );
+        assert_eq!(status, HIBI_OK);
+        assert!(rings.iter().all(|x| x.area.is_finite()));
+        assert!(points.iter().all(|x| finite(&[x.x, x.y])));
+        let mut render = hibi_glass_render_params_default();
+        (render.width, render.height) = (32, 40);
+        let mut time = vec![0f32; 32 * 40];
+        let status = hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_TIME, time.as_mut_ptr().cast(), time.len());
+        assert_eq!(status, HIBI_OK);
+        assert!(time.iter().all(|t| t.is_finite() || *t == f32::INFINITY), "time layer");
+        hibi_glass_destroy(glass);
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn glass_outputs_finite_steps_bounded_memory_exact(p in glass_params(), budget in 0u64..5000) {
+        memory_is_exact(&p, hibi_glass_memory_size, hibi_glass_create_in);
+        glass_outputs_are_finite(&p);
+        let params = glass_core(&p);
+        let mut single_memory = params.memory().expect("valid").allocate();
+        let mut single = Glass::new(&params, single_memory.buffers()).expect("valid");
+        let piece = glass_run(&mut single, 1, u64::MAX);
+        let mut memory = params.memory().expect("valid").allocate();
+        let mut glass = Glass::new(&params, memory.buffers()).expect("valid");
+        glass_run(&mut glass, budget, piece);
+        prop_assert_eq!(glass.work(), single.work(), "the budget changed the run");
+        prop_assert_eq!(glass.progress(), single.progress());
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Model C: skin
+
+prop_compose! {
+    fn skin_params()(
+        size in (16u32..=64, 16u32..=64),
+        layout in 0u32..3,
+        jitter in 0u32..2,
+        periodic in 0u32..2,
+        seed in any::<u64>(),
+        jitter_ratio in 0f32..=1.0,
+        levels in 1u32..=3,
+        spacing in 8f32..30.0,
+        perturbation in 0f32..0.5,
+        depth in 0u32..=3,
+        stretch in (0.7f32..1.5, 0.7f32..1.5),
+        roundness in 0f32..=1.0,
+    ) -> hibi_skin_params {
+        let mut p = hibi_skin_params_default();
+        (p.width, p.height) = size;
+        (p.layout, p.jitter, p.periodic) = (layout, jitter, periodic);
+        p.seed = seed;
+        p.jitter_ratio = jitter_ratio;
+        p.levels = levels;
+        for (k, level) in p.level.iter_mut().enumerate() {
+            level.spacing = (spacing / 3f32.powi(k as i32)).max(2.0);
+            level.perturbation = perturbation;
+            level.perturbation_depth = depth.saturating_sub(k as u32);
+            level.stretch = [stretch.0, stretch.1];
+            level.roundness = roundness;
+        }
+        p
+    }
+}
+
+struct Skin(*mut hibi_skin);
+
+impl Skin {
+    fn new(p: &hibi_skin_params) -> Skin {
+        let mut skin = core::ptr::null_mut();
+        // SAFETY: valid pointers.
+        assert_eq!(unsafe { hibi_skin_create(p, &mut skin) }, HIBI_OK);
+        Skin(skin)
+    }
+
+    /// Steps with `budget` to the end; returns the largest work a call did and the end.
+    fn run(&self, budget: u64, piece: u64) -> (u64, hibi_skin_progress) {
+        let (mut work, mut largest) = (0, 0);
+        loop {
+            let mut progress = hibi_skin_progress::default();
+            // SAFETY: a live skin.
+            let status = unsafe { hibi_skin_step(self.0, budget, &mut progress) };
+            assert!(status == HIBI_OK || status == HIBI_ERROR_SKIN_CAPACITY, "{status}");
+            if status != HIBI_OK {
+                return (largest, hibi_skin_progress { capacity_reached: 1, ..progress });
+            }
+            let done = progress.work - work;
+            assert!(
+                done <= budget.saturating_sub(1) + piece,
+                "a step with budget {budget} did {done} work (largest piece {piece})"
+            );
+            largest = largest.max(done);
+            work = progress.work;
+            if progress.finished == 1 {
+                return (largest, progress);
+            }
+        }
+    }
+}
+
+impl Drop for Skin {
+    fn drop(&mut self) {
+        // SAFETY: a live skin, not used afterwards.
+        unsafe { hibi_skin_destroy(self.0) };
+    }
+}
+
+fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
+    // SAFETY (every call below): a live skin, buffers of the lengths passed.
+    unsafe {
+        let mut cells = 0;
+        assert_eq!(hibi_skin_cell_count(skin.0, &mut cells), HIBI_OK);
+        for i in 0..cells {
+            let mut cell = hibi_skin_cell::default();
+            assert_eq!(hibi_skin_cell_info(skin.0, i, &mut cell), HIBI_OK);
+            assert!(cell.centre.iter().all(|c| c.is_finite()));
+            let mut xy = vec![0f64; 2 * cell.vertex_count as usize];
+            let mut written = 0;
+            assert_eq!(hibi_skin_outline(skin.0, i, xy.as_mut_ptr(), xy.len(), &mut written), HIBI_OK);
+            assert!(xy.iter().all(|c| c.is_finite()), "cell {i}");
+        }
+        let mut size = 0;
+        assert_eq!(hibi_skin_scratch_size(skin.0, &mut size), HIBI_OK);
+        let mut scratch = block(size);
+        let pixels = (p.width * p.height) as usize;
+        let (mut height, mut normal, mut map) = (vec![0f32; pixels], vec![0f32; 3 * pixels], vec![0u32; pixels]);
+        let render =
+            |scratch: &mut Vec<u64>, size: usize, height: &mut Vec<f32>, normal: &mut Vec<f32>, map: &mut Vec<u32>| {
+                hibi_skin_render(
+                    skin.0,
+                    scratch.as_mut_ptr().cast(),
+                    size,
+                    height.as_mut_ptr(),
+                    pixels,
+                    normal.as_mut_ptr(),
+                    3 * pixels,
+                    map.as_mut_ptr(),
+                    pixels,
+                    p.levels - 1,
+                )
+            };
+        let status = render(&mut scratch, size - 1, &mut height, &mut normal, &mut map);
+        assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "scratch one byte short");
+        assert_eq!(render(&mut scratch, size, &mut height, &mut normal, &mut map), HIBI_OK);
+        assert!(finite(&height), "height map");
+        assert!(finite(&normal), "normal map");
+        assert!(map.iter().all(|&c| c == HIBI_SKIN_NO_CELL || (c as usize) < cells));
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn skin_outputs_finite_steps_bounded_memory_exact(p in skin_params(), budget in 0u64..3000) {
+        memory_is_exact(&p, hibi_skin_memory_size, hibi_skin_create_in);
+        let single = Skin::new(&p);
+        let (piece, end) = single.run(1, u64::MAX);
+        let skin = Skin::new(&p);
+        let (_, other) = skin.run(budget, piece);
+        prop_assert_eq!((other.cells, other.capacity_reached), (end.cells, end.capacity_reached), "the budget changed the build");
+        if end.capacity_reached == 0 {
+            prop_assert_eq!(other.work, end.work);
+        }
+        skin_outputs_are_finite(&skin, &p);
+    }
+}
