@@ -5,6 +5,8 @@
 //! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
 //! programs in `tests/c/` (issue 25) run under the sanitizers and under Valgrind; one of them,
 //! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
+//! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` (issue 26) against the C
+//! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -31,7 +33,15 @@ fn library_dir() -> &'static Path {
         }
         let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
         assert!(status.success(), "cargo build -p hibi-ffi failed");
-        target.join(profile)
+        let dir = target.join(profile);
+        // The shared library's SONAME is libhibi.so.MAJOR (ffi/build.rs): programs linked to
+        // it look for that name, which the install step (ffi/install) lays out as a symlink.
+        let soname = dir.join(concat!("libhibi.so.", env!("CARGO_PKG_VERSION_MAJOR")));
+        match std::os::unix::fs::symlink("libhibi.so", &soname) {
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            made => made.expect("symlink libhibi.so.MAJOR"),
+        }
+        dir
     })
 }
 
@@ -705,4 +715,77 @@ fn every_c_test_runs_under_the_sanitizers() {
     for source in c_tests() {
         assert!(this.contains(&format!("regression(\"{source}\")")), "no test runs {source} under the sanitizers");
     }
+}
+
+/// What `tests/cpp/wrapper.cpp` (issue 26: `include/hibi.hpp`) must print: every comparison
+/// of the wrapper with the C calls holds, errors carry the C status, message and argument,
+/// and renders of one object from four threads equal the lone render.
+fn check_wrapper(output: &str) {
+    let version = format!("hibi {}", env!("CARGO_PKG_VERSION"));
+    assert_eq!(line(output, "hibi "), version);
+    assert_eq!(line(output, "macros "), version.replace("hibi", "macros"));
+    let expected = [
+        "negative young_modulus: status 522, mud: young_modulus (E) must be finite and > 0, argument \"\", \
+         same message as C: yes",
+        "preset fig99: status 1348",
+        "misaligned memory: status 2, argument \"memory\"",
+        "short memory: status 3, a buffer is smaller than the call needs",
+        "mud finished: yes, in more than one step: yes",
+        "mud segments: yes",
+        "mud network matches its counts: yes",
+        "mud mask as from C: yes",
+        "mud height and time layers: yes",
+        "mud short pixels: status 3",
+        "mud caller memory, same mask: yes",
+        "glass: yes, every crack has points: yes",
+        "glass crack past the end: status 1091",
+        "glass from four threads equals the lone result: yes",
+        "glass caller memory, same mask: yes",
+        "glass second impact: yes",
+        "skin built: yes, cells yes",
+        "skin renders from four threads equal the lone render: yes",
+        "skin cell map of level 9: status 1346",
+        "skin short scratch: status 3",
+        "skin caller memory, same preview: yes",
+        "rng caller memory, same draws: yes",
+    ];
+    for want in expected {
+        let (prefix, _) = want.split_once(": ").unwrap();
+        assert_eq!(line(output, &format!("{prefix}: ")), want);
+    }
+    assert!(line(output, "mud cells: ").starts_with("mud cells: some rings, area "), "{output}");
+    assert!(line(output, "glass fragments").starts_with("glass fragments match their counts: yes, area 40000.0"));
+    assert_eq!(output.lines().count(), expected.len() + 4, "{output}");
+}
+
+#[test]
+fn cpp_wrapper_links_static_library_with_gxx() {
+    check_wrapper(&build_and_run("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+}
+
+#[test]
+fn cpp_wrapper_links_static_library_with_clangxx() {
+    check_wrapper(&build_and_run("clang++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+}
+
+#[test]
+fn cpp_wrapper_links_shared_library() {
+    check_wrapper(&build_and_run(&cpp_compiler(), "c++17", "tests/cpp/wrapper.cpp", Linkage::Shared));
+}
+
+#[test]
+fn cpp_wrapper_is_clean_under_sanitizers_with_gxx_and_clangxx() {
+    for compiler in ["g++", "clang++"] {
+        let (stdout, stderr) =
+            build_and_run_capturing(compiler, "c++17", "tests/cpp/wrapper.cpp", Linkage::Sanitized, &[]);
+        assert!(stderr.is_empty(), "{compiler}: stderr:\n{stderr}");
+        check_wrapper(&stdout);
+    }
+}
+
+#[test]
+fn cpp_wrapper_is_clean_under_valgrind() {
+    let (stdout, stderr) = build_and_run_capturing("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Valgrind, &[]);
+    assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
+    check_wrapper(&stdout);
 }
