@@ -789,3 +789,77 @@ fn cpp_wrapper_is_clean_under_valgrind() {
     assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
     check_wrapper(&stdout);
 }
+
+/// The glass plate `c_examples/engine.cpp` breaks, drawn by Rust: which of its 160 × 160
+/// break-time pixels a crack reached.
+fn expected_engine_glass() -> Vec<bool> {
+    use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+
+    let params = GlassParams { width: 160.0, height: 160.0, impact: [70.0, 90.0], seed: 11, ..GlassParams::default() };
+    let m = params.memory().unwrap();
+    let mut memory = m.allocate();
+    let mut glass = Glass::new(&params, memory.buffers()).unwrap();
+    while !glass.step(u64::MAX).finished {}
+    let mut time = vec![0.0f32; 160 * 160];
+    let render = GlassRender { width: 160, height: 160, ..GlassRender::default() };
+    glass.render(&render, GlassLayers { time: Some(&mut time), ..Default::default() }).unwrap();
+    time.iter().map(|t| t.is_finite()).collect()
+}
+
+/// A number after `prefix` in `line`, up to the next space.
+fn number_after(line: &str, prefix: &str) -> u64 {
+    let rest = &line[line.find(prefix).unwrap_or_else(|| panic!("no {prefix:?} in {line:?}")) + prefix.len()..];
+    rest.split([' ', ',', ')']).next().unwrap().parse().unwrap_or_else(|_| panic!("not a number: {line:?}"))
+}
+
+/// Issue 26 item 5: the game loop spreads each model over several frames within its budget
+/// (mud's step stops once its work reaches the budget, so a frame overruns it by less than
+/// one indivisible piece; skin's by at most one level-0 cell's build), writes four frames of
+/// each break-time raster, the last glass frame cracked where Rust's plate is, and the
+/// budgeted objects equal unbudgeted runs.
+fn check_engine(linkage: Linkage) {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("engine_{linkage:?}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let output =
+        build_and_run_with(&cpp_compiler(), "c++17", "c_examples/engine.cpp", linkage, &[dir.to_str().unwrap()]);
+    let frames = line(&output, "frames: ");
+    let per_model: Vec<u64> =
+        ["glass done after ", "mud after ", "skin after "].map(|p| number_after(frames, p)).into();
+    assert!(per_model.iter().all(|&f| f > 1), "a model finished in one frame: {frames}");
+    assert_eq!(number_after(frames, "frames: "), *per_model.iter().max().unwrap(), "{frames}");
+    let mud = line(&output, "mud: largest frame work ");
+    let (largest, budget) = (number_after(mud, "work "), number_after(mud, "budget "));
+    assert!(largest >= budget / 2 && largest < 2 * budget, "{mud}");
+    let skin = line(&output, "skin: largest frame work ");
+    assert!(number_after(skin, "work ") > 0, "{skin}");
+    assert!(line(&output, "glass: largest frame ").ends_with("(budget 5000 work units)"));
+    assert_eq!(line(&output, "wrote "), "wrote 4 frames of each break-time raster");
+    assert_eq!(line(&output, "budgeted = one go:"), "budgeted = one go: glass yes, mud yes, skin yes");
+    let header = b"P5\n160 160\n255\n";
+    for model in ["glass", "mud"] {
+        for frame in 0..4 {
+            let bytes = std::fs::read(dir.join(format!("{model}_time_{frame:02}.pgm"))).expect("a frame PGM");
+            assert_eq!(&bytes[..header.len()], header);
+            assert_eq!(bytes.len(), header.len() + 160 * 160);
+        }
+    }
+    let last = std::fs::read(dir.join("glass_time_03.pgm")).unwrap();
+    let cracked: Vec<bool> = last[header.len()..].iter().map(|&v| v != 255).collect();
+    assert!(cracked == expected_engine_glass(), "the last glass frame is cracked elsewhere than Rust's plate");
+}
+
+#[test]
+fn engine_example_links_static_library() {
+    check_engine(Linkage::Static);
+}
+
+#[test]
+fn engine_example_is_clean_under_sanitizers() {
+    check_engine(Linkage::Sanitized);
+}
+
+#[test]
+fn engine_example_is_clean_under_valgrind() {
+    check_engine(Linkage::Valgrind);
+}
