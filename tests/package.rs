@@ -116,18 +116,20 @@ fn header_version_macros_are_the_package_version() {
     }
 }
 
-/// The global symbols a library defines (`nm -g --defined-only`, `-D` for a shared one).
+/// The global symbols a library defines, as `nm -g --defined-only` (`-D` for a shared one)
+/// would list them, read with `readelf`: binutils' `nm` hands objects that carry LLVM
+/// bitcode (`.llvmbc`, in cargo's release archive) to the system's LLVM plugin, which may be
+/// older than rustc's LLVM and then reports "no symbols".
 fn defined_globals(lib: &Path, dynamic: bool) -> Vec<String> {
-    let mut nm = Command::new("nm");
-    nm.args(["-g", "--defined-only"]);
-    if dynamic {
-        nm.arg("-D");
-    }
-    let mut names: Vec<String> = stdout(nm.arg(lib))
+    let mut readelf = Command::new("readelf");
+    readelf.arg("-W").arg(if dynamic { "--dyn-syms" } else { "--syms" });
+    let mut names: Vec<String> = stdout(readelf.arg(lib))
         .lines()
         .filter_map(|l| {
+            // Num: Value Size Type Bind Vis Ndx Name
             let fields: Vec<&str> = l.split_whitespace().collect();
-            (fields.len() == 3).then(|| fields[2].to_owned())
+            let global = fields.len() >= 8 && ["GLOBAL", "WEAK", "UNIQUE"].contains(&fields[4]) && fields[6] != "UND";
+            global.then(|| fields[7].split('@').next().unwrap().to_owned())
         })
         .collect();
     names.sort();
