@@ -105,7 +105,7 @@ int main(int argc, char **argv) {
     hibi_mud_params bad;
     hibi_mud_render_params render = hibi_mud_render_params_default();
     hibi_mud_progress progress;
-    hibi_mud_statistics statistics;
+    hibi_mud_crack_statistics statistics;
     hibi_mud *mud = NULL, *placed = NULL;
     hibi_status status;
     size_t segments = 0, bytes = 0, i;
@@ -135,8 +135,8 @@ int main(int argc, char **argv) {
     status = hibi_mud_segment_count(mud, &segments);
     if (status != HIBI_OK) return fail("hibi_mud_segment_count", status);
     printf("segments: %lu\n", (unsigned long)segments);
-    status = hibi_mud_measure(mud, &statistics);
-    if (status != HIBI_OK) return fail("hibi_mud_measure", status);
+    status = hibi_mud_statistics(mud, &statistics);
+    if (status != HIBI_OK) return fail("hibi_mud_statistics", status);
     printf("cells: %u, mean cell area %.1f cm^2, crack density %.3f /cm\n", (unsigned)statistics.cells,
            statistics.mean_cell_area, statistics.crack_density);
     if (network(mud) != 0 || cells(mud) != 0) return 1;

@@ -693,7 +693,7 @@ typedef struct hibi_mud_segment {
 /**
  * Crack statistics of the traced network: density, the cells it encloses, and its vertices.
  */
-typedef struct hibi_mud_statistics {
+typedef struct hibi_mud_crack_statistics {
   /**
    * Crack length per area [1/cm]: the network's length (branches included) over the
    * plate's area.
@@ -731,7 +731,7 @@ typedef struct hibi_mud_statistics {
    * [degrees]: 180 for a perfect T, 120 for a symmetric Y.
    */
   float mean_widest_junction_angle;
-} hibi_mud_statistics;
+} hibi_mud_crack_statistics;
 
 /**
  * A junction or an end of the crack network. In C: `hibi_mud_network_vertex`.
@@ -1488,14 +1488,16 @@ extern "C" {
 const char *hibi_version(void);
 
 /**
- * The paper's parameters (and ours where it gives none), with the cookie set.
+ * The default parameters (the paper's, and ours where it gives none; see each field),
+ * with the cookie set.
  */
 struct hibi_glass_params hibi_glass_params_default(void);
 
 /**
- * Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's figures,
- * see the README) to `*out`, with the cookie set; change fields afterwards as with the
- * defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes nothing.
+ * Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's
+ * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
+ * the defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes
+ * nothing.
  *
  * # Safety
  * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
@@ -1512,13 +1514,14 @@ hibi_status hibi_glass_params_preset(const char *name, struct hibi_glass_params 
 hibi_status hibi_glass_memory_size(const struct hibi_glass_params *params, size_t *size);
 
 /**
- * Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have.
+ * Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have (8).
  */
 size_t hibi_glass_memory_align(void);
 
 /**
- * Creates a plate in library memory with its first impact (at `params.impact`). Free it with
- * `hibi_glass_destroy`. `*out` is written only on success.
+ * Creates a plate in library memory: its first impact at `params.impact`, ready to step.
+ * Free it with `hibi_glass_destroy`. `*out` is written only on success. Every array
+ * it computes in is in its block: the calling thread's stack needs no more than 16 KiB.
  *
  * # Safety
  * `params` must be NULL or readable; `out` NULL or writable.
@@ -1526,8 +1529,9 @@ size_t hibi_glass_memory_align(void);
 hibi_status hibi_glass_create(const struct hibi_glass_params *params, struct hibi_glass **out);
 
 /**
- * Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes aligned to
- * `hibi_glass_memory_align()`. The memory stays the caller's; `hibi_glass_destroy` is
+ * Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes
+ * aligned to `hibi_glass_memory_align()`, as `hibi_glass_create` does. The memory stays
+ * the caller's (keep it untouched while the plate lives); `hibi_glass_destroy` is
  * optional. Nothing is written on failure.
  *
  * # Safety
@@ -1540,7 +1544,8 @@ hibi_status hibi_glass_create_in(const struct hibi_glass_params *params,
                                  struct hibi_glass **out);
 
 /**
- * Destroys a plate; frees its memory if `hibi_glass_create` allocated it. NULL is ignored.
+ * Destroys a plate; frees its memory if `hibi_glass_create` allocated it.
+ * NULL is ignored.
  *
  * # Safety
  * `glass` must be NULL or a live plate, not used afterwards.
@@ -1675,14 +1680,16 @@ hibi_status hibi_glass_render(const struct hibi_glass *glass,
                               size_t pixels_len);
 
 /**
- * The paper's parameters (and ours where it gives none), with the cookie set.
+ * The default parameters (the paper's, and ours where it gives none; see each field),
+ * with the cookie set.
  */
 struct hibi_mud_params hibi_mud_params_default(void);
 
 /**
- * Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's figures,
- * see the README) to `*out`, with the cookie set; change fields afterwards as with the
- * defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes nothing.
+ * Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's
+ * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
+ * the defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes
+ * nothing.
  *
  * # Safety
  * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
@@ -1704,8 +1711,9 @@ hibi_status hibi_mud_memory_size(const struct hibi_mud_params *params, size_t *s
 size_t hibi_mud_memory_align(void);
 
 /**
- * Creates a run in library memory: draws every spring's break stretch, ready to step. Free
- * it with `hibi_mud_destroy`. `*out` is written only on success.
+ * Creates a run in library memory: every spring's break stretch drawn, ready to step.
+ * Free it with `hibi_mud_destroy`. `*out` is written only on success. Every array
+ * it computes in is in its block: the calling thread's stack needs no more than 16 KiB.
  *
  * # Safety
  * `params` must be NULL or readable; `out` NULL or writable.
@@ -1713,9 +1721,10 @@ size_t hibi_mud_memory_align(void);
 hibi_status hibi_mud_create(const struct hibi_mud_params *params, struct hibi_mud **out);
 
 /**
- * Creates a run in caller memory of at least `hibi_mud_memory_size` bytes aligned to
- * `hibi_mud_memory_align()`. The memory stays the caller's (keep it untouched while the run
- * lives); `hibi_mud_destroy` is optional. Nothing is written on failure.
+ * Creates a run in caller memory of at least `hibi_mud_memory_size` bytes
+ * aligned to `hibi_mud_memory_align()`, as `hibi_mud_create` does. The memory stays
+ * the caller's (keep it untouched while the run lives); `hibi_mud_destroy` is
+ * optional. Nothing is written on failure.
  *
  * # Safety
  * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
@@ -1727,7 +1736,8 @@ hibi_status hibi_mud_create_in(const struct hibi_mud_params *params,
                                struct hibi_mud **out);
 
 /**
- * Destroys a run; frees its memory if `hibi_mud_create` allocated it. NULL is ignored.
+ * Destroys a run; frees its memory if `hibi_mud_create` allocated it.
+ * NULL is ignored.
  *
  * # Safety
  * `mud` must be NULL or a live run, not used afterwards.
@@ -1776,7 +1786,7 @@ hibi_status hibi_mud_segments(const struct hibi_mud *mud,
  * # Safety
  * `mud` must be NULL or a live run; `out` NULL or writable.
  */
-hibi_status hibi_mud_measure(const struct hibi_mud *mud, struct hibi_mud_statistics *out);
+hibi_status hibi_mud_statistics(const struct hibi_mud *mud, struct hibi_mud_crack_statistics *out);
 
 /**
  * Writes how many vertices, edges and points `hibi_mud_network` will write for the network
@@ -1953,15 +1963,15 @@ hibi_status hibi_rng_poisson(struct hibi_rng *rng, double mean, uint32_t *out);
 hibi_status hibi_rng_rand(struct hibi_rng *rng, float x, float z, uint32_t spread, float *out);
 
 /**
- * The default parameters (400 × 400 px, one level of 40-pixel cells on a jittered triangular
- * lattice, the paper's Fig. 13 b profile), with the cookie set.
+ * The default parameters (the paper's, and ours where it gives none; see each field),
+ * with the cookie set.
  */
 struct hibi_skin_params hibi_skin_params_default(void);
 
 /**
- * Writes the parameters of the paper's Table 1 setting `name` ("fig13a" … "fig19f", the
- * figure it makes, at 400 × 400 px) to `*out`, with the cookie set; change fields afterwards
- * as with the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
+ * Writes the parameters of the preset `name` (`"fig13a"` … `"fig19f"`, the paper's
+ * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
+ * the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
  * nothing.
  *
  * # Safety
@@ -1979,14 +1989,14 @@ hibi_status hibi_skin_params_preset(const char *name, struct hibi_skin_params *o
 hibi_status hibi_skin_memory_size(const struct hibi_skin_params *params, size_t *size);
 
 /**
- * Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have.
+ * Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have (8).
  */
 size_t hibi_skin_memory_align(void);
 
 /**
- * Creates a skin in library memory, building every cell outline of every level. Free it
- * with `hibi_skin_destroy`. `*out` is written only on success. Every scratch array is in
- * the skin's block: the calling thread's stack needs no more than 16 KiB.
+ * Creates a skin in library memory: no cell built yet, `hibi_skin_step` builds them.
+ * Free it with `hibi_skin_destroy`. `*out` is written only on success. Every array
+ * it computes in is in its block: the calling thread's stack needs no more than 16 KiB.
  *
  * # Safety
  * `params` must be NULL or readable; `out` NULL or writable.
@@ -1994,10 +2004,10 @@ size_t hibi_skin_memory_align(void);
 hibi_status hibi_skin_create(const struct hibi_skin_params *params, struct hibi_skin **out);
 
 /**
- * Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes aligned to
- * `hibi_skin_memory_align()`. The memory stays the caller's (keep it untouched while the
- * skin lives); `hibi_skin_destroy` is optional. Nothing is written to `*out` on failure.
- * Stack: as `hibi_skin_create`.
+ * Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes
+ * aligned to `hibi_skin_memory_align()`, as `hibi_skin_create` does. The memory stays
+ * the caller's (keep it untouched while the skin lives); `hibi_skin_destroy` is
+ * optional. Nothing is written on failure.
  *
  * # Safety
  * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
@@ -2009,7 +2019,8 @@ hibi_status hibi_skin_create_in(const struct hibi_skin_params *params,
                                 struct hibi_skin **out);
 
 /**
- * Destroys a skin; frees its memory if `hibi_skin_create` allocated it. NULL is ignored.
+ * Destroys a skin; frees its memory if `hibi_skin_create` allocated it.
+ * NULL is ignored.
  *
  * # Safety
  * `skin` must be NULL or a live skin, not used afterwards.

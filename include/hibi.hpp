@@ -236,9 +236,10 @@ public:
         out.resize(written);
         return out;
     }
-    hibi_mud_statistics measure() const {
-        hibi_mud_statistics stats{};
-        check(hibi_mud_measure(handle_.get(), &stats));
+    /// Crack density, cells, junctions and dead ends of the traced network.
+    hibi_mud_crack_statistics statistics() const {
+        hibi_mud_crack_statistics stats{};
+        check(hibi_mud_statistics(handle_.get(), &stats));
         return stats;
     }
     Network network() const {

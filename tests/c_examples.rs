@@ -733,6 +733,7 @@ fn check_wrapper(output: &str) {
         "mud finished: yes, in more than one step: yes",
         "mud segments: yes",
         "mud network matches its counts: yes",
+        "mud statistics as from C: yes",
         "mud mask as from C: yes",
         "mud height and time layers: yes",
         "mud short pixels: status 3",

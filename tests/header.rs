@@ -8,10 +8,19 @@ fn header_is_fresh() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let ffi = root.join("ffi");
     let config = cbindgen::Config::from_file(ffi.join("cbindgen.toml")).expect("ffi/cbindgen.toml");
+    // The C layer's per-model functions come from one macro (`ffi/src/object.rs`), so cbindgen
+    // reads the crate with its macros expanded: `cargo rustc -- -Zunpretty=expanded`, which a
+    // stable toolchain runs with RUSTC_BOOTSTRAP=1, in a target directory of its own.
+    // SAFETY: set before any thread of this test process starts a child.
+    unsafe {
+        std::env::set_var("RUSTC_BOOTSTRAP", "1");
+        std::env::set_var("CARGO_EXPAND_TARGET_DIR", Path::new(env!("CARGO_TARGET_TMPDIR")).join("expand"));
+    }
     let mut generated = Vec::new();
     cbindgen::Builder::new()
         .with_config(config)
-        .with_src(ffi.join("src/lib.rs"))
+        .with_crate(&ffi)
+        .with_parse_expand(&["hibi-ffi"])
         .with_src(root.join("core/src/mud/trace.rs"))
         .with_src(root.join("core/src/mud/network.rs"))
         .with_src(root.join("core/src/glass/output.rs"))

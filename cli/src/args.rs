@@ -140,7 +140,8 @@ pub struct MudArgs {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum TopologyArg {
     /// Hexagonal elements (a triangular lattice of nodes, 6 neighbours): isotropic cracks.
-    Hex,
+    #[value(alias = "hex")]
+    Hexagonal,
     /// Square elements (4 neighbours): axis-aligned, short, fine cracks.
     Square,
     /// Jittered nodes joined by their Delaunay triangulation (beyond the paper): cracks run in
@@ -179,7 +180,7 @@ pub enum DriveArg {
 #[derive(Args, Debug, Clone, Default)]
 #[command(next_help_heading = "Model A parameters (MudParams)")]
 pub struct MudOptions {
-    /// Mesh topology [default: hex].
+    /// Mesh topology [default: hexagonal].
     #[arg(long, value_enum)]
     pub topology: Option<TopologyArg>,
     /// Lattice edges [default: periodic].
@@ -299,12 +300,12 @@ pub enum SpreadArg {
 #[derive(Args, Debug, Clone, Default)]
 #[command(next_help_heading = "Model B parameters (GlassParams)")]
 pub struct GlassOptions {
-    /// Plate width [px] [default: 640].
-    #[arg(long, value_name = "PX")]
-    pub plate_width: Option<f32>,
+    /// Plate width [px] [default: 640] (the raster is `--size`, by default the plate's).
+    #[arg(long, value_name = "PX", alias = "plate-width")]
+    pub width: Option<f32>,
     /// Plate height [px] [default: 640].
-    #[arg(long, value_name = "PX")]
-    pub plate_height: Option<f32>,
+    #[arg(long, value_name = "PX", alias = "plate-height")]
+    pub height: Option<f32>,
     /// L: an impact point [px]; repeat for several impacts on one plate (each grows on its
     /// own clock: its time map starts at 0) [default: the plate's centre].
     #[arg(long, value_name = "X,Y", value_parser = parse_pair)]

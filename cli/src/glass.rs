@@ -21,8 +21,8 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &GlassOptions) -> (Gla
     };
     p.seed = seed.unwrap_or(p.seed);
     let plate = [p.width, p.height];
-    set(&mut p.width, o.plate_width);
-    set(&mut p.height, o.plate_height);
+    set(&mut p.width, o.width);
+    set(&mut p.height, o.height);
     if [p.width, p.height] != plate {
         p.impact = [0.5 * p.width, 0.5 * p.height];
     }
@@ -72,7 +72,7 @@ pub fn view(params: &GlassParams, size: Option<[u32; 2]>, o: &GlassOptions) -> G
 fn option(e: GlassParamError) -> &'static str {
     use GlassParamError::*;
     match e {
-        Size => "--plate-width/--plate-height",
+        Size => "--width/--height",
         Impact => "--impact",
         RadialMean => "--radial-mean",
         RingThreshold => "--ring-threshold",
@@ -192,8 +192,8 @@ pub fn options(p: &GlassParams, impacts: &[[f32; 2]], r: &GlassRender) -> Vec<(&
     let mut out = vec![
         ("--seed", p.seed.to_string()),
         ("--size", format!("{}x{}", r.width, r.height)),
-        ("--plate-width", p.width.to_string()),
-        ("--plate-height", p.height.to_string()),
+        ("--width", p.width.to_string()),
+        ("--height", p.height.to_string()),
     ];
     out.extend(impacts.iter().map(|at| ("--impact", format!("{},{}", at[0], at[1]))));
     out.extend([

@@ -14,7 +14,7 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &MudOptions) -> MudPar
     let mut p = preset.and_then(hibi_core::mud::preset).unwrap_or_default();
     if let Some(v) = o.topology {
         p.topology = match v {
-            TopologyArg::Hex => Topology::Hexagonal,
+            TopologyArg::Hexagonal => Topology::Hexagonal,
             TopologyArg::Square => Topology::Square,
             TopologyArg::Irregular => Topology::Irregular,
         };
@@ -216,7 +216,7 @@ pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) ->
 /// Every parameter as (option, value), in the order of `--help`.
 pub fn options(p: &MudParams, r: &MudRender) -> Vec<(&'static str, String)> {
     let topology = match p.topology {
-        Topology::Hexagonal => "hex",
+        Topology::Hexagonal => "hexagonal",
         Topology::Square => "square",
         Topology::Irregular => "irregular",
     };

@@ -21,14 +21,11 @@ use hibi_core::glass::{
 };
 
 use crate::fields::{Field, convert};
-use crate::guard::{
-    Outcome, Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out, write_preset,
-};
-use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
+use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out};
+use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
-    HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED,
-    HIBI_ERROR_GLASS_RENDER_LAYER, HIBI_ERROR_GLASS_UNKNOWN_PRESET, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
 };
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -194,17 +191,6 @@ pub struct hibi_glass_render_params {
     pub line_width: f32,
 }
 
-impl Outcome for hibi_glass_params {
-    type C = hibi_glass_params;
-    fn into_c(self) -> Self {
-        self
-    }
-    /// A struct without the cookie, which every function rejects.
-    fn on_panic() -> Self {
-        hibi_glass_params { cookie: 0, ..to_c(&GlassParams::default()) }
-    }
-}
-
 impl Outcome for hibi_glass_render_params {
     type C = hibi_glass_render_params;
     fn into_c(self) -> Self {
@@ -234,18 +220,14 @@ convert!(hibi_glass_progress <=> GlassProgress { time, cracks, growing, vertices
 convert!(hibi_glass_counts <=> ImpactCounts { radial, large, rings });
 convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width });
 
-/// The C view of core parameters.
-fn to_c(p: &GlassParams) -> hibi_glass_params {
-    Field::from_core(p)
-}
-
-/// The core parameters of a C params struct: cookie, enumeration, fields.
-fn from_c(p: &hibi_glass_params) -> Result<GlassParams, hibi_status> {
-    if p.cookie != PARAMS_COOKIE {
-        return Err(HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED);
-    }
-    p.to_core().ok_or(HIBI_ERROR_GLASS_ENUM)
-}
+lifecycle!(
+    hibi_glass (glass: "plate", "its first impact at `params.impact`, ready to step"),
+    hibi_glass_params <=> GlassParams, cookie PARAMS_COOKIE,
+    errors (HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_UNKNOWN_PRESET),
+    presets "`\"fig14a\"` … `\"fig16d\"`",
+    hibi_glass_params_default, hibi_glass_params_preset, hibi_glass_memory_size, hibi_glass_memory_align,
+    hibi_glass_create, hibi_glass_create_in, hibi_glass_destroy,
+);
 
 impl Object for hibi_glass {
     type Input = *const hibi_glass_params;
@@ -285,80 +267,6 @@ fn glass_status(error: GlassError) -> hibi_status {
         GlassError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
         GlassError::Impact => HIBI_ERROR_GLASS_IMPACT,
     }
-}
-
-/// The paper's parameters (and ours where it gives none), with the cookie set.
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_glass_params_default() -> hibi_glass_params {
-    guard(|| to_c(&GlassParams::default()))
-}
-
-/// Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's figures,
-/// see the README) to `*out`, with the cookie set; change fields afterwards as with the
-/// defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes nothing.
-///
-/// # Safety
-/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_params_preset(name: *const c_char, out: *mut hibi_glass_params) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_GLASS_UNKNOWN_PRESET) })
-}
-
-/// Checks `params` and writes the bytes a plate needs in caller memory (for
-/// `hibi_glass_create_in`). Every parameter error is reported here.
-///
-/// # Safety
-/// `params` must be NULL or readable; `size` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_memory_size(params: *const hibi_glass_params, size: *mut usize) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::memory_size::<hibi_glass>(params, size) })
-}
-
-/// Alignment, in bytes, that caller memory for `hibi_glass_create_in` must have.
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_glass_memory_align() -> usize {
-    guard(|| BLOCK_ALIGN)
-}
-
-/// Creates a plate in library memory with its first impact (at `params.impact`). Free it with
-/// `hibi_glass_destroy`. `*out` is written only on success.
-///
-/// # Safety
-/// `params` must be NULL or readable; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_create(params: *const hibi_glass_params, out: *mut *mut hibi_glass) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create(params, out) })
-}
-
-/// Creates a plate in caller memory of at least `hibi_glass_memory_size` bytes aligned to
-/// `hibi_glass_memory_align()`. The memory stays the caller's; `hibi_glass_destroy` is
-/// optional. Nothing is written on failure.
-///
-/// # Safety
-/// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
-/// `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_create_in(
-    params: *const hibi_glass_params,
-    memory: *mut c_void,
-    memory_len: usize,
-    out: *mut *mut hibi_glass,
-) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
-}
-
-/// Destroys a plate; frees its memory if `hibi_glass_create` allocated it. NULL is ignored.
-///
-/// # Safety
-/// `glass` must be NULL or a live plate, not used afterwards.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_destroy(glass: *mut hibi_glass) {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::destroy(glass) })
 }
 
 /// Adds an impact at (x, y): its cracks grow on the next steps and stop where they meet the

@@ -28,11 +28,11 @@ use hibi_core::mud::{
 
 use crate::fields::{Field, convert, enumeration};
 use crate::glass::hibi_vec2;
-use crate::guard::{Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out, write_preset};
-use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
+use crate::guard::{Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out};
+use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
-    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED,
-    HIBI_ERROR_MUD_UNKNOWN_PRESET, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status, raster_status,
+    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
+    raster_status,
 };
 
 /// Square elements: 4 neighbours, axis-aligned short cracks.
@@ -163,7 +163,7 @@ pub struct hibi_mud_progress {
 /// Crack statistics of the traced network: density, the cells it encloses, and its vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-pub struct hibi_mud_statistics {
+pub struct hibi_mud_crack_statistics {
     /// Crack length per area [1/cm]: the network's length (branches included) over the
     /// plate's area.
     pub crack_density: f32,
@@ -218,19 +218,6 @@ pub struct hibi_mud_render_params {
     pub offset: [f32; 2],
 }
 
-impl crate::guard::Outcome for hibi_mud_params {
-    type C = hibi_mud_params;
-    fn into_c(self) -> Self {
-        self
-    }
-    /// A struct without the cookie, which every function rejects.
-    fn on_panic() -> Self {
-        let mut p = hibi_mud_params_default_values();
-        p.cookie = 0;
-        p
-    }
-}
-
 impl crate::guard::Outcome for hibi_mud_render_params {
     type C = hibi_mud_render_params;
     fn into_c(self) -> Self {
@@ -266,19 +253,20 @@ convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     stiffness_anisotropy_ratio, target_shrink, target_crack_density,
 });
 convert!(hibi_mud_progress <=> MudProgress { shrink, time, broken_springs, crack_density, work, finished });
-convert!(hibi_mud_statistics <=> CrackStatistics {
+convert!(hibi_mud_crack_statistics <=> CrackStatistics {
     crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
     mean_widest_junction_angle,
 });
 convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset });
 
-/// The core parameters of a C params struct: cookie, enumerations, fields.
-fn core_params(p: &hibi_mud_params) -> Result<MudParams, hibi_status> {
-    if p.cookie != PARAMS_COOKIE {
-        return Err(HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED);
-    }
-    p.to_core().ok_or(HIBI_ERROR_MUD_ENUM)
-}
+lifecycle!(
+    hibi_mud (mud: "run", "every spring's break stretch drawn, ready to step"),
+    hibi_mud_params <=> MudParams, cookie PARAMS_COOKIE,
+    errors (HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_UNKNOWN_PRESET),
+    presets "`\"fig6a\"` … `\"fig10\"`",
+    hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_memory_size, hibi_mud_memory_align,
+    hibi_mud_create, hibi_mud_create_in, hibi_mud_destroy,
+);
 
 impl Object for hibi_mud {
     type Input = *const hibi_mud_params;
@@ -288,7 +276,7 @@ impl Object for hibi_mud {
     unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
         check_pointer(params, c"params")?;
         // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-        let params = core_params(unsafe { &*params })?;
+        let params = from_c(unsafe { &*params })?;
         let memory = params.memory().map_err(mud_param_status)?;
         Ok((params, memory))
     }
@@ -306,89 +294,6 @@ impl Object for hibi_mud {
     }
 }
 
-/// The paper's parameters (and ours where it gives none), with the cookie set.
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_mud_params_default() -> hibi_mud_params {
-    guard(hibi_mud_params_default_values)
-}
-
-/// The defaults, converted.
-fn hibi_mud_params_default_values() -> hibi_mud_params {
-    to_c(&MudParams::default())
-}
-
-/// Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's figures,
-/// see the README) to `*out`, with the cookie set; change fields afterwards as with the
-/// defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes nothing.
-///
-/// # Safety
-/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_params_preset(name: *const c_char, out: *mut hibi_mud_params) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_MUD_UNKNOWN_PRESET) })
-}
-
-/// Core parameters as the C struct, with the cookie set.
-fn to_c(p: &MudParams) -> hibi_mud_params {
-    Field::from_core(p)
-}
-
-/// Checks `params` and writes the bytes a run needs in caller memory (for
-/// `hibi_mud_create_in`). Every parameter error is reported here.
-///
-/// # Safety
-/// `params` must be NULL or readable; `size` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_memory_size(params: *const hibi_mud_params, size: *mut usize) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::memory_size::<hibi_mud>(params, size) })
-}
-
-/// Alignment, in bytes, that caller memory for `hibi_mud_create_in` must have (8).
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_mud_memory_align() -> usize {
-    guard(|| BLOCK_ALIGN)
-}
-
-/// Creates a run in library memory: draws every spring's break stretch, ready to step. Free
-/// it with `hibi_mud_destroy`. `*out` is written only on success.
-///
-/// # Safety
-/// `params` must be NULL or readable; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_create(params: *const hibi_mud_params, out: *mut *mut hibi_mud) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create(params, out) })
-}
-
-/// Creates a run in caller memory of at least `hibi_mud_memory_size` bytes aligned to
-/// `hibi_mud_memory_align()`. The memory stays the caller's (keep it untouched while the run
-/// lives); `hibi_mud_destroy` is optional. Nothing is written on failure.
-///
-/// # Safety
-/// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
-/// `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_create_in(
-    params: *const hibi_mud_params,
-    memory: *mut c_void,
-    memory_len: usize,
-    out: *mut *mut hibi_mud,
-) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
-}
-
-/// Destroys a run; frees its memory if `hibi_mud_create` allocated it. NULL is ignored.
-///
-/// # Safety
-/// `mud` must be NULL or a live run, not used afterwards.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_destroy(mud: *mut hibi_mud) {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::destroy(mud) })
-}
 /// Advances the run by at most `budget` units of work (one unit: one spring visited), but
 /// always by at least one indivisible piece; writes where it stands to `*progress` unless it
 /// is NULL. Call until `progress.finished`.
@@ -458,12 +363,12 @@ pub unsafe extern "C" fn hibi_mud_segments(
 /// # Safety
 /// `mud` must be NULL or a live run; `out` NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_measure(mud: *const hibi_mud, out: *mut hibi_mud_statistics) -> hibi_status {
+pub unsafe extern "C" fn hibi_mud_statistics(mud: *const hibi_mud, out: *mut hibi_mud_crack_statistics) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
         check_pointer(out, c"out")?;
-        let value = hibi_mud_statistics::from_core(&mud.mud.statistics());
+        let value = hibi_mud_crack_statistics::from_core(&mud.mud.statistics());
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, c"out", value) }
     })
@@ -673,7 +578,7 @@ mod tests {
             for name in hibi_core::mud::PRESETS {
                 let c_name = std::ffi::CString::new(name).unwrap();
                 assert_eq!(hibi_mud_params_preset(c_name.as_ptr(), &mut p), HIBI_OK);
-                assert_eq!(core_params(&p), Ok(preset(name).unwrap()), "{name}");
+                assert_eq!(from_c(&p), Ok(preset(name).unwrap()), "{name}");
             }
         }
     }
@@ -784,8 +689,8 @@ mod tests {
             assert_eq!(hibi_mud_render(mud, &render, HIBI_MUD_LAYER_HEIGHT, h, 1024), HIBI_OK);
             assert!(heights.iter().any(|&v| v < 1.0) && heights.iter().all(|&v| (0.0..=1.0).contains(&v)));
             assert_eq!(hibi_mud_render(null(), &render, HIBI_MUD_LAYER_MASK, h, 4096), HIBI_ERROR_NULL_POINTER);
-            let mut stats = hibi_mud_statistics::default();
-            assert_eq!(hibi_mud_measure(mud, &mut stats), HIBI_OK);
+            let mut stats = hibi_mud_crack_statistics::default();
+            assert_eq!(hibi_mud_statistics(mud, &mut stats), HIBI_OK);
             assert!(stats.crack_density > 0.0);
             hibi_mud_destroy(mud);
         }
@@ -799,7 +704,7 @@ mod tests {
             assert_eq!(hibi_mud_create(params, &mut mud), HIBI_OK);
             assert_eq!(hibi_mud_step(mud, u64::MAX, null_mut()), HIBI_OK);
         }
-        let core = core_params(params).unwrap();
+        let core = from_c(params).unwrap();
         let memory = core.memory().unwrap();
         (mud, vec![0.0; memory.scalars], vec![0; memory.words])
     }
@@ -815,8 +720,7 @@ mod tests {
         let mut p = small();
         p.boundary = HIBI_MUD_OPEN;
         let (mud, mut scalars, mut words) = finished(&p);
-        let mut core =
-            Mud::new(&core_params(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+        let mut core = Mud::new(&from_c(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
         core.run();
         let expected = core.network_counts();
         assert!(expected.vertices > 0 && expected.edges > 0 && expected.points > expected.edges);
@@ -904,7 +808,7 @@ mod tests {
             p.rows = 24;
             let (mud, mut scalars, mut words) = finished(&p);
             let mut core =
-                Mud::new(&core_params(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+                Mud::new(&from_c(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
             core.run();
             let expected = core.cell_counts();
             let (nr, np) = (expected.rings, expected.points);
@@ -952,9 +856,9 @@ mod tests {
             assert!(points.iter().zip(&want_points).all(|(c, w)| [c.x, c.y] == *w));
             assert_eq!(rings[..nr].iter().map(|x| x.point_count as usize).sum::<usize>(), np);
             // The statistics C sees are the core's.
-            let mut stats = hibi_mud_statistics::default();
+            let mut stats = hibi_mud_crack_statistics::default();
             // SAFETY: a live run and a writable struct.
-            assert_eq!(unsafe { hibi_mud_measure(mud, &mut stats) }, HIBI_OK);
+            assert_eq!(unsafe { hibi_mud_statistics(mud, &mut stats) }, HIBI_OK);
             let s = core.statistics();
             assert_eq!(
                 (stats.crack_density, stats.cells, stats.mean_cell_area, stats.cell_area_spread),

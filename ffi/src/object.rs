@@ -261,3 +261,126 @@ pub(crate) unsafe fn destroy<T: Object>(ptr: *mut T) {
         }
     }
 }
+
+/// A model's C lifecycle, written once for the three: its params struct's conversions
+/// (`to_c`, `from_c`, and the cookie-less struct a panic returns), then `*_params_default`,
+/// `*_params_preset`, `*_memory_size`, `*_memory_align`, `*_create`, `*_create_in` and
+/// `*_destroy`, each a thin wrapper over the generic functions above. The header's text for
+/// them is written here too, with the model's names put in. The invoking module provides
+/// `preset` (the core's preset lookup) and the type's [`Object`] impl.
+macro_rules! lifecycle {
+    (
+        $object:ident ($arg:ident: $what:literal, $created:literal),
+        $params:ident <=> $core:ident, cookie $cookie:ident,
+        errors ($not_initialised:ident, $bad_enum:ident, $unknown:ident),
+        presets $presets:literal,
+        $default:ident, $preset:ident, $memory_size:ident, $memory_align:ident,
+        $create:ident, $create_in:ident, $destroy:ident $(,)?
+    ) => {
+        impl $crate::guard::Outcome for $params {
+            type C = $params;
+            fn into_c(self) -> Self {
+                self
+            }
+            /// A struct without the cookie, which every function rejects.
+            fn on_panic() -> Self {
+                $params { cookie: 0, ..to_c(&<$core>::default()) }
+            }
+        }
+
+        /// Core parameters as the C struct, with the cookie set.
+        fn to_c(p: &$core) -> $params {
+            $crate::fields::Field::from_core(p)
+        }
+
+        /// The core parameters of a C params struct: cookie, enumerations, fields.
+        fn from_c(p: &$params) -> Result<$core, hibi_status> {
+            if p.cookie != $cookie {
+                return Err($crate::status::$not_initialised);
+            }
+            $crate::fields::Field::to_core(p).ok_or($crate::status::$bad_enum)
+        }
+
+        /// The default parameters (the paper's, and ours where it gives none; see each field),
+        /// with the cookie set.
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $default() -> $params {
+            $crate::guard::guard(|| to_c(&<$core>::default()))
+        }
+
+        #[doc = concat!(" Writes the parameters of the preset `name` (", $presets, ", the paper's")]
+        /// figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
+        #[doc = concat!(" the defaults. An unknown name gives `", stringify!($unknown), "` and writes")]
+        /// nothing.
+        ///
+        /// # Safety
+        /// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $preset(name: *const c_char, out: *mut $params) -> hibi_status {
+            // SAFETY: the caller's contract, passed on.
+            $crate::guard::guard(|| unsafe {
+                $crate::guard::write_preset(name, out, preset, to_c, $crate::status::$unknown)
+            })
+        }
+
+        #[doc = concat!(" Checks `params` and writes the bytes a ", $what, " needs in caller memory (for")]
+        #[doc = concat!(" `", stringify!($create_in), "`). Every parameter error is reported here.")]
+        ///
+        /// # Safety
+        /// `params` must be NULL or readable; `size` NULL or writable.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $memory_size(params: *const $params, size: *mut usize) -> hibi_status {
+            // SAFETY: the caller's contract, passed on.
+            $crate::guard::guard(|| unsafe { $crate::object::memory_size::<$object>(params, size) })
+        }
+
+        #[doc = concat!(" Alignment, in bytes, that caller memory for `", stringify!($create_in), "` must have (8).")]
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $memory_align() -> usize {
+            $crate::guard::guard(|| $crate::object::BLOCK_ALIGN)
+        }
+
+        #[doc = concat!(" Creates a ", $what, " in library memory: ", $created, ".")]
+        #[doc = concat!(" Free it with `", stringify!($destroy), "`. `*out` is written only on success. Every array")]
+        /// it computes in is in its block: the calling thread's stack needs no more than 16 KiB.
+        ///
+        /// # Safety
+        /// `params` must be NULL or readable; `out` NULL or writable.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $create(params: *const $params, out: *mut *mut $object) -> hibi_status {
+            // SAFETY: the caller's contract, passed on.
+            $crate::guard::guard(|| unsafe { $crate::object::create(params, out) })
+        }
+
+        #[doc = concat!(" Creates a ", $what, " in caller memory of at least `", stringify!($memory_size), "` bytes")]
+        #[doc = concat!(" aligned to `", stringify!($memory_align), "()`, as `", stringify!($create), "` does. The memory stays")]
+        #[doc = concat!(" the caller's (keep it untouched while the ", $what, " lives); `", stringify!($destroy), "` is")]
+        /// optional. Nothing is written on failure.
+        ///
+        /// # Safety
+        /// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
+        /// `out` NULL or writable.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $create_in(
+            params: *const $params,
+            memory: *mut c_void,
+            memory_len: usize,
+            out: *mut *mut $object,
+        ) -> hibi_status {
+            // SAFETY: the caller's contract, passed on.
+            $crate::guard::guard(|| unsafe { $crate::object::create_in(params, memory, memory_len, out) })
+        }
+
+        #[doc = concat!(" Destroys a ", $what, "; frees its memory if `", stringify!($create), "` allocated it.")]
+        /// NULL is ignored.
+        ///
+        /// # Safety
+        #[doc = concat!(" `", stringify!($arg), "` must be NULL or a live ", $what, ", not used afterwards.")]
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $destroy($arg: *mut $object) {
+            // SAFETY: the caller's contract, passed on.
+            $crate::guard::guard(|| unsafe { $crate::object::destroy($arg) })
+        }
+    };
+}
+pub(crate) use lifecycle;

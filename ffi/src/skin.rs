@@ -27,15 +27,12 @@ use hibi_core::skin::{
 };
 
 use crate::fields::{Field, convert, enumeration};
-use crate::guard::{
-    Outcome, buffer, check_pointer, guard, input, object, object_ref, optional, write_out, write_preset,
-};
-use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, optional, write_out};
+use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
-    HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_SHADE,
-    HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW, HIBI_ERROR_SKIN_SHADE_RIDGE,
-    HIBI_ERROR_SKIN_SHADE_SPECULAR, HIBI_ERROR_SKIN_UNKNOWN_PRESET, hibi_status, skin_param_status,
+    HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_SHADE, HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW,
+    HIBI_ERROR_SKIN_SHADE_RIDGE, HIBI_ERROR_SKIN_SHADE_SPECULAR, hibi_status, skin_param_status,
 };
 
 /// Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -190,17 +187,6 @@ pub struct hibi_skin_cell {
     pub centre: [f64; 2],
 }
 
-impl Outcome for hibi_skin_params {
-    type C = hibi_skin_params;
-    fn into_c(self) -> Self {
-        self
-    }
-    /// A struct without the cookie, which every function rejects.
-    fn on_panic() -> Self {
-        hibi_skin_params { cookie: 0, ..to_c(&SkinParams::default()) }
-    }
-}
-
 impl Outcome for hibi_skin_shade_params {
     type C = hibi_skin_shade_params;
     fn into_c(self) -> Self {
@@ -231,19 +217,14 @@ convert!(hibi_skin_params <=> SkinParams, cookie: PARAMS_COOKIE {
 convert!(hibi_skin_progress <=> SkinProgress { cells, roots, root_total, finished, capacity_reached, work });
 convert!(hibi_skin_shade_params <=> ShadeParams { light, ridge, furrow, ambient, specular });
 
-/// The C view of core parameters.
-fn to_c(p: &SkinParams) -> hibi_skin_params {
-    Field::from_core(p)
-}
-
-/// The core parameters of a C params struct: cookie, enumerations, fields (the fields are
-/// validated by the core).
-fn from_c(p: &hibi_skin_params) -> Result<SkinParams, hibi_status> {
-    if p.cookie != PARAMS_COOKIE {
-        return Err(HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED);
-    }
-    p.to_core().ok_or(HIBI_ERROR_SKIN_ENUM)
-}
+lifecycle!(
+    hibi_skin (skin: "skin", "no cell built yet, `hibi_skin_step` builds them"),
+    hibi_skin_params <=> SkinParams, cookie PARAMS_COOKIE,
+    errors (HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_UNKNOWN_PRESET),
+    presets "`\"fig13a\"` … `\"fig19f\"`",
+    hibi_skin_params_default, hibi_skin_params_preset, hibi_skin_memory_size, hibi_skin_memory_align,
+    hibi_skin_create, hibi_skin_create_in, hibi_skin_destroy,
+);
 
 impl Object for hibi_skin {
     type Input = *const hibi_skin_params;
@@ -296,84 +277,6 @@ fn skin_status(error: SkinError) -> hibi_status {
 /// Pixels per fixed-point unit of `skin`'s outlines.
 fn pixels_per_unit(skin: &Skin) -> f64 {
     1.0 / (1u64 << skin.fixed_point_bits()) as f64
-}
-
-/// The default parameters (400 × 400 px, one level of 40-pixel cells on a jittered triangular
-/// lattice, the paper's Fig. 13 b profile), with the cookie set.
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_skin_params_default() -> hibi_skin_params {
-    guard(|| to_c(&SkinParams::default()))
-}
-
-/// Writes the parameters of the paper's Table 1 setting `name` ("fig13a" … "fig19f", the
-/// figure it makes, at 400 × 400 px) to `*out`, with the cookie set; change fields afterwards
-/// as with the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
-/// nothing.
-///
-/// # Safety
-/// `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_params_preset(name: *const c_char, out: *mut hibi_skin_params) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { write_preset(name, out, preset, to_c, HIBI_ERROR_SKIN_UNKNOWN_PRESET) })
-}
-
-/// Checks `params` and writes the bytes a skin needs in caller memory (for
-/// `hibi_skin_create_in`). Every parameter error is reported here.
-///
-/// # Safety
-/// `params` must be NULL or readable; `size` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_memory_size(params: *const hibi_skin_params, size: *mut usize) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::memory_size::<hibi_skin>(params, size) })
-}
-
-/// Alignment, in bytes, that caller memory for `hibi_skin_create_in` must have.
-#[unsafe(no_mangle)]
-pub extern "C" fn hibi_skin_memory_align() -> usize {
-    guard(|| BLOCK_ALIGN)
-}
-
-/// Creates a skin in library memory, building every cell outline of every level. Free it
-/// with `hibi_skin_destroy`. `*out` is written only on success. Every scratch array is in
-/// the skin's block: the calling thread's stack needs no more than 16 KiB.
-///
-/// # Safety
-/// `params` must be NULL or readable; `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_create(params: *const hibi_skin_params, out: *mut *mut hibi_skin) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create(params, out) })
-}
-
-/// Creates a skin in caller memory of at least `hibi_skin_memory_size` bytes aligned to
-/// `hibi_skin_memory_align()`. The memory stays the caller's (keep it untouched while the
-/// skin lives); `hibi_skin_destroy` is optional. Nothing is written to `*out` on failure.
-/// Stack: as `hibi_skin_create`.
-///
-/// # Safety
-/// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
-/// `out` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_create_in(
-    params: *const hibi_skin_params,
-    memory: *mut c_void,
-    memory_len: usize,
-    out: *mut *mut hibi_skin,
-) -> hibi_status {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::create_in(params, memory, memory_len, out) })
-}
-
-/// Destroys a skin; frees its memory if `hibi_skin_create` allocated it. NULL is ignored.
-///
-/// # Safety
-/// `skin` must be NULL or a live skin, not used afterwards.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_destroy(skin: *mut hibi_skin) {
-    // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::destroy(skin) })
 }
 
 /// An optional output layer: NULL with length 0 is "not wanted"; anything else is checked.

@@ -108,6 +108,12 @@ void mud() {
     std::printf("mud cells: %s rings, area %.1f of %u\n", cells.rings.empty() ? "no" : "some", area,
                 static_cast<unsigned>(params.columns * params.rows));
 
+    hibi_mud_crack_statistics stats = mud.statistics(), raw_stats{};
+    hibi::check(hibi_mud_statistics(mud.get(), &raw_stats));
+    std::printf("mud statistics as from C: %s\n",
+                yes(stats.cells == raw_stats.cells && stats.crack_density == raw_stats.crack_density &&
+                    stats.cells > 0));
+
     hibi::Mud::RenderParams render = hibi::Mud::default_render();
     render.width = 128;
     render.height = 128;

@@ -372,12 +372,8 @@ fn row_forces_summed<S: Scalar>(
 ) -> (bool, bool) {
     let Row { a, s, len, .. } = *row;
     debug_assert_eq!(row.b, a + 1);
-    let body = row.body();
     let (mut over, mut left) = (false, (S::ZERO, S::ZERO));
-    let mut start = 0;
-    loop {
-        let end = body.min(start + CHUNK);
-        let count = chunk.load(law, row, (ux, uy), start, end);
+    let (m, end, count) = row_chunks(law, row, (ux, uy), chunk, |chunk, start, end| {
         let (o, l) = chunk_forces_summed(
             law,
             (chunk, &limits[s + start..s + end]),
@@ -387,37 +383,57 @@ fn row_forces_summed<S: Scalar>(
             left,
         );
         (over, left) = (over | o, l);
-        if end < body {
-            start = end;
-            continue;
+    });
+    let view = chunk.view(m + 4);
+    for t in 0..count {
+        let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
+        let i = a + end + t;
+        fx[i] = (-(h * ux[i]) + x) - left.0;
+        fy[i] = (-(h * uy[i]) + y) - left.1;
+        left = (x, y);
+        over |= o;
+    }
+    // The last node has no spring of its own but the wrapping one.
+    let last = a + len;
+    fx[last] = -(h * ux[last]) - left.0;
+    fy[last] = -(h * uy[last]) - left.1;
+    let mut wrap_over = false;
+    if let Some((i, j, w)) = row.wrap {
+        debug_assert_eq!((i, j), (last, a));
+        let (x, y, o) = view.force(law, m + count, limits[w]);
+        if o {
+            wrap_over = true;
+        } else {
+            fx[a] -= x;
+            fy[a] -= y;
+            fx[last] += x;
+            fy[last] += y;
         }
-        let (m, view) = (end - start, chunk.view(end - start + 4));
-        for t in 0..count {
-            let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
-            let i = a + end + t;
-            fx[i] = (-(h * ux[i]) + x) - left.0;
-            fy[i] = (-(h * uy[i]) + y) - left.1;
-            left = (x, y);
-            over |= o;
+    }
+    (over, wrap_over)
+}
+
+/// Walks a row's body chunk by chunk: loads each chunk's springs and hands it to `forces`
+/// with its range `start..end`. Returns the last chunk's length, where the body ends, and how
+/// many springs past it the last load also took (the row's tail, not a whole vector).
+#[inline(always)]
+fn row_chunks<S: Scalar>(
+    law: &SpringLaw<S>,
+    row: &Row,
+    u: (&[S], &[S]),
+    chunk: &mut Chunk<S>,
+    mut forces: impl FnMut(&Chunk<S>, usize, usize),
+) -> (usize, usize, usize) {
+    let body = row.body();
+    let mut start = 0;
+    loop {
+        let end = body.min(start + CHUNK);
+        let count = chunk.load(law, row, u, start, end);
+        forces(chunk, start, end);
+        if end == body {
+            return (end - start, end, count);
         }
-        // The last node has no spring of its own but the wrapping one.
-        let last = a + len;
-        fx[last] = -(h * ux[last]) - left.0;
-        fy[last] = -(h * uy[last]) - left.1;
-        let mut wrap_over = false;
-        if let Some((i, j, w)) = row.wrap {
-            debug_assert_eq!((i, j), (last, a));
-            let (x, y, o) = view.force(law, m + count, limits[w]);
-            if o {
-                wrap_over = true;
-            } else {
-                fx[a] -= x;
-                fy[a] -= y;
-                fx[last] += x;
-                fy[last] += y;
-            }
-        }
-        return (over, wrap_over);
+        start = end;
     }
 }
 
@@ -448,45 +464,35 @@ fn row_forces_applied<S: Scalar>(
     chunk: &mut Chunk<S>,
 ) -> (bool, bool) {
     let Row { a, b, s, .. } = *row;
-    let body = row.body();
     let mut over = false;
-    let mut start = 0;
-    loop {
-        let end = body.min(start + CHUNK);
-        let count = chunk.load(law, row, u, start, end);
-        {
-            let (fax, fbx) = two_runs(fx, a + start, b + start, end - start);
-            let (fay, fby) = two_runs(fy, a + start, b + start, end - start);
-            over |= chunk_forces_applied(law, chunk, &limits[s + start..s + end], fax, fay, fbx, fby);
-        }
-        if end < body {
-            start = end;
-            continue;
-        }
-        let (m, view) = (end - start, chunk.view(end - start + 4));
-        for t in 0..count {
-            let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
-            let (i, j) = (a + end + t, b + end + t);
+    let (m, end, count) = row_chunks(law, row, u, chunk, |chunk, start, end| {
+        let (fax, fbx) = two_runs(fx, a + start, b + start, end - start);
+        let (fay, fby) = two_runs(fy, a + start, b + start, end - start);
+        over |= chunk_forces_applied(law, chunk, &limits[s + start..s + end], fax, fay, fbx, fby);
+    });
+    let view = chunk.view(m + 4);
+    for t in 0..count {
+        let (x, y, o) = view.force(law, m + t, limits[s + end + t]);
+        let (i, j) = (a + end + t, b + end + t);
+        fx[i] += x;
+        fy[i] += y;
+        fx[j] -= x;
+        fy[j] -= y;
+        over |= o;
+    }
+    let mut wrap_over = false;
+    if let Some((i, j, w)) = row.wrap {
+        let (x, y, o) = view.force(law, m + count, limits[w]);
+        if o {
+            wrap_over = true;
+        } else {
             fx[i] += x;
             fy[i] += y;
             fx[j] -= x;
             fy[j] -= y;
-            over |= o;
         }
-        let mut wrap_over = false;
-        if let Some((i, j, w)) = row.wrap {
-            let (x, y, o) = view.force(law, m + count, limits[w]);
-            if o {
-                wrap_over = true;
-            } else {
-                fx[i] += x;
-                fy[i] += y;
-                fx[j] -= x;
-                fy[j] -= y;
-            }
-        }
-        return (over, wrap_over);
     }
+    (over, wrap_over)
 }
 
 /// Spring breaks: the limits (set to broken), the break times and the time now.

@@ -360,33 +360,23 @@ impl<'a> Lattice<'a> {
                     reference: [at, offset(0), [at[0] + 1.0, at[1] + 1.0], offset(1)],
                 })
             }
-            (_, 0) => {
-                // Upward triangle: base, right, up-right.
-                let right = self.neighbour(base, 0)?;
-                let upper = self.neighbour(base, 1)?;
-                self.neighbour(right, 2)?;
+            (_, k) => {
+                // A triangle: upward (k = 0) base, right, up-right; downward (k = 1) base,
+                // up-right, up-left. Its third side is stored at the node it leaves in a
+                // forward direction: right's direction 2, or up-left's direction 0.
+                let (p, q) = (self.neighbour(base, k)?, self.neighbour(base, k + 1)?);
+                let (from, d) = if k == 0 { (p, 2) } else { (q, 0) };
+                self.neighbour(from, d)?;
                 Some(Cell {
-                    nodes: [base as u32, right as u32, upper as u32, 0],
-                    corners: 3,
-                    sides: [self.spring(base, 0) as u32, self.spring(right, 2) as u32, self.spring(base, 1) as u32, 0],
-                    reference: [at, offset(0), offset(1), [0.0; 2]],
-                })
-            }
-            (_, _) => {
-                // Downward-pointing triangle above the base: base, up-right, up-left.
-                let upper_right = self.neighbour(base, 1)?;
-                let upper_left = self.neighbour(base, 2)?;
-                self.neighbour(upper_left, 0)?;
-                Some(Cell {
-                    nodes: [base as u32, upper_right as u32, upper_left as u32, 0],
+                    nodes: [base as u32, p as u32, q as u32, 0],
                     corners: 3,
                     sides: [
-                        self.spring(base, 1) as u32,
-                        self.spring(upper_left, 0) as u32,
-                        self.spring(base, 2) as u32,
+                        self.spring(base, k) as u32,
+                        self.spring(from, d) as u32,
+                        self.spring(base, k + 1) as u32,
                         0,
                     ],
-                    reference: [at, offset(1), offset(2), [0.0; 2]],
+                    reference: [at, offset(k), offset(k + 1), [0.0; 2]],
                 })
             }
         }

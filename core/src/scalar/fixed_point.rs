@@ -173,26 +173,19 @@ impl Scalar for Q16 {
     }
 }
 
-impl Add for Q16 {
-    type Output = Q16;
-    fn add(self, rhs: Q16) -> Q16 {
-        Q16(self.0.saturating_add(rhs.0))
-    }
+/// `+`, `−` and `×` saturate at the format's range instead of wrapping.
+macro_rules! saturating {
+    ($($op:ident $method:ident $saturating:ident),*) => {$(
+        impl $op for Q16 {
+            type Output = Q16;
+            fn $method(self, rhs: Q16) -> Q16 {
+                Q16(self.0.$saturating(rhs.0))
+            }
+        }
+    )*};
 }
 
-impl Sub for Q16 {
-    type Output = Q16;
-    fn sub(self, rhs: Q16) -> Q16 {
-        Q16(self.0.saturating_sub(rhs.0))
-    }
-}
-
-impl Mul for Q16 {
-    type Output = Q16;
-    fn mul(self, rhs: Q16) -> Q16 {
-        Q16(self.0.saturating_mul(rhs.0))
-    }
-}
+saturating!(Add add saturating_add, Sub sub saturating_sub, Mul mul saturating_mul);
 
 impl Div for Q16 {
     type Output = Q16;

@@ -314,26 +314,19 @@ pub struct SkinStorage<
     pub boxes: [[i64; 4]; BOXES],
 }
 
-impl<
-    const CELLS: usize,
-    const VERTICES: usize,
-    const SITES: usize,
-    const CLIP: usize,
-    const WORDS: usize,
-    const LEVELS: usize,
-    const BOXES: usize,
-> SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES>
+impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize, const L: usize, const B: usize>
+    SkinStorage<C, V, S, K, W, L, B>
 {
     /// Empty storage.
     pub fn new() -> Self {
         SkinStorage {
-            cells: [SkinCell::default(); CELLS],
-            vertices: [[0; 2]; VERTICES],
-            sites: [Site::default(); SITES],
-            clip: [ClipVertex::default(); CLIP],
-            words: [0; WORDS],
+            cells: [SkinCell::default(); C],
+            vertices: [[0; 2]; V],
+            sites: [Site::default(); S],
+            clip: [ClipVertex::default(); K],
+            words: [0; W],
             levels: core::array::from_fn(|_| SkinLevel::default()),
-            boxes: [[0; 4]; BOXES],
+            boxes: [[0; 4]; B],
         }
     }
 
@@ -343,15 +336,8 @@ impl<
     }
 }
 
-impl<
-    const CELLS: usize,
-    const VERTICES: usize,
-    const SITES: usize,
-    const CLIP: usize,
-    const WORDS: usize,
-    const LEVELS: usize,
-    const BOXES: usize,
-> Default for SkinStorage<CELLS, VERTICES, SITES, CLIP, WORDS, LEVELS, BOXES>
+impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize, const L: usize, const B: usize>
+    Default for SkinStorage<C, V, S, K, W, L, B>
 {
     fn default() -> Self {
         Self::new()
