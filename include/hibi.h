@@ -31,6 +31,22 @@
 #include <stdint.h>
 
 /**
+ * The major version, as in `hibi_version()` (`CARGO_PKG_VERSION_MAJOR`; checked when the
+ * library is built).
+ */
+#define HIBI_VERSION_MAJOR 0
+
+/**
+ * The minor version, as in `hibi_version()`.
+ */
+#define HIBI_VERSION_MINOR 1
+
+/**
+ * The patch version, as in `hibi_version()`.
+ */
+#define HIBI_VERSION_PATCH 0
+
+/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_GLASS_LAYER_MASK 0

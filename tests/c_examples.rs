@@ -5,6 +5,8 @@
 //! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
 //! programs in `tests/c/` (issue 25) run under the sanitizers and under Valgrind; one of them,
 //! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
+//! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` (issue 26) against the C
+//! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -31,7 +33,15 @@ fn library_dir() -> &'static Path {
         }
         let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
         assert!(status.success(), "cargo build -p hibi-ffi failed");
-        target.join(profile)
+        let dir = target.join(profile);
+        // The shared library's SONAME is libhibi.so.MAJOR (ffi/build.rs): programs linked to
+        // it look for that name, which the install step (ffi/install) lays out as a symlink.
+        let soname = dir.join(concat!("libhibi.so.", env!("CARGO_PKG_VERSION_MAJOR")));
+        match std::os::unix::fs::symlink("libhibi.so", &soname) {
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            made => made.expect("symlink libhibi.so.MAJOR"),
+        }
+        dir
     })
 }
 
@@ -705,4 +715,152 @@ fn every_c_test_runs_under_the_sanitizers() {
     for source in c_tests() {
         assert!(this.contains(&format!("regression(\"{source}\")")), "no test runs {source} under the sanitizers");
     }
+}
+
+/// What `tests/cpp/wrapper.cpp` (issue 26: `include/hibi.hpp`) must print: every comparison
+/// of the wrapper with the C calls holds, errors carry the C status, message and argument,
+/// and renders of one object from four threads equal the lone render.
+fn check_wrapper(output: &str) {
+    let version = format!("hibi {}", env!("CARGO_PKG_VERSION"));
+    assert_eq!(line(output, "hibi "), version);
+    assert_eq!(line(output, "macros "), version.replace("hibi", "macros"));
+    let expected = [
+        "negative young_modulus: status 522, mud: young_modulus (E) must be finite and > 0, argument \"\", \
+         same message as C: yes",
+        "preset fig99: status 1348",
+        "misaligned memory: status 2, argument \"memory\"",
+        "short memory: status 3, a buffer is smaller than the call needs",
+        "mud finished: yes, in more than one step: yes",
+        "mud segments: yes",
+        "mud network matches its counts: yes",
+        "mud statistics as from C: yes",
+        "mud mask as from C: yes",
+        "mud height and time layers: yes",
+        "mud short pixels: status 3",
+        "mud caller memory, same mask: yes",
+        "glass: yes, every crack has points: yes",
+        "glass crack past the end: status 1091",
+        "glass from four threads equals the lone result: yes",
+        "glass caller memory, same mask: yes",
+        "glass second impact: yes",
+        "skin built: yes, cells yes",
+        "skin renders from four threads equal the lone render: yes",
+        "skin cell map of level 9: status 1346",
+        "skin short scratch: status 3",
+        "skin caller memory, same preview: yes",
+        "rng caller memory, same draws: yes",
+    ];
+    for want in expected {
+        let (prefix, _) = want.split_once(": ").unwrap();
+        assert_eq!(line(output, &format!("{prefix}: ")), want);
+    }
+    assert!(line(output, "mud cells: ").starts_with("mud cells: some rings, area "), "{output}");
+    assert!(line(output, "glass fragments").starts_with("glass fragments match their counts: yes, area 40000.0"));
+    assert_eq!(output.lines().count(), expected.len() + 4, "{output}");
+}
+
+#[test]
+fn cpp_wrapper_links_static_library_with_gxx() {
+    check_wrapper(&build_and_run("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+}
+
+#[test]
+fn cpp_wrapper_links_static_library_with_clangxx() {
+    check_wrapper(&build_and_run("clang++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+}
+
+#[test]
+fn cpp_wrapper_links_shared_library() {
+    check_wrapper(&build_and_run(&cpp_compiler(), "c++17", "tests/cpp/wrapper.cpp", Linkage::Shared));
+}
+
+#[test]
+fn cpp_wrapper_is_clean_under_sanitizers_with_gxx_and_clangxx() {
+    for compiler in ["g++", "clang++"] {
+        let (stdout, stderr) =
+            build_and_run_capturing(compiler, "c++17", "tests/cpp/wrapper.cpp", Linkage::Sanitized, &[]);
+        assert!(stderr.is_empty(), "{compiler}: stderr:\n{stderr}");
+        check_wrapper(&stdout);
+    }
+}
+
+#[test]
+fn cpp_wrapper_is_clean_under_valgrind() {
+    let (stdout, stderr) = build_and_run_capturing("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Valgrind, &[]);
+    assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
+    check_wrapper(&stdout);
+}
+
+/// The glass plate `c_examples/engine.cpp` breaks, drawn by Rust: which of its 160 × 160
+/// break-time pixels a crack reached.
+fn expected_engine_glass() -> Vec<bool> {
+    use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+
+    let params = GlassParams { width: 160.0, height: 160.0, impact: [70.0, 90.0], seed: 11, ..GlassParams::default() };
+    let m = params.memory().unwrap();
+    let mut memory = m.allocate();
+    let mut glass = Glass::new(&params, memory.buffers()).unwrap();
+    while !glass.step(u64::MAX).finished {}
+    let mut time = vec![0.0f32; 160 * 160];
+    let render = GlassRender { width: 160, height: 160, ..GlassRender::default() };
+    glass.render(&render, GlassLayers { time: Some(&mut time), ..Default::default() }).unwrap();
+    time.iter().map(|t| t.is_finite()).collect()
+}
+
+/// A number after `prefix` in `line`, up to the next space.
+fn number_after(line: &str, prefix: &str) -> u64 {
+    let rest = &line[line.find(prefix).unwrap_or_else(|| panic!("no {prefix:?} in {line:?}")) + prefix.len()..];
+    rest.split([' ', ',', ')']).next().unwrap().parse().unwrap_or_else(|_| panic!("not a number: {line:?}"))
+}
+
+/// Issue 26 item 5: the game loop spreads each model over several frames within its budget
+/// (mud's step stops once its work reaches the budget, so a frame overruns it by less than
+/// one indivisible piece; skin's by at most one level-0 cell's build), writes four frames of
+/// each break-time raster, the last glass frame cracked where Rust's plate is, and the
+/// budgeted objects equal unbudgeted runs.
+fn check_engine(linkage: Linkage) {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("engine_{linkage:?}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let output =
+        build_and_run_with(&cpp_compiler(), "c++17", "c_examples/engine.cpp", linkage, &[dir.to_str().unwrap()]);
+    let frames = line(&output, "frames: ");
+    let per_model: Vec<u64> =
+        ["glass done after ", "mud after ", "skin after "].map(|p| number_after(frames, p)).into();
+    assert!(per_model.iter().all(|&f| f > 1), "a model finished in one frame: {frames}");
+    assert_eq!(number_after(frames, "frames: "), *per_model.iter().max().unwrap(), "{frames}");
+    let mud = line(&output, "mud: largest frame work ");
+    let (largest, budget) = (number_after(mud, "work "), number_after(mud, "budget "));
+    assert!(largest >= budget / 2 && largest < 2 * budget, "{mud}");
+    let skin = line(&output, "skin: largest frame work ");
+    assert!(number_after(skin, "work ") > 0, "{skin}");
+    assert!(line(&output, "glass: largest frame ").ends_with("(budget 5000 work units)"));
+    assert_eq!(line(&output, "wrote "), "wrote 4 frames of each break-time raster");
+    assert_eq!(line(&output, "budgeted = one go:"), "budgeted = one go: glass yes, mud yes, skin yes");
+    let header = b"P5\n160 160\n255\n";
+    for model in ["glass", "mud"] {
+        for frame in 0..4 {
+            let bytes = std::fs::read(dir.join(format!("{model}_time_{frame:02}.pgm"))).expect("a frame PGM");
+            assert_eq!(&bytes[..header.len()], header);
+            assert_eq!(bytes.len(), header.len() + 160 * 160);
+        }
+    }
+    let last = std::fs::read(dir.join("glass_time_03.pgm")).unwrap();
+    let cracked: Vec<bool> = last[header.len()..].iter().map(|&v| v != 255).collect();
+    assert!(cracked == expected_engine_glass(), "the last glass frame is cracked elsewhere than Rust's plate");
+}
+
+#[test]
+fn engine_example_links_static_library() {
+    check_engine(Linkage::Static);
+}
+
+#[test]
+fn engine_example_is_clean_under_sanitizers() {
+    check_engine(Linkage::Sanitized);
+}
+
+#[test]
+fn engine_example_is_clean_under_valgrind() {
+    check_engine(Linkage::Valgrind);
 }

@@ -40,3 +40,31 @@ pub use status::*;
 pub extern "C" fn hibi_version() -> *const c_char {
     guard::guard_query(|| concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast::<c_char>())
 }
+
+/// The major version, as in `hibi_version()` (`CARGO_PKG_VERSION_MAJOR`; checked when the
+/// library is built).
+pub const HIBI_VERSION_MAJOR: u32 = 0;
+/// The minor version, as in `hibi_version()`.
+pub const HIBI_VERSION_MINOR: u32 = 1;
+/// The patch version, as in `hibi_version()`.
+pub const HIBI_VERSION_PATCH: u32 = 0;
+
+/// A decimal number at compile time (the version fields cargo passes).
+const fn parse_version(field: &str) -> u32 {
+    let bytes = field.as_bytes();
+    let mut value = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        value = value * 10 + (bytes[i] - b'0') as u32;
+        i += 1;
+    }
+    value
+}
+
+// The header's version macros must match the package version: bump them together.
+const _: () = assert!(
+    HIBI_VERSION_MAJOR == parse_version(env!("CARGO_PKG_VERSION_MAJOR"))
+        && HIBI_VERSION_MINOR == parse_version(env!("CARGO_PKG_VERSION_MINOR"))
+        && HIBI_VERSION_PATCH == parse_version(env!("CARGO_PKG_VERSION_PATCH")),
+    "HIBI_VERSION_MAJOR/MINOR/PATCH differ from the package version in Cargo.toml"
+);

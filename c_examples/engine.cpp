@@ -1,0 +1,199 @@
+/*
+ * engine.cpp: hibi in a game loop, from C++17 through include/hibi.hpp (issue 26). A glass
+ * impact, a mud run and a skin live in memory from the engine's own allocator (an arena,
+ * through *_create_in); each frame advances each of them by a bounded amount of work with
+ * step(budget), a few frames of the break-time rasters (glass and mud) are written as PGM
+ * files, and at the end the program reports the largest work any frame did against its
+ * budget, and checks that the budgeted objects came out as one unbudgeted run of each.
+ *
+ *   c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/engine.cpp \
+ *       target/release/libhibi.a -lpthread -ldl -lm -o engine && ./engine frames/
+ */
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hibi.hpp"
+
+namespace {
+
+/// The engine's allocator: one block, handed out front to back, freed all at once.
+class Arena {
+public:
+    explicit Arena(std::size_t bytes) : block_(bytes, alignof(std::max_align_t)) {}
+    void *allocate(std::size_t size, std::size_t align) {
+        std::size_t at = (used_ + align - 1) / align * align;
+        if (at + size > block_.size()) throw std::bad_alloc();
+        used_ = at + size;
+        return static_cast<unsigned char *>(block_.data()) + at;
+    }
+    std::size_t used() const { return used_; }
+
+private:
+    hibi::Buffer block_;
+    std::size_t used_ = 0;
+};
+
+/// A break-time raster as a PGM: no crack white, cracks from black (first) to grey (last).
+bool write_pgm(const std::string &path, const std::vector<float> &time, std::uint32_t width, std::uint32_t height) {
+    float last = 0.0f;
+    for (float t : time) {
+        if (std::isfinite(t)) last = std::max(last, t);
+    }
+    std::vector<unsigned char> grey(time.size());
+    for (std::size_t i = 0; i < time.size(); i++) {
+        grey[i] = std::isfinite(time[i])
+                      ? static_cast<unsigned char>(last > 0.0f ? 180.0f * time[i] / last : 0.0f)
+                      : static_cast<unsigned char>(255);
+    }
+    std::FILE *file = std::fopen(path.c_str(), "wb");
+    if (file == nullptr) return false;
+    std::fprintf(file, "P5\n%u %u\n255\n", static_cast<unsigned>(width), static_cast<unsigned>(height));
+    bool ok = std::fwrite(grey.data(), 1, grey.size(), file) == grey.size();
+    return std::fclose(file) == 0 && ok;
+}
+
+/// The largest work one frame did, for the models whose progress counts it.
+struct Budget {
+    std::uint64_t per_frame;
+    std::uint64_t largest = 0;
+    std::uint64_t last_total = 0;
+    void frame(std::uint64_t total) {
+        largest = std::max(largest, total - last_total);
+        last_total = total;
+    }
+};
+
+bool same(const std::vector<float> &a, const std::vector<float> &b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    const std::string dir = argc > 1 ? std::string(argv[1]) + "/" : std::string();
+    try {
+        hibi::Glass::Params glass_params = hibi::Glass::default_params();
+        glass_params.width = 160.0f;
+        glass_params.height = 160.0f;
+        glass_params.impact[0] = 70.0f;
+        glass_params.impact[1] = 90.0f;
+        glass_params.seed = 11;
+        hibi::Mud::Params mud_params = hibi::Mud::default_params();
+        mud_params.columns = 40;
+        mud_params.rows = 40;
+        mud_params.seed = 11;
+        hibi::Skin::Params skin_params = hibi::Skin::preset("fig19a");
+        skin_params.width = 96;
+        skin_params.height = 96;
+
+        // One arena for all three, sized from the C API's own figures.
+        const std::size_t glass_bytes = hibi::Glass::memory_size(glass_params);
+        const std::size_t mud_bytes = hibi::Mud::memory_size(mud_params);
+        const std::size_t skin_bytes = hibi::Skin::memory_size(skin_params);
+        const std::size_t slack = hibi::Glass::memory_align() + hibi::Mud::memory_align() + hibi::Skin::memory_align();
+        Arena arena(glass_bytes + mud_bytes + skin_bytes + slack);
+        hibi::Glass glass = hibi::Glass::create_in(
+            glass_params, arena.allocate(glass_bytes, hibi::Glass::memory_align()), glass_bytes);
+        hibi::Mud mud =
+            hibi::Mud::create_in(mud_params, arena.allocate(mud_bytes, hibi::Mud::memory_align()), mud_bytes);
+        hibi::Skin skin =
+            hibi::Skin::create_in(skin_params, arena.allocate(skin_bytes, hibi::Skin::memory_align()), skin_bytes);
+        std::printf("arena: %zu bytes (glass %zu, mud %zu, skin %zu)\n", arena.used(), glass_bytes, mud_bytes,
+                    skin_bytes);
+
+        // The frame budgets, in each model's units of work.
+        Budget mud_budget{20000};
+        Budget skin_budget{1500};
+        const std::uint64_t glass_budget = 5000;
+        std::printf("budgets per frame: mud %llu, skin %llu, glass %llu\n",
+                    static_cast<unsigned long long>(mud_budget.per_frame),
+                    static_cast<unsigned long long>(skin_budget.per_frame),
+                    static_cast<unsigned long long>(glass_budget));
+
+        hibi::Glass::RenderParams glass_render = hibi::Glass::default_render();
+        glass_render.width = 160;
+        glass_render.height = 160;
+        hibi::Mud::RenderParams mud_render = hibi::Mud::default_render();
+        mud_render.width = 160;
+        mud_render.height = 160;
+
+        bool glass_done = false, mud_done = false, skin_done = false;
+        unsigned frame = 0, glass_frames = 0, mud_frames = 0, skin_frames = 0, written = 0;
+        std::uint32_t glass_steps_largest = 0, glass_time = 0;
+        const unsigned stride = 6, max_written = 3;
+        while (!(glass_done && mud_done && skin_done)) {
+            if (!glass_done) {
+                hibi::Glass::Progress p = glass.step(glass_budget);
+                glass_steps_largest = std::max(glass_steps_largest, p.time - glass_time);
+                glass_time = p.time;
+                glass_done = p.finished != 0;
+                glass_frames = frame + 1;
+            }
+            if (!mud_done) {
+                hibi::Mud::Progress p = mud.step(mud_budget.per_frame);
+                mud_budget.frame(p.work);
+                mud_done = p.finished != 0;
+                mud_frames = frame + 1;
+            }
+            if (!skin_done) {
+                hibi::Skin::Progress p = skin.step(skin_budget.per_frame);
+                skin_budget.frame(p.work);
+                skin_done = p.finished != 0;
+                skin_frames = frame + 1;
+            }
+            // A few frames of the break as it happens, then the last one.
+            bool last = glass_done && mud_done && skin_done;
+            if ((frame % stride == 0 && written < max_written) || last) {
+                char name[32];
+                std::snprintf(name, sizeof name, "%02u", written);
+                if (!write_pgm(dir + "glass_time_" + name + ".pgm", glass.render_time(glass_render),
+                               glass_render.width, glass_render.height) ||
+                    !write_pgm(dir + "mud_time_" + name + ".pgm", mud.render_time(mud_render), mud_render.width,
+                               mud_render.height)) {
+                    std::fprintf(stderr, "cannot write frame %u into %s\n", written, dir.c_str());
+                    return 1;
+                }
+                written++;
+            }
+            frame++;
+        }
+        std::printf("frames: %u (glass done after %u, mud after %u, skin after %u)\n", frame, glass_frames,
+                    mud_frames, skin_frames);
+        std::printf("wrote %u frames of each break-time raster\n", written);
+        std::printf("mud: largest frame work %llu of budget %llu\n",
+                    static_cast<unsigned long long>(mud_budget.largest),
+                    static_cast<unsigned long long>(mud_budget.per_frame));
+        std::printf("skin: largest frame work %llu of budget %llu\n",
+                    static_cast<unsigned long long>(skin_budget.largest),
+                    static_cast<unsigned long long>(skin_budget.per_frame));
+        // hibi_glass_progress counts steps, not work: the budget bounds the work per call.
+        std::printf("glass: largest frame %u steps (budget %llu work units)\n", static_cast<unsigned>(glass_steps_largest),
+                    static_cast<unsigned long long>(glass_budget));
+
+        // The models do not depend on the budgets: the same objects, run in one go.
+        hibi::Glass whole_glass(glass_params);
+        whole_glass.run(UINT64_MAX);
+        hibi::Mud whole_mud(mud_params);
+        whole_mud.run(UINT64_MAX);
+        hibi::Skin whole_skin(skin_params);
+        whole_skin.run();
+        hibi::Scratch scratch = skin.scratch();
+        std::printf("budgeted = one go: glass %s, mud %s, skin %s\n",
+                    same(glass.render_time(glass_render), whole_glass.render_time(glass_render)) ? "yes" : "no",
+                    same(mud.render_time(mud_render), whole_mud.render_time(mud_render)) ? "yes" : "no",
+                    same(skin.render_height(scratch), whole_skin.render_height(scratch)) ? "yes" : "no");
+        return 0;
+    } catch (const hibi::Error &e) {
+        std::fprintf(stderr, "hibi: %s (status %u)\n", e.what(), static_cast<unsigned>(e.status()));
+        return 1;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}

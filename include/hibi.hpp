@@ -1,0 +1,542 @@
+/*
+ * hibi.hpp: a header-only C++17 wrapper over the C API in hibi.h. Nothing of its own: every
+ * member is one or a few C calls; the models, their checks and their messages are the C
+ * library's.
+ *
+ * The choices, once:
+ *
+ * - Errors are exceptions. A C call that returns a status other than HIBI_OK throws
+ *   hibi::Error (a std::runtime_error): status() is the hibi_status, what() is
+ *   hibi_status_string(status), and argument() is hibi_error_argument() read right after
+ *   the failing call (the pointer argument it refused, "" for other failures). Functions
+ *   that cannot fail in C (defaults, alignments) are noexcept. Allocation failures in the
+ *   wrapper's own std::vector helpers are std::bad_alloc, as usual.
+ * - Objects own their handle: hibi::Mud, hibi::Glass, hibi::Skin and hibi::Rng are move-only
+ *   and call hibi_*_destroy when they die (NULL after a move, which the C API ignores).
+ *   Library memory: the constructor (hibi_*_create). Caller memory: the static create_in
+ *   (hibi_*_memory_size / hibi_*_memory_align, then hibi_*_create_in); the memory stays the
+ *   caller's and must outlive the object (destroy frees nothing then). hibi::Buffer is an
+ *   aligned byte block for it and for scratch, if you have no allocator of your own.
+ * - Outputs come two ways: std::vector helpers that size themselves with the C count calls
+ *   (segments(), network(), cells(), fragments(), points(), outline(), render_*()), and the
+ *   raw pointer + length calls for buffers you already own (render(), render_into()).
+ * - Threads: as in hibi.h. const members only read the object and may run concurrently on
+ *   one object; step, impact, moves and destruction need it to themselves. The const calls
+ *   that need working memory (Glass::fragment_counts, Glass::fragments, Skin::render*) take
+ *   a Scratch: one per thread.
+ * - The C types are used as they are (hibi_mud_params, hibi_mud_segment, ...): a params
+ *   struct comes from hibi::Mud::default_params() or ::preset(name) and its fields are
+ *   changed in place, exactly as in C.
+ */
+#ifndef HIBI_HPP
+#define HIBI_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hibi.h"
+
+namespace hibi {
+
+/// A failed C call: its status, its message (what()) and the refused argument, if any.
+class Error : public std::runtime_error {
+public:
+    Error(hibi_status status, std::string argument)
+        : std::runtime_error(hibi_status_string(status)), status_(status), argument_(std::move(argument)) {}
+    /// The hibi_status the C call returned (never HIBI_OK).
+    hibi_status status() const noexcept { return status_; }
+    /// hibi_error_argument() after the call: the refused pointer argument's name, or "".
+    const std::string &argument() const noexcept { return argument_; }
+
+private:
+    hibi_status status_;
+    std::string argument_;
+};
+
+/// Throws hibi::Error unless `status` is HIBI_OK. Call it right after the C call.
+inline void check(hibi_status status) {
+    if (status != HIBI_OK) throw Error(status, hibi_error_argument());
+}
+
+/// The library's version, "MAJOR.MINOR.PATCH" (hibi_version()).
+inline const char *version() noexcept { return hibi_version(); }
+
+/// An owned block of `size` bytes aligned to `align` (a power of two): caller memory for
+/// create_in, or scratch.
+class Buffer {
+public:
+    Buffer() noexcept = default;
+    Buffer(std::size_t size, std::size_t align)
+        : data_(::operator new(size == 0 ? 1 : size, std::align_val_t(align))), size_(size), align_(align) {}
+    Buffer(Buffer &&other) noexcept
+        : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)), align_(other.align_) {}
+    Buffer &operator=(Buffer &&other) noexcept {
+        if (this != &other) {
+            release();
+            data_ = std::exchange(other.data_, nullptr);
+            size_ = std::exchange(other.size_, 0);
+            align_ = other.align_;
+        }
+        return *this;
+    }
+    Buffer(const Buffer &) = delete;
+    Buffer &operator=(const Buffer &) = delete;
+    ~Buffer() { release(); }
+
+    void *data() const noexcept { return data_; }
+    std::size_t size() const noexcept { return size_; }
+
+private:
+    void release() noexcept {
+        if (data_ != nullptr) ::operator delete(data_, std::align_val_t(align_));
+        data_ = nullptr;
+    }
+    void *data_ = nullptr;
+    std::size_t size_ = 0;
+    std::size_t align_ = 1;
+};
+
+/// Working memory of the const calls that need it (one per thread); from scratch().
+using Scratch = Buffer;
+
+namespace detail {
+struct MudDelete {
+    void operator()(hibi_mud *p) const noexcept { hibi_mud_destroy(p); }
+};
+struct GlassDelete {
+    void operator()(hibi_glass *p) const noexcept { hibi_glass_destroy(p); }
+};
+struct SkinDelete {
+    void operator()(hibi_skin *p) const noexcept { hibi_skin_destroy(p); }
+};
+struct RngDelete {
+    void operator()(hibi_rng *p) const noexcept { hibi_rng_destroy(p); }
+};
+}  // namespace detail
+
+/// A random stream (hibi_rng).
+class Rng {
+public:
+    Rng(std::uint64_t seed, std::uint64_t stream) {
+        hibi_rng *raw = nullptr;
+        check(hibi_rng_create(seed, stream, &raw));
+        handle_.reset(raw);
+    }
+    static std::size_t memory_size() noexcept { return hibi_rng_memory_size(); }
+    static std::size_t memory_align() noexcept { return hibi_rng_memory_align(); }
+    static Rng create_in(std::uint64_t seed, std::uint64_t stream, void *memory, std::size_t len) {
+        hibi_rng *raw = nullptr;
+        check(hibi_rng_create_in(seed, stream, memory, len, &raw));
+        return Rng(raw);
+    }
+    std::uint32_t next_u32() {
+        std::uint32_t value = 0;
+        check(hibi_rng_next_u32(handle_.get(), &value));
+        return value;
+    }
+    std::vector<float> uniform(std::size_t n) {
+        std::vector<float> values(n);
+        check(hibi_rng_uniform(handle_.get(), values.data(), values.size()));
+        return values;
+    }
+    std::vector<float> normal(std::size_t n) {
+        std::vector<float> values(n);
+        check(hibi_rng_normal(handle_.get(), values.data(), values.size()));
+        return values;
+    }
+    std::uint32_t poisson(double mean) {
+        std::uint32_t value = 0;
+        check(hibi_rng_poisson(handle_.get(), mean, &value));
+        return value;
+    }
+    float rand(float x, float z, std::uint32_t spread) {
+        float value = 0.0f;
+        check(hibi_rng_rand(handle_.get(), x, z, spread, &value));
+        return value;
+    }
+    hibi_rng *get() const noexcept { return handle_.get(); }
+
+private:
+    explicit Rng(hibi_rng *raw) noexcept : handle_(raw) {}
+    std::unique_ptr<hibi_rng, detail::RngDelete> handle_;
+};
+
+/// Model A, drying mud (hibi_mud).
+class Mud {
+public:
+    using Params = hibi_mud_params;
+    using Progress = hibi_mud_progress;
+    using RenderParams = hibi_mud_render_params;
+
+    /// The crack network as a plane graph (hibi_mud_network).
+    struct Network {
+        std::vector<hibi_mud_network_vertex> vertices;
+        std::vector<hibi_mud_network_edge> edges;
+        std::vector<hibi_mud_network_point> points;
+    };
+    /// The cells as polygons (hibi_mud_cells), and the boundaries that wrap (not written).
+    struct Cells {
+        std::vector<hibi_mud_cell_ring> rings;
+        std::vector<hibi_vec2> points;
+        std::size_t wrapping = 0;
+    };
+
+    static Params default_params() noexcept { return hibi_mud_params_default(); }
+    static Params preset(const char *name) {
+        Params params{};
+        check(hibi_mud_params_preset(name, &params));
+        return params;
+    }
+    static RenderParams default_render() noexcept { return hibi_mud_render_params_default(); }
+    static std::size_t memory_size(const Params &params) {
+        std::size_t size = 0;
+        check(hibi_mud_memory_size(&params, &size));
+        return size;
+    }
+    static std::size_t memory_align() noexcept { return hibi_mud_memory_align(); }
+
+    /// A run in library memory.
+    explicit Mud(const Params &params) {
+        hibi_mud *raw = nullptr;
+        check(hibi_mud_create(&params, &raw));
+        handle_.reset(raw);
+    }
+    /// A run in `memory` (memory_size(params) bytes aligned to memory_align()), which stays
+    /// the caller's and must outlive the run.
+    static Mud create_in(const Params &params, void *memory, std::size_t len) {
+        hibi_mud *raw = nullptr;
+        check(hibi_mud_create_in(&params, memory, len, &raw));
+        return Mud(raw);
+    }
+
+    /// Advances by at most `budget` units of work (springs visited).
+    Progress step(std::uint64_t budget) {
+        Progress progress{};
+        check(hibi_mud_step(handle_.get(), budget, &progress));
+        return progress;
+    }
+    /// Steps until finished, `budget` at a time; returns the last progress.
+    Progress run(std::uint64_t budget = 1000000) {
+        Progress progress = step(budget);
+        while (!progress.finished) progress = step(budget);
+        return progress;
+    }
+
+    std::vector<hibi_mud_segment> segments() const {
+        std::size_t count = 0, written = 0;
+        check(hibi_mud_segment_count(handle_.get(), &count));
+        std::vector<hibi_mud_segment> out(count);
+        check(hibi_mud_segments(handle_.get(), out.data(), out.size(), &written));
+        out.resize(written);
+        return out;
+    }
+    /// Crack density, cells, junctions and dead ends of the traced network.
+    hibi_mud_crack_statistics statistics() const {
+        hibi_mud_crack_statistics stats{};
+        check(hibi_mud_statistics(handle_.get(), &stats));
+        return stats;
+    }
+    Network network() const {
+        std::size_t v = 0, e = 0, p = 0;
+        check(hibi_mud_network_counts(handle_.get(), &v, &e, &p));
+        Network net;
+        net.vertices.resize(v);
+        net.edges.resize(e);
+        net.points.resize(p);
+        check(hibi_mud_network(handle_.get(), net.vertices.data(), v, net.edges.data(), e, net.points.data(), p, &v,
+                               &e, &p));
+        net.vertices.resize(v);
+        net.edges.resize(e);
+        net.points.resize(p);
+        return net;
+    }
+    Cells cells() const {
+        std::size_t r = 0, p = 0;
+        Cells out;
+        check(hibi_mud_cell_counts(handle_.get(), &r, &p, &out.wrapping));
+        out.rings.resize(r);
+        out.points.resize(p);
+        check(hibi_mud_cells(handle_.get(), out.rings.data(), r, out.points.data(), p, &r, &p));
+        out.rings.resize(r);
+        out.points.resize(p);
+        return out;
+    }
+
+    /// Draws `layer` into caller pixels (`len` values of the layer's type).
+    void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
+        check(hibi_mud_render(handle_.get(), &render, layer, pixels, len));
+    }
+    std::vector<std::uint8_t> render_mask(const RenderParams &params) const {
+        return draw<std::uint8_t>(params, HIBI_MUD_LAYER_MASK);
+    }
+    std::vector<float> render_height(const RenderParams &params) const {
+        return draw<float>(params, HIBI_MUD_LAYER_HEIGHT);
+    }
+    std::vector<float> render_time(const RenderParams &params) const {
+        return draw<float>(params, HIBI_MUD_LAYER_TIME);
+    }
+
+    hibi_mud *get() const noexcept { return handle_.get(); }
+
+private:
+    explicit Mud(hibi_mud *raw) noexcept : handle_(raw) {}
+    template <class T>
+    std::vector<T> draw(const RenderParams &params, std::uint32_t layer) const {
+        std::vector<T> pixels(static_cast<std::size_t>(params.width) * params.height);
+        render(params, layer, pixels.data(), pixels.size());
+        return pixels;
+    }
+    std::unique_ptr<hibi_mud, detail::MudDelete> handle_;
+};
+
+/// Model B, a glass plate hit by a ball (hibi_glass).
+class Glass {
+public:
+    using Params = hibi_glass_params;
+    using Progress = hibi_glass_progress;
+    using RenderParams = hibi_glass_render_params;
+
+    /// The fragments as polygons (hibi_glass_fragments).
+    struct Fragments {
+        std::vector<hibi_glass_fragment_ring> rings;
+        std::vector<hibi_vec2> points;
+    };
+
+    static Params default_params() noexcept { return hibi_glass_params_default(); }
+    static Params preset(const char *name) {
+        Params params{};
+        check(hibi_glass_params_preset(name, &params));
+        return params;
+    }
+    static RenderParams default_render() noexcept { return hibi_glass_render_params_default(); }
+    static std::size_t memory_size(const Params &params) {
+        std::size_t size = 0;
+        check(hibi_glass_memory_size(&params, &size));
+        return size;
+    }
+    static std::size_t memory_align() noexcept { return hibi_glass_memory_align(); }
+
+    /// A plate in library memory, with its first impact at params.impact.
+    explicit Glass(const Params &params) {
+        hibi_glass *raw = nullptr;
+        check(hibi_glass_create(&params, &raw));
+        handle_.reset(raw);
+    }
+    /// A plate in caller memory (see Mud::create_in).
+    static Glass create_in(const Params &params, void *memory, std::size_t len) {
+        hibi_glass *raw = nullptr;
+        check(hibi_glass_create_in(&params, memory, len, &raw));
+        return Glass(raw);
+    }
+
+    hibi_glass_counts impact(float x, float y) {
+        hibi_glass_counts counts{};
+        check(hibi_glass_impact(handle_.get(), x, y, &counts));
+        return counts;
+    }
+    /// Advances growth by about `budget` units of work.
+    Progress step(std::uint64_t budget) {
+        Progress progress{};
+        check(hibi_glass_step(handle_.get(), budget, &progress));
+        return progress;
+    }
+    Progress run(std::uint64_t budget = 1000) {
+        Progress progress = step(budget);
+        while (!progress.finished) progress = step(budget);
+        return progress;
+    }
+
+    std::size_t crack_count() const {
+        std::size_t count = 0;
+        check(hibi_glass_crack_count(handle_.get(), &count));
+        return count;
+    }
+    hibi_glass_crack crack(std::size_t index) const {
+        hibi_glass_crack info{};
+        check(hibi_glass_crack_info(handle_.get(), index, &info));
+        return info;
+    }
+    std::vector<hibi_glass_point> points(std::size_t index) const {
+        std::vector<hibi_glass_point> out(crack(index).points);
+        std::size_t written = 0;
+        check(hibi_glass_points(handle_.get(), index, out.data(), out.size(), &written));
+        out.resize(written);
+        return out;
+    }
+
+    std::size_t scratch_size() const {
+        std::size_t size = 0;
+        check(hibi_glass_scratch_size(handle_.get(), &size));
+        return size;
+    }
+    /// Scratch for fragment_counts and fragments: one per thread.
+    Scratch scratch() const { return Scratch(scratch_size(), memory_align()); }
+    std::pair<std::size_t, std::size_t> fragment_counts(Scratch &scratch) const {
+        std::size_t rings = 0, points = 0;
+        check(hibi_glass_fragment_counts(handle_.get(), scratch.data(), scratch.size(), &rings, &points));
+        return {rings, points};
+    }
+    Fragments fragments(Scratch &scratch) const {
+        auto counts = fragment_counts(scratch);
+        Fragments out;
+        out.rings.resize(counts.first);
+        out.points.resize(counts.second);
+        std::size_t r = 0, p = 0;
+        check(hibi_glass_fragments(handle_.get(), scratch.data(), scratch.size(), out.rings.data(), out.rings.size(),
+                                   out.points.data(), out.points.size(), &r, &p));
+        out.rings.resize(r);
+        out.points.resize(p);
+        return out;
+    }
+
+    void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
+        check(hibi_glass_render(handle_.get(), &render, layer, pixels, len));
+    }
+    std::vector<std::uint8_t> render_mask(const RenderParams &params) const {
+        return draw<std::uint8_t>(params, HIBI_GLASS_LAYER_MASK);
+    }
+    /// The break-time raster.
+    std::vector<float> render_time(const RenderParams &params) const {
+        return draw<float>(params, HIBI_GLASS_LAYER_TIME);
+    }
+
+    hibi_glass *get() const noexcept { return handle_.get(); }
+
+private:
+    explicit Glass(hibi_glass *raw) noexcept : handle_(raw) {}
+    template <class T>
+    std::vector<T> draw(const RenderParams &params, std::uint32_t layer) const {
+        std::vector<T> pixels(static_cast<std::size_t>(params.width) * params.height);
+        render(params, layer, pixels.data(), pixels.size());
+        return pixels;
+    }
+    std::unique_ptr<hibi_glass, detail::GlassDelete> handle_;
+};
+
+/// Model C, skin from hierarchical Voronoi cells (hibi_skin).
+class Skin {
+public:
+    using Params = hibi_skin_params;
+    using Progress = hibi_skin_progress;
+    using ShadeParams = hibi_skin_shade_params;
+
+    static Params default_params() noexcept { return hibi_skin_params_default(); }
+    static Params preset(const char *name) {
+        Params params{};
+        check(hibi_skin_params_preset(name, &params));
+        return params;
+    }
+    static ShadeParams default_shade() noexcept { return hibi_skin_shade_params_default(); }
+    static std::size_t memory_size(const Params &params) {
+        std::size_t size = 0;
+        check(hibi_skin_memory_size(&params, &size));
+        return size;
+    }
+    static std::size_t memory_align() noexcept { return hibi_skin_memory_align(); }
+
+    /// A skin in library memory.
+    explicit Skin(const Params &params) : width_(params.width), height_(params.height) {
+        hibi_skin *raw = nullptr;
+        check(hibi_skin_create(&params, &raw));
+        handle_.reset(raw);
+    }
+    /// A skin in caller memory (see Mud::create_in).
+    static Skin create_in(const Params &params, void *memory, std::size_t len) {
+        hibi_skin *raw = nullptr;
+        check(hibi_skin_create_in(&params, memory, len, &raw));
+        return Skin(raw, params);
+    }
+
+    /// Advances the build by about `budget` units of work (outline vertices).
+    Progress step(std::uint64_t budget) {
+        Progress progress{};
+        check(hibi_skin_step(handle_.get(), budget, &progress));
+        return progress;
+    }
+    Progress run(std::uint64_t budget = UINT64_MAX) {
+        Progress progress = step(budget);
+        while (!progress.finished) progress = step(budget);
+        return progress;
+    }
+
+    std::uint32_t width() const noexcept { return width_; }
+    std::uint32_t height() const noexcept { return height_; }
+    std::size_t pixels() const noexcept { return static_cast<std::size_t>(width_) * height_; }
+
+    std::size_t cell_count() const {
+        std::size_t count = 0;
+        check(hibi_skin_cell_count(handle_.get(), &count));
+        return count;
+    }
+    hibi_skin_cell cell(std::size_t index) const {
+        hibi_skin_cell info{};
+        check(hibi_skin_cell_info(handle_.get(), index, &info));
+        return info;
+    }
+    /// Cell `index`'s outline, x, y pairs in pixels.
+    std::vector<double> outline(std::size_t index) const {
+        std::vector<double> xy(2 * static_cast<std::size_t>(cell(index).vertex_count));
+        std::size_t written = 0;
+        check(hibi_skin_outline(handle_.get(), index, xy.data(), xy.size(), &written));
+        xy.resize(written);
+        return xy;
+    }
+
+    std::size_t scratch_size() const {
+        std::size_t size = 0;
+        check(hibi_skin_scratch_size(handle_.get(), &size));
+        return size;
+    }
+    /// Scratch for the renders: one per thread.
+    Scratch scratch() const { return Scratch(scratch_size(), memory_align()); }
+    /// hibi_skin_render into caller maps (NULL and 0 for a map you do not want).
+    void render_into(Scratch &scratch, float *height, std::size_t height_len, float *normal, std::size_t normal_len,
+                     std::uint32_t *cells, std::size_t cells_len, std::uint32_t cell_level) const {
+        check(hibi_skin_render(handle_.get(), scratch.data(), scratch.size(), height, height_len, normal, normal_len,
+                               cells, cells_len, cell_level));
+    }
+    std::vector<float> render_height(Scratch &scratch) const {
+        std::vector<float> out(pixels());
+        render_into(scratch, out.data(), out.size(), nullptr, 0, nullptr, 0, 0);
+        return out;
+    }
+    /// Three floats per pixel.
+    std::vector<float> render_normal(Scratch &scratch) const {
+        std::vector<float> out(3 * pixels());
+        render_into(scratch, nullptr, 0, out.data(), out.size(), nullptr, 0, 0);
+        return out;
+    }
+    /// Per pixel the index of its cell at `level`, HIBI_SKIN_NO_CELL where none is.
+    std::vector<std::uint32_t> render_cells(Scratch &scratch, std::uint32_t level) const {
+        std::vector<std::uint32_t> out(pixels());
+        render_into(scratch, nullptr, 0, nullptr, 0, out.data(), out.size(), level);
+        return out;
+    }
+    /// 8-bit sRGB preview of a height and a normal map (three bytes per pixel).
+    static std::vector<std::uint8_t> shade(const std::vector<float> &height, const std::vector<float> &normal,
+                                           const ShadeParams &params) {
+        std::vector<std::uint8_t> rgb(3 * height.size());
+        check(hibi_skin_shade(height.data(), height.size(), normal.data(), normal.size(), &params, rgb.data(),
+                              rgb.size()));
+        return rgb;
+    }
+
+    hibi_skin *get() const noexcept { return handle_.get(); }
+
+private:
+    Skin(hibi_skin *raw, const Params &params) noexcept
+        : handle_(raw), width_(params.width), height_(params.height) {}
+    std::unique_ptr<hibi_skin, detail::SkinDelete> handle_;
+    std::uint32_t width_;
+    std::uint32_t height_;
+};
+
+}  // namespace hibi
+
+#endif /* HIBI_HPP */
