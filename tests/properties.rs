@@ -182,8 +182,8 @@ fn mud_outputs_are_finite(mud: &Mud) {
         assert_eq!(status, HIBI_OK);
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(ring_points.iter().all(|x| finite(&[x.x, x.y])));
-        let mut stats = hibi_mud_statistics::default();
-        assert_eq!(hibi_mud_measure(mud.0, &mut stats), HIBI_OK);
+        let mut stats = hibi_mud_crack_statistics::default();
+        assert_eq!(hibi_mud_statistics(mud.0, &mut stats), HIBI_OK);
         let s = stats;
         assert!(finite(&[s.crack_density, s.mean_cell_area, s.cell_area_spread, s.mean_widest_junction_angle]));
         let mut render = hibi_mud_render_params_default();

@@ -137,10 +137,10 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
 }
 
 fn measure(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
-    let mut s = hibi_mud_statistics { cells: u32::MAX, ..Default::default() };
+    let mut s = hibi_mud_crack_statistics { cells: u32::MAX, ..Default::default() };
     let o = out(u, &mut s)?;
     // SAFETY: a live run; `o` NULL or writable.
-    let status = unsafe { hibi_mud_measure(mud, o) };
+    let status = unsafe { hibi_mud_statistics(mud, o) };
     if check(status) {
         assert!(
             finite(&[s.crack_density, s.mean_cell_area, s.cell_area_spread, s.mean_widest_junction_angle]),
