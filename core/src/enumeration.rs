@@ -14,6 +14,7 @@
 ///         /// Free edges.
 ///         Open = 0,
 ///     }
+///     default Open
 /// }
 /// ```
 macro_rules! enumeration {
@@ -22,6 +23,7 @@ macro_rules! enumeration {
         pub enum $name:ident {
             $( $(#[$variant_meta:meta])* $variant:ident = $number:literal, )+
         }
+        $(default $default:ident)?
     ) => {
         $(#[$meta])*
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -42,6 +44,14 @@ macro_rules! enumeration {
                 }
             }
         }
+
+        $(
+            impl Default for $name {
+                fn default() -> Self {
+                    $name::$default
+                }
+            }
+        )?
     };
 }
 pub(crate) use enumeration;

@@ -15,49 +15,35 @@ use crate::enumeration::enumeration;
 use rand_core::{Rng as _, SeedableRng};
 use rand_xoshiro::Xoshiro128PlusPlus;
 
-/// The purposes that draw random numbers, each with its own independent stream.
-///
-/// The discriminants are part of the determinism contract: never renumber a variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Stream {
-    /// Model A: per-spring break stretch κ_i = κ̄ + σ/√A_i·N(0,1).
-    BreakStretch = 1,
-    /// Model A: node jitter of the irregular lattice.
-    LatticeJitter = 2,
-    /// Model B: the number of radial cracks, M = Poisson_Rand(M_ave).
-    RadialCount = 16,
-    /// Model B: crack speeds V1, V2, V3 (`Rand`).
-    CrackSpeed = 17,
-    /// Model B: ring radii d_i = Rand(d_ave).
-    RingRadius = 18,
-    /// Model B: the direction of the random force F3.
-    RandomForce = 19,
-    /// Model B: the rotation of the star of radial cracks and of the ring start points.
-    ImpactRotation = 20,
-    /// Model C: site positions (uniform random layout).
-    SiteLayout = 32,
-    /// Model C: site jitter on lattice layouts.
-    SiteJitter = 33,
-    /// Model C: midpoint displacement of cell edges (keyed further by the edge).
-    EdgePerturbation = 34,
+enumeration! {
+    /// The purposes that draw random numbers, each with its own independent stream.
+    ///
+    /// The discriminants are part of the determinism contract: never renumber a variant.
+    pub enum Stream {
+        /// Model A: per-spring break stretch κ_i = κ̄ + σ/√A_i·N(0,1).
+        BreakStretch = 1,
+        /// Model A: node jitter of the irregular lattice.
+        LatticeJitter = 2,
+        /// Model B: the number of radial cracks, M = Poisson_Rand(M_ave).
+        RadialCount = 16,
+        /// Model B: crack speeds V1, V2, V3 (`Rand`).
+        CrackSpeed = 17,
+        /// Model B: ring radii d_i = Rand(d_ave).
+        RingRadius = 18,
+        /// Model B: the direction of the random force F3.
+        RandomForce = 19,
+        /// Model B: the rotation of the star of radial cracks and of the ring start points.
+        ImpactRotation = 20,
+        /// Model C: site positions (uniform random layout).
+        SiteLayout = 32,
+        /// Model C: site jitter on lattice layouts.
+        SiteJitter = 33,
+        /// Model C: midpoint displacement of cell edges (keyed further by the edge).
+        EdgePerturbation = 34,
+    }
 }
 
 impl Stream {
-    /// Every stream, in discriminant order.
-    pub const ALL: [Stream; 10] = [
-        Stream::BreakStretch,
-        Stream::LatticeJitter,
-        Stream::RadialCount,
-        Stream::CrackSpeed,
-        Stream::RingRadius,
-        Stream::RandomForce,
-        Stream::ImpactRotation,
-        Stream::SiteLayout,
-        Stream::SiteJitter,
-        Stream::EdgePerturbation,
-    ];
-
     /// The stream's key, as [`Rng::from_key`] takes it.
     pub const fn key(self) -> u64 {
         self as u64

@@ -75,6 +75,18 @@ enumeration!(
     hibi_core::skin::SiteLayout,
 );
 
+/// The C constants of a core enumeration's variants (`#define`s in the header), each written
+/// once with its variant and number; the number is checked against the variant's when `hibi`
+/// compiles.
+macro_rules! constants {
+    ($( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {$(
+        $(#[$doc])*
+        pub const $name: u32 = $number;
+        const _: () = assert!($name == $variant as u32);
+    )+};
+}
+pub(crate) use constants;
+
 /// [`Field`] for a C struct whose fields are the core struct's, listed once. With a cookie,
 /// the C struct also carries the marker its `_default` function sets: `from_core` sets it;
 /// check it before `to_core`.

@@ -20,8 +20,8 @@ use hibi_core::glass::{
     GlassParams, GlassProgress, GlassRender, ImpactCounts, preset,
 };
 
-use crate::fields::{Field, convert};
-use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out};
+use crate::fields::{Field, constants, convert};
+use crate::guard::{Optional, Outcome, Outs, Polygons, buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
@@ -34,36 +34,26 @@ pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
 /// no crack is.
 pub const HIBI_GLASS_LAYER_TIME: u32 = 1;
 
-/// `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
-pub const HIBI_GLASS_KIND_LARGE: u32 = 0;
-/// `hibi_glass_crack.kind`: another radial crack.
-pub const HIBI_GLASS_KIND_RADIAL: u32 = 1;
-/// `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
-pub const HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE: u32 = 2;
-/// `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
-pub const HIBI_GLASS_KIND_RING_CLOCKWISE: u32 = 3;
-/// `hibi_glass_crack.end`: it still grows.
-pub const HIBI_GLASS_END_GROWING: u32 = 0;
-/// `hibi_glass_crack.end`: its tip reached the plate's edge.
-pub const HIBI_GLASS_END_EDGE: u32 = 1;
-/// `hibi_glass_crack.end`: its tip reached another crack.
-pub const HIBI_GLASS_END_CRACK: u32 = 2;
-/// `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
-pub const HIBI_GLASS_END_GENERATION: u32 = 3;
-/// `hibi_glass_crack.end`: other cracks closed a region around its tip.
-pub const HIBI_GLASS_END_ENCLOSED: u32 = 4;
-
-const _: () = assert!(
-    HIBI_GLASS_KIND_LARGE == CrackKind::Large as u32
-        && HIBI_GLASS_KIND_RADIAL == CrackKind::Radial as u32
-        && HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE == CrackKind::RingCounterClockwise as u32
-        && HIBI_GLASS_KIND_RING_CLOCKWISE == CrackKind::RingClockwise as u32
-        && HIBI_GLASS_END_GROWING == CrackEnd::Growing as u32
-        && HIBI_GLASS_END_EDGE == CrackEnd::Edge as u32
-        && HIBI_GLASS_END_CRACK == CrackEnd::Crack as u32
-        && HIBI_GLASS_END_GENERATION == CrackEnd::Generation as u32
-        && HIBI_GLASS_END_ENCLOSED == CrackEnd::Enclosed as u32
-);
+constants! {
+    /// `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
+    HIBI_GLASS_KIND_LARGE: CrackKind::Large = 0;
+    /// `hibi_glass_crack.kind`: another radial crack.
+    HIBI_GLASS_KIND_RADIAL: CrackKind::Radial = 1;
+    /// `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
+    HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE: CrackKind::RingCounterClockwise = 2;
+    /// `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
+    HIBI_GLASS_KIND_RING_CLOCKWISE: CrackKind::RingClockwise = 3;
+    /// `hibi_glass_crack.end`: it still grows.
+    HIBI_GLASS_END_GROWING: CrackEnd::Growing = 0;
+    /// `hibi_glass_crack.end`: its tip reached the plate's edge.
+    HIBI_GLASS_END_EDGE: CrackEnd::Edge = 1;
+    /// `hibi_glass_crack.end`: its tip reached another crack.
+    HIBI_GLASS_END_CRACK: CrackEnd::Crack = 2;
+    /// `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
+    HIBI_GLASS_END_GENERATION: CrackEnd::Generation = 3;
+    /// `hibi_glass_crack.end`: other cracks closed a region around its tip.
+    HIBI_GLASS_END_ENCLOSED: CrackEnd::Enclosed = 4;
+}
 
 /// Marks a params struct that came from `hibi_glass_params_default` ("GLS1").
 const PARAMS_COOKIE: u32 = 0x474C_5331;
@@ -236,9 +226,8 @@ impl Object for hibi_glass {
     const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_GLASS_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_glass_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params, c"params")?;
-        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-        let params = from_c(unsafe { &*params })?;
+        // SAFETY: the caller's contract.
+        let params = from_c(unsafe { object_ref(params, c"params") }?)?;
         let memory = params.memory().map_err(glass_param_status)?;
         Ok((params, memory))
     }
@@ -285,10 +274,10 @@ pub unsafe extern "C" fn hibi_glass_impact(
     guard(|| {
         // SAFETY: the caller's contract.
         let glass = unsafe { object(glass, c"glass") }?;
-        let out = optional(counts, c"counts")?;
+        let out = Optional::check(counts, c"counts")?;
         let c = glass.glass.impact([x, y]).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        out.map_or(Ok(()), |out| unsafe { out.write([hibi_glass_counts::from_core(&c)]) })
+        unsafe { out.write(hibi_glass_counts::from_core(&c)) }
     })
 }
 
@@ -310,13 +299,13 @@ pub unsafe extern "C" fn hibi_glass_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let glass = unsafe { object(glass, c"glass") }?;
-        let out = optional(progress, c"progress")?;
+        let out = Optional::check(progress, c"progress")?;
         if glass.glass.step(budget).capacity_reached {
             return Err(HIBI_ERROR_GLASS_CAPACITY);
         }
         let p = hibi_glass_progress::from_core(&glass.glass.progress());
         // SAFETY: checked; the caller's contract.
-        out.map_or(Ok(()), |out| unsafe { out.write([p]) })
+        unsafe { out.write(p) }
     })
 }
 
@@ -487,17 +476,13 @@ pub unsafe extern "C" fn hibi_glass_fragments(
     points_written: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        let outs = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
-        // SAFETY: the caller's contract; hibi_glass_fragment_ring is laid out as FragmentRing
-        // and hibi_vec2 as [f32; 2] (asserted below).
-        let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
-        // SAFETY: as above.
-        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
-        let (r, p) = glass.fragments(scratch, ring_out, point_out).map_err(glass_status)?;
+        // SAFETY: the caller's contract.
+        let out = unsafe { Polygons::check((rings, rings_len), (points, points_len), rings_written, points_written) }?;
+        let (r, p) = glass.fragments(scratch, out.rings, out.points).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { outs.write([r, p]) }
+        unsafe { out.written(r, p) }
     })
 }
 
@@ -525,9 +510,8 @@ pub unsafe extern "C" fn hibi_glass_render(
     guard(|| {
         // SAFETY: the caller's contract.
         let glass = unsafe { object_ref(glass, c"glass") }?;
-        check_pointer(render, c"render")?;
-        // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let render: GlassRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
+        // SAFETY: the caller's contract.
+        let render: GlassRender = unsafe { object_ref(render, c"render") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (both): the caller's contract on `pixels`.
         let layers = match layer {
             HIBI_GLASS_LAYER_MASK => {

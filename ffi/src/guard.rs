@@ -8,6 +8,7 @@
 //! hibi reports. The pointer helpers turn NULL, misaligned and overflowing arguments into
 //! statuses before anything is touched.
 
+use crate::glass::hibi_vec2;
 use core::cell::Cell;
 use core::ffi::{CStr, c_char};
 use core::mem::{align_of, size_of};
@@ -132,8 +133,9 @@ pub(crate) unsafe fn object<'a, T>(ptr: *mut T, name: &'static CStr) -> Result<&
     Ok(unsafe { &mut *ptr })
 }
 
-/// The object behind a `const` handle passed in by C, for the read-only functions: a shared
-/// reference, so that threads may call them on one object at once.
+/// What a `const` pointer passed in by C points to (an object's handle, for the read-only
+/// functions, or a struct of the caller's): a shared reference, so that threads may call the
+/// read-only functions on one object at once.
 ///
 /// # Safety
 /// A non-null, aligned `ptr` must point to a live `T` that nothing mutates during the call.
@@ -201,9 +203,23 @@ impl<T, const N: usize> Outs<T, N> {
     }
 }
 
-/// An optional out-parameter: NULL (skipped) or checked as a required one.
-pub(crate) fn optional<T>(ptr: *mut T, name: &'static CStr) -> Result<Option<Outs<T, 1>>, hibi_status> {
-    if ptr.is_null() { Ok(None) } else { Outs::check([(ptr, name)]).map(Some) }
+/// An optional out-parameter: NULL (not written) or checked as a required one.
+pub(crate) struct Optional<T>(Option<Outs<T, 1>>);
+
+impl<T> Optional<T> {
+    /// Checks a non-null `ptr` as [`Outs::check`] does.
+    pub(crate) fn check(ptr: *mut T, name: &'static CStr) -> Result<Self, hibi_status> {
+        Ok(Optional(if ptr.is_null() { None } else { Some(Outs::check([(ptr, name)])?) }))
+    }
+
+    /// Writes `value` unless the pointer was NULL.
+    ///
+    /// # Safety
+    /// As [`Outs::write`].
+    pub(crate) unsafe fn write(self, value: T) -> Result<(), hibi_status> {
+        // SAFETY: the caller's contract.
+        self.0.map_or(Ok(()), |out| unsafe { out.write([value]) })
+    }
 }
 
 /// Checks caller buffer `name` of `len` elements of `T` at a non-empty `ptr`: non-null,
@@ -228,6 +244,43 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr)
     check_buffer(ptr, len, name)?;
     // SAFETY: non-null, aligned, size fits isize (checked); validity is the caller's contract.
     Ok(unsafe { core::slice::from_raw_parts_mut(ptr, len) })
+}
+
+/// The outputs of a polygon query (mud's cells, glass's fragments): a record per ring and
+/// their points, each buffer with the count written to it.
+pub(crate) struct Polygons<'a, R> {
+    pub(crate) rings: &'a mut [R],
+    pub(crate) points: &'a mut [[f32; 2]],
+    written: Outs<usize, 2>,
+}
+
+impl<'a, R> Polygons<'a, R> {
+    /// Checks the buffers `rings[0..rings_len]` and `points[0..points_len]` and the counts'
+    /// out-parameters `rings_written` and `points_written` (required).
+    ///
+    /// # Safety
+    /// As [`buffer`] for both buffers (not overlapping); the counts as [`Outs::write`].
+    pub(crate) unsafe fn check(
+        rings: (*mut R, usize),
+        points: (*mut hibi_vec2, usize),
+        rings_written: *mut usize,
+        points_written: *mut usize,
+    ) -> Result<Self, hibi_status> {
+        let written = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
+        // SAFETY: the caller's contract; hibi_vec2 is laid out as [f32; 2] (asserted in glass).
+        let (rings, points) =
+            unsafe { (buffer(rings.0, rings.1, c"rings")?, buffer(points.0.cast::<[f32; 2]>(), points.1, c"points")?) };
+        Ok(Polygons { rings, points, written })
+    }
+
+    /// Writes the counts of what the query wrote.
+    ///
+    /// # Safety
+    /// As [`Outs::write`].
+    pub(crate) unsafe fn written(self, rings: usize, points: usize) -> Result<(), hibi_status> {
+        // SAFETY: the caller's contract.
+        unsafe { self.written.write([rings, points]) }
+    }
 }
 
 /// The read-only caller buffer `ptr[0..len]`; NULL is accepted for an empty buffer.

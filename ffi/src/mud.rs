@@ -26,53 +26,44 @@ use hibi_core::mud::{
     MudProgress, MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
 };
 
-use crate::fields::{Field, convert};
+use crate::fields::{Field, constants, convert};
 use crate::glass::hibi_vec2;
-use crate::guard::{Outs, buffer, check_pointer, guard, object, object_ref, optional, write_out};
+use crate::guard::{Optional, Outs, Polygons, buffer, check_pointer, guard, object, object_ref, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
     raster_status,
 };
 
-/// Square elements: 4 neighbours, axis-aligned short cracks.
-pub const HIBI_MUD_SQUARE: u32 = 0;
-/// Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
-pub const HIBI_MUD_HEXAGONAL: u32 = 1;
-/// Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
-/// its own length and face; cracks run in any direction. Periodic lattices need columns >= 8
-/// and an even rows >= 8.
-pub const HIBI_MUD_IRREGULAR: u32 = 2;
-/// Free edges.
-pub const HIBI_MUD_OPEN: u32 = 0;
-/// The lattice wraps around: tileable patterns.
-pub const HIBI_MUD_PERIODIC: u32 = 1;
-/// The paper's explicit loop (reference; slow).
-pub const HIBI_MUD_EXPLICIT: u32 = 0;
-/// Quasi-static equilibrium with event-driven breaking (fast; the default).
-pub const HIBI_MUD_QUASI_STATIC: u32 = 1;
-/// The surface shrinks (drying mud).
-pub const HIBI_MUD_SHRINK: u32 = 0;
-/// The deep layer grows (tree bark).
-pub const HIBI_MUD_GROWTH: u32 = 1;
+constants! {
+    /// Square elements: 4 neighbours, axis-aligned short cracks.
+    HIBI_MUD_SQUARE: Topology::Square = 0;
+    /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
+    HIBI_MUD_HEXAGONAL: Topology::Hexagonal = 1;
+    /// Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
+    /// its own length and face; cracks run in any direction. Periodic lattices need columns >= 8
+    /// and an even rows >= 8.
+    HIBI_MUD_IRREGULAR: Topology::Irregular = 2;
+    /// Free edges.
+    HIBI_MUD_OPEN: Boundary::Open = 0;
+    /// The lattice wraps around: tileable patterns.
+    HIBI_MUD_PERIODIC: Boundary::Periodic = 1;
+    /// The paper's explicit loop (reference; slow).
+    HIBI_MUD_EXPLICIT: Solver::Explicit = 0;
+    /// Quasi-static equilibrium with event-driven breaking (fast; the default).
+    HIBI_MUD_QUASI_STATIC: Solver::QuasiStatic = 1;
+    /// The surface shrinks (drying mud).
+    HIBI_MUD_SHRINK: Drive::Shrink = 0;
+    /// The deep layer grows (tree bark).
+    HIBI_MUD_GROWTH: Drive::Growth = 1;
+}
+
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
 pub const HIBI_MUD_LAYER_MASK: u32 = 0;
 /// Render layer: height, `float` per pixel, 1 on the surface, lower in the cracks.
 pub const HIBI_MUD_LAYER_HEIGHT: u32 = 1;
 /// Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
 pub const HIBI_MUD_LAYER_TIME: u32 = 2;
-
-const _: () = assert!(
-    HIBI_MUD_SQUARE == Topology::Square as u32
-        && HIBI_MUD_HEXAGONAL == Topology::Hexagonal as u32
-        && HIBI_MUD_IRREGULAR == Topology::Irregular as u32
-        && HIBI_MUD_OPEN == Boundary::Open as u32
-        && HIBI_MUD_PERIODIC == Boundary::Periodic as u32
-        && HIBI_MUD_EXPLICIT == Solver::Explicit as u32
-        && HIBI_MUD_QUASI_STATIC == Solver::QuasiStatic as u32
-        && HIBI_MUD_SHRINK == Drive::Shrink as u32
-        && HIBI_MUD_GROWTH == Drive::Growth as u32
-);
 
 /// Marks a params struct that came from `hibi_mud_params_default` ("MUD1").
 const PARAMS_COOKIE: u32 = 0x4D55_4431;
@@ -271,9 +262,8 @@ impl Object for hibi_mud {
     const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_MUD_SIZE_OVERFLOW;
 
     unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params, c"params")?;
-        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-        let params = from_c(unsafe { &*params })?;
+        // SAFETY: the caller's contract.
+        let params = from_c(unsafe { object_ref(params, c"params") }?)?;
         let memory = params.memory().map_err(mud_param_status)?;
         Ok((params, memory))
     }
@@ -306,10 +296,10 @@ pub unsafe extern "C" fn hibi_mud_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object(mud, c"mud") }?;
-        let out = optional(progress, c"progress")?;
+        let out = Optional::check(progress, c"progress")?;
         let p = mud.mud.step(budget);
         // SAFETY: checked; the caller's contract.
-        out.map_or(Ok(()), |out| unsafe { out.write([hibi_mud_progress::from_core(&p)]) })
+        unsafe { out.write(hibi_mud_progress::from_core(&p)) }
     })
 }
 
@@ -495,15 +485,11 @@ pub unsafe extern "C" fn hibi_mud_cells(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        let outs = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
-        // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing and
-        // hibi_vec2 as [f32; 2] (asserted above and in glass).
-        let ring_out = unsafe { buffer(rings, rings_len, c"rings") }?;
-        // SAFETY: as above.
-        let point_out = unsafe { buffer(points.cast::<[f32; 2]>(), points_len, c"points") }?;
-        let counts = mud.mud.cells(ring_out, point_out).map_err(output_status)?;
+        // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing (asserted above).
+        let out = unsafe { Polygons::check((rings, rings_len), (points, points_len), rings_written, points_written) }?;
+        let counts = mud.mud.cells(out.rings, out.points).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { outs.write([counts.rings, counts.points]) }
+        unsafe { out.written(counts.rings, counts.points) }
     })
 }
 
@@ -531,9 +517,8 @@ pub unsafe extern "C" fn hibi_mud_render(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        check_pointer(render, c"render")?;
-        // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let render: MudRender = unsafe { &*render }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
+        // SAFETY: the caller's contract.
+        let render: MudRender = unsafe { object_ref(render, c"render") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // SAFETY (all three): the caller's contract on `pixels`.
         let layers = match layer {
             HIBI_MUD_LAYER_MASK => MudLayers {

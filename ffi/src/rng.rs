@@ -5,15 +5,17 @@ use core::ffi::c_void;
 
 use hibi_core::{Rng, Spread};
 
+use crate::fields::constants;
 use crate::guard::{buffer, guard, object, write_out};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, rng_status};
 
-/// `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
-pub const HIBI_SPREAD_UNIFORM: u32 = 0;
-/// `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
-pub const HIBI_SPREAD_NORMAL: u32 = 1;
-const _: () = assert!(HIBI_SPREAD_UNIFORM == Spread::Uniform as u32 && HIBI_SPREAD_NORMAL == Spread::Normal as u32);
+constants! {
+    /// `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
+    HIBI_SPREAD_UNIFORM: Spread::Uniform = 0;
+    /// `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
+    HIBI_SPREAD_NORMAL: Spread::Normal = 1;
+}
 
 /// A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
 pub struct hibi_rng {

@@ -26,8 +26,8 @@ use hibi_core::skin::{
     SkinScratch, preset, shade,
 };
 
-use crate::fields::{Field, convert};
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object, object_ref, optional, write_out};
+use crate::fields::{Field, constants, convert};
+use crate::guard::{Optional, Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -43,12 +43,15 @@ pub const HIBI_SKIN_MAX_SEGMENTS: u32 = 4;
 pub const HIBI_SKIN_PROFILE_POINTS: usize = 13;
 /// Most midpoint-displacement subdivisions of an edge.
 pub const HIBI_SKIN_MAX_PERTURBATION_DEPTH: u32 = 5;
-/// Centre points on a triangular lattice (the default).
-pub const HIBI_SKIN_LAYOUT_TRIANGULAR: u32 = 0;
-/// Centre points on a square lattice.
-pub const HIBI_SKIN_LAYOUT_SQUARE: u32 = 1;
-/// Centre points uniformly random, one per lattice square (the jitter fields are ignored).
-pub const HIBI_SKIN_LAYOUT_RANDOM: u32 = 2;
+constants! {
+    /// Centre points on a triangular lattice (the default).
+    HIBI_SKIN_LAYOUT_TRIANGULAR: SiteLayout::Triangular = 0;
+    /// Centre points on a square lattice.
+    HIBI_SKIN_LAYOUT_SQUARE: SiteLayout::Square = 1;
+    /// Centre points uniformly random, one per lattice square (the jitter fields are ignored).
+    HIBI_SKIN_LAYOUT_RANDOM: SiteLayout::Random = 2;
+}
+
 /// `hibi_skin_cell.parent` of a level-0 cell, and the cell map's value where no cell is.
 pub const HIBI_SKIN_NO_CELL: u32 = u32::MAX;
 
@@ -57,9 +60,6 @@ const _: () = {
     assert!(HIBI_SKIN_MAX_SEGMENTS as usize == MAX_SEGMENTS);
     assert!(HIBI_SKIN_PROFILE_POINTS == 3 * MAX_SEGMENTS + 1);
     assert!(HIBI_SKIN_MAX_PERTURBATION_DEPTH == MAX_PERTURBATION_DEPTH);
-    assert!(HIBI_SKIN_LAYOUT_TRIANGULAR == SiteLayout::Triangular as u32);
-    assert!(HIBI_SKIN_LAYOUT_SQUARE == SiteLayout::Square as u32);
-    assert!(HIBI_SKIN_LAYOUT_RANDOM == SiteLayout::Random as u32);
     assert!(HIBI_SKIN_NO_CELL == NO_CELL);
     // No padding: C code may compare or hash params structs byte by byte.
     assert!(size_of::<hibi_skin_level>() == 7 * 4 + size_of::<hibi_skin_profile>());
@@ -232,9 +232,8 @@ impl Object for hibi_skin {
     const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_SKIN_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
-        check_pointer(params, c"params")?;
-        // SAFETY: non-null and aligned (checked); readable by the caller's contract.
-        let params = from_c(unsafe { &*params })?;
+        // SAFETY: the caller's contract.
+        let params = from_c(unsafe { object_ref(params, c"params") }?)?;
         let memory = params.memory().map_err(skin_param_status)?;
         Ok((params, memory))
     }
@@ -382,13 +381,13 @@ pub unsafe extern "C" fn hibi_skin_step(
     guard(|| {
         // SAFETY: the caller's contract.
         let skin = unsafe { object(skin, c"skin") }?;
-        let out = optional(progress, c"progress")?;
+        let out = Optional::check(progress, c"progress")?;
         let p = skin.skin.step(budget);
         if p.capacity_reached {
             return Err(HIBI_ERROR_SKIN_CAPACITY);
         }
         // SAFETY: checked; the caller's contract.
-        out.map_or(Ok(()), |out| unsafe { out.write([hibi_skin_progress::from_core(&p)]) })
+        unsafe { out.write(hibi_skin_progress::from_core(&p)) }
     })
 }
 
@@ -422,9 +421,8 @@ pub unsafe extern "C" fn hibi_skin_shade(
     rgb_len: usize,
 ) -> hibi_status {
     guard(|| {
-        check_pointer(params, c"params")?;
-        // SAFETY: non-null, aligned (checked); readable by the caller's contract.
-        let params: ShadeParams = unsafe { &*params }.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
+        // SAFETY: the caller's contract.
+        let params: ShadeParams = unsafe { object_ref(params, c"params") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
         // NULL with a length (even one too short for a whole pixel) is refused, as for every
         // buffer (fuzzing found `rgb_len` 1 or 2 with NULL accepted).
         if normal_len > 0 {

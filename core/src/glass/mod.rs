@@ -38,10 +38,8 @@ use crate::rng::{Rng, Stream};
 
 enumeration! {
     /// What kind of crack a polyline is.
-    #[derive(Default)]
     pub enum CrackKind {
         /// A large radial crack: fast, reaches the edge (speed V1).
-        #[default]
         Large = 0,
         /// Another radial crack (speed V2).
         Radial = 1,
@@ -50,14 +48,13 @@ enumeration! {
         /// A ring crack growing clockwise from its start point (speed V3).
         RingClockwise = 3,
     }
+    default Large
 }
 
 enumeration! {
     /// Why a crack is no longer growing.
-    #[derive(Default)]
     pub enum CrackEnd {
         /// It still grows.
-        #[default]
         Growing = 0,
         /// Its tip reached the plate's edge and stops exactly on it.
         Edge = 1,
@@ -69,6 +66,7 @@ enumeration! {
         /// Other cracks closed a region around its tip (paper §4.2.3, stop condition 2).
         Enclosed = 4,
     }
+    default Growing
 }
 
 /// One crack: its kind, its tip and how it grows.

@@ -163,13 +163,8 @@ struct Builder<'w, 's> {
     ends: &'w mut [u32],
     sides_of: &'w mut [u32],
     cells: &'w mut [u32],
-    /// Per node: a cell it is a corner of.
-    node_cell: &'s mut [u32],
-    /// Springs waiting for the in-circle test, and a flag per spring.
-    pending: &'s mut [u32],
-    queued: &'s mut [u32],
-    /// Springs per node.
-    degree: &'s mut [u32],
+    scratch: Scratch<'s>,
+    /// Springs waiting in `scratch.pending`.
     pending_len: usize,
 }
 
@@ -223,7 +218,7 @@ impl Builder<'_, '_> {
 
     /// The cells around `node`, in order; `None` if more than MAX_STAR.
     fn star(&self, node: u32, out: &mut [u32; MAX_STAR]) -> Option<usize> {
-        let start = self.node_cell[node as usize];
+        let start = self.scratch.node_cell[node as usize];
         let corner_of = |cell: u32| self.corners(cell as usize).iter().position(|&c| c == node).unwrap_or(0);
         let mut n = 0;
         // Counter-clockwise: across the side that arrives at the node (k + 2).
@@ -272,9 +267,9 @@ impl Builder<'_, '_> {
     }
 
     fn push(&mut self, spring: u32) {
-        if self.queued[spring as usize] == 0 {
-            self.queued[spring as usize] = 1;
-            self.pending[self.pending_len] = spring;
+        if self.scratch.queued[spring as usize] == 0 {
+            self.scratch.queued[spring as usize] = 1;
+            self.scratch.pending[self.pending_len] = spring;
             self.pending_len += 1;
         }
     }
@@ -283,8 +278,8 @@ impl Builder<'_, '_> {
     fn flip_pending(&mut self) {
         while self.pending_len > 0 {
             self.pending_len -= 1;
-            let s = self.pending[self.pending_len] as usize;
-            self.queued[s] = 0;
+            let s = self.scratch.pending[self.pending_len] as usize;
+            self.scratch.queued[s] = 0;
             self.flip_if_not_delaunay(s);
         }
     }
@@ -301,7 +296,10 @@ impl Builder<'_, '_> {
         let lc = self.corners(l);
         let rc = self.corners(r);
         let (a, b, c, d) = (lc[kl], lc[(kl + 1) % 3], lc[(kl + 2) % 3], rc[(kr + 2) % 3]);
-        if c == d || self.degree[c as usize] as usize >= MAX_DEGREE || self.degree[d as usize] as usize >= MAX_DEGREE {
+        if c == d
+            || self.scratch.degree[c as usize] as usize >= MAX_DEGREE
+            || self.scratch.degree[d as usize] as usize >= MAX_DEGREE
+        {
             return;
         }
         let pa = self.position(a);
@@ -324,14 +322,14 @@ impl Builder<'_, '_> {
             self.sides_of[2 * spring as usize + entry] = (cell as u32) << 2 | k;
             self.push(spring);
         }
-        self.degree[a as usize] -= 1;
-        self.degree[b as usize] -= 1;
-        self.degree[c as usize] += 1;
-        self.degree[d as usize] += 1;
-        self.node_cell[a as usize] = l as u32;
-        self.node_cell[c as usize] = l as u32;
-        self.node_cell[b as usize] = r as u32;
-        self.node_cell[d as usize] = r as u32;
+        self.scratch.degree[a as usize] -= 1;
+        self.scratch.degree[b as usize] -= 1;
+        self.scratch.degree[c as usize] += 1;
+        self.scratch.degree[d as usize] += 1;
+        self.scratch.node_cell[a as usize] = l as u32;
+        self.scratch.node_cell[c as usize] = l as u32;
+        self.scratch.node_cell[b as usize] = r as u32;
+        self.scratch.node_cell[d as usize] = r as u32;
     }
 
     /// Moves `node` towards `target`, keeping the triangulation valid and Delaunay.
@@ -369,12 +367,12 @@ impl Builder<'_, '_> {
 
 /// Scratch the construction borrows from the run's other arrays.
 pub(super) struct Scratch<'s> {
-    /// One word per node.
+    /// Per node: a cell it is a corner of.
     pub node_cell: &'s mut [u32],
-    /// One word per spring, twice.
+    /// Springs waiting for the in-circle test, and a flag per spring.
     pub pending: &'s mut [u32],
     pub queued: &'s mut [u32],
-    /// One word per node.
+    /// Springs per node.
     pub degree: &'s mut [u32],
 }
 
@@ -442,10 +440,7 @@ pub(super) fn build<'a>(
         ends,
         sides_of,
         cells: cell_words,
-        node_cell: scratch.node_cell,
-        pending: scratch.pending,
-        queued: scratch.queued,
-        degree: scratch.degree,
+        scratch,
         pending_len: 0,
     };
     // Jitter node by node.

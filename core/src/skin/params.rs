@@ -12,10 +12,8 @@ pub const MAX_PERTURBATION_DEPTH: u32 = 5;
 
 enumeration! {
     /// Parameter 1, the centre-point layout.
-    #[derive(Default)]
     pub enum SiteLayout {
         /// Triangular lattice: rows `spacing·√3/2` apart, every other row shifted by half.
-        #[default]
         Triangular = 0,
         /// Square lattice.
         Square = 1,
@@ -24,6 +22,7 @@ enumeration! {
         /// are ignored.
         Random = 2,
     }
+    default Triangular
 }
 
 /// Parameter 5, a cross-section: cubic Bézier segments in the body plane (x' from the centre
