@@ -1213,6 +1213,13 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SPREAD_SCALE 537
 
 /**
+ * Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
+ * (the run would diverge); make it smaller or `damping_factor` larger, or use the
+ * quasi-static solver.
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP_STABILITY 538
+
+/**
  * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
  */
 #define HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED 575

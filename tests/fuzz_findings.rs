@@ -146,29 +146,108 @@ fn a_huge_skin_perturbation_builds() {
     }
 }
 
-/// Finding 5: the explicit solver with a short step 1000 times the paper's (1 s; valid, within
-/// the short-step scale check) diverges, and the bit-level first guess of `inverse_sqrt` then
-/// took a NaN or negative length², whose bits overflowed the subtraction from the magic
-/// constant (a panic with overflow checks, `HIBI_ERROR_PANIC` from `hibi_mud_step`; the
-/// release library wrapped). The subtraction now wraps in every build, as it did in release
-/// (same bits).
+/// Findings 5 and 10: the explicit solver with a short step 1000 times the paper's (1 s; valid
+/// then, within the short-step scale check) diverges. In finding 5 (hexagonal, open) the
+/// bit-level first guess of `inverse_sqrt` then took a NaN or negative length², whose bits
+/// overflowed the subtraction from the magic constant (`HIBI_ERROR_PANIC` with overflow
+/// checks; the subtraction now wraps in every build, as it did in release). In finding 10
+/// (square, open, growth drive, 5 × 12 nodes) the positions turned NaN and
+/// `hibi_mud_segments` wrote NaN ends and widths. Such a step is now refused, with the status
+/// naming it, before anything runs: past the damped step's stability limit (Eq. 4) the run
+/// cannot converge. The irregular lattice is checked node by node on its mesh, so only
+/// `hibi_mud_create` can tell.
 #[test]
-fn a_diverging_explicit_run_steps_without_a_panic() {
-    let mut params = hibi_mud_params_default();
-    (params.topology, params.boundary, params.solver) = (HIBI_MUD_HEXAGONAL, HIBI_MUD_OPEN, HIBI_MUD_EXPLICIT);
-    (params.columns, params.rows, params.short_step) = (11, 11, 1.0);
-    params.seed = 16_565_755_656_004_436_581;
+fn explicit_short_steps_past_the_stability_limit_are_refused() {
+    let unstable = |topology, drive, columns, rows, short_step| {
+        let mut params = hibi_mud_params_default();
+        (params.topology, params.boundary, params.solver, params.drive) =
+            (topology, HIBI_MUD_OPEN, HIBI_MUD_EXPLICIT, drive);
+        (params.columns, params.rows, params.short_step) = (columns, rows, short_step);
+        params
+    };
     let mut mud = core::ptr::null_mut();
-    let mut progress = hibi_mud_progress::default();
+    let mut size = 0;
+    for params in [
+        unstable(HIBI_MUD_HEXAGONAL, HIBI_MUD_SHRINK, 11, 11, 1.0),
+        unstable(HIBI_MUD_SQUARE, HIBI_MUD_GROWTH, 5, 12, 0.999_999_94),
+    ] {
+        // SAFETY: valid pointers.
+        unsafe {
+            assert_eq!(hibi_mud_memory_size(&params, &mut size), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+            assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+        }
+        assert!(mud.is_null());
+    }
+    let params = unstable(HIBI_MUD_IRREGULAR, HIBI_MUD_SHRINK, 12, 12, 1.0);
     // SAFETY: valid pointers.
     unsafe {
-        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
-        for _ in 0..50 {
-            assert_eq!(hibi_mud_step(mud, 1 << 14, &mut progress), HIBI_OK);
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+    }
+    assert!(mud.is_null());
+    // SAFETY: a static C string.
+    let message = unsafe { core::ffi::CStr::from_ptr(hibi_status_string(HIBI_ERROR_MUD_SHORT_STEP_STABILITY)) };
+    assert!(message.to_str().unwrap().contains("short_step"), "{message:?}");
+}
+
+/// The stability limit is not too loose: on each lattice, an explicit run at the largest short
+/// step `hibi_mud_create` accepts (found by bisection) keeps every segment finite, and its
+/// springs do not all break at once as a diverging run's do.
+#[test]
+fn an_explicit_run_at_the_stability_limit_stays_finite() {
+    for topology in [HIBI_MUD_SQUARE, HIBI_MUD_HEXAGONAL, HIBI_MUD_IRREGULAR] {
+        let mut params = hibi_mud_params_default();
+        (params.topology, params.boundary, params.solver) = (topology, HIBI_MUD_OPEN, HIBI_MUD_EXPLICIT);
+        (params.columns, params.rows) = (12, 12);
+        let accepted = |short_step: f32| {
+            let mut p = params;
+            p.short_step = short_step;
+            let mut mud = core::ptr::null_mut();
+            // SAFETY: valid pointers.
+            let status = unsafe { hibi_mud_create(&p, &mut mud) };
+            // SAFETY: created above, or NULL.
+            unsafe { hibi_mud_destroy(mud) };
+            assert!(status == HIBI_OK || status == HIBI_ERROR_MUD_SHORT_STEP_STABILITY, "{status}");
+            status == HIBI_OK
+        };
+        let (mut low, mut high) = (params.short_step, 10.0f32);
+        assert!(accepted(low) && !accepted(high), "topology {topology}");
+        for _ in 0..40 {
+            let middle = 0.5 * (low + high);
+            if accepted(middle) { low = middle } else { high = middle }
         }
-        let mut count = 0;
-        assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
-        hibi_mud_destroy(mud);
+        params.short_step = low;
+        let mut mud = core::ptr::null_mut();
+        let mut progress = hibi_mud_progress::default();
+        // SAFETY: valid pointers, buffers of the lengths passed.
+        unsafe {
+            assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+            for _ in 0..20 {
+                assert_eq!(hibi_mud_step(mud, 1 << 16, &mut progress), HIBI_OK);
+            }
+            let mut count = 0;
+            assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
+            let mut segments = vec![hibi_core::mud::CrackSegment::default(); count];
+            let mut written = 0;
+            assert_eq!(hibi_mud_segments(mud, segments.as_mut_ptr(), count, &mut written), HIBI_OK);
+            hibi_mud_destroy(mud);
+            for s in &segments {
+                assert!(
+                    s.start.iter().chain(&s.end).chain(&s.width).all(|v| v.is_finite()),
+                    "topology {topology}: {s:?}"
+                );
+            }
+            assert!(progress.crack_density.is_finite(), "topology {topology}");
+            // A 12 × 12 open lattice has 264 (square) to 363 springs; past the limit (with a
+            // bound four times looser) every one of them breaks within these steps.
+            assert!(progress.broken_springs < 100, "topology {topology}: {} springs broken", progress.broken_springs);
+        }
+        println!(
+            "topology {topology}: largest stable short_step {low} s ({}x the paper's): {} springs broken, shrink {}, crack density {}",
+            low / 0.001,
+            progress.broken_springs,
+            progress.shrink,
+            progress.crack_density
+        );
     }
 }
 

@@ -128,6 +128,7 @@ fn option(e: MudParamError) -> &'static str {
         ShortStepScale => "--short-step/--element-size/--density/--young-modulus",
         ToleranceScale => "--displacement-tolerance/--element-size",
         SpreadScale => "--break-stretch-spread/--element-size/--layer-thickness",
+        ShortStepStability => "--short-step/--damping-factor/--solver",
     }
 }
 

@@ -98,6 +98,10 @@ pub const HIBI_ERROR_MUD_TOLERANCE_SCALE: hibi_status = 536;
 /// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
 /// finite.
 pub const HIBI_ERROR_MUD_SPREAD_SCALE: hibi_status = 537;
+/// Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
+/// (the run would diverge); make it smaller or `damping_factor` larger, or use the
+/// quasi-static solver.
+pub const HIBI_ERROR_MUD_SHORT_STEP_STABILITY: hibi_status = 538;
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
@@ -146,6 +150,7 @@ const _: () = {
     assert!(HIBI_ERROR_MUD_SHORT_STEP_SCALE == 512 + MudParamError::ShortStepScale as u32);
     assert!(HIBI_ERROR_MUD_TOLERANCE_SCALE == 512 + MudParamError::ToleranceScale as u32);
     assert!(HIBI_ERROR_MUD_SPREAD_SCALE == 512 + MudParamError::SpreadScale as u32);
+    assert!(HIBI_ERROR_MUD_SHORT_STEP_STABILITY == 512 + MudParamError::ShortStepStability as u32);
 };
 
 /// Glass parameters: width and height must be finite and >= 1.

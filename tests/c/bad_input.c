@@ -446,6 +446,7 @@ static void parameters(void) {
     MUD("mud-short-step-out-of-scale", p_.short_step = 1e9f);
     MUD("mud-tolerance-out-of-scale", p_.displacement_tolerance = 1e-12f);
     MUD("mud-spread-out-of-scale", p_.break_stretch_spread = FLT_MAX);
+    MUD("mud-short-step-unstable", (p_.solver = HIBI_MUD_EXPLICIT, p_.short_step = 1.0f));
 
     GLASS("glass-unknown-spread", p_.spread = 5);
     GLASS("glass-width-nan", p_.width = NAN);

@@ -55,6 +55,40 @@ pub(super) struct Dynamics<'a, S> {
 /// Constants per node of the irregular lattice's explicit run.
 pub(super) const NODE_CONSTANTS: usize = 5;
 
+/// Whether the damped step (Eq. 4) is stable for a node of mass `m` and damping `c` under a
+/// stiffness of at most `lambda`, for a short step `tau` (all in lattice units, as f64).
+///
+/// Under a force F = −λ·u, Eq. 4 maps (u, v) to (u', v') by [[1 − λa, b], [−(1 − e)λ/c, e]],
+/// with e = exp(−cτ/m), a = τ/c − (m/c²)(1 − e) and b = (m/c)(1 − e). Both eigenvalues lie
+/// inside the unit circle (Jury's conditions; the third, 1 − trace + det > 0, holds for every
+/// λ > 0) when, with x = cτ/m and μ = λ·m/c²,
+/// μ·(x(1 + e) − 2(1 − e)) < 2(1 + e) and μ·(1 − (1 + x)e) < 1 − e.
+/// Past them the explicit run diverges (its positions grow without bound, then turn NaN).
+pub(super) fn stable(m: f64, c: f64, lambda: f64, tau: f64) -> bool {
+    let x = c * tau / m;
+    let e = libm::exp(-x);
+    let mu = lambda * m / (c * c);
+    mu * (x * (1.0 + e) - 2.0 * (1.0 - e)) < 2.0 * (1.0 + e) && mu * (1.0 - (1.0 + x) * e) < 1.0 - e
+}
+
+/// Whether every node of the irregular lattice's explicit run is [`stable`]: each has its own
+/// mass B, damping 2·√(k_max·B)·α and stiffness bound h + 2·Σk (Gershgorin's, over its springs
+/// and its shear spring h = B·`shear_per_area`).
+pub(super) fn irregular_stable<S>(lattice: &Lattice, material: &Material<S>, alpha: f32) -> bool {
+    let Some(mesh) = lattice.mesh() else { return true };
+    (0..lattice.node_count()).all(|node| {
+        let mass = mesh.area(node);
+        let shear = mass * material.shear_per_area;
+        let (mut k_max, mut sum) = (shear, 0.0f64);
+        mesh.for_each_spring_at(node, |spring, _, _| {
+            k_max = k_max.max(mesh.stiffness(spring));
+            sum += f64::from(mesh.stiffness(spring));
+        });
+        let c = 2.0 * libm::sqrt(f64::from(k_max) * f64::from(mass)) * f64::from(alpha);
+        stable(f64::from(mass), c, f64::from(shear) + 2.0 * sum, f64::from(material.step))
+    })
+}
+
 /// The `limit` of a broken or absent spring.
 fn broken<S: Scalar>() -> S {
     -S::ONE

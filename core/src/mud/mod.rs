@@ -301,7 +301,9 @@ fn take<'a, T>(buffer: &mut &'a mut [T], n: usize) -> &'a mut [T] {
 impl<'a, S: Scalar> Mud<'a, S> {
     /// Sets up a run of `params` in caller memory of at least [`MudParams::memory`] elements:
     /// draws every spring's break stretch and, for open edges, relaxes the boundary layer.
-    /// Nothing is written to the buffers on failure.
+    /// Nothing is written to the buffers on failure, with one exception: the irregular
+    /// lattice's explicit run is checked for stability node by node on its built mesh, so a
+    /// [`MudParamError::ShortStepStability`] there comes after the mesh was written.
     pub fn new(params: &MudParams, buffers: MudBuffers<'a, S>) -> Result<Self, MudError> {
         let MudBuffers { scalars, words } = buffers;
         let memory = params.memory()?;
@@ -367,6 +369,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
             };
             let kappa = 1.0 + margin + spread * rng.normal_f32();
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
+        }
+        if params.solver == Solver::Explicit && !explicit::irregular_stable(&lattice, &material, params.damping_factor)
+        {
+            return Err(MudError::Param(MudParamError::ShortStepStability));
         }
         let solver = match params.solver {
             Solver::Explicit => {

@@ -178,8 +178,9 @@ crate::error::error_list! {
         LongStep => c"mud: long_step (T) must be finite and > 0",
         /// `short_step` (τ) must be finite and > 0.
         ShortStep => c"mud: short_step (tau) must be finite and > 0",
-        /// `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
-        ShrinkRatio => c"mud: shrink_ratio (gamma) must be within (0, 1) (1 would never shrink)",
+        /// `shrink_ratio` (γ) must be at least `f32::MIN_POSITIVE` and below 1 (1 would never shrink;
+        /// a subnormal ratio would lose its precision).
+        ShrinkRatio => c"mud: shrink_ratio (gamma) must be >= FLT_MIN and < 1 (1 would never shrink)",
         /// `displacement_tolerance` (δx) must be finite and > 0.
         DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
         /// `damping_factor` (α) must be finite and > 0.
@@ -221,6 +222,10 @@ crate::error::error_list! {
         ToleranceScale => c"mud: displacement_tolerance is out of scale: k_min * displacement_tolerance / element_size must be within [1e-6, 1e6]",
         /// The spread of the break stretch per element, σ/√(face·W·H), is not finite.
         SpreadScale => c"mud: break_stretch_spread / sqrt(face * element_size * layer_thickness) must be finite",
+        /// The explicit solver's short step is past its stability limit (Eq. 4 under the
+        /// stiffest node's springs): the run would diverge. Make `short_step` smaller or
+        /// `damping_factor` larger, or use the quasi-static solver.
+        ShortStepStability => c"mud: short_step is past the explicit solver's stability limit (make short_step smaller or damping_factor larger, or use the quasi-static solver)",
     }
 }
 
