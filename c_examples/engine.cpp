@@ -58,7 +58,7 @@ bool write_pgm(const std::string &path, const std::vector<float> &time, std::uin
     return std::fclose(file) == 0 && ok;
 }
 
-/// The largest work one frame did, for the models whose progress counts it.
+/// The largest work one frame did, from the work total each model's progress counts.
 struct Budget {
     std::uint64_t per_frame;
     std::uint64_t largest = 0;
@@ -110,11 +110,11 @@ int main(int argc, char **argv) {
         // The frame budgets, in each model's units of work.
         Budget mud_budget{20000};
         Budget skin_budget{1500};
-        const std::uint64_t glass_budget = 5000;
+        Budget glass_budget{5000};
         std::printf("budgets per frame: mud %llu, skin %llu, glass %llu\n",
                     static_cast<unsigned long long>(mud_budget.per_frame),
                     static_cast<unsigned long long>(skin_budget.per_frame),
-                    static_cast<unsigned long long>(glass_budget));
+                    static_cast<unsigned long long>(glass_budget.per_frame));
 
         hibi::Glass::RenderParams glass_render = hibi::Glass::default_render();
         glass_render.width = 160;
@@ -125,13 +125,11 @@ int main(int argc, char **argv) {
 
         bool glass_done = false, mud_done = false, skin_done = false;
         unsigned frame = 0, glass_frames = 0, mud_frames = 0, skin_frames = 0, written = 0;
-        std::uint32_t glass_steps_largest = 0, glass_time = 0;
         const unsigned stride = 6, max_written = 3;
         while (!(glass_done && mud_done && skin_done)) {
             if (!glass_done) {
-                hibi::Glass::Progress p = glass.step(glass_budget);
-                glass_steps_largest = std::max(glass_steps_largest, p.time - glass_time);
-                glass_time = p.time;
+                hibi::Glass::Progress p = glass.step(glass_budget.per_frame);
+                glass_budget.frame(p.work);
                 glass_done = p.finished != 0;
                 glass_frames = frame + 1;
             }
@@ -172,9 +170,9 @@ int main(int argc, char **argv) {
         std::printf("skin: largest frame work %llu of budget %llu\n",
                     static_cast<unsigned long long>(skin_budget.largest),
                     static_cast<unsigned long long>(skin_budget.per_frame));
-        // hibi_glass_progress counts steps, not work: the budget bounds the work per call.
-        std::printf("glass: largest frame %u steps (budget %llu work units)\n", static_cast<unsigned>(glass_steps_largest),
-                    static_cast<unsigned long long>(glass_budget));
+        std::printf("glass: largest frame work %llu of budget %llu\n",
+                    static_cast<unsigned long long>(glass_budget.largest),
+                    static_cast<unsigned long long>(glass_budget.per_frame));
 
         // The models do not depend on the budgets: the same objects, run in one go.
         hibi::Glass whole_glass(glass_params);

@@ -420,6 +420,10 @@ typedef struct hibi_glass_progress {
    * 1 when a capacity ran out (generation then stopped early, consistently).
    */
   uint32_t capacity_reached;
+  /**
+   * Work done since the plate was created, in the units of `hibi_glass_step`'s budget.
+   */
+  uint64_t work;
 } hibi_glass_progress;
 
 /**
@@ -1216,6 +1220,9 @@ typedef struct hibi_skin_cell {
  * Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
  * (the run would diverge); make it smaller or `damping_factor` larger, or use the
  * quasi-static solver.
+ * `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
+ * `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
+ * tell, and `hibi_mud_create_in` may have written the memory it was given.
  */
 #define HIBI_ERROR_MUD_SHORT_STEP_STABILITY 538
 
@@ -1753,8 +1760,10 @@ hibi_status hibi_mud_create_in(const struct hibi_mud_params *params,
 void hibi_mud_destroy(struct hibi_mud *mud);
 
 /**
- * Advances the run by at most `budget` units of work (one unit: one spring visited), but
- * always by at least one indivisible piece; writes where it stands to `*progress` unless it
+ * Advances the run by about `budget` units of work (one unit: one spring visited): it does
+ * indivisible pieces (an explicit short step, a quasi-static node relaxation or break event)
+ * until their work reaches the budget, so a call does at least one piece and overruns the
+ * budget by less than one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
  * is NULL. Call until `progress.finished`.
  *
  * # Safety

@@ -215,7 +215,8 @@ public:
         return Mud(raw);
     }
 
-    /// Advances by at most `budget` units of work (springs visited).
+    /// Advances by about `budget` units of work (springs visited; overruns by less than one
+    /// indivisible piece, see hibi_mud_step).
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_mud_step(handle_.get(), budget, &progress));

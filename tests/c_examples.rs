@@ -834,7 +834,10 @@ fn check_engine(linkage: Linkage) {
     assert!(largest >= budget / 2 && largest < 2 * budget, "{mud}");
     let skin = line(&output, "skin: largest frame work ");
     assert!(number_after(skin, "work ") > 0, "{skin}");
-    assert!(line(&output, "glass: largest frame ").ends_with("(budget 5000 work units)"));
+    // Glass overruns its budget by at most one tip update's queries and one face walk.
+    let glass = line(&output, "glass: largest frame work ");
+    let (largest, budget) = (number_after(glass, "work "), number_after(glass, "budget "));
+    assert!(largest >= budget && largest < 2 * budget, "{glass}");
     assert_eq!(line(&output, "wrote "), "wrote 4 frames of each break-time raster");
     assert_eq!(line(&output, "budgeted = one go:"), "budgeted = one go: glass yes, mud yes, skin yes");
     let header = b"P5\n160 160\n255\n";

@@ -141,6 +141,8 @@ pub struct hibi_glass_progress {
     pub finished: u32,
     /// 1 when a capacity ran out (generation then stopped early, consistently).
     pub capacity_reached: u32,
+    /// Work done since the plate was created, in the units of `hibi_glass_step`'s budget.
+    pub work: u64,
 }
 
 /// The counts an impact drew: M radial cracks, N of them large, R ring start points.
@@ -206,7 +208,7 @@ convert!(hibi_glass_params <=> GlassParams, cookie: PARAMS_COOKIE {
     turn_delay, sector_angle, sector_radius, tip_repulsion, crack_attraction, wander, ring_adherence, max_cracks,
     max_vertices,
 });
-convert!(hibi_glass_progress <=> GlassProgress { time, cracks, growing, vertices, finished, capacity_reached });
+convert!(hibi_glass_progress <=> GlassProgress { time, cracks, growing, vertices, finished, capacity_reached, work });
 convert!(hibi_glass_counts <=> ImpactCounts { radial, large, rings });
 convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width });
 

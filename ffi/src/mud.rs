@@ -281,8 +281,10 @@ impl Object for hibi_mud {
     }
 }
 
-/// Advances the run by at most `budget` units of work (one unit: one spring visited), but
-/// always by at least one indivisible piece; writes where it stands to `*progress` unless it
+/// Advances the run by about `budget` units of work (one unit: one spring visited): it does
+/// indivisible pieces (an explicit short step, a quasi-static node relaxation or break event)
+/// until their work reaches the budget, so a call does at least one piece and overruns the
+/// budget by less than one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
 /// is NULL. Call until `progress.finished`.
 ///
 /// # Safety

@@ -101,6 +101,9 @@ pub const HIBI_ERROR_MUD_SPREAD_SCALE: hibi_status = 537;
 /// Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
 /// (the run would diverge); make it smaller or `damping_factor` larger, or use the
 /// quasi-static solver.
+/// `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
+/// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
+/// tell, and `hibi_mud_create_in` may have written the memory it was given.
 pub const HIBI_ERROR_MUD_SHORT_STEP_STABILITY: hibi_status = 538;
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;

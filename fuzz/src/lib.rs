@@ -420,7 +420,10 @@ pub fn create<P: core::fmt::Debug, O>(
         let status = unsafe { create(params, &mut object) };
         if !check(status) {
             assert_eq!(object, dangling, "a failing create wrote its output");
-            assert_eq!(status, HIBI_ERROR_OUT_OF_MEMORY, "memory_size accepted what create refused");
+            assert!(
+                status == HIBI_ERROR_OUT_OF_MEMORY || status == ONLY_CREATE_CAN_TELL,
+                "memory_size accepted what create refused: status {status}"
+            );
             return Ok(None);
         }
         Ok(Some((object, Vec::new())))
@@ -432,13 +435,18 @@ pub fn create<P: core::fmt::Debug, O>(
         let fits = !ptr.is_null() && len >= size && (ptr as usize) % align == 0;
         if !check(status) {
             assert_eq!(object, dangling, "a failing create_in wrote its output");
-            assert!(!fits, "create_in refused memory that fits: status {status}");
+            assert!(!fits || status == ONLY_CREATE_CAN_TELL, "create_in refused memory that fits: status {status}");
             return Ok(None);
         }
         assert!(fits, "create_in accepted memory that does not fit");
         Ok(Some((object, memory)))
     }
 }
+
+/// The one refusal `*_memory_size` cannot foresee: an irregular mud lattice's explicit run is
+/// checked for stability node by node on its mesh, which only create builds (see
+/// `hibi_mud_create`).
+const ONLY_CREATE_CAN_TELL: hibi_status = HIBI_ERROR_MUD_SHORT_STEP_STABILITY;
 
 /// An out-pointer to `value`, or (rarely) NULL.
 pub fn out<T>(u: &mut Unstructured, value: &mut T) -> Result<*mut T> {

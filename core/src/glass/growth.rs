@@ -101,11 +101,6 @@ impl Glass<'_> {
         self.progress()
     }
 
-    /// Units of work done so far, as [`Glass::step`] counts them.
-    pub fn work(&self) -> u64 {
-        self.clock.work
-    }
-
     /// Puts every growing tip into the tip grid; false if it is full.
     fn rebuild_tips(&mut self) -> bool {
         self.index.tips.clear();

@@ -295,6 +295,8 @@ pub struct GlassProgress {
     /// A capacity (`max_cracks`, `max_vertices`, grid entries) ran out: generation stopped
     /// early, with everything drawn so far consistent.
     pub capacity_reached: bool,
+    /// Work done since the plate was created, in the units of [`Glass::step`]'s budget.
+    pub work: u64,
 }
 
 /// The counts an impact drew (paper Eqs. 3, 5, 6).
@@ -657,6 +659,7 @@ impl<'a> Glass<'a> {
             vertices: self.vertex_count as u32,
             finished: self.clock.finished,
             capacity_reached: self.clock.capacity_reached,
+            work: self.clock.work,
         }
     }
 }

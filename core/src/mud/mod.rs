@@ -412,9 +412,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
         Ok(mud)
     }
 
-    /// Advances the run by at most `budget` units of work (one unit is one spring visited),
-    /// but always by at least one indivisible piece: a short step of the explicit solver, or
-    /// a node relaxation or break event of the quasi-static one.
+    /// Advances the run by about `budget` units of work (one unit is one spring visited): it
+    /// does indivisible pieces (a short step of the explicit solver, a node relaxation or
+    /// break event of the quasi-static one) until their work reaches the budget, so a call
+    /// does at least one piece and overruns the budget by less than one piece. The run does
+    /// not depend on the budgets.
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
