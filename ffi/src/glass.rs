@@ -12,16 +12,16 @@
 //!
 //! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
 
-use core::ffi::{c_char, c_void};
+use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory,
+    Crack, CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory,
     GlassParams, GlassProgress, GlassRender, ImpactCounts, preset,
 };
 
 use crate::fields::{Field, constants, convert};
-use crate::guard::{Optional, Outcome, Outs, Polygons, buffer, check_pointer, guard, object, object_ref, write_out};
+use crate::guard::{Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, update, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
@@ -273,13 +273,11 @@ pub unsafe extern "C" fn hibi_glass_impact(
     y: f32,
     counts: *mut hibi_glass_counts,
 ) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass, c"glass") }?;
-        let out = Optional::check(counts, c"counts")?;
-        let c = glass.glass.impact([x, y]).map_err(glass_status)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write(hibi_glass_counts::from_core(&c)) }
+    // SAFETY: the caller's contract.
+    guard(|| unsafe {
+        update(glass, c"glass", (counts, c"counts"), |glass| {
+            glass.glass.impact([x, y]).map(|c| hibi_glass_counts::from_core(&c)).map_err(glass_status)
+        })
     })
 }
 
@@ -298,16 +296,12 @@ pub unsafe extern "C" fn hibi_glass_step(
     budget: u64,
     progress: *mut hibi_glass_progress,
 ) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object(glass, c"glass") }?;
-        let out = Optional::check(progress, c"progress")?;
-        if glass.glass.step(budget).capacity_reached {
-            return Err(HIBI_ERROR_GLASS_CAPACITY);
-        }
-        let p = hibi_glass_progress::from_core(&glass.glass.progress());
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write(p) }
+    // SAFETY: the caller's contract.
+    guard(|| unsafe {
+        update(glass, c"glass", (progress, c"progress"), |glass| match glass.glass.step(budget) {
+            p if p.capacity_reached => Err(HIBI_ERROR_GLASS_CAPACITY),
+            p => Ok(hibi_glass_progress::from_core(&p)),
+        })
     })
 }
 
@@ -325,6 +319,22 @@ pub unsafe extern "C" fn hibi_glass_crack_count(glass: *const hibi_glass, count:
     })
 }
 
+/// The plate behind `glass` and its crack `index` (else `HIBI_ERROR_GLASS_CRACK_INDEX`), once
+/// the query's required out-parameter `out` is checked.
+///
+/// # Safety
+/// As [`object_ref`].
+unsafe fn crack_of<'a, O>(
+    glass: *const hibi_glass,
+    index: usize,
+    (out, name): (*mut O, &'static CStr),
+) -> Result<(&'a Glass<'static>, &'a Crack), hibi_status> {
+    // SAFETY: the caller's contract.
+    let glass = &unsafe { object_ref(glass, c"glass") }?.glass;
+    check_pointer(out, name)?;
+    Ok((glass, glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?))
+}
+
 /// Describes crack `index` (below `hibi_glass_crack_count`).
 ///
 /// # Safety
@@ -337,14 +347,12 @@ pub unsafe extern "C" fn hibi_glass_crack_info(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass, c"glass") }?;
-        check_pointer(crack, c"crack")?;
-        let c = glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
+        let (glass, c) = unsafe { crack_of(glass, index, (crack, c"crack")) }?;
         let value = hibi_glass_crack {
             kind: c.kind as u32,
             end: c.end as u32,
             impact: c.impact,
-            points: glass.glass.point_count(index) as u32,
+            points: glass.point_count(index) as u32,
         };
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(crack, c"crack", value) }
@@ -367,12 +375,10 @@ pub unsafe extern "C" fn hibi_glass_points(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass, c"glass") }?;
-        check_pointer(written, c"written")?;
-        glass.glass.crack(index).ok_or(HIBI_ERROR_GLASS_CRACK_INDEX)?;
+        let (glass, _) = unsafe { crack_of(glass, index, (written, c"written")) }?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(points, len, c"points") }?;
-        let n = glass.glass.points(index, out).map_err(glass_status)?;
+        let n = glass.points(index, out).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(written, c"written", n) }
     })
@@ -642,30 +648,14 @@ mod tests {
             let mut rings = vec![FragmentRing::default(); ring_count];
             let mut points = vec![hibi_vec2 { x: 9.0, y: 9.0 }; point_count];
             let (mut r, mut n) = (7usize, 7usize);
-            let status = hibi_glass_fragments(
-                glass,
-                sp,
-                ss,
-                rings.as_mut_ptr(),
-                ring_count,
-                points.as_mut_ptr(),
-                point_count - 1,
-                &mut r,
-                &mut n,
-            );
+            let (ring_ptr, point_ptr) = (rings.as_mut_ptr(), points.as_mut_ptr());
+            let fragments = |points_len, r: &mut usize, n: &mut usize| {
+                hibi_glass_fragments(glass, sp, ss, ring_ptr, ring_count, point_ptr, points_len, r, n)
+            };
+            let status = fragments(point_count - 1, &mut r, &mut n);
             assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL);
             assert!((r, n) == (7, 7) && rings.iter().all(|x| x.point_count == 0) && points.iter().all(|q| q.x == 9.0));
-            let status = hibi_glass_fragments(
-                glass,
-                sp,
-                ss,
-                rings.as_mut_ptr(),
-                ring_count,
-                points.as_mut_ptr(),
-                point_count,
-                &mut r,
-                &mut n,
-            );
+            let status = fragments(point_count, &mut r, &mut n);
             assert_eq!(status, HIBI_OK);
             assert_eq!((r, n), (ring_count, point_count));
             let area: f64 = rings.iter().map(|x| x.area).sum();

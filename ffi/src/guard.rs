@@ -222,6 +222,26 @@ impl<T> Optional<T> {
     }
 }
 
+/// The body of the calls that change an object and report on it (step, impact): checks the
+/// object `ptr` (argument `name`) and the optional report `out`, makes the change, and writes
+/// its report unless `out` is NULL; nothing is written when the change fails.
+///
+/// # Safety
+/// As [`object`] for `ptr`; `out` NULL or as [`Outs::write`].
+pub(crate) unsafe fn update<T, O>(
+    ptr: *mut T,
+    name: &'static CStr,
+    (out, out_name): (*mut O, &'static CStr),
+    change: impl FnOnce(&mut T) -> Result<O, hibi_status>,
+) -> Result<(), hibi_status> {
+    // SAFETY: the caller's contract.
+    let object = unsafe { object(ptr, name) }?;
+    let out = Optional::check(out, out_name)?;
+    let report = change(object)?;
+    // SAFETY: checked; the caller's contract.
+    unsafe { out.write(report) }
+}
+
 /// Checks caller buffer `name` of `len` elements of `T` at a non-empty `ptr`: non-null,
 /// aligned, and its size in bytes fits `isize`.
 fn check_buffer<T>(ptr: *const T, len: usize, name: &'static CStr) -> Result<(), hibi_status> {

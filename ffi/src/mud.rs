@@ -28,7 +28,7 @@ use hibi_core::mud::{
 
 use crate::fields::{Field, constants, convert};
 use crate::glass::hibi_vec2;
-use crate::guard::{Optional, Outs, Polygons, buffer, check_pointer, guard, object, object_ref, write_out};
+use crate::guard::{Outs, Polygons, buffer, check_pointer, guard, object_ref, update, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
@@ -295,13 +295,9 @@ pub unsafe extern "C" fn hibi_mud_step(
     budget: u64,
     progress: *mut hibi_mud_progress,
 ) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let mud = unsafe { object(mud, c"mud") }?;
-        let out = Optional::check(progress, c"progress")?;
-        let p = mud.mud.step(budget);
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write(hibi_mud_progress::from_core(&p)) }
+    // SAFETY: the caller's contract.
+    guard(|| unsafe {
+        update(mud, c"mud", (progress, c"progress"), |mud| Ok(hibi_mud_progress::from_core(&mud.mud.step(budget))))
     })
 }
 

@@ -27,7 +27,7 @@ use hibi_core::skin::{
 };
 
 use crate::fields::{Field, constants, convert};
-use crate::guard::{Optional, Outcome, buffer, check_pointer, guard, input, object, object_ref, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, update, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -378,16 +378,12 @@ pub unsafe extern "C" fn hibi_skin_step(
     budget: u64,
     progress: *mut hibi_skin_progress,
 ) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let skin = unsafe { object(skin, c"skin") }?;
-        let out = Optional::check(progress, c"progress")?;
-        let p = skin.skin.step(budget);
-        if p.capacity_reached {
-            return Err(HIBI_ERROR_SKIN_CAPACITY);
-        }
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write(hibi_skin_progress::from_core(&p)) }
+    // SAFETY: the caller's contract.
+    guard(|| unsafe {
+        update(skin, c"skin", (progress, c"progress"), |skin| match skin.skin.step(budget) {
+            p if p.capacity_reached => Err(HIBI_ERROR_SKIN_CAPACITY),
+            p => Ok(hibi_skin_progress::from_core(&p)),
+        })
     })
 }
 

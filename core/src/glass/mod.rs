@@ -164,6 +164,18 @@ pub struct GlassBuffers<'a> {
     pub words: &'a mut [u32],
 }
 
+/// The buffers of a [`GlassStore`] or [`GlassStorage`], field by field.
+macro_rules! buffers_of {
+    ($store:expr) => {
+        GlassBuffers {
+            cracks: &mut $store.cracks,
+            vertices: &mut $store.vertices,
+            edges: &mut $store.edges,
+            words: &mut $store.words,
+        }
+    };
+}
+
 /// Owned memory for a plate (the `alloc` feature), from [`GlassMemory::allocate`].
 #[cfg(feature = "alloc")]
 pub struct GlassStore {
@@ -190,12 +202,7 @@ impl GlassMemory {
 impl GlassStore {
     /// The buffers, for [`Glass::new`].
     pub fn buffers(&mut self) -> GlassBuffers<'_> {
-        GlassBuffers {
-            cracks: &mut self.cracks,
-            vertices: &mut self.vertices,
-            edges: &mut self.edges,
-            words: &mut self.words,
-        }
+        buffers_of!(self)
     }
 }
 
@@ -225,12 +232,7 @@ impl<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> GlassStorag
 
     /// The buffers, for [`Glass::new`].
     pub fn buffers(&mut self) -> GlassBuffers<'_> {
-        GlassBuffers {
-            cracks: &mut self.cracks,
-            vertices: &mut self.vertices,
-            edges: &mut self.edges,
-            words: &mut self.words,
-        }
+        buffers_of!(self)
     }
 }
 
