@@ -1082,12 +1082,13 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_RAND_ARGUMENT 257
 
 /**
- * Mud parameters: `columns` must be >= 2 (>= 3 when periodic).
+ * Mud parameters: `columns` must be >= 2 (>= 3 when periodic, >= 8 periodic irregular).
  */
 #define HIBI_ERROR_MUD_COLUMNS 512
 
 /**
- * Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal).
+ * Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even
+ * and >= 8 irregular).
  */
 #define HIBI_ERROR_MUD_ROWS 513
 
@@ -1112,7 +1113,7 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SHORT_STEP 517
 
 /**
- * Mud parameters: `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
+ * Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
  */
 #define HIBI_ERROR_MUD_SHRINK_RATIO 518
 

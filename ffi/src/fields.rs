@@ -77,13 +77,17 @@ enumeration!(
 
 /// The C constants of a core enumeration's variants (`#define`s in the header), each written
 /// once with its variant and number; the number is checked against the variant's when `hibi`
-/// compiles.
+/// compiles. With a head `type = base +`, the constants have that type and number `base` plus
+/// the variant's (the statuses of a model's parameter errors).
 macro_rules! constants {
-    ($( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {$(
+    ($ty:ty = $base:literal + $( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {$(
         $(#[$doc])*
-        pub const $name: u32 = $number;
-        const _: () = assert!($name == $variant as u32);
+        pub const $name: $ty = $number;
+        const _: () = assert!($name == $base + $variant as u32);
     )+};
+    ($( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {
+        $crate::fields::constants!(u32 = 0 + $( $(#[$doc])* $name: $variant = $number; )+);
+    };
 }
 pub(crate) use constants;
 

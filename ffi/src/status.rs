@@ -9,6 +9,7 @@ use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
 use hibi_core::skin::{ShadeError, SkinParamError};
 
+use crate::fields::constants;
 use crate::guard::guard_query;
 
 /// The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
@@ -41,70 +42,74 @@ pub const HIBI_ERROR_POISSON_MEAN: hibi_status = 256;
 /// `hibi_rng_rand`: x is not finite or z is outside [0, 1).
 pub const HIBI_ERROR_RAND_ARGUMENT: hibi_status = 257;
 
-/// Mud parameters: `columns` must be >= 2 (>= 3 when periodic).
-pub const HIBI_ERROR_MUD_COLUMNS: hibi_status = 512;
-/// Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal).
-pub const HIBI_ERROR_MUD_ROWS: hibi_status = 513;
-/// Mud parameters: `layer_thickness` (H) must be finite and > 0.
-pub const HIBI_ERROR_MUD_LAYER_THICKNESS: hibi_status = 514;
-/// Mud parameters: `element_size` (W) must be finite and > 0.
-pub const HIBI_ERROR_MUD_ELEMENT_SIZE: hibi_status = 515;
-/// Mud parameters: `long_step` (T) must be finite and > 0.
-pub const HIBI_ERROR_MUD_LONG_STEP: hibi_status = 516;
-/// Mud parameters: `short_step` (τ) must be finite and > 0.
-pub const HIBI_ERROR_MUD_SHORT_STEP: hibi_status = 517;
-/// Mud parameters: `shrink_ratio` (γ) must be within (0, 1) (1 would never shrink).
-pub const HIBI_ERROR_MUD_SHRINK_RATIO: hibi_status = 518;
-/// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
-pub const HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: hibi_status = 519;
-/// Mud parameters: `damping_factor` (α) must be finite and > 0.
-pub const HIBI_ERROR_MUD_DAMPING_FACTOR: hibi_status = 520;
-/// Mud parameters: `density` (ρ) must be finite and > 0.
-pub const HIBI_ERROR_MUD_DENSITY: hibi_status = 521;
-/// Mud parameters: `young_modulus` (E) must be finite and > 0.
-pub const HIBI_ERROR_MUD_YOUNG_MODULUS: hibi_status = 522;
-/// Mud parameters: `shear_modulus` (G) must be finite and > 0.
-pub const HIBI_ERROR_MUD_SHEAR_MODULUS: hibi_status = 523;
-/// Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
-pub const HIBI_ERROR_MUD_BREAK_STRETCH_MEAN: hibi_status = 524;
-/// Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
-pub const HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD: hibi_status = 525;
-/// Mud parameters: `anisotropy_direction` must be finite.
-pub const HIBI_ERROR_MUD_ANISOTROPY_DIRECTION: hibi_status = 526;
-/// Mud parameters: `anisotropy_ratio` must be finite and >= 1.
-pub const HIBI_ERROR_MUD_ANISOTROPY_RATIO: hibi_status = 527;
-/// Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
-pub const HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO: hibi_status = 528;
-/// Mud parameters: `target_shrink` must be finite and within [0, 1).
-pub const HIBI_ERROR_MUD_TARGET_SHRINK: hibi_status = 529;
-/// Mud parameters: `target_crack_density` must be finite and >= 0.
-pub const HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: hibi_status = 530;
-/// Mud parameters: The lattice is too large: its memory size overflows.
-pub const HIBI_ERROR_MUD_SIZE_OVERFLOW: hibi_status = 531;
-/// Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
-/// within [1e-6, 1e6].
-pub const HIBI_ERROR_MUD_SHEAR_SCALE: hibi_status = 532;
-/// Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
-pub const HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: hibi_status = 533;
-/// Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
-/// within [1e-6, 1e6].
-pub const HIBI_ERROR_MUD_DAMPING_SCALE: hibi_status = 534;
-/// Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
-/// [1e-6, 1e6].
-pub const HIBI_ERROR_MUD_SHORT_STEP_SCALE: hibi_status = 535;
-/// Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
-/// element_size must be within [1e-6, 1e6].
-pub const HIBI_ERROR_MUD_TOLERANCE_SCALE: hibi_status = 536;
-/// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
-/// finite.
-pub const HIBI_ERROR_MUD_SPREAD_SCALE: hibi_status = 537;
-/// Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
-/// (the run would diverge); make it smaller or `damping_factor` larger, or use the
-/// quasi-static solver.
-/// `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
-/// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
-/// tell, and `hibi_mud_create_in` may have written the memory it was given.
-pub const HIBI_ERROR_MUD_SHORT_STEP_STABILITY: hibi_status = 538;
+constants! {
+    hibi_status = 512 +
+    /// Mud parameters: `columns` must be >= 2 (>= 3 when periodic, >= 8 periodic irregular).
+    HIBI_ERROR_MUD_COLUMNS: MudParamError::Columns = 512;
+    /// Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even
+    /// and >= 8 irregular).
+    HIBI_ERROR_MUD_ROWS: MudParamError::Rows = 513;
+    /// Mud parameters: `layer_thickness` (H) must be finite and > 0.
+    HIBI_ERROR_MUD_LAYER_THICKNESS: MudParamError::LayerThickness = 514;
+    /// Mud parameters: `element_size` (W) must be finite and > 0.
+    HIBI_ERROR_MUD_ELEMENT_SIZE: MudParamError::ElementSize = 515;
+    /// Mud parameters: `long_step` (T) must be finite and > 0.
+    HIBI_ERROR_MUD_LONG_STEP: MudParamError::LongStep = 516;
+    /// Mud parameters: `short_step` (τ) must be finite and > 0.
+    HIBI_ERROR_MUD_SHORT_STEP: MudParamError::ShortStep = 517;
+    /// Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
+    HIBI_ERROR_MUD_SHRINK_RATIO: MudParamError::ShrinkRatio = 518;
+    /// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
+    HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: MudParamError::DisplacementTolerance = 519;
+    /// Mud parameters: `damping_factor` (α) must be finite and > 0.
+    HIBI_ERROR_MUD_DAMPING_FACTOR: MudParamError::DampingFactor = 520;
+    /// Mud parameters: `density` (ρ) must be finite and > 0.
+    HIBI_ERROR_MUD_DENSITY: MudParamError::Density = 521;
+    /// Mud parameters: `young_modulus` (E) must be finite and > 0.
+    HIBI_ERROR_MUD_YOUNG_MODULUS: MudParamError::YoungModulus = 522;
+    /// Mud parameters: `shear_modulus` (G) must be finite and > 0.
+    HIBI_ERROR_MUD_SHEAR_MODULUS: MudParamError::ShearModulus = 523;
+    /// Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
+    HIBI_ERROR_MUD_BREAK_STRETCH_MEAN: MudParamError::BreakStretchMean = 524;
+    /// Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
+    HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD: MudParamError::BreakStretchSpread = 525;
+    /// Mud parameters: `anisotropy_direction` must be finite.
+    HIBI_ERROR_MUD_ANISOTROPY_DIRECTION: MudParamError::AnisotropyDirection = 526;
+    /// Mud parameters: `anisotropy_ratio` must be finite and >= 1.
+    HIBI_ERROR_MUD_ANISOTROPY_RATIO: MudParamError::AnisotropyRatio = 527;
+    /// Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
+    HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO: MudParamError::StiffnessAnisotropyRatio = 528;
+    /// Mud parameters: `target_shrink` must be finite and within [0, 1).
+    HIBI_ERROR_MUD_TARGET_SHRINK: MudParamError::TargetShrink = 529;
+    /// Mud parameters: `target_crack_density` must be finite and >= 0.
+    HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: MudParamError::TargetCrackDensity = 530;
+    /// Mud parameters: The lattice is too large: its memory size overflows.
+    HIBI_ERROR_MUD_SIZE_OVERFLOW: MudParamError::SizeOverflow = 531;
+    /// Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
+    /// within [1e-6, 1e6].
+    HIBI_ERROR_MUD_SHEAR_SCALE: MudParamError::ShearScale = 532;
+    /// Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
+    HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: MudParamError::BreakStretchSizeExponent = 533;
+    /// Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
+    /// within [1e-6, 1e6].
+    HIBI_ERROR_MUD_DAMPING_SCALE: MudParamError::DampingScale = 534;
+    /// Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
+    /// [1e-6, 1e6].
+    HIBI_ERROR_MUD_SHORT_STEP_SCALE: MudParamError::ShortStepScale = 535;
+    /// Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
+    /// element_size must be within [1e-6, 1e6].
+    HIBI_ERROR_MUD_TOLERANCE_SCALE: MudParamError::ToleranceScale = 536;
+    /// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
+    /// finite.
+    HIBI_ERROR_MUD_SPREAD_SCALE: MudParamError::SpreadScale = 537;
+    /// Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
+    /// (the run would diverge); make it smaller or `damping_factor` larger, or use the
+    /// quasi-static solver.
+    /// `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
+    /// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
+    /// tell, and `hibi_mud_create_in` may have written the memory it was given.
+    HIBI_ERROR_MUD_SHORT_STEP_STABILITY: MudParamError::ShortStepStability = 538;
+}
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
@@ -126,62 +131,35 @@ pub const HIBI_ERROR_RENDER_LINE_WIDTH: hibi_status = 774;
 /// `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
 pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
 
-const _: () = {
-    assert!(HIBI_ERROR_MUD_COLUMNS == 512 + MudParamError::Columns as u32);
-    assert!(HIBI_ERROR_MUD_ROWS == 512 + MudParamError::Rows as u32);
-    assert!(HIBI_ERROR_MUD_LAYER_THICKNESS == 512 + MudParamError::LayerThickness as u32);
-    assert!(HIBI_ERROR_MUD_ELEMENT_SIZE == 512 + MudParamError::ElementSize as u32);
-    assert!(HIBI_ERROR_MUD_LONG_STEP == 512 + MudParamError::LongStep as u32);
-    assert!(HIBI_ERROR_MUD_SHORT_STEP == 512 + MudParamError::ShortStep as u32);
-    assert!(HIBI_ERROR_MUD_SHRINK_RATIO == 512 + MudParamError::ShrinkRatio as u32);
-    assert!(HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE == 512 + MudParamError::DisplacementTolerance as u32);
-    assert!(HIBI_ERROR_MUD_DAMPING_FACTOR == 512 + MudParamError::DampingFactor as u32);
-    assert!(HIBI_ERROR_MUD_DENSITY == 512 + MudParamError::Density as u32);
-    assert!(HIBI_ERROR_MUD_YOUNG_MODULUS == 512 + MudParamError::YoungModulus as u32);
-    assert!(HIBI_ERROR_MUD_SHEAR_MODULUS == 512 + MudParamError::ShearModulus as u32);
-    assert!(HIBI_ERROR_MUD_BREAK_STRETCH_MEAN == 512 + MudParamError::BreakStretchMean as u32);
-    assert!(HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD == 512 + MudParamError::BreakStretchSpread as u32);
-    assert!(HIBI_ERROR_MUD_ANISOTROPY_DIRECTION == 512 + MudParamError::AnisotropyDirection as u32);
-    assert!(HIBI_ERROR_MUD_ANISOTROPY_RATIO == 512 + MudParamError::AnisotropyRatio as u32);
-    assert!(HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO == 512 + MudParamError::StiffnessAnisotropyRatio as u32);
-    assert!(HIBI_ERROR_MUD_TARGET_SHRINK == 512 + MudParamError::TargetShrink as u32);
-    assert!(HIBI_ERROR_MUD_TARGET_CRACK_DENSITY == 512 + MudParamError::TargetCrackDensity as u32);
-    assert!(HIBI_ERROR_MUD_SIZE_OVERFLOW == 512 + MudParamError::SizeOverflow as u32);
-    assert!(HIBI_ERROR_MUD_SHEAR_SCALE == 512 + MudParamError::ShearScale as u32);
-    assert!(HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT == 512 + MudParamError::BreakStretchSizeExponent as u32);
-    assert!(HIBI_ERROR_MUD_DAMPING_SCALE == 512 + MudParamError::DampingScale as u32);
-    assert!(HIBI_ERROR_MUD_SHORT_STEP_SCALE == 512 + MudParamError::ShortStepScale as u32);
-    assert!(HIBI_ERROR_MUD_TOLERANCE_SCALE == 512 + MudParamError::ToleranceScale as u32);
-    assert!(HIBI_ERROR_MUD_SPREAD_SCALE == 512 + MudParamError::SpreadScale as u32);
-    assert!(HIBI_ERROR_MUD_SHORT_STEP_STABILITY == 512 + MudParamError::ShortStepStability as u32);
-};
-
-/// Glass parameters: width and height must be finite and >= 1.
-pub const HIBI_ERROR_GLASS_SIZE: hibi_status = 1024;
-/// Glass parameters: the first impact must lie inside the plate.
-pub const HIBI_ERROR_GLASS_IMPACT_POINT: hibi_status = 1025;
-/// Glass parameters: `radial_mean` must be finite and within [0, 10000].
-pub const HIBI_ERROR_GLASS_RADIAL_MEAN: hibi_status = 1026;
-/// Glass parameters: `ring_threshold` must be finite.
-pub const HIBI_ERROR_GLASS_RING_THRESHOLD: hibi_status = 1027;
-/// Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
-pub const HIBI_ERROR_GLASS_COUNT_FORMULA: hibi_status = 1028;
-/// Glass parameters: the ring radius coefficients must be finite and >= 0.
-pub const HIBI_ERROR_GLASS_RING_RADIUS: hibi_status = 1029;
-/// Glass parameters: the speeds must be finite and > 0.
-pub const HIBI_ERROR_GLASS_SPEED: hibi_status = 1030;
-/// Glass parameters: `spread_ratio` (z) must be within [0, 1).
-pub const HIBI_ERROR_GLASS_SPREAD_RATIO: hibi_status = 1031;
-/// Glass parameters: `turn_limit` must be within [0, pi].
-pub const HIBI_ERROR_GLASS_TURN_LIMIT: hibi_status = 1032;
-/// Glass parameters: `turn_delay` (T) must be finite and > 0.
-pub const HIBI_ERROR_GLASS_TURN_DELAY: hibi_status = 1033;
-/// Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
-pub const HIBI_ERROR_GLASS_SECTOR: hibi_status = 1034;
-/// Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
-pub const HIBI_ERROR_GLASS_FORCES: hibi_status = 1035;
-/// Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
-pub const HIBI_ERROR_GLASS_CAPACITY_PARAMS: hibi_status = 1036;
+constants! {
+    hibi_status = 1024 +
+    /// Glass parameters: width and height must be finite and >= 1.
+    HIBI_ERROR_GLASS_SIZE: GlassParamError::Size = 1024;
+    /// Glass parameters: the first impact must lie inside the plate.
+    HIBI_ERROR_GLASS_IMPACT_POINT: GlassParamError::Impact = 1025;
+    /// Glass parameters: `radial_mean` must be finite and within [0, 10000].
+    HIBI_ERROR_GLASS_RADIAL_MEAN: GlassParamError::RadialMean = 1026;
+    /// Glass parameters: `ring_threshold` must be finite.
+    HIBI_ERROR_GLASS_RING_THRESHOLD: GlassParamError::RingThreshold = 1027;
+    /// Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
+    HIBI_ERROR_GLASS_COUNT_FORMULA: GlassParamError::CountFormula = 1028;
+    /// Glass parameters: the ring radius coefficients must be finite and >= 0.
+    HIBI_ERROR_GLASS_RING_RADIUS: GlassParamError::RingRadius = 1029;
+    /// Glass parameters: the speeds must be finite and > 0.
+    HIBI_ERROR_GLASS_SPEED: GlassParamError::Speed = 1030;
+    /// Glass parameters: `spread_ratio` (z) must be within [0, 1).
+    HIBI_ERROR_GLASS_SPREAD_RATIO: GlassParamError::SpreadRatio = 1031;
+    /// Glass parameters: `turn_limit` must be within [0, pi].
+    HIBI_ERROR_GLASS_TURN_LIMIT: GlassParamError::TurnLimit = 1032;
+    /// Glass parameters: `turn_delay` (T) must be finite and > 0.
+    HIBI_ERROR_GLASS_TURN_DELAY: GlassParamError::TurnDelay = 1033;
+    /// Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
+    HIBI_ERROR_GLASS_SECTOR: GlassParamError::Sector = 1034;
+    /// Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
+    HIBI_ERROR_GLASS_FORCES: GlassParamError::Forces = 1035;
+    /// Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+    HIBI_ERROR_GLASS_CAPACITY_PARAMS: GlassParamError::Capacity = 1036;
+}
 /// Glass parameters: the struct did not come from `hibi_glass_params_default`.
 pub const HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED: hibi_status = 1087;
 /// Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
@@ -198,45 +176,32 @@ pub const HIBI_ERROR_GLASS_CRACK_INDEX: hibi_status = 1091;
 /// `hibi_glass_render`: `layer` is not `HIBI_GLASS_LAYER_MASK` or `HIBI_GLASS_LAYER_TIME`.
 pub const HIBI_ERROR_GLASS_RENDER_LAYER: hibi_status = 1094;
 
-const _: () = {
-    assert!(HIBI_ERROR_GLASS_SIZE == 1024 + GlassParamError::Size as u32);
-    assert!(HIBI_ERROR_GLASS_IMPACT_POINT == 1024 + GlassParamError::Impact as u32);
-    assert!(HIBI_ERROR_GLASS_RADIAL_MEAN == 1024 + GlassParamError::RadialMean as u32);
-    assert!(HIBI_ERROR_GLASS_RING_THRESHOLD == 1024 + GlassParamError::RingThreshold as u32);
-    assert!(HIBI_ERROR_GLASS_COUNT_FORMULA == 1024 + GlassParamError::CountFormula as u32);
-    assert!(HIBI_ERROR_GLASS_RING_RADIUS == 1024 + GlassParamError::RingRadius as u32);
-    assert!(HIBI_ERROR_GLASS_SPEED == 1024 + GlassParamError::Speed as u32);
-    assert!(HIBI_ERROR_GLASS_SPREAD_RATIO == 1024 + GlassParamError::SpreadRatio as u32);
-    assert!(HIBI_ERROR_GLASS_TURN_LIMIT == 1024 + GlassParamError::TurnLimit as u32);
-    assert!(HIBI_ERROR_GLASS_TURN_DELAY == 1024 + GlassParamError::TurnDelay as u32);
-    assert!(HIBI_ERROR_GLASS_SECTOR == 1024 + GlassParamError::Sector as u32);
-    assert!(HIBI_ERROR_GLASS_FORCES == 1024 + GlassParamError::Forces as u32);
-    assert!(HIBI_ERROR_GLASS_CAPACITY_PARAMS == 1024 + GlassParamError::Capacity as u32);
-};
-
-/// Skin parameters: `width` and `height` must be in 1..=32768.
-pub const HIBI_ERROR_SKIN_SIZE: hibi_status = 1280;
-/// Skin parameters: `jitter_ratio` must be in [0, 1].
-pub const HIBI_ERROR_SKIN_JITTER_RATIO: hibi_status = 1281;
-/// Skin parameters: `levels` must be in 1..=4.
-pub const HIBI_ERROR_SKIN_LEVELS: hibi_status = 1282;
-/// Skin parameters: a used level's `spacing` must be finite and >= 1 px.
-pub const HIBI_ERROR_SKIN_SPACING: hibi_status = 1283;
-/// Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
-pub const HIBI_ERROR_SKIN_PERTURBATION: hibi_status = 1284;
-/// Skin parameters: a used level's `perturbation_depth` must be <= 5.
-pub const HIBI_ERROR_SKIN_PERTURBATION_DEPTH: hibi_status = 1285;
-/// Skin parameters: a used level's `stretch` must be finite and > 0.
-pub const HIBI_ERROR_SKIN_STRETCH: hibi_status = 1286;
-/// Skin parameters: a used level's `profile.segments` must be in 1..=4.
-pub const HIBI_ERROR_SKIN_PROFILE_SEGMENTS: hibi_status = 1287;
-/// Skin parameters: a used level's profile points must be finite, start at x' = 0, never
-/// decrease in x' and end at x' > 0.
-pub const HIBI_ERROR_SKIN_PROFILE_POINTS: hibi_status = 1288;
-/// Skin parameters: a used level's `roundness` must be in [0, 1].
-pub const HIBI_ERROR_SKIN_ROUNDNESS: hibi_status = 1289;
-/// Skin parameters: the surface needs more memory than the address space allows.
-pub const HIBI_ERROR_SKIN_CAPACITY_PARAMS: hibi_status = 1290;
+constants! {
+    hibi_status = 1280 +
+    /// Skin parameters: `width` and `height` must be in 1..=32768.
+    HIBI_ERROR_SKIN_SIZE: SkinParamError::Size = 1280;
+    /// Skin parameters: `jitter_ratio` must be in [0, 1].
+    HIBI_ERROR_SKIN_JITTER_RATIO: SkinParamError::JitterRatio = 1281;
+    /// Skin parameters: `levels` must be in 1..=4.
+    HIBI_ERROR_SKIN_LEVELS: SkinParamError::Levels = 1282;
+    /// Skin parameters: a used level's `spacing` must be finite and >= 1 px.
+    HIBI_ERROR_SKIN_SPACING: SkinParamError::Spacing = 1283;
+    /// Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
+    HIBI_ERROR_SKIN_PERTURBATION: SkinParamError::Perturbation = 1284;
+    /// Skin parameters: a used level's `perturbation_depth` must be <= 5.
+    HIBI_ERROR_SKIN_PERTURBATION_DEPTH: SkinParamError::PerturbationDepth = 1285;
+    /// Skin parameters: a used level's `stretch` must be finite and > 0.
+    HIBI_ERROR_SKIN_STRETCH: SkinParamError::Stretch = 1286;
+    /// Skin parameters: a used level's `profile.segments` must be in 1..=4.
+    HIBI_ERROR_SKIN_PROFILE_SEGMENTS: SkinParamError::ProfileSegments = 1287;
+    /// Skin parameters: a used level's profile points must be finite, start at x' = 0, never
+    /// decrease in x' and end at x' > 0.
+    HIBI_ERROR_SKIN_PROFILE_POINTS: SkinParamError::ProfilePoints = 1288;
+    /// Skin parameters: a used level's `roundness` must be in [0, 1].
+    HIBI_ERROR_SKIN_ROUNDNESS: SkinParamError::Roundness = 1289;
+    /// Skin parameters: the surface needs more memory than the address space allows.
+    HIBI_ERROR_SKIN_CAPACITY_PARAMS: SkinParamError::Capacity = 1290;
+}
 /// Skin parameters: the struct did not come from `hibi_skin_params_default` or
 /// `hibi_skin_params_preset`.
 pub const HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED: hibi_status = 1343;
@@ -263,20 +228,6 @@ pub const HIBI_ERROR_SKIN_SHADE_SPECULAR: hibi_status = 1353;
 pub const HIBI_ERROR_SKIN_UNKNOWN_PRESET: hibi_status = 1348;
 /// A cell index is not below `hibi_skin_cell_count`.
 pub const HIBI_ERROR_SKIN_CELL_INDEX: hibi_status = 1349;
-
-const _: () = {
-    assert!(HIBI_ERROR_SKIN_SIZE == 1280 + SkinParamError::Size as u32);
-    assert!(HIBI_ERROR_SKIN_JITTER_RATIO == 1280 + SkinParamError::JitterRatio as u32);
-    assert!(HIBI_ERROR_SKIN_LEVELS == 1280 + SkinParamError::Levels as u32);
-    assert!(HIBI_ERROR_SKIN_SPACING == 1280 + SkinParamError::Spacing as u32);
-    assert!(HIBI_ERROR_SKIN_PERTURBATION == 1280 + SkinParamError::Perturbation as u32);
-    assert!(HIBI_ERROR_SKIN_PERTURBATION_DEPTH == 1280 + SkinParamError::PerturbationDepth as u32);
-    assert!(HIBI_ERROR_SKIN_STRETCH == 1280 + SkinParamError::Stretch as u32);
-    assert!(HIBI_ERROR_SKIN_PROFILE_SEGMENTS == 1280 + SkinParamError::ProfileSegments as u32);
-    assert!(HIBI_ERROR_SKIN_PROFILE_POINTS == 1280 + SkinParamError::ProfilePoints as u32);
-    assert!(HIBI_ERROR_SKIN_ROUNDNESS == 1280 + SkinParamError::Roundness as u32);
-    assert!(HIBI_ERROR_SKIN_CAPACITY_PARAMS == 1280 + SkinParamError::Capacity as u32);
-};
 
 /// The status that reports a glass parameter error.
 pub(crate) fn glass_param_status(error: GlassParamError) -> hibi_status {

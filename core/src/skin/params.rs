@@ -175,7 +175,7 @@ crate::error::error_list! {
         ProfileSegments => c"skin: a profile must have 1..=4 Bezier segments",
         /// A profile point is not finite, does not start at x' = 0, or its x' decreases (x'(t)
         /// must be monotone), or it ends at x' = 0.
-        ProfilePoints => c"skin: profile points must be finite, start at x' = 0 and never decrease in x'",
+        ProfilePoints => c"skin: profile points must be finite, start at x' = 0, never decrease in x' and end at x' > 0",
         /// A level's `roundness` is not in [0, 1].
         Roundness => c"skin: a level's roundness must be in [0, 1]",
         /// The surface needs more memory than the address space allows.
