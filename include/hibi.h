@@ -572,7 +572,9 @@ typedef struct hibi_mud_params {
    */
   float long_step;
   /**
-   * τ, short time step [s] (paper: 0.001).
+   * τ, short time step [s] (paper: 0.001). The explicit solver refuses one that fails the
+   * stability test of its damped step (`HIBI_ERROR_MUD_SHORT_STEP_STABILITY`; about ten
+   * times the paper's at the defaults).
    */
   float short_step;
   /**
@@ -1218,9 +1220,9 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_MUD_SPREAD_SCALE 537
 
 /**
- * Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
- * (the run would diverge); make it smaller or `damping_factor` larger, or use the
- * quasi-static solver.
+ * Mud parameters: with the explicit solver, `short_step` fails the stability test of its
+ * damped step (a sufficient bound: past it the run may diverge); make it smaller or
+ * `damping_factor` larger, or use the quasi-static solver.
  * `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
  * `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
  * tell, and `hibi_mud_create_in` may have written the memory it was given.
@@ -1715,11 +1717,13 @@ hibi_status hibi_mud_params_preset(const char *name, struct hibi_mud_params *out
 /**
  * Checks `params` and writes the bytes a run needs in caller memory (for
  * `hibi_mud_create_in`). Every parameter error is reported here.
+ * One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may have written its memory when it refuses them.
  *
  * # Safety
  * `params` must be NULL or readable; `size` NULL or writable.
  */
-hibi_status hibi_mud_memory_size(const struct hibi_mud_params *params, size_t *size);
+hibi_status hibi_mud_memory_size(const struct hibi_mud_params *params,
+                                 size_t *size);
 
 /**
  * Alignment, in bytes, that caller memory for `hibi_mud_create_in` must have (8).
@@ -1741,6 +1745,7 @@ hibi_status hibi_mud_create(const struct hibi_mud_params *params, struct hibi_mu
  * aligned to `hibi_mud_memory_align()`, as `hibi_mud_create` does. The memory stays
  * the caller's (keep it untouched while the run lives); `hibi_mud_destroy` is
  * optional. Nothing is written on failure.
+ * One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may have written its memory when it refuses them.
  *
  * # Safety
  * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
@@ -1763,8 +1768,8 @@ void hibi_mud_destroy(struct hibi_mud *mud);
 /**
  * Advances the run by about `budget` units of work (one unit: one spring visited): it does
  * indivisible pieces (an explicit short step, a quasi-static node relaxation or break event)
- * until their work reaches the budget, so a call does at least one piece and overruns the
- * budget by less than one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
+ * until their work reaches the budget, so a call on an unfinished run does at least one piece
+ * and overruns the budget by at most one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
  * is NULL. Call until `progress.finished`.
  *
  * # Safety

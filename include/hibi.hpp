@@ -215,7 +215,7 @@ public:
         return Mud(raw);
     }
 
-    /// Advances by about `budget` units of work (springs visited; overruns by less than one
+    /// Advances by about `budget` units of work (springs visited; overruns by at most one
     /// indivisible piece, see hibi_mud_step).
     Progress step(std::uint64_t budget) {
         Progress progress{};

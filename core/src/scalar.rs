@@ -281,6 +281,17 @@ pub(crate) mod tests {
         assert!(worst < 3e-7, "relative error {worst}");
     }
 
+    /// Fuzz finding 5: a NaN or negative length² (a diverging run) made the first guess's
+    /// subtraction from the magic constant overflow, a panic with overflow checks (which these
+    /// tests have). It wraps, as release builds always did; a NaN stays NaN.
+    #[test]
+    fn f32_inverse_sqrt_of_nan_or_a_negative_is_no_panic() {
+        for x in [f32::NAN, -f32::NAN, -1.0, -0.0, f32::NEG_INFINITY, -f32::MIN_POSITIVE] {
+            let y = x.inverse_sqrt();
+            assert!(!x.is_nan() || y.is_nan(), "{x}: {y}");
+        }
+    }
+
     #[cfg(feature = "micromath")]
     #[test]
     fn micromath_backend_is_within_its_documented_approximation() {

@@ -21,7 +21,9 @@ use hibi_core::glass::{
 };
 
 use crate::fields::{Field, constants, convert};
-use crate::guard::{Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, update, write_out};
+use crate::guard::{
+    Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, update, write_out,
+};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
@@ -273,12 +275,11 @@ pub unsafe extern "C" fn hibi_glass_impact(
     y: f32,
     counts: *mut hibi_glass_counts,
 ) -> hibi_status {
+    let impact = |glass: &mut hibi_glass| {
+        glass.glass.impact([x, y]).map(|c| hibi_glass_counts::from_core(&c)).map_err(glass_status)
+    };
     // SAFETY: the caller's contract.
-    guard(|| unsafe {
-        update(glass, c"glass", (counts, c"counts"), |glass| {
-            glass.glass.impact([x, y]).map(|c| hibi_glass_counts::from_core(&c)).map_err(glass_status)
-        })
-    })
+    guard(|| unsafe { update(glass, c"glass", (counts, c"counts"), impact) })
 }
 
 /// Advances growth by about `budget` units of work (at least one; a unit is a grid cell,
@@ -296,13 +297,12 @@ pub unsafe extern "C" fn hibi_glass_step(
     budget: u64,
     progress: *mut hibi_glass_progress,
 ) -> hibi_status {
+    let step = |glass: &mut hibi_glass| match glass.glass.step(budget) {
+        p if p.capacity_reached => Err(HIBI_ERROR_GLASS_CAPACITY),
+        p => Ok(hibi_glass_progress::from_core(&p)),
+    };
     // SAFETY: the caller's contract.
-    guard(|| unsafe {
-        update(glass, c"glass", (progress, c"progress"), |glass| match glass.glass.step(budget) {
-            p if p.capacity_reached => Err(HIBI_ERROR_GLASS_CAPACITY),
-            p => Ok(hibi_glass_progress::from_core(&p)),
-        })
-    })
+    guard(|| unsafe { update(glass, c"glass", (progress, c"progress"), step) })
 }
 
 /// Writes the number of cracks.
@@ -484,13 +484,14 @@ pub unsafe extern "C" fn hibi_glass_fragments(
     points_written: *mut usize,
 ) -> hibi_status {
     guard(|| {
+        let written = polygon_counts(rings_written, points_written)?;
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
         // SAFETY: the caller's contract.
-        let out = unsafe { Polygons::check((rings, rings_len), (points, points_len), rings_written, points_written) }?;
+        let out = unsafe { Polygons::check(written, (rings, rings_len), (points, points_len)) }?;
         let (r, p) = glass.fragments(scratch, out.rings, out.points).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { out.written(r, p) }
+        unsafe { out.write_counts(r, p) }
     })
 }
 

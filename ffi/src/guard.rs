@@ -266,6 +266,15 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr)
     Ok(unsafe { core::slice::from_raw_parts_mut(ptr, len) })
 }
 
+/// The counts' out-parameters of a polygon query, `rings_written` and `points_written`
+/// (required), checked first, as the queries do before anything else of theirs but the object.
+pub(crate) fn polygon_counts(
+    rings_written: *mut usize,
+    points_written: *mut usize,
+) -> Result<Outs<usize, 2>, hibi_status> {
+    Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])
+}
+
 /// The outputs of a polygon query (mud's cells, glass's fragments): a record per ring and
 /// their points, each buffer with the count written to it.
 pub(crate) struct Polygons<'a, R> {
@@ -275,18 +284,16 @@ pub(crate) struct Polygons<'a, R> {
 }
 
 impl<'a, R> Polygons<'a, R> {
-    /// Checks the buffers `rings[0..rings_len]` and `points[0..points_len]` and the counts'
-    /// out-parameters `rings_written` and `points_written` (required).
+    /// Checks the buffers `rings[0..rings_len]` and `points[0..points_len]`, to be counted in
+    /// `written` (from [`polygon_counts`]).
     ///
     /// # Safety
     /// As [`buffer`] for both buffers (not overlapping); the counts as [`Outs::write`].
     pub(crate) unsafe fn check(
+        written: Outs<usize, 2>,
         rings: (*mut R, usize),
         points: (*mut hibi_vec2, usize),
-        rings_written: *mut usize,
-        points_written: *mut usize,
     ) -> Result<Self, hibi_status> {
-        let written = Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])?;
         // SAFETY: the caller's contract; hibi_vec2 is laid out as [f32; 2] (asserted in glass).
         let (rings, points) =
             unsafe { (buffer(rings.0, rings.1, c"rings")?, buffer(points.0.cast::<[f32; 2]>(), points.1, c"points")?) };
@@ -297,7 +304,7 @@ impl<'a, R> Polygons<'a, R> {
     ///
     /// # Safety
     /// As [`Outs::write`].
-    pub(crate) unsafe fn written(self, rings: usize, points: usize) -> Result<(), hibi_status> {
+    pub(crate) unsafe fn write_counts(self, rings: usize, points: usize) -> Result<(), hibi_status> {
         // SAFETY: the caller's contract.
         unsafe { self.written.write([rings, points]) }
     }

@@ -28,7 +28,7 @@ use hibi_core::mud::{
 
 use crate::fields::{Field, constants, convert};
 use crate::glass::hibi_vec2;
-use crate::guard::{Outs, Polygons, buffer, check_pointer, guard, object_ref, update, write_out};
+use crate::guard::{Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, update, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
@@ -96,7 +96,9 @@ pub struct hibi_mud_params {
     pub element_size: f32,
     /// T, long time step [s] (default 1).
     pub long_step: f32,
-    /// τ, short time step [s] (paper: 0.001).
+    /// τ, short time step [s] (paper: 0.001). The explicit solver refuses one that fails the
+    /// stability test of its damped step (`HIBI_ERROR_MUD_SHORT_STEP_STABILITY`; about ten
+    /// times the paper's at the defaults).
     pub short_step: f32,
     /// γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
     /// and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`).
@@ -253,6 +255,10 @@ lifecycle!(
     presets "`\"fig6a\"` … `\"fig10\"`",
     hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_memory_size, hibi_mud_memory_align,
     hibi_mud_create, hibi_mud_create_in, hibi_mud_destroy,
+    only create: "One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's \
+        explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` \
+        build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may \
+        have written its memory when it refuses them.",
 );
 
 impl Object for hibi_mud {
@@ -283,8 +289,8 @@ impl Object for hibi_mud {
 
 /// Advances the run by about `budget` units of work (one unit: one spring visited): it does
 /// indivisible pieces (an explicit short step, a quasi-static node relaxation or break event)
-/// until their work reaches the budget, so a call does at least one piece and overruns the
-/// budget by less than one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
+/// until their work reaches the budget, so a call on an unfinished run does at least one piece
+/// and overruns the budget by at most one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
 /// is NULL. Call until `progress.finished`.
 ///
 /// # Safety
@@ -295,10 +301,9 @@ pub unsafe extern "C" fn hibi_mud_step(
     budget: u64,
     progress: *mut hibi_mud_progress,
 ) -> hibi_status {
+    let step = |mud: &mut hibi_mud| Ok(hibi_mud_progress::from_core(&mud.mud.step(budget)));
     // SAFETY: the caller's contract.
-    guard(|| unsafe {
-        update(mud, c"mud", (progress, c"progress"), |mud| Ok(hibi_mud_progress::from_core(&mud.mud.step(budget))))
-    })
+    guard(|| unsafe { update(mud, c"mud", (progress, c"progress"), step) })
 }
 
 /// Writes the number of crack segments `hibi_mud_segments` would write now.
@@ -483,11 +488,12 @@ pub unsafe extern "C" fn hibi_mud_cells(
     guard(|| {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
+        let written = polygon_counts(rings_written, points_written)?;
         // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing (asserted above).
-        let out = unsafe { Polygons::check((rings, rings_len), (points, points_len), rings_written, points_written) }?;
+        let out = unsafe { Polygons::check(written, (rings, rings_len), (points, points_len)) }?;
         let counts = mud.mud.cells(out.rings, out.points).map_err(output_status)?;
         // SAFETY: checked; the caller's contract.
-        unsafe { out.written(counts.rings, counts.points) }
+        unsafe { out.write_counts(counts.rings, counts.points) }
     })
 }
 

@@ -88,7 +88,8 @@ pub(crate) trait Object: Sized + 'static {
     /// `HIBI_ERROR_SIZE_OVERFLOW` here, which names no argument).
     const TOO_LARGE: hibi_status;
 
-    /// Checks the input; every parameter error is reported here.
+    /// Checks the input; every parameter error is reported here (mud's irregular explicit
+    /// stability aside, which needs the built mesh: see `HIBI_ERROR_MUD_SHORT_STEP_STABILITY`).
     ///
     /// # Safety
     /// Pointers in the input must be NULL or readable.
@@ -280,7 +281,8 @@ macro_rules! lifecycle {
         errors ($not_initialised:ident, $bad_enum:ident, $unknown:ident),
         presets $presets:literal,
         $default:ident, $preset:ident, $memory_size:ident, $memory_align:ident,
-        $create:ident, $create_in:ident, $destroy:ident $(,)?
+        $create:ident, $create_in:ident, $destroy:ident
+        $(, only create: $only_create:literal)? $(,)?
     ) => {
         impl $crate::guard::Outcome for $params {
             type C = $params;
@@ -330,6 +332,7 @@ macro_rules! lifecycle {
 
         #[doc = concat!(" Checks `params` and writes the bytes a ", $what, " needs in caller memory (for")]
         #[doc = concat!(" `", stringify!($create_in), "`). Every parameter error is reported here.")]
+        $(#[doc = concat!(" ", $only_create)])?
         ///
         /// # Safety
         /// `params` must be NULL or readable; `size` NULL or writable.
@@ -361,6 +364,7 @@ macro_rules! lifecycle {
         #[doc = concat!(" aligned to `", stringify!($memory_align), "()`, as `", stringify!($create), "` does. The memory stays")]
         #[doc = concat!(" the caller's (keep it untouched while the ", $what, " lives); `", stringify!($destroy), "` is")]
         /// optional. Nothing is written on failure.
+        $(#[doc = concat!(" ", $only_create)])?
         ///
         /// # Safety
         /// `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;

@@ -378,13 +378,12 @@ pub unsafe extern "C" fn hibi_skin_step(
     budget: u64,
     progress: *mut hibi_skin_progress,
 ) -> hibi_status {
+    let step = |skin: &mut hibi_skin| match skin.skin.step(budget) {
+        p if p.capacity_reached => Err(HIBI_ERROR_SKIN_CAPACITY),
+        p => Ok(hibi_skin_progress::from_core(&p)),
+    };
     // SAFETY: the caller's contract.
-    guard(|| unsafe {
-        update(skin, c"skin", (progress, c"progress"), |skin| match skin.skin.step(budget) {
-            p if p.capacity_reached => Err(HIBI_ERROR_SKIN_CAPACITY),
-            p => Ok(hibi_skin_progress::from_core(&p)),
-        })
-    })
+    guard(|| unsafe { update(skin, c"skin", (progress, c"progress"), step) })
 }
 
 /// The default light (from the upper left) and palette (a light skin tone).

@@ -102,9 +102,9 @@ constants! {
     /// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
     /// finite.
     HIBI_ERROR_MUD_SPREAD_SCALE: MudParamError::SpreadScale = 537;
-    /// Mud parameters: with the explicit solver, `short_step` is past the solver's stability limit
-    /// (the run would diverge); make it smaller or `damping_factor` larger, or use the
-    /// quasi-static solver.
+    /// Mud parameters: with the explicit solver, `short_step` fails the stability test of its
+    /// damped step (a sufficient bound: past it the run may diverge); make it smaller or
+    /// `damping_factor` larger, or use the quasi-static solver.
     /// `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
     /// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
     /// tell, and `hibi_mud_create_in` may have written the memory it was given.

@@ -389,7 +389,7 @@ pub fn skin_params(u: &mut Unstructured) -> Result<hibi_skin_params> {
 /// most [`MAX_OBJECT_BYTES`], `*_create` or `*_create_in` into memory of any length and
 /// alignment. Returns the object and its caller memory (empty for `*_create`), which must
 /// outlive it.
-pub fn create<P: core::fmt::Debug, O>(
+pub fn create<P: core::fmt::Debug + OnlyCreateCanTell, O>(
     u: &mut Unstructured,
     params: &P,
     memory_size: unsafe extern "C" fn(*const P, *mut usize) -> hibi_status,
@@ -421,7 +421,7 @@ pub fn create<P: core::fmt::Debug, O>(
         if !check(status) {
             assert_eq!(object, dangling, "a failing create wrote its output");
             assert!(
-                status == HIBI_ERROR_OUT_OF_MEMORY || status == ONLY_CREATE_CAN_TELL,
+                status == HIBI_ERROR_OUT_OF_MEMORY || Some(status) == params.only_create_can_tell(),
                 "memory_size accepted what create refused: status {status}"
             );
             return Ok(None);
@@ -435,7 +435,10 @@ pub fn create<P: core::fmt::Debug, O>(
         let fits = !ptr.is_null() && len >= size && (ptr as usize) % align == 0;
         if !check(status) {
             assert_eq!(object, dangling, "a failing create_in wrote its output");
-            assert!(!fits || status == ONLY_CREATE_CAN_TELL, "create_in refused memory that fits: status {status}");
+            assert!(
+                !fits || Some(status) == params.only_create_can_tell(),
+                "create_in refused memory that fits: status {status}"
+            );
             return Ok(None);
         }
         assert!(fits, "create_in accepted memory that does not fit");
@@ -443,10 +446,24 @@ pub fn create<P: core::fmt::Debug, O>(
     }
 }
 
-/// The one refusal `*_memory_size` cannot foresee: an irregular mud lattice's explicit run is
-/// checked for stability node by node on its mesh, which only create builds (see
-/// `hibi_mud_create`).
-const ONLY_CREATE_CAN_TELL: hibi_status = HIBI_ERROR_MUD_SHORT_STEP_STABILITY;
+/// A refusal `*_memory_size` cannot foresee for some parameters.
+pub trait OnlyCreateCanTell {
+    /// The status only `*_create` and `*_create_in` can give these parameters, if any.
+    fn only_create_can_tell(&self) -> Option<hibi_status> {
+        None
+    }
+}
+
+/// An irregular lattice's explicit run is checked for stability node by node on its mesh,
+/// which only create builds (see `HIBI_ERROR_MUD_SHORT_STEP_STABILITY`).
+impl OnlyCreateCanTell for hibi_mud_params {
+    fn only_create_can_tell(&self) -> Option<hibi_status> {
+        (self.topology == HIBI_MUD_IRREGULAR && self.solver == HIBI_MUD_EXPLICIT)
+            .then_some(HIBI_ERROR_MUD_SHORT_STEP_STABILITY)
+    }
+}
+impl OnlyCreateCanTell for hibi_glass_params {}
+impl OnlyCreateCanTell for hibi_skin_params {}
 
 /// An out-pointer to `value`, or (rarely) NULL.
 pub fn out<T>(u: &mut Unstructured, value: &mut T) -> Result<*mut T> {

@@ -23,6 +23,7 @@
 //! are recorded afterwards in a scalar pass over the row. So every value is the same bit for
 //! bit on every build, and the same as with one pass per direction and a row of scratch.
 
+use super::irregular::Mesh;
 use super::lattice::Lattice;
 use super::material::Material;
 use super::{ABSENT, Boundary, Mud, SolverState, take};
@@ -59,11 +60,11 @@ pub(super) const NODE_CONSTANTS: usize = 5;
 /// stiffness of at most `lambda`, for a short step `tau` (all in lattice units, as f64).
 ///
 /// Under a force F = −λ·u, Eq. 4 maps (u, v) to (u', v') by [[1 − λa, b], [−(1 − e)λ/c, e]],
-/// with e = exp(−cτ/m), a = τ/c − (m/c²)(1 − e) and b = (m/c)(1 − e). Both eigenvalues lie
-/// inside the unit circle (Jury's conditions; the third, 1 − trace + det > 0, holds for every
-/// λ > 0) when, with x = cτ/m and μ = λ·m/c²,
-/// μ·(x(1 + e) − 2(1 − e)) < 2(1 + e) and μ·(1 − (1 + x)e) < 1 − e.
-/// Past them the explicit run diverges (its positions grow without bound, then turn NaN).
+/// with e = exp(−cτ/m), a = τ/c − (m/c²)(1 − e) and b = (m/c)(1 − e). With x = cτ/m and
+/// μ = λ·m/c², the determinant is e + μ(1 − (1 + x)e) ≥ e > 0 and 1 − trace + det =
+/// λ(1 − e)τ/c > 0, so both eigenvalues lie inside the unit circle (Jury's conditions) when
+/// μ·(x(1 + e) − 2(1 − e)) < 2(1 + e) and μ·(1 − (1 + x)e) < 1 − e. Both left sides grow with
+/// λ, so an upper bound on λ gives a sufficient test.
 pub(super) fn stable(m: f64, c: f64, lambda: f64, tau: f64) -> bool {
     let x = c * tau / m;
     let e = libm::exp(-x);
@@ -71,22 +72,55 @@ pub(super) fn stable(m: f64, c: f64, lambda: f64, tau: f64) -> bool {
     mu * (x * (1.0 + e) - 2.0 * (1.0 - e)) < 2.0 * (1.0 + e) && mu * (1.0 - (1.0 + x) * e) < 1.0 - e
 }
 
-/// Whether every node of the irregular lattice's explicit run is [`stable`]: each has its own
-/// mass B, damping 2·√(k_max·B)·α and stiffness bound h + 2·Σk (Gershgorin's, over its springs
-/// and its shear spring h = B·`shear_per_area`).
-pub(super) fn irregular_stable<S>(lattice: &Lattice, material: &Material<S>, alpha: f32) -> bool {
-    let Some(mesh) = lattice.mesh() else { return true };
-    (0..lattice.node_count()).all(|node| {
+/// Whether the explicit run of `lattice` with `material` (computed in `f32` whatever the
+/// backend, so that every backend accepts the same parameters) passes [`stable`] with
+/// Gershgorin's bound on the stiffness a node sees: its shear spring h plus twice its surface
+/// springs (two per direction on the regular lattices). The bound is sufficient, not tight:
+/// on the regular lattices the stiffest mode is about h + 4k (square) or h + 6k (hexagonal)
+/// against the bound's h + 8k and h + 12k, so steps up to about twice the accepted ones
+/// may still converge. The irregular lattice's nodes each have their own mass and damping
+/// ([`NodeConstants`]); each is tested alone, which is a heuristic there rather than a proof
+/// (the coupled update does not split into one mode per node).
+pub(super) fn stable_lattice(lattice: &Lattice, material: &Material<f32>, alpha: f32) -> bool {
+    let tau = f64::from(material.short_step);
+    match lattice.mesh() {
+        None => {
+            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+            let lambda = f64::from(material.shear) + 2.0 * f64::from(springs);
+            stable(f64::from(material.mass), f64::from(material.damping), lambda, tau)
+        }
+        Some(mesh) => (0..lattice.node_count()).all(|node| {
+            let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
+            stable(f64::from(n.mass), f64::from(n.damping), f64::from(n.shear + 2.0 * n.springs), tau)
+        }),
+    }
+}
+
+/// The constants of one node of the irregular lattice (paper §2): m = ρ·B·H and
+/// c = 2·√(k_max·m)·α, with B the node's Voronoi area and k_max over its springs and its shear
+/// spring h; in lattice units m = B. δF = k_min·δx with k_min over the same springs.
+pub(super) struct NodeConstants {
+    mass: f32,
+    damping: f32,
+    shear: f32,
+    /// The weakest of its springs and its shear spring, k_min.
+    weakest: f32,
+    /// Σk over its surface springs.
+    springs: f32,
+}
+
+impl NodeConstants {
+    fn of(mesh: &Mesh, node: usize, shear_per_area: f32, alpha: f32) -> Self {
         let mass = mesh.area(node);
-        let shear = mass * material.shear_per_area;
-        let (mut k_max, mut sum) = (shear, 0.0f64);
+        let shear = mass * shear_per_area;
+        let (mut k_max, mut weakest, mut springs) = (shear, shear, 0.0f32);
         mesh.for_each_spring_at(node, |spring, _, _| {
             k_max = k_max.max(mesh.stiffness(spring));
-            sum += f64::from(mesh.stiffness(spring));
+            weakest = weakest.min(mesh.stiffness(spring));
+            springs += mesh.stiffness(spring);
         });
-        let c = 2.0 * libm::sqrt(f64::from(k_max) * f64::from(mass)) * f64::from(alpha);
-        stable(f64::from(mass), c, f64::from(shear) + 2.0 * sum, f64::from(material.step))
-    })
+        NodeConstants { mass, damping: 2.0 * libm::sqrtf(k_max * mass) * alpha, shear, weakest, springs }
+    }
 }
 
 /// The `limit` of a broken or absent spring.
@@ -107,21 +141,12 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
         let limit = take(scalars, lattice.spring_count());
         let node_constants = take(scalars, if lattice.mesh().is_some() { NODE_CONSTANTS * nodes } else { 0 });
         if let Some(mesh) = lattice.mesh() {
-            // Per node (paper §2): m = ρ·B·H and c = 2·√(k_max·m)·α, with B the node's Voronoi
-            // area and k_max over its springs and its shear spring; in lattice units m = B.
-            // δF = k_min·δx with k_min over the same springs.
             let tau = material.short_step;
             for node in 0..nodes {
-                let mass = mesh.area(node);
-                let shear = mass * material.shear_per_area;
-                let (mut k_max, mut k_low) = (shear, shear);
-                mesh.for_each_spring_at(node, |spring, _, _| {
-                    k_max = k_max.max(mesh.stiffness(spring));
-                    k_low = k_low.min(mesh.stiffness(spring));
-                });
-                let (m, c) = (S::from_f32(mass), S::from_f32(2.0 * libm::sqrtf(k_max * mass) * alpha));
+                let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
+                let (m, c) = (S::from_f32(n.mass), S::from_f32(n.damping));
                 let decay = (-(c * tau / m)).exp() - S::ONE;
-                let tolerance = S::from_f32(k_low * tolerance_length);
+                let tolerance = S::from_f32(n.weakest * tolerance_length);
                 node_constants[NODE_CONSTANTS * node..NODE_CONSTANTS * (node + 1)].copy_from_slice(&[
                     decay,
                     -(m / c) * decay,

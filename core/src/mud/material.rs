@@ -13,9 +13,8 @@
 //! - break stretch κ_i = κ̄ + σ/√A_i·N(0, 1), A_i = face·H in cm², and with anisotropy the
 //!   margin κ_i − 1 scaled by the spring's direction.
 
-use super::explicit::stable;
 use super::lattice::Lattice;
-use super::params::{MudParamError, MudParams, Solver, Topology};
+use super::params::{MudParamError, MudParams};
 use crate::scalar::Scalar;
 
 /// The largest number of spring directions (hexagonal).
@@ -36,8 +35,6 @@ pub struct Material<S> {
     pub damping: S,
     /// Short step τ.
     pub short_step: S,
-    /// Short step τ as `f32` whatever the backend, for the stability checks.
-    pub step: f32,
     /// Force tolerance δF.
     pub force_tolerance: S,
     /// Spread of κ_i: σ/√A_i (A_i in cm²).
@@ -96,17 +93,6 @@ impl<S: Scalar> Material<S> {
         if let Some(&(_, error)) = derived.iter().find(|(ok, _)| !ok) {
             return Err(error);
         }
-        // The explicit solver's short step must be stable (Eq. 4; the irregular lattice is
-        // checked node by node once its mesh is built). Each node sees its shear spring and two
-        // springs per direction: Gershgorin's bound on the stiffness is h + 2·Σk.
-        let springs_sum: f32 = springs.iter().map(|&k| 2.0 * k).sum();
-        let lambda = f64::from(shear) + 2.0 * f64::from(springs_sum);
-        if p.solver == Solver::Explicit
-            && p.topology != Topology::Irregular
-            && !stable(f64::from(mass), f64::from(damping), lambda, f64::from(short_step))
-        {
-            return Err(MudParamError::ShortStepStability);
-        }
         Ok(Material {
             stiffness: stiffness.map(S::from_f32),
             margin_factor,
@@ -114,7 +100,6 @@ impl<S: Scalar> Material<S> {
             mass: S::from_f32(mass),
             damping: S::from_f32(damping),
             short_step: S::from_f32(short_step),
-            step: short_step,
             force_tolerance: S::from_f32(force_tolerance),
             break_stretch_spread: spread,
             shear_per_area: shear / area,
@@ -187,21 +172,6 @@ mod tests {
         ];
         for (p, error) in cases {
             assert_eq!(Material::<f32>::new(&p, &lattice(Topology::Hexagonal)), Err(error), "{p:?}");
-        }
-    }
-
-    #[test]
-    fn an_explicit_short_step_past_the_stability_limit_is_refused() {
-        let explicit = MudParams { solver: Solver::Explicit, ..MudParams::default() };
-        for topology in [Topology::Square, Topology::Hexagonal] {
-            let at =
-                |short_step| Material::<f32>::new(&MudParams { short_step, topology, ..explicit }, &lattice(topology));
-            // The paper's step, and ten times it, are stable; twenty times it is not.
-            assert!(at(0.001).is_ok() && at(0.01).is_ok(), "{topology:?}");
-            assert_eq!(at(0.02), Err(MudParamError::ShortStepStability), "{topology:?}");
-            // The quasi-static solver has no short step to be unstable.
-            let quasi_static = MudParams { short_step: 0.02, topology, ..MudParams::default() };
-            assert!(Material::<f32>::new(&quasi_static, &lattice(topology)).is_ok());
         }
     }
 }

@@ -121,7 +121,16 @@ impl MudParams {
         self.validate()?;
         let memory =
             memory_for(self.topology, self.solver, self.columns, self.rows).ok_or(MudParamError::SizeOverflow)?;
-        Material::<f32>::new(self, &self.lattice())?;
+        let lattice = self.lattice();
+        let material = Material::<f32>::new(self, &lattice)?;
+        // The explicit solver's short step must pass the stability test of its damped step
+        // (the irregular lattice's is checked on its mesh, by `Mud::new`).
+        if self.solver == Solver::Explicit
+            && self.topology != Topology::Irregular
+            && !explicit::stable_lattice(&lattice, &material, self.damping_factor)
+        {
+            return Err(MudParamError::ShortStepStability);
+        }
         Ok(memory)
     }
 
@@ -341,7 +350,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     queued: &mut *break_time,
                     degree: &mut *other,
                 };
-                Lattice { mesh: Some(irregular::build(&shape, params, mesh_words, scratch)), ..shape }
+                let lattice = Lattice { mesh: Some(irregular::build(&shape, params, mesh_words, scratch)), ..shape };
+                // The regular lattices' explicit runs were checked by `memory`; this one needs
+                // its mesh.
+                let reference = Material::<f32>::new(params, &shape)?;
+                if params.solver == Solver::Explicit
+                    && !explicit::stable_lattice(&lattice, &reference, params.damping_factor)
+                {
+                    return Err(MudError::Param(MudParamError::ShortStepStability));
+                }
+                lattice
             }
             _ => shape,
         };
@@ -369,10 +387,6 @@ impl<'a, S: Scalar> Mud<'a, S> {
             };
             let kappa = 1.0 + margin + spread * rng.normal_f32();
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
-        }
-        if params.solver == Solver::Explicit && !explicit::irregular_stable(&lattice, &material, params.damping_factor)
-        {
-            return Err(MudError::Param(MudParamError::ShortStepStability));
         }
         let solver = match params.solver {
             Solver::Explicit => {
@@ -414,9 +428,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// Advances the run by about `budget` units of work (one unit is one spring visited): it
     /// does indivisible pieces (a short step of the explicit solver, a node relaxation or
-    /// break event of the quasi-static one) until their work reaches the budget, so a call
-    /// does at least one piece and overruns the budget by less than one piece. The run does
-    /// not depend on the budgets.
+    /// break event of the quasi-static one) until their work reaches the budget, so a call on
+    /// an unfinished run does at least one piece and overruns the budget by at most one piece
+    /// (the network's tracing when the run ends is not counted; it is bounded by the
+    /// lattice's size). The run does not depend on the budgets.
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
@@ -649,5 +664,21 @@ mod tests {
         let p = MudParams { columns: 16, rows: 16, ..MudParams::default() };
         let mut mud = Mud::new(&p, storage.buffers()).unwrap();
         assert!(mud.run().finished);
+    }
+
+    #[test]
+    fn an_explicit_short_step_past_the_stability_bound_is_refused() {
+        let explicit = MudParams { solver: Solver::Explicit, ..MudParams::default() };
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            let at = |short_step| MudParams { short_step, topology, columns: 8, rows: 8, ..explicit }.memory();
+            // The paper's step, and ten times it, pass the test; twenty times it is refused.
+            assert!(at(0.001).is_ok() && at(0.01).is_ok(), "{topology:?}");
+            assert_eq!(at(0.02), Err(MudParamError::ShortStepStability), "{topology:?}");
+            // The quasi-static solver has no short step to be unstable.
+            let quasi_static = MudParams { short_step: 0.02, topology, columns: 8, rows: 8, ..MudParams::default() };
+            assert!(quasi_static.memory().is_ok());
+            // Nor is the 1-D spacing prediction, which does not depend on τ.
+            assert!(MudParams { short_step: 0.02, topology, ..explicit }.predicted_spacing(0.02).is_some());
+        }
     }
 }

@@ -79,7 +79,9 @@ pub struct MudParams {
     pub element_size: f32,
     /// T: the long time step \[s\]; break times are reported in long steps.
     pub long_step: f32,
-    /// τ: the short time step of the explicit solver \[s\]. Paper: 0.001.
+    /// τ: the short time step of the explicit solver \[s\]. Paper: 0.001. The explicit solver
+    /// refuses a step that fails the stability test of its damped step (about ten times the
+    /// paper's at the defaults: [`MudParamError::ShortStepStability`]).
     pub short_step: f32,
     /// γ: shrink ratio per long step, in (0, 1): the rest lengths shrink to γⁿ after n long
     /// steps (γ = 1 would never shrink, so nothing would ever crack; it is rejected, as both
@@ -222,10 +224,11 @@ crate::error::error_list! {
         ToleranceScale => c"mud: displacement_tolerance is out of scale: k_min * displacement_tolerance / element_size must be within [1e-6, 1e6]",
         /// The spread of the break stretch per element, σ/√(face·W·H), is not finite.
         SpreadScale => c"mud: break_stretch_spread / sqrt(face * element_size * layer_thickness) must be finite",
-        /// The explicit solver's short step is past its stability limit (Eq. 4 under the
-        /// stiffest node's springs): the run would diverge. Make `short_step` smaller or
-        /// `damping_factor` larger, or use the quasi-static solver.
-        ShortStepStability => c"mud: short_step is past the explicit solver's stability limit (make short_step smaller or damping_factor larger, or use the quasi-static solver)",
+        /// The explicit solver's short step fails the stability test of its damped step
+        /// (Eq. 4 under a bound on the stiffest mode; a sufficient test, so past it the run may
+        /// diverge). Make `short_step` smaller or `damping_factor` larger, or use the
+        /// quasi-static solver.
+        ShortStepStability => c"mud: short_step fails the explicit solver's stability test (make short_step smaller or damping_factor larger, or use the quasi-static solver)",
     }
 }
 
