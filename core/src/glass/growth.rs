@@ -184,11 +184,26 @@ impl Glass<'_> {
         // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
         self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
+            // The row's share of the cell tests below: its corners' offset from the apex in y,
+            // that offset's square for the disc, and its products with the rays for the wedge
+            // (formed once a row, the very products the per-corner tests use).
+            let row = sector.zip(rays).map(|((w, _), [left, right])| {
+                let ay = cy as f32 * cell - w[1];
+                let by = ay + cell;
+                let ny = if ay > 0.0 {
+                    ay
+                } else if by < 0.0 {
+                    by
+                } else {
+                    0.0
+                };
+                (ny * ny, [right[0] * ay, right[0] * by], [left[0] * ay, left[0] * by])
+            });
             for cx in cx0..=cx1 {
-                if let (Some((w, _)), Some([left, right])) = (sector, rays) {
-                    // The cell's corners relative to the apex.
-                    let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
-                    let (bx, by) = (ax + cell, ay + cell);
+                if let (Some((w, _)), Some([left, right]), Some((ny2, right_y, left_y))) = (sector, rays, row) {
+                    // The cell's corners relative to the apex, in x.
+                    let ax = cx as f32 * cell - w[0];
+                    let bx = ax + cell;
                     // Outside the disc: its nearest point is farther than B.
                     let nx = if ax > 0.0 {
                         ax
@@ -197,21 +212,15 @@ impl Glass<'_> {
                     } else {
                         0.0
                     };
-                    let ny = if ay > 0.0 {
-                        ay
-                    } else if by < 0.0 {
-                        by
-                    } else {
-                        0.0
-                    };
-                    if nx * nx + ny * ny > b * b {
+                    if nx * nx + ny2 > b * b {
                         continue;
                     }
                     if c >= 0.0 {
-                        // Beyond a side of the wedge: every corner on the outer side of it.
-                        let corners = [[ax, ay], [bx, ay], [ax, by], [bx, by]];
-                        let outside_right = corners.iter().all(|q| right[0] * q[1] - right[1] * q[0] < 0.0);
-                        let outside_left = corners.iter().all(|q| left[0] * q[1] - left[1] * q[0] > 0.0);
+                        // Beyond a side of the wedge: every corner (x, y) on the outer side of
+                        // it, by the cross product ray × corner = ray_x·y − ray_y·x.
+                        let (right_x, left_x) = ([right[1] * ax, right[1] * bx], [left[1] * ax, left[1] * bx]);
+                        let outside_right = right_y.iter().all(|&y| right_x.iter().all(|&x| y - x < 0.0));
+                        let outside_left = left_y.iter().all(|&y| left_x.iter().all(|&x| y - x > 0.0));
                         if outside_right || outside_left {
                             continue;
                         }
@@ -362,7 +371,6 @@ impl Glass<'_> {
             // than B from the tip (it has no point in S), or farther than its crack's nearest
             // point found so far (it would not replace it). The box's distance is a lower
             // bound on the segment's (up to rounding, which SLACK covers many times over).
-            let slot = near[..count].iter().position(|n| n.0 == owner);
             let gap = |lo: f32, hi: f32, at: f32| {
                 if at < lo {
                     lo - at
@@ -373,8 +381,16 @@ impl Glass<'_> {
                 }
             };
             let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
+            let box_distance2 = gx * gx + gy * gy;
+            // The bound against B first (no bound below is larger), so that a far segment
+            // skips the search for its crack's entry.
+            let far = radius + SLACK;
+            if box_distance2 > far * far {
+                return;
+            }
+            let slot = near[..count].iter().position(|n| n.0 == owner);
             let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
-            if gx * gx + gy * gy > bound * bound {
+            if box_distance2 > bound * bound {
                 return;
             }
             let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };
