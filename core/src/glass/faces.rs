@@ -88,10 +88,12 @@ pub(super) struct FaceShape {
     pub(super) edges: usize,
 }
 
-/// The shape of the face left of `start` (None if the walk is broken).
-pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge) -> Option<FaceShape> {
+/// The shape of the face left of `start` (None if the walk is broken); `visit` is called
+/// with each half-edge of the walk, as by [`walk_face`].
+pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge, mut visit: impl FnMut(HalfEdge)) -> Option<FaceShape> {
     let mut shape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2], edges: 0 };
     let closed = walk_face(g, start, |h| {
+        visit(h);
         shape.edges += 1;
         let (u, w) = g.ends(h);
         let (a, b) = (g.point(u), g.point(w));
@@ -215,25 +217,32 @@ impl Glass<'_> {
         };
         let g = CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] };
         // Work (Glass::step's budget): the walks in lockstep, the faces measured, the marking
-        // walk, the cracks looked at and the crossing-number walks.
+        // walk (done by the walk that measures the face, still counted as one, so that a
+        // budget means what it did), the cracks looked at and the crossing-number walks.
         let mut work = 2 * steps;
-        let mut shapes = [first, second].into_iter().map(|s| (s, face_shape(&g, s)));
-        let found = shapes.find_map(|(s, f)| {
+        // The first of the two faces that is bounded, its vertices marked by the walk that
+        // measures it (a fresh mark per walk, so only the chosen face's vertices carry it).
+        let mut found = None;
+        for s in [first, second] {
+            self.walk.mark = self.walk.mark.wrapping_add(1);
+            if self.walk.mark == 0 {
+                self.walk.marks.fill(0);
+                self.walk.mark = 1;
+            }
+            let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
+            let f = face_shape(&g, s, |h| marks[g.ends(h).0 as usize] = mark);
             work += f.map_or(g.half_edge_bound(), |f| f.edges);
-            f.filter(|f| f.area > 0.0).map(|f| (s, f))
-        });
+            if let Some(f) = f.filter(|f| f.area > 0.0) {
+                found = Some((s, f));
+                break;
+            }
+        }
         let Some((start, shape)) = found else {
             self.clock.work += work as u64;
             return;
         };
         work += shape.edges + self.crack_count;
-        self.walk.mark = self.walk.mark.wrapping_add(1);
-        if self.walk.mark == 0 {
-            self.walk.marks.fill(0);
-            self.walk.mark = 1;
-        }
-        let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
-        walk_face(&g, start, |h| marks[g.ends(h).0 as usize] = mark);
+        let mark = self.walk.mark;
         let v = g.ends(start).0;
         let piece = self.component(v);
         for i in 0..self.crack_count {
