@@ -34,8 +34,9 @@ pub(super) trait PlaneGraph {
     fn point(&self, v: u32) -> [f32; 2];
     /// The vertex half-edge `h` leaves from and the one it reaches.
     fn ends(&self, h: HalfEdge) -> (u32, u32);
-    /// Calls `visit` with every half-edge leaving vertex `v`.
-    fn for_each_out(&self, v: u32, visit: impl FnMut(HalfEdge));
+    /// Calls `visit` with every half-edge leaving vertex `v` and its pseudo-angle (what
+    /// [`Self::angle`] gives), read together.
+    fn for_each_out(&self, v: u32, visit: impl FnMut(HalfEdge, f32));
     /// The pseudo-angle of half-edge `h`'s direction.
     fn angle(&self, h: HalfEdge) -> f32;
     /// An upper bound on the number of half-edges (a walk longer than this is broken).
@@ -50,8 +51,8 @@ pub(super) fn next_around_face<G: PlaneGraph>(g: &G, h: HalfEdge) -> HalfEdge {
     let before = |a: (f32, u32), b: (f32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
     // The predecessor of `back` in (angle, half-edge) order, cyclically.
     let (mut below, mut last) = (None::<(f32, u32)>, None::<(f32, u32)>);
-    g.for_each_out(w, |o| {
-        let key = (g.angle(o), o);
+    g.for_each_out(w, |o, angle| {
+        let key = (angle, o);
         if before(key, back) && below.is_none_or(|b| before(b, key)) {
             below = Some(key);
         }
@@ -131,8 +132,10 @@ impl CrackGraph<'_> {
     pub(super) fn for_each_edge_at(&self, v: u32, mut visit: impl FnMut(u32, HalfEdge)) {
         let mut e = self.vertices[v as usize].first_edge;
         while e != NONE {
-            visit(e, 2 * e + u32::from(self.edges[e as usize].from != v));
-            e = self.next_at(v, e);
+            // Which end of the edge `v` is: 0 its first, 1 its second (as in `next_at`).
+            let side = u32::from(self.edges[e as usize].from != v);
+            visit(e, 2 * e + side);
+            e = self.edges[e as usize].links[side as usize];
         }
     }
 }
@@ -147,8 +150,8 @@ impl PlaneGraph for CrackGraph<'_> {
         if h & 1 == 0 { (e.from, e.to) } else { (e.to, e.from) }
     }
 
-    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge)) {
-        self.for_each_edge_at(v, |_, h| visit(h));
+    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge, f32)) {
+        self.for_each_edge_at(v, |e, h| visit(h, self.edges[e as usize].angles[(h & 1) as usize]));
     }
 
     fn angle(&self, h: HalfEdge) -> f32 {
