@@ -34,8 +34,9 @@ pub(super) trait PlaneGraph {
     fn point(&self, v: u32) -> [f32; 2];
     /// The vertex half-edge `h` leaves from and the one it reaches.
     fn ends(&self, h: HalfEdge) -> (u32, u32);
-    /// Calls `visit` with every half-edge leaving vertex `v`.
-    fn for_each_out(&self, v: u32, visit: impl FnMut(HalfEdge));
+    /// Calls `visit` with every half-edge leaving vertex `v` and its pseudo-angle (what
+    /// [`Self::angle`] gives), read together.
+    fn for_each_out(&self, v: u32, visit: impl FnMut(HalfEdge, f32));
     /// The pseudo-angle of half-edge `h`'s direction.
     fn angle(&self, h: HalfEdge) -> f32;
     /// An upper bound on the number of half-edges (a walk longer than this is broken).
@@ -50,8 +51,8 @@ pub(super) fn next_around_face<G: PlaneGraph>(g: &G, h: HalfEdge) -> HalfEdge {
     let before = |a: (f32, u32), b: (f32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
     // The predecessor of `back` in (angle, half-edge) order, cyclically.
     let (mut below, mut last) = (None::<(f32, u32)>, None::<(f32, u32)>);
-    g.for_each_out(w, |o| {
-        let key = (g.angle(o), o);
+    g.for_each_out(w, |o, angle| {
+        let key = (angle, o);
         if before(key, back) && below.is_none_or(|b| before(b, key)) {
             below = Some(key);
         }
@@ -88,10 +89,12 @@ pub(super) struct FaceShape {
     pub(super) edges: usize,
 }
 
-/// The shape of the face left of `start` (None if the walk is broken).
-pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge) -> Option<FaceShape> {
+/// The shape of the face left of `start` (None if the walk is broken); `visit` is called
+/// with each half-edge of the walk, as by [`walk_face`].
+pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge, mut visit: impl FnMut(HalfEdge)) -> Option<FaceShape> {
     let mut shape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2], edges: 0 };
     let closed = walk_face(g, start, |h| {
+        visit(h);
         shape.edges += 1;
         let (u, w) = g.ends(h);
         let (a, b) = (g.point(u), g.point(w));
@@ -129,8 +132,10 @@ impl CrackGraph<'_> {
     pub(super) fn for_each_edge_at(&self, v: u32, mut visit: impl FnMut(u32, HalfEdge)) {
         let mut e = self.vertices[v as usize].first_edge;
         while e != NONE {
-            visit(e, 2 * e + u32::from(self.edges[e as usize].from != v));
-            e = self.next_at(v, e);
+            // Which end of the edge `v` is: 0 its first, 1 its second (as in `next_at`).
+            let side = u32::from(self.edges[e as usize].from != v);
+            visit(e, 2 * e + side);
+            e = self.edges[e as usize].links[side as usize];
         }
     }
 }
@@ -145,8 +150,8 @@ impl PlaneGraph for CrackGraph<'_> {
         if h & 1 == 0 { (e.from, e.to) } else { (e.to, e.from) }
     }
 
-    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge)) {
-        self.for_each_edge_at(v, |_, h| visit(h));
+    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge, f32)) {
+        self.for_each_edge_at(v, |e, h| visit(h, self.edges[e as usize].angles[(h & 1) as usize]));
     }
 
     fn angle(&self, h: HalfEdge) -> f32 {
@@ -215,25 +220,32 @@ impl Glass<'_> {
         };
         let g = CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] };
         // Work (Glass::step's budget): the walks in lockstep, the faces measured, the marking
-        // walk, the cracks looked at and the crossing-number walks.
+        // walk (done by the walk that measures the face, still counted as one, so that a
+        // budget means what it did), the cracks looked at and the crossing-number walks.
         let mut work = 2 * steps;
-        let mut shapes = [first, second].into_iter().map(|s| (s, face_shape(&g, s)));
-        let found = shapes.find_map(|(s, f)| {
+        // The first of the two faces that is bounded, its vertices marked by the walk that
+        // measures it (a fresh mark per walk, so only the chosen face's vertices carry it).
+        let mut found = None;
+        for s in [first, second] {
+            self.walk.mark = self.walk.mark.wrapping_add(1);
+            if self.walk.mark == 0 {
+                self.walk.marks.fill(0);
+                self.walk.mark = 1;
+            }
+            let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
+            let f = face_shape(&g, s, |h| marks[g.ends(h).0 as usize] = mark);
             work += f.map_or(g.half_edge_bound(), |f| f.edges);
-            f.filter(|f| f.area > 0.0).map(|f| (s, f))
-        });
+            if let Some(f) = f.filter(|f| f.area > 0.0) {
+                found = Some((s, f));
+                break;
+            }
+        }
         let Some((start, shape)) = found else {
             self.clock.work += work as u64;
             return;
         };
         work += shape.edges + self.crack_count;
-        self.walk.mark = self.walk.mark.wrapping_add(1);
-        if self.walk.mark == 0 {
-            self.walk.marks.fill(0);
-            self.walk.mark = 1;
-        }
-        let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
-        walk_face(&g, start, |h| marks[g.ends(h).0 as usize] = mark);
+        let mark = self.walk.mark;
         let v = g.ends(start).0;
         let piece = self.component(v);
         for i in 0..self.crack_count {

@@ -122,19 +122,20 @@ impl PlaneGraph for PlateGraph<'_> {
         }
     }
 
-    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge)) {
+    fn for_each_out(&self, v: u32, mut visit: impl FnMut(HalfEdge, f32)) {
         if (v as usize) < self.cracks.vertices.len() {
-            self.cracks.for_each_edge_at(v, |e, h| {
-                if bit(self.alive, e as usize) {
-                    visit(h);
+            self.cracks.for_each_out(v, |h, angle| {
+                if bit(self.alive, (h >> 1) as usize) {
+                    visit(h, angle);
                 }
             });
         }
         let k = self.border_index[v as usize];
         if k != NONE {
             let n = self.border.len() as u32;
-            visit(2 * (self.edge_count() + k));
-            visit(2 * (self.edge_count() + (k + n - 1) % n) + 1);
+            for h in [2 * (self.edge_count() + k), 2 * (self.edge_count() + (k + n - 1) % n) + 1] {
+                visit(h, self.angle(h));
+            }
         }
     }
 

@@ -36,12 +36,11 @@ impl Grid {
     }
 }
 
-/// Items in cells: `heads[cell]` starts a list through `next[entry]`, each entry naming an
-/// item in `item[entry]`.
+/// Items in cells: `heads[cell]` starts a list of entries, each entry `[item, next]` naming an
+/// item and the entry after it (kept side by side, so that a walk reads one place per entry).
 pub(super) struct Buckets<'a> {
     pub(super) heads: &'a mut [u32],
-    pub(super) item: &'a mut [u32],
-    pub(super) next: &'a mut [u32],
+    pub(super) entries: &'a mut [[u32; 2]],
     pub(super) used: usize,
 }
 
@@ -54,12 +53,11 @@ impl Buckets<'_> {
 
     /// Adds `value` to `cell`; false when the entries are full.
     pub(super) fn insert(&mut self, cell: usize, value: u32) -> bool {
-        if self.used == self.item.len() {
+        if self.used == self.entries.len() {
             return false;
         }
         let entry = self.used;
-        self.item[entry] = value;
-        self.next[entry] = self.heads[cell];
+        self.entries[entry] = [value, self.heads[cell]];
         self.heads[cell] = entry as u32;
         self.used += 1;
         true
@@ -69,8 +67,9 @@ impl Buckets<'_> {
     pub(super) fn for_each(&self, cell: usize, mut visit: impl FnMut(u32)) {
         let mut entry = self.heads[cell];
         while entry != NONE {
-            visit(self.item[entry as usize]);
-            entry = self.next[entry as usize];
+            let [item, next] = self.entries[entry as usize];
+            visit(item);
+            entry = next;
         }
     }
 }
@@ -84,8 +83,8 @@ mod tests {
         let g = Grid::new(100.0, 50.0, 25.0);
         assert_eq!((g.columns, g.rows, g.cells()), (4, 2, 8));
         assert_eq!(g.span(-5.0, 10.0, 60.0, 80.0), (0, 0, 2, 1));
-        let (mut heads, mut item, mut next) = ([0u32; 8], [0u32; 3], [0u32; 3]);
-        let mut b = Buckets { heads: &mut heads, item: &mut item, next: &mut next, used: 0 };
+        let (mut heads, mut entries) = ([0u32; 8], [[0u32; 2]; 3]);
+        let mut b = Buckets { heads: &mut heads, entries: &mut entries, used: 0 };
         b.clear();
         assert!(b.insert(5, 10) && b.insert(5, 11) && b.insert(2, 12));
         assert!(!b.insert(1, 13));

@@ -157,19 +157,20 @@ impl Glass<'_> {
     /// Calls `visit` once with every segment filed in the grid cells covering the box
     /// [x0, x1] × [y0, y1] (a segment in several cells is visited once, by its stamp).
     fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, visit: impl FnMut(&Self, u32)) {
-        self.segments_in(x0, y0, x1, y1, None, visit);
+        let cells = self.index.grid.span(x0, y0, x1, y1);
+        self.segments_in(cells, None, visit);
     }
 
-    /// As [`Self::segments_near`], skipping the cells that lie wholly outside the sector S of
-    /// a tip at `sector.0` heading `sector.1` (outside its disc, or beyond one side of its
-    /// wedge when φ ≤ 180°): no point of theirs is in S.
+    /// As [`Self::segments_near`], over the cell range `cells` (as [`Grid::span`] gives it),
+    /// skipping the cells that lie wholly outside the sector S of a tip at `sector.0` whose
+    /// wedge's boundary rays are `sector.1` ([`Self::wedge`]): outside its disc, or beyond one
+    /// side of its wedge when φ ≤ 180°. No point of theirs is in S.
+    ///
+    /// [`Grid::span`]: super::grid::Grid::span
     fn segments_in(
         &mut self,
-        x0: f32,
-        y0: f32,
-        x1: f32,
-        y1: f32,
-        sector: Option<([f32; 2], [f32; 2])>,
+        cells: (usize, usize, usize, usize),
+        sector: Option<([f32; 2], [[f32; 2]; 2])>,
         mut visit: impl FnMut(&Self, u32),
     ) {
         self.index.stamp = self.index.stamp.wrapping_add(1);
@@ -177,18 +178,36 @@ impl Glass<'_> {
             self.index.stamps.fill(0);
             self.index.stamp = 1;
         }
-        let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
+        let (cx0, cy0, cx1, cy1) = cells;
         let cell = self.index.grid.cell;
         let (c, b) = (self.sector.cosine, self.params.sector_radius);
-        let rays = sector.map(|(_, direction)| self.wedge(direction));
         // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
         self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
+            // The row's share of the cell tests below: its corners' offset from the apex in y,
+            // that offset's square for the disc, and its products with the rays for the wedge
+            // (formed once a row, the very products the per-corner tests use).
+            let row = sector.map(|(w, [left, right])| {
+                let ay = cy as f32 * cell - w[1];
+                let by = ay + cell;
+                let ny = if ay > 0.0 {
+                    ay
+                } else if by < 0.0 {
+                    by
+                } else {
+                    0.0
+                };
+                (ny * ny, [right[0] * ay, right[0] * by], [left[0] * ay, left[0] * by])
+            });
             for cx in cx0..=cx1 {
-                if let (Some((w, _)), Some([left, right])) = (sector, rays) {
-                    // The cell's corners relative to the apex.
-                    let (ax, ay) = (cx as f32 * cell - w[0], cy as f32 * cell - w[1]);
-                    let (bx, by) = (ax + cell, ay + cell);
+                let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
+                if entry == NONE {
+                    continue; // an empty cell: nothing to test it for
+                }
+                if let (Some((w, [left, right])), Some((ny2, right_y, left_y))) = (sector, row) {
+                    // The cell's corners relative to the apex, in x.
+                    let ax = cx as f32 * cell - w[0];
+                    let bx = ax + cell;
                     // Outside the disc: its nearest point is farther than B.
                     let nx = if ax > 0.0 {
                         ax
@@ -197,35 +216,28 @@ impl Glass<'_> {
                     } else {
                         0.0
                     };
-                    let ny = if ay > 0.0 {
-                        ay
-                    } else if by < 0.0 {
-                        by
-                    } else {
-                        0.0
-                    };
-                    if nx * nx + ny * ny > b * b {
+                    if nx * nx + ny2 > b * b {
                         continue;
                     }
                     if c >= 0.0 {
-                        // Beyond a side of the wedge: every corner on the outer side of it.
-                        let corners = [[ax, ay], [bx, ay], [ax, by], [bx, by]];
-                        let outside_right = corners.iter().all(|q| right[0] * q[1] - right[1] * q[0] < 0.0);
-                        let outside_left = corners.iter().all(|q| left[0] * q[1] - left[1] * q[0] > 0.0);
+                        // Beyond a side of the wedge: every corner (x, y) on the outer side of
+                        // it, by the cross product ray × corner = ray_x·y − ray_y·x.
+                        let (right_x, left_x) = ([right[1] * ax, right[1] * bx], [left[1] * ax, left[1] * bx]);
+                        let outside_right = right_y.iter().all(|&y| right_x.iter().all(|&x| y - x < 0.0));
+                        let outside_left = left_y.iter().all(|&y| left_x.iter().all(|&x| y - x > 0.0));
                         if outside_right || outside_left {
                             continue;
                         }
                     }
                 }
-                let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
                 while entry != NONE {
                     self.clock.work += 1;
-                    let e = self.index.segments.item[entry as usize];
+                    let [e, next] = self.index.segments.entries[entry as usize];
                     if self.index.stamps[e as usize] != self.index.stamp {
                         self.index.stamps[e as usize] = self.index.stamp;
                         visit(self, e);
                     }
-                    entry = self.index.segments.next[entry as usize];
+                    entry = next;
                 }
             }
         }
@@ -307,7 +319,8 @@ impl Glass<'_> {
         let mut f = [0.0f32; 2];
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
         // F1: away from every other tip in S, |F1| = k1/r².
-        let (cx0, cy0, cx1, cy1) = self.index.grid.span(x0, y0, x1, y1);
+        let cells = self.index.grid.span(x0, y0, x1, y1);
+        let (cx0, cy0, cx1, cy1) = cells;
         let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             for cx in cx0..=cx1 {
@@ -344,7 +357,7 @@ impl Glass<'_> {
         let now = self.clock.time as f32;
         let rays = self.wedge(direction);
         let radius = p.sector_radius;
-        self.segments_in(x0, y0, x1, y1, Some((w, direction)), |glass, e| {
+        self.segments_in(cells, Some((w, rays)), |glass, e| {
             let edge = &glass.edges[e as usize];
             let owner = edge.crack;
             // Not its own crack, nor pieces other tips grew earlier in this time step (all
@@ -362,7 +375,6 @@ impl Glass<'_> {
             // than B from the tip (it has no point in S), or farther than its crack's nearest
             // point found so far (it would not replace it). The box's distance is a lower
             // bound on the segment's (up to rounding, which SLACK covers many times over).
-            let slot = near[..count].iter().position(|n| n.0 == owner);
             let gap = |lo: f32, hi: f32, at: f32| {
                 if at < lo {
                     lo - at
@@ -373,8 +385,16 @@ impl Glass<'_> {
                 }
             };
             let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
+            let box_distance2 = gx * gx + gy * gy;
+            // The bound against B first (no bound below is larger), so that a far segment
+            // skips the search for its crack's entry.
+            let far = radius + SLACK;
+            if box_distance2 > far * far {
+                return;
+            }
+            let slot = near[..count].iter().position(|n| n.0 == owner);
             let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
-            if gx * gx + gy * gy > bound * bound {
+            if box_distance2 > bound * bound {
                 return;
             }
             let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };

@@ -447,14 +447,12 @@ impl<'a> Glass<'a> {
         let cracks = params.max_cracks as usize;
         let mut segments = Buckets {
             heads: take(&mut words, grid.cells()),
-            item: take(&mut words, vertices * ENTRIES_PER_VERTEX),
-            next: take(&mut words, vertices * ENTRIES_PER_VERTEX),
+            entries: take(&mut words, 2 * vertices * ENTRIES_PER_VERTEX).as_chunks_mut().0,
             used: 0,
         };
         let mut tips = Buckets {
             heads: take(&mut words, grid.cells()),
-            item: take(&mut words, cracks),
-            next: take(&mut words, cracks),
+            entries: take(&mut words, 2 * cracks).as_chunks_mut().0,
             used: 0,
         };
         segments.clear();
