@@ -393,3 +393,40 @@ fn a_subnormal_shrink_ratio_is_refused() {
         hibi_mud_destroy(mud);
     }
 }
+
+/// Finding 11: an impact on the plate's edge (y = 1.2e-38 on a 51 × 131 plate) left face walks
+/// that did not come back to their start; `hibi_glass_fragment_counts` counted each as a ring
+/// of as many points as the walk's bound allows (48 rings of 15,358 points here), and the
+/// query took seconds under the fuzzer. Every ring now closes, and no half-edge is
+/// on two rings, so the points number at most the half-edges.
+#[test]
+fn fragments_of_an_impact_on_the_edge_close() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (51.0, 131.0, [25.5, 1.175_494_4e-38]);
+    params.seed = 9_404_340_510_852_330_801;
+    (params.ring_threshold, params.ring_offset) = (70.136_72, 0.443_847_66);
+    (params.ring_radius_slope, params.ring_radius_offset) = (0.417_216_8, 12.338_964);
+    (params.large_speed, params.radial_speed, params.ring_speed) = (35.507_813, 8.876_953, 8.876_953);
+    params.spread_ratio = 0.262_500_02;
+    (params.max_cracks, params.max_vertices) = (127, 527);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        for _ in 0..2 {
+            assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
+        }
+        let mut size = 0;
+        assert_eq!(hibi_glass_scratch_size(glass, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let (mut rings, mut points) = (0, 0);
+        let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points);
+        assert_eq!(status, HIBI_OK);
+        // Each vertex has at most two half-edges per crack through it, and the border adds at
+        // most two vertices and four half-edges per crack end on it.
+        let bound = 4 * (progress.vertices as usize + 4) + 8 * progress.cracks as usize;
+        assert!(points <= bound, "{rings} rings of {points} points, bound {bound}");
+        hibi_glass_destroy(glass);
+    }
+}
