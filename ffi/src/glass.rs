@@ -22,7 +22,7 @@ use hibi_core::glass::{
 
 use crate::fields::{Field, constants, convert};
 use crate::guard::{
-    Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, update, write_out,
+    Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, query, update, write_out,
 };
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
@@ -218,7 +218,7 @@ lifecycle!(
     hibi_glass (glass: "plate", "its first impact at `params.impact`, ready to step"),
     hibi_glass_params <=> GlassParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_UNKNOWN_PRESET),
-    presets "`\"fig14a\"` … `\"fig16d\"`",
+    presets "`\"fig14a\"` … `\"fig16d\"`" in hibi_core::glass::PRESETS,
     hibi_glass_params_default, hibi_glass_params_preset, hibi_glass_memory_size, hibi_glass_memory_align,
     hibi_glass_create, hibi_glass_create_in, hibi_glass_destroy,
 );
@@ -311,12 +311,9 @@ pub unsafe extern "C" fn hibi_glass_step(
 /// `glass` must be NULL or a live plate; `count` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_crack_count(glass: *const hibi_glass, count: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass, c"glass") }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(count, c"count", glass.glass.crack_count()) }
-    })
+    let read = |glass: &hibi_glass| Ok(glass.glass.crack_count());
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(glass, c"glass", (count, c"count"), read) })
 }
 
 /// The plate behind `glass` and its crack `index` (else `HIBI_ERROR_GLASS_CRACK_INDEX`), once
@@ -409,13 +406,9 @@ pub const HIBI_GLASS_NOT_A_HOLE: u32 = u32::MAX;
 /// `glass` must be NULL or a live plate; `size` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_glass_scratch_size(glass: *const hibi_glass, size: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass, c"glass") }?;
-        let bytes = object::scratch_size(|arena| arena.take::<u32>(glass.scratch))?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(size, c"size", bytes) }
-    })
+    let read = |glass: &hibi_glass| object::scratch_size(|arena| arena.take::<u32>(glass.scratch));
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(glass, c"glass", (size, c"size"), read) })
 }
 
 /// The plate and its fragment scratch, checked.
@@ -540,24 +533,6 @@ mod tests {
     use super::*;
     use crate::status::*;
     use core::ptr::null_mut;
-
-    #[test]
-    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
-        let mut p = hibi_glass_params_default();
-        p.seed = 77;
-        // SAFETY: valid or NULL pointers, NUL-terminated names.
-        unsafe {
-            assert_eq!(hibi_glass_params_preset(c"fig99".as_ptr(), &mut p), HIBI_ERROR_GLASS_UNKNOWN_PRESET);
-            assert_eq!(p.seed, 77, "nothing written");
-            assert_eq!(hibi_glass_params_preset(c"fig15a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(hibi_glass_params_preset(core::ptr::null(), &mut p), HIBI_ERROR_NULL_POINTER);
-            for name in hibi_core::glass::PRESETS {
-                let c_name = std::ffi::CString::new(name).unwrap();
-                assert_eq!(hibi_glass_params_preset(c_name.as_ptr(), &mut p), HIBI_OK);
-                assert_eq!(from_c(&p), Ok(preset(name).unwrap()), "{name}");
-            }
-        }
-    }
 
     #[test]
     fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {

@@ -222,6 +222,25 @@ impl<T> Optional<T> {
     }
 }
 
+/// The body of the queries that read an object and write one value: checks the object `ptr`
+/// (argument `name`), reads it, and writes the value to the required `out`; nothing is written
+/// when the read fails.
+///
+/// # Safety
+/// As [`object_ref`] for `ptr`; `out` as [`write_out`].
+pub(crate) unsafe fn query<T, O>(
+    ptr: *const T,
+    name: &'static CStr,
+    (out, out_name): (*mut O, &'static CStr),
+    read: impl FnOnce(&T) -> Result<O, hibi_status>,
+) -> Result<(), hibi_status> {
+    // SAFETY: the caller's contract.
+    let object = unsafe { object_ref(ptr, name) }?;
+    let value = read(object)?;
+    // SAFETY: the caller's contract.
+    unsafe { write_out(out, out_name, value) }
+}
+
 /// The body of the calls that change an object and report on it (step, impact): checks the
 /// object `ptr` (argument `name`) and the optional report `out`, makes the change, and writes
 /// its report unless `out` is NULL; nothing is written when the change fails.

@@ -28,7 +28,9 @@ use hibi_core::mud::{
 
 use crate::fields::{Field, constants, convert};
 use crate::glass::hibi_vec2;
-use crate::guard::{Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, update, write_out};
+use crate::guard::{
+    Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, query, update, write_out,
+};
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
@@ -252,7 +254,7 @@ lifecycle!(
     hibi_mud (mud: "run", "every spring's break stretch drawn, ready to step"),
     hibi_mud_params <=> MudParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_UNKNOWN_PRESET),
-    presets "`\"fig6a\"` … `\"fig10\"`",
+    presets "`\"fig6a\"` … `\"fig10\"`" in hibi_core::mud::PRESETS,
     hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_memory_size, hibi_mud_memory_align,
     hibi_mud_create, hibi_mud_create_in, hibi_mud_destroy,
     only create: "One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's \
@@ -312,12 +314,9 @@ pub unsafe extern "C" fn hibi_mud_step(
 /// `mud` must be NULL or a live run; `count` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_mud_segment_count(mud: *const hibi_mud, count: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud, c"mud") }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(count, c"count", mud.mud.segment_count()) }
-    })
+    let read = |mud: &hibi_mud| Ok(mud.mud.segment_count());
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(mud, c"mud", (count, c"count"), read) })
 }
 
 /// Writes the crack segments (paper Fig. 5) into `segments[0..len]` and their number into
@@ -549,25 +548,6 @@ mod tests {
     use crate::status::*;
     use core::ptr::{null, null_mut};
     use hibi_core::mud::CellRing;
-
-    #[test]
-    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
-        let mut p = hibi_mud_params_default();
-        p.columns = 7;
-        // SAFETY: valid or NULL pointers, NUL-terminated names.
-        unsafe {
-            assert_eq!(hibi_mud_params_preset(c"fig99".as_ptr(), &mut p), HIBI_ERROR_MUD_UNKNOWN_PRESET);
-            assert_eq!(p.columns, 7, "nothing written");
-            assert_eq!(hibi_mud_params_preset(c"fig6a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(hibi_mud_params_preset(null(), &mut p), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(hibi_mud_params_preset(c"\xff".as_ptr(), &mut p), HIBI_ERROR_MUD_UNKNOWN_PRESET);
-            for name in hibi_core::mud::PRESETS {
-                let c_name = std::ffi::CString::new(name).unwrap();
-                assert_eq!(hibi_mud_params_preset(c_name.as_ptr(), &mut p), HIBI_OK);
-                assert_eq!(from_c(&p), Ok(preset(name).unwrap()), "{name}");
-            }
-        }
-    }
 
     fn small() -> hibi_mud_params {
         let mut p = hibi_mud_params_default();

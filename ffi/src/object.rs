@@ -279,7 +279,7 @@ macro_rules! lifecycle {
         $object:ident ($arg:ident: $what:literal, $created:literal),
         $params:ident <=> $core:ident, cookie $cookie:ident,
         errors ($not_initialised:ident, $bad_enum:ident, $unknown:ident),
-        presets $presets:literal,
+        presets $presets:literal in $list:path,
         $default:ident, $preset:ident, $memory_size:ident, $memory_align:ident,
         $create:ident, $create_in:ident, $destroy:ident
         $(, only create: $only_create:literal)? $(,)?
@@ -389,6 +389,33 @@ macro_rules! lifecycle {
         pub unsafe extern "C" fn $destroy($arg: *mut $object) {
             // SAFETY: the caller's contract, passed on.
             $crate::guard::guard(|| unsafe { $crate::object::destroy($arg) })
+        }
+
+        /// Every preset comes with the cookie and converts back to the core's; an unknown or
+        /// non-UTF-8 name gives the model's status and NULL pointers are refused, each writing
+        /// nothing; the defaults convert back to the core's.
+        #[cfg(test)]
+        #[test]
+        fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
+            let mut p = $default();
+            p.seed = 77;
+            let before = format!("{p:?}");
+            // SAFETY: valid or NULL pointers, NUL-terminated names.
+            unsafe {
+                assert_eq!($preset(c"fig99".as_ptr(), &mut p), $crate::status::$unknown);
+                assert_eq!($preset(c"\xff".as_ptr(), &mut p), $crate::status::$unknown);
+                assert_eq!(format!("{p:?}"), before, "nothing written");
+                let first = std::ffi::CString::new($list[0]).unwrap();
+                assert_eq!($preset(first.as_ptr(), core::ptr::null_mut()), $crate::status::HIBI_ERROR_NULL_POINTER);
+                assert_eq!($preset(core::ptr::null(), &mut p), $crate::status::HIBI_ERROR_NULL_POINTER);
+                assert_eq!(format!("{p:?}"), before, "nothing written");
+                for name in $list {
+                    let c_name = std::ffi::CString::new(name).unwrap();
+                    assert_eq!($preset(c_name.as_ptr(), &mut p), $crate::status::HIBI_OK, "{name}");
+                    assert_eq!(from_c(&p), Ok(preset(name).unwrap()), "{name}");
+                }
+            }
+            assert_eq!(from_c(&$default()), Ok(<$core>::default()));
         }
     };
 }

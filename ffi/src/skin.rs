@@ -27,7 +27,7 @@ use hibi_core::skin::{
 };
 
 use crate::fields::{Field, constants, convert};
-use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, update, write_out};
+use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, query, update, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -220,7 +220,7 @@ lifecycle!(
     hibi_skin (skin: "skin", "no cell built yet, `hibi_skin_step` builds them"),
     hibi_skin_params <=> SkinParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_UNKNOWN_PRESET),
-    presets "`\"fig13a\"` … `\"fig19f\"`",
+    presets "`\"fig13a\"` … `\"fig19f\"`" in hibi_core::skin::PRESETS,
     hibi_skin_params_default, hibi_skin_params_preset, hibi_skin_memory_size, hibi_skin_memory_align,
     hibi_skin_create, hibi_skin_create_in, hibi_skin_destroy,
 );
@@ -305,13 +305,9 @@ impl hibi_skin {
 /// `skin` must be NULL or a live skin; `size` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_scratch_size(skin: *const hibi_skin, size: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin, c"skin") }?;
-        let bytes = object::scratch_size(|arena| skin.scratch(arena))?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(size, c"size", bytes) }
-    })
+    let read = |skin: &hibi_skin| object::scratch_size(|arena| skin.scratch(arena));
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(skin, c"skin", (size, c"size"), read) })
 }
 
 /// Draws the surface's maps, each row-major over `width × height` pixels of the params:
@@ -444,12 +440,9 @@ pub unsafe extern "C" fn hibi_skin_shade(
 /// `skin` must be NULL or a live skin; `count` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_skin_cell_count(skin: *const hibi_skin, count: *mut usize) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin, c"skin") }?;
-        // SAFETY: the caller's contract.
-        unsafe { write_out(count, c"count", skin.skin.cells().len()) }
-    })
+    let read = |skin: &hibi_skin| Ok(skin.skin.cells().len());
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(skin, c"skin", (count, c"count"), read) })
 }
 
 /// Describes cell `index` (below `hibi_skin_cell_count`). Cells come level by level inside
@@ -632,26 +625,6 @@ mod tests {
         }
         assert_eq!(text(1291), "unknown status code");
         assert_eq!(text(1354), "unknown status code");
-    }
-
-    #[test]
-    fn presets_come_with_the_cookie_and_unknown_names_write_nothing() {
-        let mut p = small();
-        // SAFETY: valid pointers and NUL-terminated names; failing calls write nothing.
-        unsafe {
-            assert_eq!(hibi_skin_params_preset(c"fig20".as_ptr(), &mut p), HIBI_ERROR_SKIN_UNKNOWN_PRESET);
-            assert_eq!(p, small());
-            assert_eq!(hibi_skin_params_preset(c"fig19a".as_ptr(), null_mut()), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(hibi_skin_params_preset(null(), &mut p), HIBI_ERROR_NULL_POINTER);
-            assert_eq!(hibi_skin_params_preset(c"\xff".as_ptr(), &mut p), HIBI_ERROR_SKIN_UNKNOWN_PRESET);
-            assert_eq!(p, small());
-            for name in hibi_core::skin::PRESETS {
-                let name = std::ffi::CString::new(name).unwrap();
-                assert_eq!(hibi_skin_params_preset(name.as_ptr(), &mut p), HIBI_OK);
-                assert_eq!(from_c(&p), Ok(preset(name.to_str().unwrap()).unwrap()));
-            }
-        }
-        assert_eq!(from_c(&hibi_skin_params_default()), Ok(SkinParams::default()));
     }
 
     #[test]

@@ -190,13 +190,7 @@ impl Glass<'_> {
             let row = sector.map(|(w, [left, right])| {
                 let ay = cy as f32 * cell - w[1];
                 let by = ay + cell;
-                let ny = if ay > 0.0 {
-                    ay
-                } else if by < 0.0 {
-                    by
-                } else {
-                    0.0
-                };
+                let ny = nearest_to_zero(ay, by);
                 (ny * ny, [right[0] * ay, right[0] * by], [left[0] * ay, left[0] * by])
             });
             for cx in cx0..=cx1 {
@@ -209,13 +203,7 @@ impl Glass<'_> {
                     let ax = cx as f32 * cell - w[0];
                     let bx = ax + cell;
                     // Outside the disc: its nearest point is farther than B.
-                    let nx = if ax > 0.0 {
-                        ax
-                    } else if bx < 0.0 {
-                        bx
-                    } else {
-                        0.0
-                    };
+                    let nx = nearest_to_zero(ax, bx);
                     if nx * nx + ny2 > b * b {
                         continue;
                     }
@@ -774,5 +762,17 @@ impl Glass<'_> {
             }
         }
         Some(e)
+    }
+}
+
+/// The point of the interval [a, b] (a ≤ b) nearest 0: a cell's nearest offset from the sector's
+/// apex along one axis.
+fn nearest_to_zero(a: f32, b: f32) -> f32 {
+    if a > 0.0 {
+        a
+    } else if b < 0.0 {
+        b
+    } else {
+        0.0
     }
 }
