@@ -394,11 +394,12 @@ fn a_subnormal_shrink_ratio_is_refused() {
     }
 }
 
-/// Finding 11: an impact on the plate's edge (y = 1.2e-38 on a 51 × 131 plate) left face walks
-/// that did not come back to their start; `hibi_glass_fragment_counts` counted each as a ring
-/// of as many points as the walk's bound allows (48 rings of 15,358 points here), and the
-/// query took seconds under the fuzzer. Every ring now closes, and no half-edge is
-/// on two rings, so the points number at most the half-edges.
+/// Finding 11: an impact on the plate's edge (y = 1.2e-38 on a 51 × 131 plate) made edges of
+/// zero length, whose direction (`pseudo_angle`, 0/0) was NaN; the order of a vertex's edges
+/// broke, face walks did not come back to their start, and `hibi_glass_fragment_counts`
+/// counted each as a ring of as many points as the walk's bound allows (48 rings of 15,358
+/// points here), taking seconds under the fuzzer. Now every walk closes: the points number at
+/// most the half-edges, and the rings cover the plate.
 #[test]
 fn fragments_of_an_impact_on_the_edge_close() {
     let mut params = hibi_glass_params_default();
@@ -427,6 +428,24 @@ fn fragments_of_an_impact_on_the_edge_close() {
         // most two vertices and four half-edges per crack end on it.
         let bound = 4 * (progress.vertices as usize + 4) + 8 * progress.cracks as usize;
         assert!(points <= bound, "{rings} rings of {points} points, bound {bound}");
+        // Every face is found: the rings' signed areas (holes negative) add up to the plate's.
+        let mut ring_buf = vec![hibi_core::glass::FragmentRing::default(); rings];
+        let mut point_buf = vec![hibi_vec2::default(); points];
+        let (mut r, mut p) = (0, 0);
+        let status = hibi_glass_fragments(
+            glass,
+            scratch.as_mut_ptr().cast(),
+            size,
+            ring_buf.as_mut_ptr(),
+            rings,
+            point_buf.as_mut_ptr(),
+            points,
+            &mut r,
+            &mut p,
+        );
+        assert_eq!((status, r, p), (HIBI_OK, rings, points));
+        let area: f64 = ring_buf.iter().map(|ring| ring.area).sum();
+        assert!((area - 51.0 * 131.0).abs() < 1e-3 * 51.0 * 131.0, "rings cover {area} of {}", 51.0 * 131.0);
         hibi_glass_destroy(glass);
     }
 }

@@ -240,7 +240,11 @@ pub fn pseudo_angle(d: [f32; 2]) -> f32 {
     let (ax, ay) = (x.abs(), y.abs());
     let num = if upper == right { ay } else { ax };
     let base = (u32::from(!upper) << 1 | u32::from(upper != right)) as f32;
-    base + num / (ax + ay)
+    let length = ax + ay;
+    // The zero vector (an edge between coincident points) has no direction; it takes 0, so
+    // that the order of a vertex's edges stays total (0/0 would be NaN, and a NaN key breaks
+    // the rotation that face walks follow: fuzz finding 11).
+    if length == 0.0 { 0.0 } else { base + num / length }
 }
 
 /// `libm::round(x) as i64` (nearest integer, halves away from zero; saturating, NaN → 0),
@@ -452,5 +456,7 @@ mod tests {
         assert_eq!(pseudo_angle([0.0, 3.0]), 1.0);
         assert_eq!(pseudo_angle([-1.0, 0.0]), 2.0);
         assert_eq!(pseudo_angle([0.0, -5.0]), 3.0);
+        // The zero vector: 0, not NaN (a NaN key breaks the face walks' order, finding 11).
+        assert_eq!([[0.0, 0.0], [-0.0, 0.0], [0.0, -0.0], [-0.0, -0.0]].map(pseudo_angle), [0.0; 4]);
     }
 }

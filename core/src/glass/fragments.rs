@@ -268,10 +268,10 @@ impl Glass<'_> {
             if bit(visited, start as usize) || (edge < self.edge_count && !bit(g.alive, edge)) {
                 continue;
             }
-            // Every walk should come back to its start. One that reaches a half-edge another
-            // walk took cannot (degenerate geometry: a crack vertex within rounding of the
-            // border, fuzz finding 11); it is dropped there, which also keeps the whole query
-            // linear in the half-edges.
+            // Every walk comes back to its start while each vertex's edges are in a total order
+            // (`pseudo_angle`). Should one not (it did when a zero-length edge's angle was
+            // NaN: fuzz finding 11), it stops at the first half-edge another walk took and is
+            // dropped, so the query stays linear in the half-edges whatever the geometry.
             let (mut ring, mut h, mut closed) = (Ring { start, area: 0.0, points: 0 }, start, false);
             for _ in 0..=g.half_edge_bound() {
                 if bit(visited, h as usize) {
