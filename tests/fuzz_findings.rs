@@ -449,3 +449,29 @@ fn fragments_of_an_impact_on_the_edge_close() {
         hibi_glass_destroy(glass);
     }
 }
+
+/// Finding 12: elements of 1e25 cm (valid: every ratio the scale checks test is in range)
+/// make a plate of 1e52 cm², past `f32`; the crack statistics' mean cell area was +inf. The
+/// figures in cm now saturate at `FLT_MAX`, and the progress's crack density too.
+#[test]
+fn crack_statistics_of_huge_elements_are_finite() {
+    let mut params = hibi_mud_params_default();
+    (params.columns, params.rows) = (16, 16);
+    (params.element_size, params.layer_thickness) = (1e25, 1e25);
+    (params.short_step, params.displacement_tolerance) = (1e22, 1e21);
+    let mut mud = core::ptr::null_mut();
+    let mut progress = hibi_mud_progress::default();
+    let mut statistics = hibi_mud_crack_statistics::default();
+    // SAFETY: valid pointers.
+    unsafe {
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        while progress.finished == 0 {
+            assert_eq!(hibi_mud_step(mud, u64::MAX, &mut progress), HIBI_OK);
+        }
+        assert_eq!(hibi_mud_statistics(mud, &mut statistics), HIBI_OK);
+        hibi_mud_destroy(mud);
+    }
+    let figures = [statistics.crack_density, statistics.mean_cell_area, statistics.cell_area_spread];
+    assert!(figures.iter().chain([&progress.crack_density]).all(|f| f.is_finite()), "{statistics:?} {progress:?}");
+    assert_eq!(statistics.mean_cell_area, f32::MAX, "{statistics:?}");
+}

@@ -482,7 +482,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let l = &self.lattice;
         let area = l.node_count() as f32 * l.element_area();
         let length = if l.mesh().is_some() { self.broken_face } else { self.broken as f32 * l.face_length() };
-        length / (area * self.params.element_size)
+        // Elements of extreme size can pass f32's range in cm: saturate (fuzz finding 12).
+        if length == 0.0 { 0.0 } else { (length / (area * self.params.element_size)).min(f32::MAX) }
     }
 
     /// Whether spring `spring` exists and is broken.

@@ -29,7 +29,8 @@ fn widest_angle(arms: &[[f32; 2]]) -> f32 {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CrackStatistics {
     /// Crack length per area [1/cm]: the network's length (its edges' polylines, branches
-    /// included) over the plate's area.
+    /// included) over the plate's area. The figures in cm saturate at `f32::MAX` for elements
+    /// so large or small that they would pass it.
     pub crack_density: f32,
     /// Cells: the regions the separating cracks enclose (outer rings), wrapping ones included.
     pub cells: u32,
@@ -86,11 +87,13 @@ impl<S: Scalar> Mud<'_, S> {
         } else {
             0.0
         };
+        // In cm, a plate of huge or tiny elements can pass f32's range: the figures saturate.
+        let saturating = |x: f64| x.min(f64::from(f32::MAX)) as f32;
         CrackStatistics {
-            crack_density: (length / (plate * f64::from(w))) as f32,
+            crack_density: saturating(length / (plate * f64::from(w))),
             cells,
-            mean_cell_area: (mean * cm2) as f32,
-            cell_area_spread: (spread * cm2) as f32,
+            mean_cell_area: saturating(mean * cm2),
+            cell_area_spread: saturating(spread * cm2),
             junctions,
             t_junctions,
             mean_widest_junction_angle: if measured > 0 { (widest_sum / f64::from(measured)) as f32 } else { 0.0 },
