@@ -275,18 +275,7 @@ fn glass_forces_of_flt_max_keep_the_cracks_finite() {
                 break;
             }
         }
-        let mut cracks = 0;
-        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
-        for i in 0..cracks {
-            let mut info = hibi_glass_crack::default();
-            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
-            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
-            let mut written = 0;
-            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
-            for p in &points {
-                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
-            }
-        }
+        cracks_are_finite(glass);
         hibi_glass_destroy(glass);
     }
 }
@@ -352,18 +341,7 @@ fn a_glass_speed_of_flt_max_keeps_the_times_finite() {
                 break;
             }
         }
-        let mut cracks = 0;
-        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
-        for i in 0..cracks {
-            let mut info = hibi_glass_crack::default();
-            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
-            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
-            let mut written = 0;
-            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
-            for p in &points {
-                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
-            }
-        }
+        cracks_are_finite(glass);
         hibi_glass_destroy(glass);
     }
 }
@@ -474,4 +452,26 @@ fn crack_statistics_of_huge_elements_are_finite() {
     let figures = [statistics.crack_density, statistics.mean_cell_area, statistics.cell_area_spread];
     assert!(figures.iter().chain([&progress.crack_density]).all(|f| f.is_finite()), "{statistics:?} {progress:?}");
     assert_eq!(statistics.mean_cell_area, f32::MAX, "{statistics:?}");
+}
+
+/// Every point of every crack of `glass` (a live plate) is finite, time included.
+///
+/// # Safety
+/// `glass` must be a live plate.
+unsafe fn cracks_are_finite(glass: *mut hibi_glass) {
+    let mut cracks = 0;
+    // SAFETY (every call below): a live plate, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
+        for i in 0..cracks {
+            let mut info = hibi_glass_crack::default();
+            assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            let mut points = vec![hibi_core::glass::CrackPoint::default(); info.points as usize];
+            let mut written = 0;
+            assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
+            for p in &points {
+                assert!(p.at.iter().all(|c| c.is_finite()) && p.time.is_finite(), "crack {i}: {p:?}");
+            }
+        }
+    }
 }
