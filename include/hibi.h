@@ -47,65 +47,14 @@
 #define HIBI_VERSION_PATCH 0
 
 /**
- * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+ * `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
  */
-#define HIBI_GLASS_LAYER_MASK 0
+#define HIBI_SPREAD_UNIFORM 0
 
 /**
- * Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
- * no crack is.
+ * `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
  */
-#define HIBI_GLASS_LAYER_TIME 1
-
-/**
- * `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
- */
-#define HIBI_GLASS_KIND_LARGE 0
-
-/**
- * `hibi_glass_crack.kind`: another radial crack.
- */
-#define HIBI_GLASS_KIND_RADIAL 1
-
-/**
- * `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
- */
-#define HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE 2
-
-/**
- * `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
- */
-#define HIBI_GLASS_KIND_RING_CLOCKWISE 3
-
-/**
- * `hibi_glass_crack.end`: it still grows.
- */
-#define HIBI_GLASS_END_GROWING 0
-
-/**
- * `hibi_glass_crack.end`: its tip reached the plate's edge.
- */
-#define HIBI_GLASS_END_EDGE 1
-
-/**
- * `hibi_glass_crack.end`: its tip reached another crack.
- */
-#define HIBI_GLASS_END_CRACK 2
-
-/**
- * `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
- */
-#define HIBI_GLASS_END_GENERATION 3
-
-/**
- * `hibi_glass_crack.end`: other cracks closed a region around its tip.
- */
-#define HIBI_GLASS_END_ENCLOSED 4
-
-/**
- * `hibi_glass_fragment_ring.hole_of` of an outer ring.
- */
-#define HIBI_GLASS_NOT_A_HOLE UINT32_MAX
+#define HIBI_SPREAD_NORMAL 1
 
 /**
  * Square elements: 4 neighbours, axis-aligned short cracks.
@@ -155,6 +104,354 @@
 #define HIBI_MUD_GROWTH 1
 
 /**
+ * `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
+ */
+#define HIBI_GLASS_KIND_LARGE 0
+
+/**
+ * `hibi_glass_crack.kind`: another radial crack.
+ */
+#define HIBI_GLASS_KIND_RADIAL 1
+
+/**
+ * `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
+ */
+#define HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE 2
+
+/**
+ * `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
+ */
+#define HIBI_GLASS_KIND_RING_CLOCKWISE 3
+
+/**
+ * `hibi_glass_crack.end`: it still grows.
+ */
+#define HIBI_GLASS_END_GROWING 0
+
+/**
+ * `hibi_glass_crack.end`: its tip reached the plate's edge.
+ */
+#define HIBI_GLASS_END_EDGE 1
+
+/**
+ * `hibi_glass_crack.end`: its tip reached another crack.
+ */
+#define HIBI_GLASS_END_CRACK 2
+
+/**
+ * `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
+ */
+#define HIBI_GLASS_END_GENERATION 3
+
+/**
+ * `hibi_glass_crack.end`: other cracks closed a region around its tip.
+ */
+#define HIBI_GLASS_END_ENCLOSED 4
+
+/**
+ * Centre points on a triangular lattice (the default).
+ */
+#define HIBI_SKIN_LAYOUT_TRIANGULAR 0
+
+/**
+ * Centre points on a square lattice.
+ */
+#define HIBI_SKIN_LAYOUT_SQUARE 1
+
+/**
+ * Centre points uniformly random, one per lattice square (the jitter fields are ignored).
+ */
+#define HIBI_SKIN_LAYOUT_RANDOM 2
+
+/**
+ * Mud parameters: `columns` must be >= 2 (>= 3 when periodic, >= 8 periodic irregular).
+ */
+#define HIBI_ERROR_MUD_COLUMNS 512
+
+/**
+ * Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even
+ * and >= 8 irregular).
+ */
+#define HIBI_ERROR_MUD_ROWS 513
+
+/**
+ * Mud parameters: `layer_thickness` (H) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_LAYER_THICKNESS 514
+
+/**
+ * Mud parameters: `element_size` (W) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_ELEMENT_SIZE 515
+
+/**
+ * Mud parameters: `long_step` (T) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_LONG_STEP 516
+
+/**
+ * Mud parameters: `short_step` (τ) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP 517
+
+/**
+ * Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
+ */
+#define HIBI_ERROR_MUD_SHRINK_RATIO 518
+
+/**
+ * Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE 519
+
+/**
+ * Mud parameters: `damping_factor` (α) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DAMPING_FACTOR 520
+
+/**
+ * Mud parameters: `density` (ρ) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_DENSITY 521
+
+/**
+ * Mud parameters: `young_modulus` (E) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_YOUNG_MODULUS 522
+
+/**
+ * Mud parameters: `shear_modulus` (G) must be finite and > 0.
+ */
+#define HIBI_ERROR_MUD_SHEAR_MODULUS 523
+
+/**
+ * Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_MEAN 524
+
+/**
+ * Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD 525
+
+/**
+ * Mud parameters: `anisotropy_direction` must be finite.
+ */
+#define HIBI_ERROR_MUD_ANISOTROPY_DIRECTION 526
+
+/**
+ * Mud parameters: `anisotropy_ratio` must be finite and >= 1.
+ */
+#define HIBI_ERROR_MUD_ANISOTROPY_RATIO 527
+
+/**
+ * Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
+ */
+#define HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO 528
+
+/**
+ * Mud parameters: `target_shrink` must be finite and within [0, 1).
+ */
+#define HIBI_ERROR_MUD_TARGET_SHRINK 529
+
+/**
+ * Mud parameters: `target_crack_density` must be finite and >= 0.
+ */
+#define HIBI_ERROR_MUD_TARGET_CRACK_DENSITY 530
+
+/**
+ * Mud parameters: The lattice is too large: its memory size overflows.
+ */
+#define HIBI_ERROR_MUD_SIZE_OVERFLOW 531
+
+/**
+ * Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
+ * within [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_SHEAR_SCALE 532
+
+/**
+ * Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
+ */
+#define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 533
+
+/**
+ * Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
+ * within [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_DAMPING_SCALE 534
+
+/**
+ * Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
+ * [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP_SCALE 535
+
+/**
+ * Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
+ * element_size must be within [1e-6, 1e6].
+ */
+#define HIBI_ERROR_MUD_TOLERANCE_SCALE 536
+
+/**
+ * Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
+ * finite.
+ */
+#define HIBI_ERROR_MUD_SPREAD_SCALE 537
+
+/**
+ * Mud parameters: with the explicit solver, `short_step` fails the stability test of its
+ * damped step (a sufficient bound: past it the run may diverge); make it smaller or
+ * `damping_factor` larger, or use the quasi-static solver.
+ * `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
+ * `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
+ * tell, and `hibi_mud_create_in` may have written the memory it was given.
+ */
+#define HIBI_ERROR_MUD_SHORT_STEP_STABILITY 538
+
+/**
+ * Glass parameters: width and height must be finite and >= 1.
+ */
+#define HIBI_ERROR_GLASS_SIZE 1024
+
+/**
+ * Glass parameters: the first impact must lie inside the plate.
+ */
+#define HIBI_ERROR_GLASS_IMPACT_POINT 1025
+
+/**
+ * Glass parameters: `radial_mean` must be finite and within [0, 10000].
+ */
+#define HIBI_ERROR_GLASS_RADIAL_MEAN 1026
+
+/**
+ * Glass parameters: `ring_threshold` must be finite.
+ */
+#define HIBI_ERROR_GLASS_RING_THRESHOLD 1027
+
+/**
+ * Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_COUNT_FORMULA 1028
+
+/**
+ * Glass parameters: the ring radius coefficients must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_RING_RADIUS 1029
+
+/**
+ * Glass parameters: the speeds must be finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_SPEED 1030
+
+/**
+ * Glass parameters: `spread_ratio` (z) must be within [0, 1).
+ */
+#define HIBI_ERROR_GLASS_SPREAD_RATIO 1031
+
+/**
+ * Glass parameters: `turn_limit` must be within [0, pi].
+ */
+#define HIBI_ERROR_GLASS_TURN_LIMIT 1032
+
+/**
+ * Glass parameters: `turn_delay` (T) must be finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_TURN_DELAY 1033
+
+/**
+ * Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
+ */
+#define HIBI_ERROR_GLASS_SECTOR 1034
+
+/**
+ * Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
+ */
+#define HIBI_ERROR_GLASS_FORCES 1035
+
+/**
+ * Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+ */
+#define HIBI_ERROR_GLASS_CAPACITY_PARAMS 1036
+
+/**
+ * Skin parameters: `width` and `height` must be in 1..=32768.
+ */
+#define HIBI_ERROR_SKIN_SIZE 1280
+
+/**
+ * Skin parameters: `jitter_ratio` must be in [0, 1].
+ */
+#define HIBI_ERROR_SKIN_JITTER_RATIO 1281
+
+/**
+ * Skin parameters: `levels` must be in 1..=4.
+ */
+#define HIBI_ERROR_SKIN_LEVELS 1282
+
+/**
+ * Skin parameters: a used level's `spacing` must be finite and >= 1 px.
+ */
+#define HIBI_ERROR_SKIN_SPACING 1283
+
+/**
+ * Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
+ */
+#define HIBI_ERROR_SKIN_PERTURBATION 1284
+
+/**
+ * Skin parameters: a used level's `perturbation_depth` must be <= 5.
+ */
+#define HIBI_ERROR_SKIN_PERTURBATION_DEPTH 1285
+
+/**
+ * Skin parameters: a used level's `stretch` must be finite and > 0.
+ */
+#define HIBI_ERROR_SKIN_STRETCH 1286
+
+/**
+ * Skin parameters: a used level's `profile.segments` must be in 1..=4.
+ */
+#define HIBI_ERROR_SKIN_PROFILE_SEGMENTS 1287
+
+/**
+ * Skin parameters: a used level's profile points must be finite, start at x' = 0, never
+ * decrease in x' and end at x' > 0.
+ */
+#define HIBI_ERROR_SKIN_PROFILE_POINTS 1288
+
+/**
+ * Skin parameters: a used level's `roundness` must be in [0, 1].
+ */
+#define HIBI_ERROR_SKIN_ROUNDNESS 1289
+
+/**
+ * Skin parameters: the surface needs more memory than the address space allows.
+ */
+#define HIBI_ERROR_SKIN_CAPACITY_PARAMS 1290
+
+/**
+ * `hibi_glass_fragment_ring.hole_of` of an outer ring.
+ */
+#define HIBI_GLASS_NOT_A_HOLE UINT32_MAX
+
+/**
+ * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+ */
+#define HIBI_GLASS_LAYER_MASK 0
+
+/**
+ * Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
+ * no crack is.
+ */
+#define HIBI_GLASS_LAYER_TIME 1
+
+/**
+ * `hibi_mud_network_edge.from` and `.to` of a closed crack, which has no vertex on it.
+ */
+#define HIBI_MUD_NO_VERTEX UINT32_MAX
+
+/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_MUD_LAYER_MASK 0
@@ -168,21 +465,6 @@
  * Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
  */
 #define HIBI_MUD_LAYER_TIME 2
-
-/**
- * `hibi_mud_network_edge.from` and `.to` of a closed crack, which has no vertex on it.
- */
-#define HIBI_MUD_NO_VERTEX UINT32_MAX
-
-/**
- * `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
- */
-#define HIBI_SPREAD_UNIFORM 0
-
-/**
- * `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
- */
-#define HIBI_SPREAD_NORMAL 1
 
 /**
  * Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -203,21 +485,6 @@
  * Most midpoint-displacement subdivisions of an edge.
  */
 #define HIBI_SKIN_MAX_PERTURBATION_DEPTH 5
-
-/**
- * Centre points on a triangular lattice (the default).
- */
-#define HIBI_SKIN_LAYOUT_TRIANGULAR 0
-
-/**
- * Centre points on a square lattice.
- */
-#define HIBI_SKIN_LAYOUT_SQUARE 1
-
-/**
- * Centre points uniformly random, one per lattice square (the jitter fields are ignored).
- */
-#define HIBI_SKIN_LAYOUT_RANDOM 2
 
 /**
  * `hibi_skin_cell.parent` of a level-0 cell, and the cell map's value where no cell is.
@@ -1084,152 +1351,6 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_RAND_ARGUMENT 257
 
 /**
- * Mud parameters: `columns` must be >= 2 (>= 3 when periodic, >= 8 periodic irregular).
- */
-#define HIBI_ERROR_MUD_COLUMNS 512
-
-/**
- * Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even
- * and >= 8 irregular).
- */
-#define HIBI_ERROR_MUD_ROWS 513
-
-/**
- * Mud parameters: `layer_thickness` (H) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_LAYER_THICKNESS 514
-
-/**
- * Mud parameters: `element_size` (W) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_ELEMENT_SIZE 515
-
-/**
- * Mud parameters: `long_step` (T) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_LONG_STEP 516
-
-/**
- * Mud parameters: `short_step` (τ) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_SHORT_STEP 517
-
-/**
- * Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
- */
-#define HIBI_ERROR_MUD_SHRINK_RATIO 518
-
-/**
- * Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE 519
-
-/**
- * Mud parameters: `damping_factor` (α) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_DAMPING_FACTOR 520
-
-/**
- * Mud parameters: `density` (ρ) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_DENSITY 521
-
-/**
- * Mud parameters: `young_modulus` (E) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_YOUNG_MODULUS 522
-
-/**
- * Mud parameters: `shear_modulus` (G) must be finite and > 0.
- */
-#define HIBI_ERROR_MUD_SHEAR_MODULUS 523
-
-/**
- * Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
- */
-#define HIBI_ERROR_MUD_BREAK_STRETCH_MEAN 524
-
-/**
- * Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
- */
-#define HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD 525
-
-/**
- * Mud parameters: `anisotropy_direction` must be finite.
- */
-#define HIBI_ERROR_MUD_ANISOTROPY_DIRECTION 526
-
-/**
- * Mud parameters: `anisotropy_ratio` must be finite and >= 1.
- */
-#define HIBI_ERROR_MUD_ANISOTROPY_RATIO 527
-
-/**
- * Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
- */
-#define HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO 528
-
-/**
- * Mud parameters: `target_shrink` must be finite and within [0, 1).
- */
-#define HIBI_ERROR_MUD_TARGET_SHRINK 529
-
-/**
- * Mud parameters: `target_crack_density` must be finite and >= 0.
- */
-#define HIBI_ERROR_MUD_TARGET_CRACK_DENSITY 530
-
-/**
- * Mud parameters: The lattice is too large: its memory size overflows.
- */
-#define HIBI_ERROR_MUD_SIZE_OVERFLOW 531
-
-/**
- * Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
- * within [1e-6, 1e6].
- */
-#define HIBI_ERROR_MUD_SHEAR_SCALE 532
-
-/**
- * Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
- */
-#define HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT 533
-
-/**
- * Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
- * within [1e-6, 1e6].
- */
-#define HIBI_ERROR_MUD_DAMPING_SCALE 534
-
-/**
- * Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
- * [1e-6, 1e6].
- */
-#define HIBI_ERROR_MUD_SHORT_STEP_SCALE 535
-
-/**
- * Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
- * element_size must be within [1e-6, 1e6].
- */
-#define HIBI_ERROR_MUD_TOLERANCE_SCALE 536
-
-/**
- * Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
- * finite.
- */
-#define HIBI_ERROR_MUD_SPREAD_SCALE 537
-
-/**
- * Mud parameters: with the explicit solver, `short_step` fails the stability test of its
- * damped step (a sufficient bound: past it the run may diverge); make it smaller or
- * `damping_factor` larger, or use the quasi-static solver.
- * `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
- * `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
- * tell, and `hibi_mud_create_in` may have written the memory it was given.
- */
-#define HIBI_ERROR_MUD_SHORT_STEP_STABILITY 538
-
-/**
  * Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
  */
 #define HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED 575
@@ -1280,71 +1401,6 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_RENDER_LAYER 773
 
 /**
- * Glass parameters: width and height must be finite and >= 1.
- */
-#define HIBI_ERROR_GLASS_SIZE 1024
-
-/**
- * Glass parameters: the first impact must lie inside the plate.
- */
-#define HIBI_ERROR_GLASS_IMPACT_POINT 1025
-
-/**
- * Glass parameters: `radial_mean` must be finite and within [0, 10000].
- */
-#define HIBI_ERROR_GLASS_RADIAL_MEAN 1026
-
-/**
- * Glass parameters: `ring_threshold` must be finite.
- */
-#define HIBI_ERROR_GLASS_RING_THRESHOLD 1027
-
-/**
- * Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
- */
-#define HIBI_ERROR_GLASS_COUNT_FORMULA 1028
-
-/**
- * Glass parameters: the ring radius coefficients must be finite and >= 0.
- */
-#define HIBI_ERROR_GLASS_RING_RADIUS 1029
-
-/**
- * Glass parameters: the speeds must be finite and > 0.
- */
-#define HIBI_ERROR_GLASS_SPEED 1030
-
-/**
- * Glass parameters: `spread_ratio` (z) must be within [0, 1).
- */
-#define HIBI_ERROR_GLASS_SPREAD_RATIO 1031
-
-/**
- * Glass parameters: `turn_limit` must be within [0, pi].
- */
-#define HIBI_ERROR_GLASS_TURN_LIMIT 1032
-
-/**
- * Glass parameters: `turn_delay` (T) must be finite and > 0.
- */
-#define HIBI_ERROR_GLASS_TURN_DELAY 1033
-
-/**
- * Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
- */
-#define HIBI_ERROR_GLASS_SECTOR 1034
-
-/**
- * Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
- */
-#define HIBI_ERROR_GLASS_FORCES 1035
-
-/**
- * Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
- */
-#define HIBI_ERROR_GLASS_CAPACITY_PARAMS 1036
-
-/**
  * Glass parameters: the struct did not come from `hibi_glass_params_default`.
  */
 #define HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED 1087
@@ -1379,62 +1435,6 @@ typedef struct hibi_skin_cell {
  * `hibi_glass_render`: `layer` is not `HIBI_GLASS_LAYER_MASK` or `HIBI_GLASS_LAYER_TIME`.
  */
 #define HIBI_ERROR_GLASS_RENDER_LAYER 1094
-
-/**
- * Skin parameters: `width` and `height` must be in 1..=32768.
- */
-#define HIBI_ERROR_SKIN_SIZE 1280
-
-/**
- * Skin parameters: `jitter_ratio` must be in [0, 1].
- */
-#define HIBI_ERROR_SKIN_JITTER_RATIO 1281
-
-/**
- * Skin parameters: `levels` must be in 1..=4.
- */
-#define HIBI_ERROR_SKIN_LEVELS 1282
-
-/**
- * Skin parameters: a used level's `spacing` must be finite and >= 1 px.
- */
-#define HIBI_ERROR_SKIN_SPACING 1283
-
-/**
- * Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
- */
-#define HIBI_ERROR_SKIN_PERTURBATION 1284
-
-/**
- * Skin parameters: a used level's `perturbation_depth` must be <= 5.
- */
-#define HIBI_ERROR_SKIN_PERTURBATION_DEPTH 1285
-
-/**
- * Skin parameters: a used level's `stretch` must be finite and > 0.
- */
-#define HIBI_ERROR_SKIN_STRETCH 1286
-
-/**
- * Skin parameters: a used level's `profile.segments` must be in 1..=4.
- */
-#define HIBI_ERROR_SKIN_PROFILE_SEGMENTS 1287
-
-/**
- * Skin parameters: a used level's profile points must be finite, start at x' = 0, never
- * decrease in x' and end at x' > 0.
- */
-#define HIBI_ERROR_SKIN_PROFILE_POINTS 1288
-
-/**
- * Skin parameters: a used level's `roundness` must be in [0, 1].
- */
-#define HIBI_ERROR_SKIN_ROUNDNESS 1289
-
-/**
- * Skin parameters: the surface needs more memory than the address space allows.
- */
-#define HIBI_ERROR_SKIN_CAPACITY_PARAMS 1290
 
 /**
  * Skin parameters: the struct did not come from `hibi_skin_params_default` or
@@ -1688,8 +1688,8 @@ struct hibi_glass_render_params hibi_glass_render_params_default(void);
  * Nothing is written on failure.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `render` NULL or readable; `pixels` NULL (only with
- * `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ * `glass` must be NULL or a live plate; `render` NULL or readable; `pixels`
+ * NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
  */
 hibi_status hibi_glass_render(const struct hibi_glass *glass,
                               const struct hibi_glass_render_params *render,
@@ -1893,8 +1893,8 @@ struct hibi_mud_render_params hibi_mud_render_params_default(void);
  * `pixels_len` counts values, not bytes. Nothing is written on failure.
  *
  * # Safety
- * `mud` must be NULL or a live run; `render` NULL or readable; `pixels` NULL (only with
- * `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ * `mud` must be NULL or a live run; `render` NULL or readable; `pixels`
+ * NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
  */
 hibi_status hibi_mud_render(const struct hibi_mud *mud,
                             const struct hibi_mud_render_params *render,

@@ -1,9 +1,11 @@
 //! Enumerations whose numbers are part of the C API (and so of the determinism contract).
 //!
-//! Each is declared once with [`enumeration!`]: the `#[repr(u32)]` enum with its numbers,
-//! `ALL` (every variant, in declaration order) and `from_u32`, which the C layer reads a
-//! `uint32_t` field with. The C constants (`HIBI_MUD_SQUARE`, ...) are checked against the
-//! numbers when `hibi` compiles.
+//! Each is declared once with [`enumeration!`]: the `#[repr(u32)]` enum, `ALL` (every
+//! variant, in declaration order) and `from_u32`, which the C layer reads a `uint32_t` field
+//! with. Variants are numbered 0, 1, 2, ... in declaration order, as the error lists'
+//! ([`crate::error`]), unless they give their numbers (the random streams, whose numbers are
+//! keys with gaps between the models). The C constants (`HIBI_MUD_SQUARE`, ...) are checked
+//! against the numbers when `hibi` compiles, so a reordering cannot go unnoticed.
 
 /// Declares an enumeration (see the module docs):
 ///
@@ -12,7 +14,9 @@
 ///     /// What happens at the lattice's edges.
 ///     pub enum Boundary {
 ///         /// Free edges.
-///         Open = 0,
+///         Open,
+///         /// The lattice wraps around.
+///         Periodic,
 ///     }
 ///     default Open
 /// }
@@ -21,7 +25,7 @@ macro_rules! enumeration {
     (
         $(#[$meta:meta])*
         pub enum $name:ident {
-            $( $(#[$variant_meta:meta])* $variant:ident = $number:literal, )+
+            $( $(#[$variant_meta:meta])* $variant:ident $(= $number:literal)?, )+
         }
         $(default $default:ident)?
     ) => {
@@ -29,7 +33,7 @@ macro_rules! enumeration {
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         #[repr(u32)]
         pub enum $name {
-            $( $(#[$variant_meta])* $variant = $number, )+
+            $( $(#[$variant_meta])* $variant $(= $number)?, )+
         }
 
         impl $name {
@@ -38,10 +42,14 @@ macro_rules! enumeration {
 
             /// The variant numbered `number`, if there is one.
             pub const fn from_u32(number: u32) -> Option<Self> {
-                match number {
-                    $( $number => Some($name::$variant), )+
-                    _ => None,
+                let mut i = 0;
+                while i < Self::ALL.len() {
+                    if Self::ALL[i] as u32 == number {
+                        return Some(Self::ALL[i]);
+                    }
+                    i += 1;
                 }
+                None
             }
         }
 

@@ -54,10 +54,10 @@ enumeration! {
     /// The shape of the papers' `Rand(x)`.
     pub enum Spread {
         /// Uniform over [(1 − z)·x, (1 + z)·x].
-        Uniform = 0,
+        Uniform,
         /// Normal with mean x and standard deviation z·x/3, redrawn until it falls within
         /// [(1 − z)·x, (1 + z)·x] (so ±3σ spans the paper's range).
-        Normal = 1,
+        Normal,
     }
 }
 

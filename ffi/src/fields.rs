@@ -75,22 +75,6 @@ enumeration!(
     hibi_core::skin::SiteLayout,
 );
 
-/// The C constants of a core enumeration's variants (`#define`s in the header), each written
-/// once with its variant and number; the number is checked against the variant's when `hibi`
-/// compiles. With a head `type = base +`, the constants have that type and number `base` plus
-/// the variant's (the statuses of a model's parameter errors).
-macro_rules! constants {
-    ($ty:ty = $base:literal + $( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {$(
-        $(#[$doc])*
-        pub const $name: $ty = $number;
-        const _: () = assert!($name == $base + $variant as u32);
-    )+};
-    ($( $(#[$doc:meta])* $name:ident: $variant:path = $number:literal; )+) => {
-        $crate::fields::constants!(u32 = 0 + $( $(#[$doc])* $name: $variant = $number; )+);
-    };
-}
-pub(crate) use constants;
-
 /// [`Field`] for a C struct whose fields are the core struct's, listed once. With a cookie,
 /// the C struct also carries the marker its `_default` function sets: `from_core` sets it;
 /// check it before `to_core`.

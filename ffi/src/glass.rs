@@ -16,46 +16,20 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    Crack, CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory,
-    GlassParams, GlassProgress, GlassRender, ImpactCounts, preset,
+    Crack, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
+    GlassProgress, GlassRender, ImpactCounts, preset,
 };
 
-use crate::fields::{Field, constants, convert};
-use crate::guard::{
-    Outcome, Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, query, update, write_out,
-};
+use crate::constants::param_status;
+use crate::fields::{Field, convert};
+use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
+use crate::polygons::polygon_query;
+use crate::raster::{Pixels, render};
 use crate::status::{
-    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX,
-    HIBI_ERROR_GLASS_IMPACT, HIBI_ERROR_GLASS_RENDER_LAYER, glass_param_status, hibi_status, raster_status,
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_GLASS_CAPACITY, HIBI_ERROR_GLASS_CRACK_INDEX, HIBI_ERROR_GLASS_IMPACT,
+    HIBI_ERROR_GLASS_RENDER_LAYER, hibi_status,
 };
-
-/// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
-pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
-/// Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
-/// no crack is.
-pub const HIBI_GLASS_LAYER_TIME: u32 = 1;
-
-constants! {
-    /// `hibi_glass_crack.kind`: a large radial crack (fast, reaches the edge).
-    HIBI_GLASS_KIND_LARGE: CrackKind::Large = 0;
-    /// `hibi_glass_crack.kind`: another radial crack.
-    HIBI_GLASS_KIND_RADIAL: CrackKind::Radial = 1;
-    /// `hibi_glass_crack.kind`: a ring crack growing counter-clockwise from its start point.
-    HIBI_GLASS_KIND_RING_COUNTER_CLOCKWISE: CrackKind::RingCounterClockwise = 2;
-    /// `hibi_glass_crack.kind`: a ring crack growing clockwise from its start point.
-    HIBI_GLASS_KIND_RING_CLOCKWISE: CrackKind::RingClockwise = 3;
-    /// `hibi_glass_crack.end`: it still grows.
-    HIBI_GLASS_END_GROWING: CrackEnd::Growing = 0;
-    /// `hibi_glass_crack.end`: its tip reached the plate's edge.
-    HIBI_GLASS_END_EDGE: CrackEnd::Edge = 1;
-    /// `hibi_glass_crack.end`: its tip reached another crack.
-    HIBI_GLASS_END_CRACK: CrackEnd::Crack = 2;
-    /// `hibi_glass_crack.end`: generation of its impact ended, or a later impact began.
-    HIBI_GLASS_END_GENERATION: CrackEnd::Generation = 3;
-    /// `hibi_glass_crack.end`: other cracks closed a region around its tip.
-    HIBI_GLASS_END_ENCLOSED: CrackEnd::Enclosed = 4;
-}
 
 /// Marks a params struct that came from `hibi_glass_params_default` ("GLS1").
 const PARAMS_COOKIE: u32 = 0x474C_5331;
@@ -227,12 +201,12 @@ impl Object for hibi_glass {
     type Input = *const hibi_glass_params;
     type Plan = (GlassParams, GlassMemory);
     type Arrays = GlassBuffers<'static>;
-    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_GLASS_CAPACITY_PARAMS;
+    const TOO_LARGE: hibi_status = crate::constants::HIBI_ERROR_GLASS_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_glass_params) -> Result<Self::Plan, hibi_status> {
         // SAFETY: the caller's contract.
         let params = from_c(unsafe { object_ref(params, c"params") }?)?;
-        let memory = params.memory().map_err(glass_param_status)?;
+        let memory = params.memory().map_err(param_status)?;
         Ok((params, memory))
     }
 
@@ -257,7 +231,7 @@ impl Object for hibi_glass {
 /// The status of a core glass error.
 fn glass_status(error: GlassError) -> hibi_status {
     match error {
-        GlassError::Param(p) => glass_param_status(p),
+        GlassError::Param(p) => param_status(p),
         GlassError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
         GlassError::Impact => HIBI_ERROR_GLASS_IMPACT,
     }
@@ -452,41 +426,31 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
     })
 }
 
-/// Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
-/// record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
-/// the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
-/// do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
-/// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
-/// `hibi_glass_fragment_counts` does; the plate is only read.
-///
-/// # Safety
-/// `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
-/// `rings` and `points` NULL (only with length 0) or writable for their lengths;
-/// `rings_written` and `points_written` NULL (refused) or writable.
-#[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn hibi_glass_fragments(
-    glass: *const hibi_glass,
-    scratch: *mut c_void,
-    scratch_size: usize,
-    rings: *mut FragmentRing,
-    rings_len: usize,
-    points: *mut hibi_vec2,
-    points_len: usize,
-    rings_written: *mut usize,
-    points_written: *mut usize,
-) -> hibi_status {
-    guard(|| {
-        let written = polygon_counts(rings_written, points_written)?;
+polygon_query! {
+    /// Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
+    /// record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
+    /// the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
+    /// do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
+    /// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
+    /// `hibi_glass_fragment_counts` does; the plate is only read.
+    ///
+    /// # Safety
+    /// `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
+    /// `rings` and `points` NULL (only with length 0) or writable for their lengths;
+    /// `rings_written` and `points_written` NULL (refused) or writable.
+    hibi_glass_fragments(glass: hibi_glass, scratch: *mut c_void, scratch_size: usize) -> FragmentRing;
+    {
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
-        // SAFETY: the caller's contract.
-        let out = unsafe { Polygons::check(written, (rings, rings_len), (points, points_len)) }?;
-        let (r, p) = glass.fragments(scratch, out.rings, out.points).map_err(glass_status)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write_counts(r, p) }
-    })
+    }
+    |rings, points| glass.fragments(scratch, rings, points).map_err(glass_status)
 }
+
+/// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
+/// Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
+/// no crack is.
+pub const HIBI_GLASS_LAYER_TIME: u32 = 1;
 
 /// Default drawing: 640 × 640, 1.2-pixel lines.
 #[unsafe(no_mangle)]
@@ -494,43 +458,26 @@ pub extern "C" fn hibi_glass_render_params_default() -> hibi_glass_render_params
     guard(|| hibi_glass_render_params::from_core(&GlassRender::default()))
 }
 
-/// Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
-/// `HIBI_GLASS_LAYER_MASK`, `float` for `HIBI_GLASS_LAYER_TIME`). `pixels_len` counts values.
-/// Nothing is written on failure.
-///
-/// # Safety
-/// `glass` must be NULL or a live plate; `render` NULL or readable; `pixels` NULL (only with
-/// `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_glass_render(
-    glass: *const hibi_glass,
-    render: *const hibi_glass_render_params,
-    layer: u32,
-    pixels: *mut c_void,
-    pixels_len: usize,
-) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let glass = unsafe { object_ref(glass, c"glass") }?;
-        // SAFETY: the caller's contract.
-        let render: GlassRender = unsafe { object_ref(render, c"render") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
-        // SAFETY (both): the caller's contract on `pixels`.
-        let layers = match layer {
-            HIBI_GLASS_LAYER_MASK => {
-                GlassLayers { mask: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?), time: None }
-            }
-            HIBI_GLASS_LAYER_TIME => {
-                GlassLayers { mask: None, time: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?) }
-            }
-            _ => return Err(HIBI_ERROR_GLASS_RENDER_LAYER),
-        };
-        glass.glass.render(&render, layers).map_err(raster_status)
+render! {
+    /// Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
+    /// `HIBI_GLASS_LAYER_MASK`, `float` for `HIBI_GLASS_LAYER_TIME`). `pixels_len` counts values.
+    /// Nothing is written on failure.
+    hibi_glass_render(glass: hibi_glass, "plate", hibi_glass_render_params) = glass_layers
+}
+
+/// Glass's layers with `layer` to be drawn into `pixels`.
+fn glass_layers(layer: u32, pixels: Pixels<'_>) -> Result<GlassLayers<'_>, hibi_status> {
+    Ok(match layer {
+        HIBI_GLASS_LAYER_MASK => GlassLayers { mask: Some(pixels.values()?), time: None },
+        HIBI_GLASS_LAYER_TIME => GlassLayers { mask: None, time: Some(pixels.values()?) },
+        _ => return Err(HIBI_ERROR_GLASS_RENDER_LAYER),
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::*;
     use crate::status::*;
     use core::ptr::null_mut;
 

@@ -8,7 +8,6 @@
 //! hibi reports. The pointer helpers turn NULL, misaligned and overflowing arguments into
 //! statuses before anything is touched.
 
-use crate::glass::hibi_vec2;
 use core::cell::Cell;
 use core::ffi::{CStr, c_char};
 use core::mem::{align_of, size_of};
@@ -285,47 +284,11 @@ pub(crate) unsafe fn buffer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr)
     Ok(unsafe { core::slice::from_raw_parts_mut(ptr, len) })
 }
 
-/// The counts' out-parameters of a polygon query, `rings_written` and `points_written`
-/// (required), checked first, as the queries do before anything else of theirs but the object.
-pub(crate) fn polygon_counts(
-    rings_written: *mut usize,
-    points_written: *mut usize,
-) -> Result<Outs<usize, 2>, hibi_status> {
-    Outs::check([(rings_written, c"rings_written"), (points_written, c"points_written")])
-}
-
-/// The outputs of a polygon query (mud's cells, glass's fragments): a record per ring and
-/// their points, each buffer with the count written to it.
-pub(crate) struct Polygons<'a, R> {
-    pub(crate) rings: &'a mut [R],
-    pub(crate) points: &'a mut [[f32; 2]],
-    written: Outs<usize, 2>,
-}
-
-impl<'a, R> Polygons<'a, R> {
-    /// Checks the buffers `rings[0..rings_len]` and `points[0..points_len]`, to be counted in
-    /// `written` (from [`polygon_counts`]).
-    ///
-    /// # Safety
-    /// As [`buffer`] for both buffers (not overlapping); the counts as [`Outs::write`].
-    pub(crate) unsafe fn check(
-        written: Outs<usize, 2>,
-        rings: (*mut R, usize),
-        points: (*mut hibi_vec2, usize),
-    ) -> Result<Self, hibi_status> {
-        // SAFETY: the caller's contract; hibi_vec2 is laid out as [f32; 2] (asserted in glass).
-        let (rings, points) =
-            unsafe { (buffer(rings.0, rings.1, c"rings")?, buffer(points.0.cast::<[f32; 2]>(), points.1, c"points")?) };
-        Ok(Polygons { rings, points, written })
-    }
-
-    /// Writes the counts of what the query wrote.
-    ///
-    /// # Safety
-    /// As [`Outs::write`].
-    pub(crate) unsafe fn write_counts(self, rings: usize, points: usize) -> Result<(), hibi_status> {
-        // SAFETY: the caller's contract.
-        unsafe { self.written.write([rings, points]) }
+/// `text`, which ends in NUL, as a C string (an argument's name, at compile time).
+pub(crate) const fn c_name(text: &'static str) -> &'static CStr {
+    match CStr::from_bytes_with_nul(text.as_bytes()) {
+        Ok(name) => name,
+        Err(_) => panic!("a C name ends in one NUL"),
     }
 }
 

@@ -20,15 +20,19 @@
 
 use core::ffi::c_char;
 
+pub mod constants;
 mod fields;
 pub mod glass;
 mod guard;
 pub mod mud;
 mod object;
+mod polygons;
+mod raster;
 pub mod rng;
 pub mod skin;
 pub mod status;
 
+pub use constants::*;
 pub use glass::*;
 pub use mud::*;
 pub use rng::*;

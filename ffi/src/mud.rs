@@ -22,50 +22,18 @@ use core::ffi::{c_char, c_void};
 
 use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
-    Boundary, CrackSegment, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayers, MudMemory, MudParams,
-    MudProgress, MudRender, NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology, preset,
+    CrackSegment, CrackStatistics, Mud, MudBuffers, MudError, MudLayers, MudMemory, MudParams, MudProgress, MudRender,
+    NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, preset,
 };
 
-use crate::fields::{Field, constants, convert};
-use crate::glass::hibi_vec2;
-use crate::guard::{
-    Outs, Polygons, buffer, check_pointer, guard, object_ref, polygon_counts, query, update, write_out,
-};
+use crate::constants::param_status;
+use crate::fields::{Field, convert};
+
+use crate::guard::{Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
-use crate::status::{
-    HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status, mud_param_status,
-    raster_status,
-};
-
-constants! {
-    /// Square elements: 4 neighbours, axis-aligned short cracks.
-    HIBI_MUD_SQUARE: Topology::Square = 0;
-    /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours, isotropic cracks.
-    HIBI_MUD_HEXAGONAL: Topology::Hexagonal = 1;
-    /// Beyond the paper: jittered nodes joined by their Delaunay triangulation, each spring with
-    /// its own length and face; cracks run in any direction. Periodic lattices need columns >= 8
-    /// and an even rows >= 8.
-    HIBI_MUD_IRREGULAR: Topology::Irregular = 2;
-    /// Free edges.
-    HIBI_MUD_OPEN: Boundary::Open = 0;
-    /// The lattice wraps around: tileable patterns.
-    HIBI_MUD_PERIODIC: Boundary::Periodic = 1;
-    /// The paper's explicit loop (reference; slow).
-    HIBI_MUD_EXPLICIT: Solver::Explicit = 0;
-    /// Quasi-static equilibrium with event-driven breaking (fast; the default).
-    HIBI_MUD_QUASI_STATIC: Solver::QuasiStatic = 1;
-    /// The surface shrinks (drying mud).
-    HIBI_MUD_SHRINK: Drive::Shrink = 0;
-    /// The deep layer grows (tree bark).
-    HIBI_MUD_GROWTH: Drive::Growth = 1;
-}
-
-/// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
-pub const HIBI_MUD_LAYER_MASK: u32 = 0;
-/// Render layer: height, `float` per pixel, 1 on the surface, lower in the cracks.
-pub const HIBI_MUD_LAYER_HEIGHT: u32 = 1;
-/// Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
-pub const HIBI_MUD_LAYER_TIME: u32 = 2;
+use crate::polygons::polygon_query;
+use crate::raster::{Pixels, render};
+use crate::status::{HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status};
 
 /// Marks a params struct that came from `hibi_mud_params_default` ("MUD1").
 const PARAMS_COOKIE: u32 = 0x4D55_4431;
@@ -267,12 +235,12 @@ impl Object for hibi_mud {
     type Input = *const hibi_mud_params;
     type Plan = (MudParams, MudMemory);
     type Arrays = MudBuffers<'static, f32>;
-    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_MUD_SIZE_OVERFLOW;
+    const TOO_LARGE: hibi_status = crate::constants::HIBI_ERROR_MUD_SIZE_OVERFLOW;
 
     unsafe fn plan(params: *const hibi_mud_params) -> Result<Self::Plan, hibi_status> {
         // SAFETY: the caller's contract.
         let params = from_c(unsafe { object_ref(params, c"params") }?)?;
-        let memory = params.memory().map_err(mud_param_status)?;
+        let memory = params.memory().map_err(param_status)?;
         Ok((params, memory))
     }
 
@@ -366,7 +334,7 @@ pub unsafe extern "C" fn hibi_mud_statistics(mud: *const hibi_mud, out: *mut hib
 /// The status of a core error from writing an output: only a short buffer can happen.
 fn output_status(error: MudError) -> hibi_status {
     match error {
-        MudError::Param(p) => mud_param_status(p),
+        MudError::Param(p) => param_status(p),
         MudError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
     }
 }
@@ -462,39 +430,33 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
     })
 }
 
-/// Writes the cells the separating cracks cut the plate into, as polygons: one record per
-/// ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
-/// and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
-/// do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
-/// signed areas add up to the plate's (less the regions that wrap, see
-/// `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
-/// `HIBI_ERROR_BUFFER_TOO_SMALL`.
-///
-/// # Safety
-/// `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
-/// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
-/// (refused) or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_cells(
-    mud: *const hibi_mud,
-    rings: *mut hibi_mud_cell_ring,
-    rings_len: usize,
-    points: *mut hibi_vec2,
-    points_len: usize,
-    rings_written: *mut usize,
-    points_written: *mut usize,
-) -> hibi_status {
-    guard(|| {
+polygon_query! {
+    /// Writes the cells the separating cracks cut the plate into, as polygons: one record per
+    /// ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
+    /// and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
+    /// do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
+    /// signed areas add up to the plate's (less the regions that wrap, see
+    /// `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
+    /// `HIBI_ERROR_BUFFER_TOO_SMALL`.
+    ///
+    /// # Safety
+    /// `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
+    /// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
+    /// (refused) or writable.
+    hibi_mud_cells(mud: hibi_mud) -> hibi_mud_cell_ring;
+    {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
-        let written = polygon_counts(rings_written, points_written)?;
-        // SAFETY: the caller's contract; hibi_mud_cell_ring is laid out as CellRing (asserted above).
-        let out = unsafe { Polygons::check(written, (rings, rings_len), (points, points_len)) }?;
-        let counts = mud.mud.cells(out.rings, out.points).map_err(output_status)?;
-        // SAFETY: checked; the caller's contract.
-        unsafe { out.write_counts(counts.rings, counts.points) }
-    })
+    }
+    |rings, points| mud.mud.cells(rings, points).map(|c| (c.rings, c.points)).map_err(output_status)
 }
+
+/// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
+pub const HIBI_MUD_LAYER_MASK: u32 = 0;
+/// Render layer: height, `float` per pixel, 1 on the surface, lower in the cracks.
+pub const HIBI_MUD_LAYER_HEIGHT: u32 = 1;
+/// Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
+pub const HIBI_MUD_LAYER_TIME: u32 = 2;
 
 /// Default drawing: 512 × 512, true crack widths, 1-pixel minimum stroke, groove depth 1.
 #[unsafe(no_mangle)]
@@ -502,51 +464,30 @@ pub extern "C" fn hibi_mud_render_params_default() -> hibi_mud_render_params {
     guard(|| hibi_mud_render_params::from_core(&MudRender::default()))
 }
 
-/// Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
-/// `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
-/// `pixels_len` counts values, not bytes. Nothing is written on failure.
-///
-/// # Safety
-/// `mud` must be NULL or a live run; `render` NULL or readable; `pixels` NULL (only with
-/// `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_mud_render(
-    mud: *const hibi_mud,
-    render: *const hibi_mud_render_params,
-    layer: u32,
-    pixels: *mut c_void,
-    pixels_len: usize,
-) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let mud = unsafe { object_ref(mud, c"mud") }?;
-        // SAFETY: the caller's contract.
-        let render: MudRender = unsafe { object_ref(render, c"render") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
-        // SAFETY (all three): the caller's contract on `pixels`.
-        let layers = match layer {
-            HIBI_MUD_LAYER_MASK => MudLayers {
-                mask: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
-                ..MudLayers::default()
-            },
-            HIBI_MUD_LAYER_HEIGHT => MudLayers {
-                height: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
-                ..MudLayers::default()
-            },
-            HIBI_MUD_LAYER_TIME => MudLayers {
-                time: Some(unsafe { buffer(pixels.cast(), pixels_len, c"pixels") }?),
-                ..MudLayers::default()
-            },
-            _ => return Err(HIBI_ERROR_RENDER_LAYER),
-        };
-        mud.mud.render(&render, layers).map_err(raster_status)
+render! {
+    /// Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
+    /// `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
+    /// `pixels_len` counts values, not bytes. Nothing is written on failure.
+    hibi_mud_render(mud: hibi_mud, "run", hibi_mud_render_params) = mud_layers
+}
+
+/// Mud's layers with `layer` to be drawn into `pixels`.
+fn mud_layers(layer: u32, pixels: Pixels<'_>) -> Result<MudLayers<'_>, hibi_status> {
+    Ok(match layer {
+        HIBI_MUD_LAYER_MASK => MudLayers { mask: Some(pixels.values()?), ..MudLayers::default() },
+        HIBI_MUD_LAYER_HEIGHT => MudLayers { height: Some(pixels.values()?), ..MudLayers::default() },
+        HIBI_MUD_LAYER_TIME => MudLayers { time: Some(pixels.values()?), ..MudLayers::default() },
+        _ => return Err(HIBI_ERROR_RENDER_LAYER),
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::*;
     use crate::status::*;
     use core::ptr::{null, null_mut};
+    use crate::glass::hibi_vec2;
     use hibi_core::mud::CellRing;
 
     fn small() -> hibi_mud_params {

@@ -5,17 +5,9 @@ use core::ffi::c_void;
 
 use hibi_core::{Rng, Spread};
 
-use crate::fields::constants;
 use crate::guard::{buffer, guard, object, write_out};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
 use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, rng_status};
-
-constants! {
-    /// `Rand(x)` spread: uniform over [(1 − z)x, (1 + z)x].
-    HIBI_SPREAD_UNIFORM: Spread::Uniform = 0;
-    /// `Rand(x)` spread: normal, σ = z·x/3, redrawn until within [(1 − z)x, (1 + z)x].
-    HIBI_SPREAD_NORMAL: Spread::Normal = 1;
-}
 
 /// A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
 pub struct hibi_rng {
@@ -173,11 +165,7 @@ pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, sprea
         // SAFETY: the caller's contract.
         let rng = unsafe { object(rng, c"rng") }?;
         crate::guard::check_pointer(out, c"out")?;
-        let spread = match spread {
-            HIBI_SPREAD_UNIFORM => Spread::Uniform,
-            HIBI_SPREAD_NORMAL => Spread::Normal,
-            _ => return Err(HIBI_ERROR_BAD_ENUM),
-        };
+        let spread = Spread::from_u32(spread).ok_or(HIBI_ERROR_BAD_ENUM)?;
         let value = rng.rng.rand(x, z, spread).map_err(rng_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, c"out", value) }
@@ -187,6 +175,7 @@ pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, sprea
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::*;
     use crate::status::*;
     use core::ffi::CStr;
     use core::ptr::null_mut;

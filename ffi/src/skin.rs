@@ -8,7 +8,11 @@
 //! if (hibi_skin_create(&params, &skin) != HIBI_OK) { ... }
 //! hibi_skin_progress progress;
 //! do { hibi_skin_step(skin, 100000, &progress); } while (!progress.finished);
-//! hibi_skin_render(skin, height, w * h, normal, 3 * w * h, NULL, 0, 0);
+//! size_t scratch_size;
+//! hibi_skin_scratch_size(skin, &scratch_size); /* a render only reads the skin */
+//! void *scratch = malloc(scratch_size);
+//! hibi_skin_render(skin, scratch, scratch_size, height, w * h, normal, 3 * w * h, NULL, 0, 0);
+//! free(scratch);
 //! hibi_skin_shade_params light = hibi_skin_shade_params_default();
 //! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
 //! hibi_skin_destroy(skin);
@@ -21,18 +25,18 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
-    LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams,
-    SiteLayout, Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender,
-    SkinScratch, preset, shade,
+    LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams, Skin,
+    SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, SkinScratch, preset, shade,
 };
 
-use crate::fields::{Field, constants, convert};
+use crate::constants::param_status;
+use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, query, update, write_out};
 use crate::object::{self, Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
     HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_SHADE, HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW,
-    HIBI_ERROR_SKIN_SHADE_RIDGE, HIBI_ERROR_SKIN_SHADE_SPECULAR, hibi_status, skin_param_status,
+    HIBI_ERROR_SKIN_SHADE_RIDGE, HIBI_ERROR_SKIN_SHADE_SPECULAR, hibi_status,
 };
 
 /// Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -43,14 +47,6 @@ pub const HIBI_SKIN_MAX_SEGMENTS: u32 = 4;
 pub const HIBI_SKIN_PROFILE_POINTS: usize = 13;
 /// Most midpoint-displacement subdivisions of an edge.
 pub const HIBI_SKIN_MAX_PERTURBATION_DEPTH: u32 = 5;
-constants! {
-    /// Centre points on a triangular lattice (the default).
-    HIBI_SKIN_LAYOUT_TRIANGULAR: SiteLayout::Triangular = 0;
-    /// Centre points on a square lattice.
-    HIBI_SKIN_LAYOUT_SQUARE: SiteLayout::Square = 1;
-    /// Centre points uniformly random, one per lattice square (the jitter fields are ignored).
-    HIBI_SKIN_LAYOUT_RANDOM: SiteLayout::Random = 2;
-}
 
 /// `hibi_skin_cell.parent` of a level-0 cell, and the cell map's value where no cell is.
 pub const HIBI_SKIN_NO_CELL: u32 = u32::MAX;
@@ -229,12 +225,12 @@ impl Object for hibi_skin {
     type Input = *const hibi_skin_params;
     type Plan = (SkinParams, SkinMemory);
     type Arrays = SkinBuffers<'static>;
-    const TOO_LARGE: hibi_status = crate::status::HIBI_ERROR_SKIN_CAPACITY_PARAMS;
+    const TOO_LARGE: hibi_status = crate::constants::HIBI_ERROR_SKIN_CAPACITY_PARAMS;
 
     unsafe fn plan(params: *const hibi_skin_params) -> Result<Self::Plan, hibi_status> {
         // SAFETY: the caller's contract.
         let params = from_c(unsafe { object_ref(params, c"params") }?)?;
-        let memory = params.memory().map_err(skin_param_status)?;
+        let memory = params.memory().map_err(param_status)?;
         Ok((params, memory))
     }
 
@@ -262,7 +258,7 @@ impl Object for hibi_skin {
 /// The status of a core skin error.
 fn skin_status(error: SkinError) -> hibi_status {
     match error {
-        SkinError::Param(p) => skin_param_status(p),
+        SkinError::Param(p) => param_status(p),
         SkinError::BufferTooSmall { .. } => HIBI_ERROR_BUFFER_TOO_SMALL,
         SkinError::Level => HIBI_ERROR_SKIN_LEVEL,
         SkinError::Shade(ShadeError::Light) => HIBI_ERROR_SKIN_SHADE,
@@ -517,6 +513,7 @@ pub unsafe extern "C" fn hibi_skin_outline(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::*;
     use crate::status::*;
     use core::ptr::{null, null_mut};
 

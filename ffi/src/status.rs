@@ -9,7 +9,7 @@ use hibi_core::mud::MudParamError;
 use hibi_core::raster::RasterError;
 use hibi_core::skin::{ShadeError, SkinParamError};
 
-use crate::fields::constants;
+use crate::constants::param_error;
 use crate::guard::guard_query;
 
 /// The result of a fallible call: `HIBI_OK` (0) or one of the `HIBI_ERROR_*` codes.
@@ -42,74 +42,6 @@ pub const HIBI_ERROR_POISSON_MEAN: hibi_status = 256;
 /// `hibi_rng_rand`: x is not finite or z is outside [0, 1).
 pub const HIBI_ERROR_RAND_ARGUMENT: hibi_status = 257;
 
-constants! {
-    hibi_status = 512 +
-    /// Mud parameters: `columns` must be >= 2 (>= 3 when periodic, >= 8 periodic irregular).
-    HIBI_ERROR_MUD_COLUMNS: MudParamError::Columns = 512;
-    /// Mud parameters: `rows` must be >= 2 (periodic: >= 3 square, even and >= 4 hexagonal, even
-    /// and >= 8 irregular).
-    HIBI_ERROR_MUD_ROWS: MudParamError::Rows = 513;
-    /// Mud parameters: `layer_thickness` (H) must be finite and > 0.
-    HIBI_ERROR_MUD_LAYER_THICKNESS: MudParamError::LayerThickness = 514;
-    /// Mud parameters: `element_size` (W) must be finite and > 0.
-    HIBI_ERROR_MUD_ELEMENT_SIZE: MudParamError::ElementSize = 515;
-    /// Mud parameters: `long_step` (T) must be finite and > 0.
-    HIBI_ERROR_MUD_LONG_STEP: MudParamError::LongStep = 516;
-    /// Mud parameters: `short_step` (τ) must be finite and > 0.
-    HIBI_ERROR_MUD_SHORT_STEP: MudParamError::ShortStep = 517;
-    /// Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
-    HIBI_ERROR_MUD_SHRINK_RATIO: MudParamError::ShrinkRatio = 518;
-    /// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
-    HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: MudParamError::DisplacementTolerance = 519;
-    /// Mud parameters: `damping_factor` (α) must be finite and > 0.
-    HIBI_ERROR_MUD_DAMPING_FACTOR: MudParamError::DampingFactor = 520;
-    /// Mud parameters: `density` (ρ) must be finite and > 0.
-    HIBI_ERROR_MUD_DENSITY: MudParamError::Density = 521;
-    /// Mud parameters: `young_modulus` (E) must be finite and > 0.
-    HIBI_ERROR_MUD_YOUNG_MODULUS: MudParamError::YoungModulus = 522;
-    /// Mud parameters: `shear_modulus` (G) must be finite and > 0.
-    HIBI_ERROR_MUD_SHEAR_MODULUS: MudParamError::ShearModulus = 523;
-    /// Mud parameters: `break_stretch_mean` (κ̄) must be finite and > 1.
-    HIBI_ERROR_MUD_BREAK_STRETCH_MEAN: MudParamError::BreakStretchMean = 524;
-    /// Mud parameters: `break_stretch_spread` (σ) must be finite and >= 0.
-    HIBI_ERROR_MUD_BREAK_STRETCH_SPREAD: MudParamError::BreakStretchSpread = 525;
-    /// Mud parameters: `anisotropy_direction` must be finite.
-    HIBI_ERROR_MUD_ANISOTROPY_DIRECTION: MudParamError::AnisotropyDirection = 526;
-    /// Mud parameters: `anisotropy_ratio` must be finite and >= 1.
-    HIBI_ERROR_MUD_ANISOTROPY_RATIO: MudParamError::AnisotropyRatio = 527;
-    /// Mud parameters: `stiffness_anisotropy_ratio` must be within [1, 1e6].
-    HIBI_ERROR_MUD_STIFFNESS_ANISOTROPY_RATIO: MudParamError::StiffnessAnisotropyRatio = 528;
-    /// Mud parameters: `target_shrink` must be finite and within [0, 1).
-    HIBI_ERROR_MUD_TARGET_SHRINK: MudParamError::TargetShrink = 529;
-    /// Mud parameters: `target_crack_density` must be finite and >= 0.
-    HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: MudParamError::TargetCrackDensity = 530;
-    /// Mud parameters: The lattice is too large: its memory size overflows.
-    HIBI_ERROR_MUD_SIZE_OVERFLOW: MudParamError::SizeOverflow = 531;
-    /// Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
-    /// within [1e-6, 1e6].
-    HIBI_ERROR_MUD_SHEAR_SCALE: MudParamError::ShearScale = 532;
-    /// Mud parameters: `break_stretch_size_exponent` must be within [0, 1].
-    HIBI_ERROR_MUD_BREAK_STRETCH_SIZE_EXPONENT: MudParamError::BreakStretchSizeExponent = 533;
-    /// Mud parameters: `damping_factor` is out of scale: 2·sqrt(k_max·m)·damping_factor must be
-    /// within [1e-6, 1e6].
-    HIBI_ERROR_MUD_DAMPING_SCALE: MudParamError::DampingScale = 534;
-    /// Mud parameters: short_step / (element_size·sqrt(density / young_modulus)) must be within
-    /// [1e-6, 1e6].
-    HIBI_ERROR_MUD_SHORT_STEP_SCALE: MudParamError::ShortStepScale = 535;
-    /// Mud parameters: `displacement_tolerance` is out of scale: k_min·displacement_tolerance /
-    /// element_size must be within [1e-6, 1e6].
-    HIBI_ERROR_MUD_TOLERANCE_SCALE: MudParamError::ToleranceScale = 536;
-    /// Mud parameters: break_stretch_spread / sqrt(face·element_size·layer_thickness) must be
-    /// finite.
-    HIBI_ERROR_MUD_SPREAD_SCALE: MudParamError::SpreadScale = 537;
-    /// Mud parameters: with the explicit solver, `short_step` fails the stability test of its
-    /// damped step (a sufficient bound: past it the run may diverge); make it smaller or
-    /// `damping_factor` larger, or use the quasi-static solver.
-    /// `HIBI_MUD_IRREGULAR` lattices are checked node by node on their mesh, which only
-    /// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
-    /// tell, and `hibi_mud_create_in` may have written the memory it was given.
-    HIBI_ERROR_MUD_SHORT_STEP_STABILITY: MudParamError::ShortStepStability = 538;
-}
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).
 pub const HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED: hibi_status = 575;
 /// Mud parameters: `topology`, `boundary`, `solver` or `drive` is not one of its constants.
@@ -131,35 +63,6 @@ pub const HIBI_ERROR_RENDER_LINE_WIDTH: hibi_status = 774;
 /// `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
 pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
 
-constants! {
-    hibi_status = 1024 +
-    /// Glass parameters: width and height must be finite and >= 1.
-    HIBI_ERROR_GLASS_SIZE: GlassParamError::Size = 1024;
-    /// Glass parameters: the first impact must lie inside the plate.
-    HIBI_ERROR_GLASS_IMPACT_POINT: GlassParamError::Impact = 1025;
-    /// Glass parameters: `radial_mean` must be finite and within [0, 10000].
-    HIBI_ERROR_GLASS_RADIAL_MEAN: GlassParamError::RadialMean = 1026;
-    /// Glass parameters: `ring_threshold` must be finite.
-    HIBI_ERROR_GLASS_RING_THRESHOLD: GlassParamError::RingThreshold = 1027;
-    /// Glass parameters: the large and ring count formulas' coefficients must be finite and >= 0.
-    HIBI_ERROR_GLASS_COUNT_FORMULA: GlassParamError::CountFormula = 1028;
-    /// Glass parameters: the ring radius coefficients must be finite and >= 0.
-    HIBI_ERROR_GLASS_RING_RADIUS: GlassParamError::RingRadius = 1029;
-    /// Glass parameters: the speeds must be finite and > 0.
-    HIBI_ERROR_GLASS_SPEED: GlassParamError::Speed = 1030;
-    /// Glass parameters: `spread_ratio` (z) must be within [0, 1).
-    HIBI_ERROR_GLASS_SPREAD_RATIO: GlassParamError::SpreadRatio = 1031;
-    /// Glass parameters: `turn_limit` must be within [0, pi].
-    HIBI_ERROR_GLASS_TURN_LIMIT: GlassParamError::TurnLimit = 1032;
-    /// Glass parameters: `turn_delay` (T) must be finite and > 0.
-    HIBI_ERROR_GLASS_TURN_DELAY: GlassParamError::TurnDelay = 1033;
-    /// Glass parameters: `sector_angle` must be within (0, 2 pi] and `sector_radius` finite and > 0.
-    HIBI_ERROR_GLASS_SECTOR: GlassParamError::Sector = 1034;
-    /// Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
-    HIBI_ERROR_GLASS_FORCES: GlassParamError::Forces = 1035;
-    /// Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
-    HIBI_ERROR_GLASS_CAPACITY_PARAMS: GlassParamError::Capacity = 1036;
-}
 /// Glass parameters: the struct did not come from `hibi_glass_params_default`.
 pub const HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED: hibi_status = 1087;
 /// Glass parameters: `spread` is not `HIBI_SPREAD_UNIFORM` or `HIBI_SPREAD_NORMAL`.
@@ -176,32 +79,6 @@ pub const HIBI_ERROR_GLASS_CRACK_INDEX: hibi_status = 1091;
 /// `hibi_glass_render`: `layer` is not `HIBI_GLASS_LAYER_MASK` or `HIBI_GLASS_LAYER_TIME`.
 pub const HIBI_ERROR_GLASS_RENDER_LAYER: hibi_status = 1094;
 
-constants! {
-    hibi_status = 1280 +
-    /// Skin parameters: `width` and `height` must be in 1..=32768.
-    HIBI_ERROR_SKIN_SIZE: SkinParamError::Size = 1280;
-    /// Skin parameters: `jitter_ratio` must be in [0, 1].
-    HIBI_ERROR_SKIN_JITTER_RATIO: SkinParamError::JitterRatio = 1281;
-    /// Skin parameters: `levels` must be in 1..=4.
-    HIBI_ERROR_SKIN_LEVELS: SkinParamError::Levels = 1282;
-    /// Skin parameters: a used level's `spacing` must be finite and >= 1 px.
-    HIBI_ERROR_SKIN_SPACING: SkinParamError::Spacing = 1283;
-    /// Skin parameters: a used level's `perturbation` and `perturbation_decay` must be finite and >= 0.
-    HIBI_ERROR_SKIN_PERTURBATION: SkinParamError::Perturbation = 1284;
-    /// Skin parameters: a used level's `perturbation_depth` must be <= 5.
-    HIBI_ERROR_SKIN_PERTURBATION_DEPTH: SkinParamError::PerturbationDepth = 1285;
-    /// Skin parameters: a used level's `stretch` must be finite and > 0.
-    HIBI_ERROR_SKIN_STRETCH: SkinParamError::Stretch = 1286;
-    /// Skin parameters: a used level's `profile.segments` must be in 1..=4.
-    HIBI_ERROR_SKIN_PROFILE_SEGMENTS: SkinParamError::ProfileSegments = 1287;
-    /// Skin parameters: a used level's profile points must be finite, start at x' = 0, never
-    /// decrease in x' and end at x' > 0.
-    HIBI_ERROR_SKIN_PROFILE_POINTS: SkinParamError::ProfilePoints = 1288;
-    /// Skin parameters: a used level's `roundness` must be in [0, 1].
-    HIBI_ERROR_SKIN_ROUNDNESS: SkinParamError::Roundness = 1289;
-    /// Skin parameters: the surface needs more memory than the address space allows.
-    HIBI_ERROR_SKIN_CAPACITY_PARAMS: SkinParamError::Capacity = 1290;
-}
 /// Skin parameters: the struct did not come from `hibi_skin_params_default` or
 /// `hibi_skin_params_preset`.
 pub const HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED: hibi_status = 1343;
@@ -228,36 +105,6 @@ pub const HIBI_ERROR_SKIN_SHADE_SPECULAR: hibi_status = 1353;
 pub const HIBI_ERROR_SKIN_UNKNOWN_PRESET: hibi_status = 1348;
 /// A cell index is not below `hibi_skin_cell_count`.
 pub const HIBI_ERROR_SKIN_CELL_INDEX: hibi_status = 1349;
-
-/// The status that reports a glass parameter error.
-pub(crate) fn glass_param_status(error: GlassParamError) -> hibi_status {
-    1024 + error as u32
-}
-
-/// The core error behind a glass parameter status.
-fn glass_param_error(status: hibi_status) -> Option<GlassParamError> {
-    GlassParamError::ALL.get(status.checked_sub(1024)? as usize).copied()
-}
-
-/// The status that reports a skin parameter error.
-pub(crate) fn skin_param_status(error: SkinParamError) -> hibi_status {
-    1280 + error as u32
-}
-
-/// The core error behind a skin parameter status.
-fn skin_param_error(status: hibi_status) -> Option<SkinParamError> {
-    SkinParamError::ALL.get(status.checked_sub(1280)? as usize).copied()
-}
-
-/// The status that reports a mud parameter error.
-pub(crate) fn mud_param_status(error: MudParamError) -> hibi_status {
-    512 + error as u32
-}
-
-/// The core error behind a mud parameter status.
-fn mud_param_error(status: hibi_status) -> Option<MudParamError> {
-    MudParamError::ALL.get(status.checked_sub(512)? as usize).copied()
-}
 
 /// The status that reports a raster error.
 pub(crate) fn raster_status(error: RasterError) -> hibi_status {
@@ -333,7 +180,11 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_SKIN_SHADE_SPECULAR => ShadeError::Specular.message(),
         HIBI_ERROR_SKIN_UNKNOWN_PRESET => c"skin: no preset has that name",
         HIBI_ERROR_SKIN_CELL_INDEX => c"skin: cell index out of range",
-        _ => match (mud_param_error(status), glass_param_error(status), skin_param_error(status)) {
+        _ => match (
+            param_error::<MudParamError>(status),
+            param_error::<GlassParamError>(status),
+            param_error::<SkinParamError>(status),
+        ) {
             (Some(error), _, _) => error.message(),
             (_, Some(error), _) => error.message(),
             (_, _, Some(error)) => error.message(),

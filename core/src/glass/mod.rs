@@ -40,13 +40,13 @@ enumeration! {
     /// What kind of crack a polyline is.
     pub enum CrackKind {
         /// A large radial crack: fast, reaches the edge (speed V1).
-        Large = 0,
+        Large,
         /// Another radial crack (speed V2).
-        Radial = 1,
+        Radial,
         /// A ring crack growing counter-clockwise from its start point (speed V3).
-        RingCounterClockwise = 2,
+        RingCounterClockwise,
         /// A ring crack growing clockwise from its start point (speed V3).
-        RingClockwise = 3,
+        RingClockwise,
     }
     default Large
 }
@@ -55,16 +55,16 @@ enumeration! {
     /// Why a crack is no longer growing.
     pub enum CrackEnd {
         /// It still grows.
-        Growing = 0,
+        Growing,
         /// Its tip reached the plate's edge and stops exactly on it.
-        Edge = 1,
+        Edge,
         /// Its tip reached another crack and stops on it, sharing the vertex.
-        Crack = 2,
+        Crack,
         /// Generation of its impact ended (every large and ring crack had stopped), or a later
         /// impact began.
-        Generation = 3,
+        Generation,
         /// Other cracks closed a region around its tip (paper §4.2.3, stop condition 2).
-        Enclosed = 4,
+        Enclosed,
     }
     default Growing
 }

@@ -7,15 +7,15 @@ enumeration! {
     /// Mesh topology (paper Fig. 4).
     pub enum Topology {
         /// Square elements: 4 neighbours, no in-plane shear; axis-aligned, short, fine cracks.
-        Square = 0,
+        Square,
         /// Hexagonal elements (a triangular lattice of nodes): 6 neighbours; isotropic cracks.
-        Hexagonal = 1,
+        Hexagonal,
         /// Beyond the paper: the triangular lattice's nodes jittered and joined by their Delaunay
         /// triangulation, each spring with its own length and face (its Voronoi edge), so cracks
         /// run in any direction (see `mud::irregular`). Periodic: columns ≥ 8, rows even and ≥ 8.
         /// Both solvers run on it (the explicit one spring by spring, without the regular
         /// lattices' vectorised rows).
-        Irregular = 2,
+        Irregular,
     }
 }
 
@@ -23,10 +23,10 @@ enumeration! {
     /// What happens at the lattice's edges.
     pub enum Boundary {
         /// Free edges: the outermost nodes have fewer springs.
-        Open = 0,
+        Open,
         /// The lattice wraps around (a torus): tileable patterns. Hexagonal lattices need an even
         /// number of rows.
-        Periodic = 1,
+        Periodic,
     }
 }
 
@@ -35,10 +35,10 @@ enumeration! {
     pub enum Solver {
         /// The paper's loop exactly (Fig. 2): forces, stability test, exact damped short steps,
         /// breaking after every short step, shrinking by long steps.
-        Explicit = 0,
+        Explicit,
         /// Linear quasi-static equilibrium with event-driven breaking: the shrink jumps straight
         /// to the next break, local relaxation after each break. Same statistics, far faster.
-        QuasiStatic = 1,
+        QuasiStatic,
     }
 }
 
@@ -46,10 +46,10 @@ enumeration! {
     /// What drives the misfit between the two layers.
     pub enum Drive {
         /// The surface dries and shrinks: rest lengths l0·r(t), r(t) = γ^(t/T) (Eq. 1).
-        Shrink = 0,
+        Shrink,
         /// The deep layer grows (tree bark): its node spacing expands by 1/r(t), surface rest
         /// lengths stay; the pattern is drawn in the growing frame.
-        Growth = 1,
+        Growth,
     }
 }
 

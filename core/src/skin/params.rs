@@ -14,13 +14,13 @@ enumeration! {
     /// Parameter 1, the centre-point layout.
     pub enum SiteLayout {
         /// Triangular lattice: rows `spacing·√3/2` apart, every other row shifted by half.
-        Triangular = 0,
+        Triangular,
         /// Square lattice.
-        Square = 1,
+        Square,
         /// Uniform random: each centre uniformly placed in its own square of side `spacing` (a
         /// stratified uniform layout, so that every neighbourhood is bounded). The jitter fields
         /// are ignored.
-        Random = 2,
+        Random,
     }
     default Triangular
 }

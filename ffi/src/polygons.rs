@@ -1,0 +1,51 @@
+//! The polygon queries, mud's `hibi_mud_cells` and glass's `hibi_glass_fragments`: one C
+//! shape (the object and its extra arguments, then a ring buffer, a point buffer and the two
+//! counts written), so the function is written once, by [`polygon_query!`].
+
+/// A polygon query `$name`: checks `rings_written` and `points_written` (required) after the
+/// statements (in braces) that open the object, then the ring and point buffers, runs `$query` on the
+/// buffers (named `$rings` and `$points` there; it gives the ring and point counts it wrote)
+/// and writes the counts. The doc comment is the caller's; the signature and the checks are
+/// here.
+macro_rules! polygon_query {
+    (
+        $(#[$doc:meta])*
+        $name:ident($arg:ident: $object:ty $(, $extra:ident: $extra_ty:ty)*) -> $ring:ty;
+        { $($open:tt)* }
+        |$rings:ident, $points:ident| $query:expr
+    ) => {
+        $(#[$doc])*
+        #[unsafe(no_mangle)]
+        #[allow(clippy::too_many_arguments)]
+        pub unsafe extern "C" fn $name(
+            $arg: *const $object,
+            $($extra: $extra_ty,)*
+            rings: *mut $ring,
+            rings_len: usize,
+            points: *mut $crate::glass::hibi_vec2,
+            points_len: usize,
+            rings_written: *mut usize,
+            points_written: *mut usize,
+        ) -> $crate::status::hibi_status {
+            $crate::guard::guard(|| {
+                $($open)*
+                let written = $crate::guard::Outs::check([
+                    (rings_written, c"rings_written"),
+                    (points_written, c"points_written"),
+                ])?;
+                // SAFETY: the caller's contract; the ring type is the core's, and hibi_vec2 is
+                // laid out as [f32; 2] (asserted in glass.rs).
+                let ($rings, $points) = unsafe {
+                    (
+                        $crate::guard::buffer(rings, rings_len, c"rings")?,
+                        $crate::guard::buffer(points.cast::<[f32; 2]>(), points_len, c"points")?,
+                    )
+                };
+                let (ring_count, point_count) = $query?;
+                // SAFETY: checked; the caller's contract.
+                unsafe { written.write([ring_count, point_count]) }
+            })
+        }
+    };
+}
+pub(crate) use polygon_query;
