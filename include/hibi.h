@@ -195,7 +195,9 @@
 #define HIBI_ERROR_MUD_SHORT_STEP 517
 
 /**
- * Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
+ * Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink);
+ * with `HIBI_MUD_GROWTH`, 1/γ − 1 <= 100 (one long step grows the deep layer at most
+ * 101-fold).
  */
 #define HIBI_ERROR_MUD_SHRINK_RATIO 518
 
@@ -846,7 +848,8 @@ typedef struct hibi_mud_params {
   float short_step;
   /**
    * γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
-   * and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`).
+   * and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`); with `HIBI_MUD_GROWTH` the deep layer
+   * grows by 1/γ per long step, at most 101-fold (γ >= 1/101).
    */
   float shrink_ratio;
   /**

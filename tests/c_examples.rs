@@ -567,7 +567,8 @@ fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
     let output = regression("tests/c/mud_shrink.c");
     assert_eq!(
         line(&output, "shrink_ratio 1:"),
-        "shrink_ratio 1: status 518, mud: shrink_ratio (gamma) must be >= FLT_MIN and < 1 (1 would never shrink); \
+        "shrink_ratio 1: status 518, mud: shrink_ratio (gamma) must be >= FLT_MIN and < 1 (1 would never shrink); with \
+         the growth drive, 1/gamma - 1 <= 100; \
          nothing created: yes"
     );
     assert_eq!(

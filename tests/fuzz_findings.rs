@@ -346,29 +346,46 @@ fn a_glass_speed_of_flt_max_keeps_the_times_finite() {
     }
 }
 
-/// Finding 9: with the growth drive, a subnormal `shrink_ratio` (1e-40, within (0, 1)) made
-/// the explicit solver's first long step grow by 1/γ = +inf: `progress.shrink` was infinite
-/// and the run never ended. A subnormal γ is now refused (`HIBI_ERROR_MUD_SHRINK_RATIO`);
-/// the smallest normal one ends.
+/// Findings 9 and 13: with the growth drive the deep layer grows by 1/γ per long step. A
+/// subnormal `shrink_ratio` (1e-40, finding 9) made the explicit solver's first long step
+/// grow by +inf (an infinite `progress.shrink`, a run that never ended); `FLT_MIN` (finding 13:
+/// square, periodic, 8 × 10) grew it 8.5e37-fold and `hibi_mud_segments` wrote ends at +inf.
+/// Growth may now take at most the largest misfit the model follows in one long step,
+/// 1/γ − 1 <= 100; anything less is refused by name, and a run at the smallest γ accepted
+/// ends with every segment finite. The shrink drive still takes any normal γ.
 #[test]
-fn a_subnormal_shrink_ratio_is_refused() {
+fn a_growth_step_past_the_largest_growth_is_refused() {
     let mut params = hibi_mud_params_default();
-    (params.columns, params.rows, params.drive, params.solver) = (8, 8, HIBI_MUD_GROWTH, HIBI_MUD_EXPLICIT);
+    (params.columns, params.rows, params.drive, params.solver) = (8, 10, HIBI_MUD_GROWTH, HIBI_MUD_EXPLICIT);
+    params.boundary = HIBI_MUD_PERIODIC;
+    params.topology = HIBI_MUD_SQUARE;
+    let smallest = 1.0f32 / 101.0;
+    assert!(1.0 / smallest - 1.0 <= 100.0);
     let mut size = 0;
-    for gamma in [1e-40f32, 1e-45] {
+    for gamma in [1e-40f32, 1e-45, f32::MIN_POSITIVE, 0.001, smallest.next_down()] {
         params.shrink_ratio = gamma;
         // SAFETY: valid pointers.
         assert_eq!(unsafe { hibi_mud_memory_size(&params, &mut size) }, HIBI_ERROR_MUD_SHRINK_RATIO, "{gamma}");
     }
-    params.shrink_ratio = f32::MIN_POSITIVE;
-    let mut mud = core::ptr::null_mut();
-    let mut progress = hibi_mud_progress::default();
-    // SAFETY: valid pointers.
-    unsafe {
-        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
-        assert_eq!(hibi_mud_step(mud, 1 << 20, &mut progress), HIBI_OK);
-        assert!(progress.finished == 1 && progress.shrink.is_finite(), "{progress:?}");
-        hibi_mud_destroy(mud);
+    for (drive, gamma) in [(HIBI_MUD_GROWTH, smallest), (HIBI_MUD_SHRINK, f32::MIN_POSITIVE)] {
+        (params.drive, params.shrink_ratio) = (drive, gamma);
+        let mut mud = core::ptr::null_mut();
+        let mut progress = hibi_mud_progress::default();
+        // SAFETY: valid pointers; buffers of the lengths passed.
+        unsafe {
+            assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK, "{gamma}");
+            assert_eq!(hibi_mud_step(mud, 1 << 24, &mut progress), HIBI_OK);
+            assert!(progress.finished == 1 && progress.shrink.is_finite(), "{progress:?}");
+            let mut count = 0;
+            assert_eq!(hibi_mud_segment_count(mud, &mut count), HIBI_OK);
+            let mut segments = vec![hibi_core::mud::CrackSegment::default(); count];
+            assert_eq!(hibi_mud_segments(mud, segments.as_mut_ptr(), count, &mut count), HIBI_OK);
+            let finite = |s: &hibi_core::mud::CrackSegment| {
+                [s.start, s.end, s.width, s.time].iter().flatten().all(|v| v.is_finite())
+            };
+            assert!(segments.iter().all(finite), "{gamma}: {segments:?}");
+            hibi_mud_destroy(mud);
+        }
     }
 }
 

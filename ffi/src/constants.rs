@@ -129,7 +129,9 @@ constants! {
     HIBI_ERROR_MUD_LONG_STEP: MudParamError::LongStep = 516;
     /// Mud parameters: `short_step` (τ) must be finite and > 0.
     HIBI_ERROR_MUD_SHORT_STEP: MudParamError::ShortStep = 517;
-    /// Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink).
+    /// Mud parameters: `shrink_ratio` (γ) must be >= FLT_MIN and < 1 (1 would never shrink);
+    /// with `HIBI_MUD_GROWTH`, 1/γ − 1 <= 100 (one long step grows the deep layer at most
+    /// 101-fold).
     HIBI_ERROR_MUD_SHRINK_RATIO: MudParamError::ShrinkRatio = 518;
     /// Mud parameters: `displacement_tolerance` (δx) must be finite and > 0.
     HIBI_ERROR_MUD_DISPLACEMENT_TOLERANCE: MudParamError::DisplacementTolerance = 519;

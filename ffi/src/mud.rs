@@ -71,7 +71,8 @@ pub struct hibi_mud_params {
     /// times the paper's at the defaults).
     pub short_step: f32,
     /// γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
-    /// and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`).
+    /// and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`); with `HIBI_MUD_GROWTH` the deep layer
+    /// grows by 1/γ per long step, at most 101-fold (γ >= 1/101).
     pub shrink_ratio: f32,
     /// δx, allowed displacement error [cm] (paper: 1e-4).
     pub displacement_tolerance: f32,
@@ -485,9 +486,9 @@ fn mud_layers(layer: u32, pixels: Pixels<'_>) -> Result<MudLayers<'_>, hibi_stat
 mod tests {
     use super::*;
     use crate::constants::*;
+    use crate::glass::hibi_vec2;
     use crate::status::*;
     use core::ptr::{null, null_mut};
-    use crate::glass::hibi_vec2;
     use hibi_core::mud::CellRing;
 
     fn small() -> hibi_mud_params {

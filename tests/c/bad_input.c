@@ -427,6 +427,7 @@ static void parameters(void) {
     MUD("mud-long-step-inf", p_.long_step = INFINITY);
     MUD("mud-short-step-negative", p_.short_step = -1.0f);
     MUD("mud-shrink-ratio-1", p_.shrink_ratio = 1.0f);
+    MUD("mud-growth-step-too-large", (p_.drive = HIBI_MUD_GROWTH, p_.shrink_ratio = 0.001f));
     MUD("mud-displacement-tolerance-zero", p_.displacement_tolerance = 0.0f);
     MUD("mud-damping-factor-minus-inf", p_.damping_factor = -INFINITY);
     MUD("mud-density-negative", p_.density = -2.0f);

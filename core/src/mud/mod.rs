@@ -542,8 +542,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// 100. A spring that breaks only beyond it never breaks.
     fn misfit_limit(&self) -> S {
         S::from_f32(match self.params.drive {
-            Drive::Shrink => 0.99,
-            Drive::Growth => 100.0,
+            Drive::Shrink => params::LARGEST_SHRINK,
+            Drive::Growth => params::LARGEST_GROWTH,
         })
     }
 

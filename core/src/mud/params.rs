@@ -3,6 +3,14 @@
 
 use crate::enumeration::enumeration;
 
+/// The largest shrink the model follows: rest lengths a hundredth of the plate's. A spring
+/// that breaks only beyond it never breaks.
+pub(crate) const LARGEST_SHRINK: f32 = 0.99;
+
+/// The largest growth the model follows (the deep layer 101 times the plate), and the most
+/// one long step may grow ([`MudParamError::ShrinkRatio`]).
+pub(crate) const LARGEST_GROWTH: f32 = 100.0;
+
 enumeration! {
     /// Mesh topology (paper Fig. 4).
     pub enum Topology {
@@ -85,7 +93,8 @@ pub struct MudParams {
     pub short_step: f32,
     /// γ: shrink ratio per long step, in (0, 1): the rest lengths shrink to γⁿ after n long
     /// steps (γ = 1 would never shrink, so nothing would ever crack; it is rejected, as both
-    /// solvers would otherwise disagree on what it means). Paper: 0.9999.
+    /// solvers would otherwise disagree on what it means). With [`Drive::Growth`] the deep
+    /// layer grows by 1/γ per long step, at most 101-fold: γ ≥ 1/101. Paper: 0.9999.
     pub shrink_ratio: f32,
     /// δx: allowed displacement error \[cm\]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
     pub displacement_tolerance: f32,
@@ -181,8 +190,9 @@ crate::error::error_list! {
         /// `short_step` (τ) must be finite and > 0.
         ShortStep => c"mud: short_step (tau) must be finite and > 0",
         /// `shrink_ratio` (γ) must be at least `f32::MIN_POSITIVE` and below 1 (1 would never shrink;
-        /// a subnormal ratio would lose its precision).
-        ShrinkRatio => c"mud: shrink_ratio (gamma) must be >= FLT_MIN and < 1 (1 would never shrink)",
+        /// a subnormal ratio would lose its precision); with [`Drive::Growth`], one long step may
+        /// grow the deep layer at most by the largest misfit the model follows: 1/γ − 1 ≤ 100.
+        ShrinkRatio => c"mud: shrink_ratio (gamma) must be >= FLT_MIN and < 1 (1 would never shrink); with the growth drive, 1/gamma - 1 <= 100",
         /// `displacement_tolerance` (δx) must be finite and > 0.
         DisplacementTolerance => c"mud: displacement_tolerance (delta x) must be finite and > 0",
         /// `damping_factor` (α) must be finite and > 0.
@@ -264,9 +274,12 @@ impl MudParams {
             (positive(self.element_size), ElementSize),
             (positive(self.long_step), LongStep),
             (positive(self.short_step), ShortStep),
-            // Not subnormal: the growth drive's 1/γ after one long step must be finite
-            // (fuzzing found 1e-40 growing to an infinite shrink, a run that never ended).
+            // Not subnormal, and with the growth drive one long step grows the deep layer at
+            // most by the largest misfit the model follows (1/γ − 1 ≤ 100): the run's last step
+            // then ends within 101² times the plate's size (fuzzing found γ = 1e-40 growing to
+            // an infinite shrink, and γ = FLT_MIN to segments past f32).
             (self.shrink_ratio >= f32::MIN_POSITIVE && self.shrink_ratio < 1.0, ShrinkRatio),
+            (self.drive == Drive::Shrink || 1.0 / self.shrink_ratio - 1.0 <= LARGEST_GROWTH, ShrinkRatio),
             (positive(self.displacement_tolerance), DisplacementTolerance),
             (positive(self.damping_factor), DampingFactor),
             (positive(self.density), Density),
