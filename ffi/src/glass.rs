@@ -417,9 +417,9 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
     points: *mut usize,
 ) -> hibi_status {
     guard(|| {
-        let outs = Outs::check([(rings, c"rings"), (points, c"points")])?;
         // SAFETY: the caller's contract.
         let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
+        let outs = Outs::check([(rings, c"rings"), (points, c"points")])?;
         let (r, p) = glass.fragment_counts(scratch).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { outs.write([r, p]) }

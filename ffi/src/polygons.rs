@@ -2,8 +2,10 @@
 //! shape (the object and its extra arguments, then a ring buffer, a point buffer and the two
 //! counts written), so the function is written once, by [`polygon_query!`].
 
-/// A polygon query `$name`: checks `rings_written` and `points_written` (required) after the
-/// statements (in braces) that open the object, then the ring and point buffers, runs `$query` on the
+/// A polygon query `$name`: runs the statements in braces, which open the object (and its
+/// scratch), then checks `rings_written` and `points_written` (required) and the ring and
+/// point buffers, in that order (as every function checks its object first; the failing
+/// argument first checked is the one `hibi_error_argument` names), runs `$query` on the
 /// buffers (named `$rings` and `$points` there; it gives the ring and point counts it wrote)
 /// and writes the counts. The doc comment is the caller's; the signature and the checks are
 /// here.
