@@ -425,7 +425,9 @@ impl SkinParams {
     /// meets a side of the surface within ρ of that side (the window a cell is clipped among
     /// holds every centre that can bound it: [`WINDOW`]). Counting the n lattice indices
     /// whose centre can lie within ρ of the surface ([`Lattice::count_over`]), and the n_k
-    /// that can lie within ρ of side k:
+    /// that can lie within ρ of side k (all within [`SkinParams::level0_indices`]: ρ is under
+    /// 1.6 steps of either axis, the rows being at least √3/2 of a column step apart, and an
+    /// index beyond that range lies at least 2.5 steps of its axis from the surface):
     /// - each cell is convex (the surface clipped by half-planes), so it has at most one edge
     ///   along each neighbour's bisector and one piece of each side;
     /// - an edge of positive length between two cells is a Voronoi edge, between two centres
