@@ -142,7 +142,7 @@ impl Lattice {
         let span = |lo: f64, hi: f64, step: f64, shift: f64, from: i64, to: i64| {
             let first = (libm::ceil(lo / step - 0.5 - shift - half) as i64).max(from);
             let last = (libm::floor(hi / step - 0.5 - shift + half) as i64).min(to);
-            (last - first + 1).max(0)
+            last.saturating_sub(first).saturating_add(1).max(0)
         };
         let [j0, j1] = {
             let first = (libm::ceil(min[1] / self.step[1] - 0.5 - half) as i64).max(range[1]);
