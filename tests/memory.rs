@@ -5,8 +5,9 @@
 //! --release --test memory -- --nocapture`): cells and vertices only for the centre points that
 //! can reach the surface, its vertices bounded by the planar Delaunay graph's edges, and clip
 //! buffers for a clipped outline; not the 110 KB it needed at first, nor the 434 KB of fixed
-//! capacities before that. The rest is fixed: a level's record (profile table, shared edges,
-//! edge grid and scratch, 6.4 KB) and level 0's neighbour window (81 centre points, 3.9 KB).
+//! capacities before that. Most of the rest does not grow with the image: a level's record
+//! (profile table, shared edges, edge grid and scratch, 6.4 KB), level 0's neighbour window (81
+//! centre points, 3.9 KB) and two clip buffers (4.1 KB).
 
 use core::ffi::c_void;
 
