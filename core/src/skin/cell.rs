@@ -492,7 +492,7 @@ fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (Edg
 
 /// Neighbour lists up to this long are picked nearest first as the clipping asks for them,
 /// longer ones sorted.
-const FEW: usize = 96;
+pub(super) const FEW: usize = 96;
 
 /// Most parent-outline crossings one bisector edge is split at.
 const MAX_CROSSINGS: usize = 16;

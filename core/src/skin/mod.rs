@@ -116,21 +116,35 @@ struct Layout {
     levels: usize,
     /// Per level, the most vertices one of its outlines can have: at level 0, a cell is
     /// clipped to a rectangle (4 corners, convex) by the bisectors of at most
-    /// `WINDOW_SITES − 1` neighbours, each adding at most one edge, perturbed into
-    /// `2^depth` pieces (level 0 crosses no parent edges); finer levels inherit their
-    /// parent's corners and cross its edges: [`MAX_OUTLINE`].
+    /// `WINDOW_SITES − 1` neighbours, each adding at most one edge (a convex polygon meets a
+    /// line in one segment), each bisector edge written as [`level0_pieces`] vertices and
+    /// each piece of a side as one (level 0 crosses no parent edges); finer levels inherit
+    /// their parent's corners and cross its edges: [`MAX_OUTLINE`].
     outline: [usize; MAX_LEVELS],
+    /// The most vertices an outline being clipped can have (each of the clip and spare
+    /// buffers): at level 0 the rectangle's 4 and one more per neighbour's bisector (clipping
+    /// a convex polygon by a half-plane adds at most one vertex); finer levels start from a
+    /// parent outline that need not be convex: [`MAX_OUTLINE`].
+    clip: usize,
+}
+
+/// Vertices one level-0 bisector edge writes (its start and its inner points): `2^depth`
+/// when perturbed, else 1 (an edge is perturbed only when the ratio and the depth are both
+/// above 0: [`cell`]'s `finish`).
+fn level0_pieces(p: &SkinParams) -> usize {
+    let l = &p.level[0];
+    if l.perturbation > 0.0 && l.perturbation_depth > 0 { 1 << l.perturbation_depth } else { 1 }
 }
 
 impl Layout {
     fn of(p: &SkinParams) -> Layout {
-        let depth = p.level[0].perturbation_depth;
-        let first = (((WINDOW_SITES - 1) << depth) + 4).min(MAX_OUTLINE);
+        let first = ((WINDOW_SITES - 1) * level0_pieces(p) + 4).min(MAX_OUTLINE);
         let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
-        Layout { levels: p.levels as usize, outline }
+        let clip = if p.levels > 1 { MAX_OUTLINE } else { (WINDOW_SITES - 1 + 4).min(MAX_OUTLINE) };
+        Layout { levels: p.levels as usize, outline, clip }
     }
 
-    /// The longest outline of any level (the clip, spare and crossing scratch).
+    /// The longest outline of any level (a render's crossing scratch).
     fn longest(&self) -> usize {
         self.outline[..self.levels].iter().copied().max().unwrap_or(0)
     }
@@ -399,10 +413,69 @@ impl SkinParams {
         }
     }
 
+    /// The most level-0 cells and the most outline vertices they can have in all.
+    ///
+    /// Periodic: every centre point of the period has a cell; the Voronoi edges of n points
+    /// on the torus number at most 3n (Euler), each in two cells, written as
+    /// [`level0_pieces`] vertices each, plus 16 per cell to spare.
+    ///
+    /// Otherwise only a centre whose cell meets the surface keeps one. A point of the
+    /// surface lies in the cell of its nearest centre, which is at most [`Lattice::reach`]
+    /// (ρ) away: so a cell that meets the surface has its centre within ρ of it, and one that
+    /// meets a side of the surface within ρ of that side (the window a cell is clipped among
+    /// holds every centre that can bound it: [`WINDOW`]). Counting the n lattice indices
+    /// whose centre can lie within ρ of the surface ([`Lattice::count_over`]), and the n_k
+    /// that can lie within ρ of side k (all within [`SkinParams::level0_indices`]: ρ is under
+    /// 1.6 steps of either axis, the rows being at least √3/2 of a column step apart, and an
+    /// index beyond that range lies at least 2.5 steps of its axis from the surface):
+    /// - each cell is convex (the surface clipped by half-planes), so it has at most one edge
+    ///   along each neighbour's bisector and one piece of each side;
+    /// - an edge of positive length between two cells is a Voronoi edge, between two centres
+    ///   that are both counted in n (its points lie on the surface, as near to either
+    ///   centre as to any); the Voronoi (Delaunay) adjacency of n points is a planar graph,
+    ///   of at most 3n − 6 edges (n ≥ 3; one for n = 2), each in two cells, each written as
+    ///   [`level0_pieces`] vertices (a zero-length one writes nothing new: its corners and
+    ///   inner points repeat the point before, and repeats are not written);
+    /// - the pieces of side k belong to distinct cells that meet it: at most n_k of them,
+    ///   one vertex each.
+    ///
+    /// So the vertices number at most 2·pieces·(3n − 6) + Σ n_k, and at most n times the
+    /// longest outline ([`Layout`]). (In exact arithmetic; a build that finds more, through
+    /// rounding, stops with `capacity_reached`.)
+    fn level0_need(&self, lattice: &Lattice, outline: usize) -> Option<(usize, usize)> {
+        let r = self.level0_indices(lattice);
+        let pieces = level0_pieces(self);
+        if self.periodic {
+            let cells = usize::try_from((r[2] - r[0] + 1).checked_mul(r[3] - r[1] + 1)?).ok()?;
+            let vertices = cells.checked_mul((6 * pieces + 16).min(outline))?;
+            return Some((cells, vertices));
+        }
+        let rho = lattice.reach();
+        let [w, h] = lattice.period;
+        let near = |min: [f64; 2], max: [f64; 2]| usize::try_from(lattice.count_over(min, max, r)).ok();
+        let cells = near([-rho, -rho], [w + rho, h + rho])?;
+        let sides = [
+            near([-rho, -rho], [w + rho, rho])?,
+            near([-rho, h - rho], [w + rho, h + rho])?,
+            near([-rho, -rho], [rho, h + rho])?,
+            near([w - rho, -rho], [w + rho, h + rho])?,
+        ];
+        let edges = match cells {
+            0 | 1 => 0,
+            2 => 1,
+            n => n.checked_mul(3)? - 6,
+        };
+        let euler =
+            edges.checked_mul(2 * pieces)?.checked_add(sides.iter().try_fold(0usize, |s, &n| s.checked_add(n))?)?;
+        let vertices = euler.min(cells.checked_mul(outline)?);
+        Some((cells, vertices))
+    }
+
     /// Validates the parameters and returns the memory a skin needs.
     pub fn memory(&self) -> Result<SkinMemory, SkinParamError> {
         self.validate()?;
         let levels = self.levels as usize;
+        let layout = Layout::of(self);
         let (mut cells, mut vertices, mut previous) = (0usize, 0usize, 0usize);
         for l in 0..levels {
             let lattice = Lattice::new(self, l);
@@ -411,24 +484,23 @@ impl SkinParams {
             if lattice.count.iter().any(|&c| c > i64::from(i32::MAX)) {
                 return Err(SkinParamError::Capacity);
             }
-            // Every lattice point that can lie on the surface (or its margin), plus one
-            // stand-in child for each parent that holds no point.
-            let sites = if l == 0 {
-                let r = self.level0_indices(&lattice);
-                usize::try_from((r[2] - r[0] + 1) * (r[3] - r[1] + 1)).map_err(|_| SkinParamError::Capacity)?
+            let (sites, level_vertices) = if l == 0 {
+                self.level0_need(&lattice, layout.outline[0]).ok_or(SkinParamError::Capacity)?
             } else {
+                // Every lattice point that can lie on the surface (or its margin), plus one
+                // stand-in child for each parent that holds no point.
                 let margin = 2 * (WINDOW + 4);
-                usize::try_from((lattice.count[0] + margin) * (lattice.count[1] + margin))
+                let sites = usize::try_from((lattice.count[0] + margin) * (lattice.count[1] + margin))
                     .ok()
                     .and_then(|n| n.checked_add(previous))
-                    .ok_or(SkinParamError::Capacity)?
+                    .ok_or(SkinParamError::Capacity)?;
+                // Euler: the Voronoi edges of n points number at most 3n; each is in two
+                // cells, perturbed into 2^depth pieces, plus corners on the parent's outline,
+                // which every child inherits from its parent.
+                let pieces = 1usize << self.level[l].perturbation_depth;
+                let own = sites.checked_mul(6 * pieces + 16).ok_or(SkinParamError::Capacity)?;
+                (sites, own.checked_add(vertices).ok_or(SkinParamError::Capacity)?)
             };
-            // Euler: the Voronoi edges of n points number at most 3n; each is in two cells,
-            // perturbed into 2^depth pieces, plus corners on the parent's outline, which every
-            // child inherits from its parent.
-            let pieces = 1usize << self.level[l].perturbation_depth;
-            let own = sites.checked_mul(6 * pieces + 16).ok_or(SkinParamError::Capacity)?;
-            let level_vertices = own.checked_add(if l == 0 { 0 } else { vertices }).ok_or(SkinParamError::Capacity)?;
             vertices = vertices.checked_add(level_vertices).ok_or(SkinParamError::Capacity)?;
             cells = cells.checked_add(sites).ok_or(SkinParamError::Capacity)?;
             previous = sites;
@@ -436,15 +508,15 @@ impl SkinParams {
         if vertices > i32::MAX as usize || cells > i32::MAX as usize {
             return Err(SkinParamError::Capacity);
         }
-        let layout = Layout::of(self);
         Ok(SkinMemory {
             cells,
             vertices,
             sites: Layout::sites_at(levels),
             // Two outlines being clipped, and each level's parent outline as its children start.
-            clip: 2 * layout.longest() + layout.frames_at(levels),
-            // The order of a cell's neighbours: a window at level 0, a parent's children below.
-            words: if levels > 1 { MAX_CHILDREN } else { WINDOW_SITES },
+            clip: 2 * layout.clip + layout.frames_at(levels),
+            // The order of a cell's neighbours, when there are more than a few: a parent's
+            // children below level 0 (level 0's window is few: picked without an order).
+            words: if levels > 1 { MAX_CHILDREN } else { 0 },
             levels,
             boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
             wedges: layout.wedges_at(levels),
@@ -495,6 +567,10 @@ pub struct SkinProgress {
 
 /// Sites in a level-0 centre's neighbour window.
 const WINDOW_SITES: usize = ((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize;
+
+// Level 0's neighbours are few enough to be picked nearest first without sorting them in
+// `words` (a one-level skin needs none).
+const _: () = assert!(WINDOW_SITES <= cell::FEW);
 
 /// The state of a build: the buffers and how far they are filled.
 struct Build<'b> {
@@ -678,8 +754,8 @@ impl<'a, S: Scalar> Skin<'a, S> {
         });
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
         let layout = Layout::of(params);
-        let (clip, rest) = buffers.clip.split_at_mut(layout.longest());
-        let (spare, parent_frames) = rest.split_at_mut(layout.longest());
+        let (clip, rest) = buffers.clip.split_at_mut(layout.clip);
+        let (spare, parent_frames) = rest.split_at_mut(layout.clip);
         let levels = &mut buffers.levels[..params.levels as usize];
         // One table per level, each level sampled where the level before was when their
         // profiles share the sampling.

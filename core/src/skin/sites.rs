@@ -116,6 +116,50 @@ impl Lattice {
         Site { at, base, id: id as u32, image }
     }
 
+    /// How far a point of the plane can be from its nearest centre point, at most (the
+    /// frame's units): `(1 + J)/2 · √(step₀² + step₁²)`, J the jitter ratio, plus a hundredth
+    /// of a step for rounding.
+    ///
+    /// Proof: the strata `[i + s, i + s + 1] × [j, j + 1]` steps (s the row's shift, ½ on odd
+    /// triangular rows, else 0) tile the plane, row by row. A point at `(i + s + u, j + v)`
+    /// steps, u and v in [0, 1], lies in stratum (i, j), whose centre point lies at
+    /// `(i + s + ½ + x, j + ½ + y)` with |x|, |y| ≤ J/2 (uniform jitter by construction,
+    /// normal jitter redrawn until within it, random layout J = 1): per axis they are at most
+    /// `(½ + J/2)` steps apart.
+    pub(super) fn reach(&self) -> f64 {
+        let diagonal = libm::sqrt(self.step[0] * self.step[0] + self.step[1] * self.step[1]);
+        (0.5 + 0.5 * self.jitter + 0.01) * diagonal
+    }
+
+    /// How many lattice indices (i, j) within `range` (inclusive: i0, j0, i1, j1) have a centre
+    /// point that can lie in the frame box [min, max] (jitter included, each row's shift
+    /// counted; a hundredth of a step covers rounding). Not periodic images: the lattice's own
+    /// indices.
+    pub(super) fn count_over(&self, min: [f64; 2], max: [f64; 2], range: [i64; 4]) -> i64 {
+        // Site (i, j) lies in [i + s + ½ − J/2, i + s + ½ + J/2] × [j + ½ − J/2, j + ½ + J/2]
+        // steps. (`as` saturates far-off boxes; the range then bounds them.)
+        let half = 0.5 * self.jitter + 0.01;
+        let span = |lo: f64, hi: f64, step: f64, shift: f64, from: i64, to: i64| {
+            let first = (libm::ceil(lo / step - 0.5 - shift - half) as i64).max(from);
+            let last = (libm::floor(hi / step - 0.5 - shift + half) as i64).min(to);
+            last.saturating_sub(first).saturating_add(1).max(0)
+        };
+        let [j0, j1] = {
+            let first = (libm::ceil(min[1] / self.step[1] - 0.5 - half) as i64).max(range[1]);
+            let last = (libm::floor(max[1] / self.step[1] - 0.5 + half) as i64).min(range[3]);
+            [first, last]
+        };
+        if j1 < j0 {
+            return 0;
+        }
+        // Rows j0..=j1: the odd ones shifted by half a step on a triangular lattice.
+        let odd = (j1 + 1).div_euclid(2) - j0.div_euclid(2);
+        let even = j1 - j0 + 1 - odd;
+        let shifted = if self.layout == SiteLayout::Triangular { 0.5 } else { 0.0 };
+        let columns = |shift: f64| span(min[0], max[0], self.step[0], shift, range[0], range[2]);
+        even.saturating_mul(columns(0.0)).saturating_add(odd.saturating_mul(columns(shifted)))
+    }
+
     /// The lattice indices (i0, j0, i1, j1) of every site that can lie in the frame box
     /// [min, max] (jitter included).
     pub(super) fn indices_over(&self, min: [f64; 2], max: [f64; 2]) -> [i64; 4] {
