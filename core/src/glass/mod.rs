@@ -11,6 +11,7 @@
 //! cuts the plate into, as polygons.
 //!
 //! ```
+//! # #[cfg(feature = "alloc")] { // `allocate` needs the `alloc` feature
 //! use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
 //!
 //! let params = GlassParams { width: 160.0, height: 160.0, impact: [80.0, 80.0], ..GlassParams::default() };
@@ -21,6 +22,7 @@
 //! let render = GlassRender { width: 64, height: 64, ..GlassRender::default() };
 //! glass.render(&render, GlassLayers { mask: Some(&mut mask), ..GlassLayers::default() }).unwrap();
 //! assert!(mask.iter().any(|&m| m > 0));
+//! # }
 //! ```
 
 use crate::enumeration::enumeration;

@@ -9,6 +9,7 @@
 //! Every model has the same shape (this is the example of each, but for the names):
 //!
 //! ```
+//! # #[cfg(feature = "alloc")] { // `allocate` needs the `alloc` feature
 //! use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender};
 //!
 //! let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
@@ -19,6 +20,7 @@
 //! let render = MudRender { width: 64, height: 64, ..MudRender::default() };
 //! mud.render(&render, MudLayers { mask: Some(&mut mask), ..MudLayers::default() }).unwrap();
 //! assert!(mask.iter().any(|&m| m > 0));
+//! # }
 //! ```
 //!
 //! Memory is the caller's: [`MudParams::memory`] tells how many scalars and words a run needs;

@@ -15,6 +15,7 @@
 //! lights a normal map for a preview.
 //!
 //! ```
+//! # #[cfg(feature = "alloc")] { // `allocate` needs the `alloc` feature
 //! use hibi_core::skin::{Skin, SkinLayers, SkinParams, SkinRender};
 //!
 //! let params = SkinParams { width: 64, height: 64, ..SkinParams::default() };
@@ -27,6 +28,7 @@
 //! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }, &mut scratch.scratch())
 //!     .unwrap();
 //! assert!(height.iter().any(|&h| h > 2.0));
+//! # }
 //! ```
 
 mod cell;
