@@ -847,7 +847,7 @@ typedef struct hibi_mud_params {
    */
   float short_step;
   /**
-   * γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
+   * γ, shrink ratio per long step, within [FLT_MIN, 1) (paper: 0.9999); 1 would never shrink
    * and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`); with `HIBI_MUD_GROWTH` the deep layer
    * grows by 1/γ per long step, at most 101-fold (γ >= 1/101).
    */
@@ -1667,8 +1667,8 @@ hibi_status hibi_glass_fragment_counts(const struct hibi_glass *glass,
  *
  * # Safety
  * `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
- * `rings` and `points` NULL (only with length 0) or writable for their lengths;
- * `rings_written` and `points_written` NULL (refused) or writable.
+ * `rings` and `points` NULL (only with length 0) or writable for their lengths, not
+ * overlapping; `rings_written` and `points_written` NULL (refused) or writable.
  */
 hibi_status hibi_glass_fragments(const struct hibi_glass *glass,
                                  void *scratch,
@@ -1691,8 +1691,9 @@ struct hibi_glass_render_params hibi_glass_render_params_default(void);
  * Nothing is written on failure.
  *
  * # Safety
- * `glass` must be NULL or a live plate; `render` NULL or readable; `pixels`
- * NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ * `glass` must be NULL or a live plate; `render` NULL or readable;
+ * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
+ * layer's type.
  */
 hibi_status hibi_glass_render(const struct hibi_glass *glass,
                               const struct hibi_glass_render_params *render,
@@ -1873,9 +1874,9 @@ hibi_status hibi_mud_cell_counts(const struct hibi_mud *mud,
  * `HIBI_ERROR_BUFFER_TOO_SMALL`.
  *
  * # Safety
- * `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
- * writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
- * (refused) or writable.
+ * `mud` must be NULL or a live run;
+ * `rings` and `points` NULL (only with length 0) or writable for their lengths, not
+ * overlapping; `rings_written` and `points_written` NULL (refused) or writable.
  */
 hibi_status hibi_mud_cells(const struct hibi_mud *mud,
                            hibi_mud_cell_ring *rings,
@@ -1896,8 +1897,9 @@ struct hibi_mud_render_params hibi_mud_render_params_default(void);
  * `pixels_len` counts values, not bytes. Nothing is written on failure.
  *
  * # Safety
- * `mud` must be NULL or a live run; `render` NULL or readable; `pixels`
- * NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+ * `mud` must be NULL or a live run; `render` NULL or readable;
+ * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
+ * layer's type.
  */
 hibi_status hibi_mud_render(const struct hibi_mud *mud,
                             const struct hibi_mud_render_params *render,

@@ -210,7 +210,8 @@ pub struct MudOptions {
     /// τ: the explicit solver's short time step [s] [default: 0.001].
     #[arg(long, value_name = "S")]
     pub short_step: Option<f32>,
-    /// γ: shrink ratio per long step, in (0, 1); 1 never shrinks [default: 0.9999].
+    /// γ: shrink ratio per long step, in [FLT_MIN, 1); 1 never shrinks; with --drive growth at
+    /// least 1/101 (a long step grows the deep layer at most 101-fold) [default: 0.9999].
     #[arg(long, value_name = "RATIO")]
     pub shrink_ratio: Option<f32>,
     /// δx: allowed displacement error [cm] [default: 0.0001].

@@ -1,7 +1,7 @@
 //! The C constants that stand for the core's enumerations: their variants (`HIBI_MUD_SQUARE`,
 //! ...) and the models' parameter errors (`HIBI_ERROR_MUD_COLUMNS`, ...), in one table. Each
-//! is written once, beside its variant, and checked against it when `hibi` compiles: its
-//! number is the variant's own plus its type's [`Numbered::BASE`].
+//! is written once, as a row naming its variant, and checked against it when `hibi` compiles:
+//! its number is the variant's own plus its type's [`Numbered::BASE`].
 
 use hibi_core::Spread;
 use hibi_core::glass::{CrackEnd, CrackKind, GlassParamError};
@@ -21,8 +21,17 @@ pub(crate) trait Numbered: Copy + 'static {
     fn number(self) -> u32;
 }
 
+/// A model's parameter errors, each reported by the status `BASE + number`.
+pub(crate) trait ParamError: Numbered {}
+
+/// [`Numbered`] for each type (and [`ParamError`] for the `errors`), checking when `hibi`
+/// compiles that `ALL[i]` is numbered `i`.
 macro_rules! numbered {
-    ($($t:ty = $base:literal),+ $(,)?) => {$(
+    ($($t:ty = $base:literal),+ ; errors $($e:ty = $error_base:literal),+ $(,)?) => {
+        $(numbered!(@one $t = $base);)+
+        $(numbered!(@one $e = $error_base); impl ParamError for $e {})+
+    };
+    (@one $t:ty = $base:literal) => {
         impl Numbered for $t {
             const BASE: u32 = $base;
             const ALL: &'static [Self] = &<$t>::ALL;
@@ -30,30 +39,28 @@ macro_rules! numbered {
                 self as u32
             }
         }
-    )+};
+        const _: () = {
+            let mut i = 0;
+            while i < <$t>::ALL.len() {
+                assert!(<$t>::ALL[i] as usize == i, "ALL[i] is numbered i");
+                i += 1;
+            }
+        };
+    };
 }
 
 numbered!(
-    Spread = 0,
-    Topology = 0,
-    Boundary = 0,
-    Solver = 0,
-    Drive = 0,
-    CrackKind = 0,
-    CrackEnd = 0,
-    SiteLayout = 0,
-    MudParamError = 512,
-    GlassParamError = 1024,
-    SkinParamError = 1280,
+    Spread = 0, Topology = 0, Boundary = 0, Solver = 0, Drive = 0, CrackKind = 0, CrackEnd = 0, SiteLayout = 0;
+    errors MudParamError = 512, GlassParamError = 1024, SkinParamError = 1280,
 );
 
 /// The status that reports a model's parameter error.
-pub(crate) fn param_status<E: Numbered>(error: E) -> hibi_status {
+pub(crate) fn param_status<E: ParamError>(error: E) -> hibi_status {
     E::BASE + error.number()
 }
 
 /// The parameter error of type `E` that `status` reports, if it is one.
-pub(crate) fn param_error<E: Numbered>(status: hibi_status) -> Option<E> {
+pub(crate) fn param_error<E: ParamError>(status: hibi_status) -> Option<E> {
     E::ALL.get(status.checked_sub(E::BASE)? as usize).copied()
 }
 

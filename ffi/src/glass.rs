@@ -385,20 +385,18 @@ pub unsafe extern "C" fn hibi_glass_scratch_size(glass: *const hibi_glass, size:
     guard(|| unsafe { query(glass, c"glass", (size, c"size"), read) })
 }
 
-/// The plate and its fragment scratch, checked.
+/// The plate's fragment scratch, checked (after everything else of the call's, so that a
+/// refused call leaves it untouched).
 ///
 /// # Safety
 /// As `hibi_glass_fragment_counts`.
-unsafe fn fragment_query<'a>(
-    glass: *const hibi_glass,
+unsafe fn fragment_scratch<'a>(
+    glass: &hibi_glass,
     scratch: *mut c_void,
     scratch_size: usize,
-) -> Result<(&'a Glass<'static>, &'a mut [u32]), hibi_status> {
+) -> Result<&'a mut [u32], hibi_status> {
     // SAFETY: the caller's contract.
-    let glass = unsafe { object_ref(glass, c"glass") }?;
-    // SAFETY: the caller's contract.
-    let words = unsafe { object::scratch(scratch, scratch_size, |arena| arena.take::<u32>(glass.scratch)) }?;
-    Ok((&glass.glass, words))
+    unsafe { object::scratch(scratch, scratch_size, |arena| arena.take::<u32>(glass.scratch)) }
 }
 
 /// Writes how many fragment rings and ring points `hibi_glass_fragments` will write for the
@@ -418,9 +416,11 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
         let outs = Outs::check([(rings, c"rings"), (points, c"points")])?;
-        let (r, p) = glass.fragment_counts(scratch).map_err(glass_status)?;
+        // SAFETY: the caller's contract.
+        let scratch = unsafe { fragment_scratch(glass, scratch, scratch_size) }?;
+        let (r, p) = glass.glass.fragment_counts(scratch).map_err(glass_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { outs.write([r, p]) }
     })
@@ -436,14 +436,14 @@ polygon_query! {
     ///
     /// # Safety
     /// `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
-    /// `rings` and `points` NULL (only with length 0) or writable for their lengths;
-    /// `rings_written` and `points_written` NULL (refused) or writable.
     hibi_glass_fragments(glass: hibi_glass, scratch: *mut c_void, scratch_size: usize) -> FragmentRing;
     {
         // SAFETY: the caller's contract.
-        let (glass, scratch) = unsafe { fragment_query(glass, scratch, scratch_size) }?;
+        let glass = unsafe { object_ref(glass, c"glass") }?;
     }
-    |rings, points| glass.fragments(scratch, rings, points).map_err(glass_status)
+    // SAFETY: the caller's contract.
+    |rings, points| glass.glass.fragments(unsafe { fragment_scratch(glass, scratch, scratch_size) }?, rings, points)
+        .map_err(glass_status)
 }
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -467,9 +467,10 @@ render! {
 
 /// Glass's layers with `layer` to be drawn into `pixels`.
 fn glass_layers(layer: u32, pixels: Pixels<'_>) -> Result<GlassLayers<'_>, hibi_status> {
+    // SAFETY (every arm): the layer's type, as the header gives it for that layer.
     Ok(match layer {
-        HIBI_GLASS_LAYER_MASK => GlassLayers { mask: Some(pixels.values()?), time: None },
-        HIBI_GLASS_LAYER_TIME => GlassLayers { mask: None, time: Some(pixels.values()?) },
+        HIBI_GLASS_LAYER_MASK => GlassLayers { mask: Some(unsafe { pixels.values() }?), time: None },
+        HIBI_GLASS_LAYER_TIME => GlassLayers { mask: None, time: Some(unsafe { pixels.values() }?) },
         _ => return Err(HIBI_ERROR_GLASS_RENDER_LAYER),
     })
 }
@@ -585,6 +586,50 @@ mod tests {
             assert!((area - 640.0 * 640.0).abs() < 1e-3, "{area}");
             assert!(rings.iter().all(|x| x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0));
             assert_eq!(rings.iter().map(|x| x.point_count as usize).sum::<usize>(), point_count);
+            hibi_glass_destroy(glass);
+        }
+    }
+
+    /// A refused fragment query names the first bad argument in the order plate, counts,
+    /// buffers, scratch, and leaves the caller's scratch as it was.
+    #[test]
+    fn a_refused_fragment_query_names_its_first_bad_argument_and_leaves_the_scratch_alone() {
+        let mut p = hibi_glass_params_default();
+        (p.width, p.height, p.impact) = (160.0, 160.0, [80.0, 80.0]);
+        let mut glass = null_mut();
+        let argument = || unsafe { core::ffi::CStr::from_ptr(crate::status::hibi_error_argument()) };
+        // SAFETY: valid pointers throughout, buffers of the lengths passed.
+        unsafe {
+            assert_eq!(hibi_glass_create(&p, &mut glass), HIBI_OK);
+            assert_eq!(hibi_glass_step(glass, u64::MAX, null_mut()), HIBI_OK);
+            let mut ss = 0;
+            assert_eq!(hibi_glass_scratch_size(glass, &mut ss), HIBI_OK);
+            let mut scratch = vec![0xA5A5_A5A5_A5A5_A5A5u64; ss.div_ceil(8)];
+            let sp = scratch.as_mut_ptr().cast::<c_void>();
+            let (mut rings, mut points) = ([FragmentRing::default(); 4], [hibi_vec2::default(); 4]);
+            let (rp, pp) = (rings.as_mut_ptr(), points.as_mut_ptr());
+            let (mut r, mut n) = (0usize, 0usize);
+            let (r, n) = (&raw mut r, &raw mut n);
+            let cases: [(hibi_status, &core::ffi::CStr, &dyn Fn() -> hibi_status); 6] = [
+                (HIBI_ERROR_NULL_POINTER, c"glass", &|| hibi_glass_fragment_counts(null_mut(), sp, 8, r, null_mut())),
+                (HIBI_ERROR_NULL_POINTER, c"points", &|| hibi_glass_fragment_counts(glass, sp, 8, r, null_mut())),
+                (HIBI_ERROR_NULL_POINTER, c"points", &|| hibi_glass_fragment_counts(glass, sp, ss, n, null_mut())),
+                (HIBI_ERROR_NULL_POINTER, c"glass", &|| {
+                    hibi_glass_fragments(null_mut(), sp, 8, rp, 4, pp, 4, null_mut(), n)
+                }),
+                (HIBI_ERROR_NULL_POINTER, c"rings_written", &|| {
+                    hibi_glass_fragments(glass, sp, 8, rp, 4, pp, 4, null_mut(), n)
+                }),
+                (HIBI_ERROR_NULL_POINTER, c"points", &|| {
+                    hibi_glass_fragments(glass, sp, ss, rp, 4, null_mut(), 4, r, n)
+                }),
+            ];
+            for (k, (status, name, call)) in cases.iter().enumerate() {
+                assert_eq!((call(), argument()), (*status, *name), "case {k}");
+                assert!(scratch.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5), "case {k} wrote the scratch");
+            }
+            assert_eq!(hibi_glass_fragment_counts(glass, sp, ss - 1, r, n), HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert_eq!(argument(), c"scratch");
             hibi_glass_destroy(glass);
         }
     }

@@ -70,7 +70,7 @@ pub struct hibi_mud_params {
     /// stability test of its damped step (`HIBI_ERROR_MUD_SHORT_STEP_STABILITY`; about ten
     /// times the paper's at the defaults).
     pub short_step: f32,
-    /// γ, shrink ratio per long step, within (0, 1) (paper: 0.9999); 1 would never shrink
+    /// γ, shrink ratio per long step, within [FLT_MIN, 1) (paper: 0.9999); 1 would never shrink
     /// and is rejected (`HIBI_ERROR_MUD_SHRINK_RATIO`); with `HIBI_MUD_GROWTH` the deep layer
     /// grows by 1/γ per long step, at most 101-fold (γ >= 1/101).
     pub shrink_ratio: f32,
@@ -441,9 +441,7 @@ polygon_query! {
     /// `HIBI_ERROR_BUFFER_TOO_SMALL`.
     ///
     /// # Safety
-    /// `mud` must be NULL or a live run; `rings` and `points` NULL (only with length 0) or
-    /// writable for their lengths, not overlapping; `rings_written` and `points_written` NULL
-    /// (refused) or writable.
+    /// `mud` must be NULL or a live run;
     hibi_mud_cells(mud: hibi_mud) -> hibi_mud_cell_ring;
     {
         // SAFETY: the caller's contract.
@@ -474,10 +472,11 @@ render! {
 
 /// Mud's layers with `layer` to be drawn into `pixels`.
 fn mud_layers(layer: u32, pixels: Pixels<'_>) -> Result<MudLayers<'_>, hibi_status> {
+    // SAFETY (every arm): the layer's type, as the header gives it for that layer.
     Ok(match layer {
-        HIBI_MUD_LAYER_MASK => MudLayers { mask: Some(pixels.values()?), ..MudLayers::default() },
-        HIBI_MUD_LAYER_HEIGHT => MudLayers { height: Some(pixels.values()?), ..MudLayers::default() },
-        HIBI_MUD_LAYER_TIME => MudLayers { time: Some(pixels.values()?), ..MudLayers::default() },
+        HIBI_MUD_LAYER_MASK => MudLayers { mask: Some(unsafe { pixels.values() }?), ..MudLayers::default() },
+        HIBI_MUD_LAYER_HEIGHT => MudLayers { height: Some(unsafe { pixels.values() }?), ..MudLayers::default() },
+        HIBI_MUD_LAYER_TIME => MudLayers { time: Some(unsafe { pixels.values() }?), ..MudLayers::default() },
         _ => return Err(HIBI_ERROR_RENDER_LAYER),
     })
 }

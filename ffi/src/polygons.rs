@@ -2,13 +2,14 @@
 //! shape (the object and its extra arguments, then a ring buffer, a point buffer and the two
 //! counts written), so the function is written once, by [`polygon_query!`].
 
-/// A polygon query `$name`: runs the statements in braces, which open the object (and its
-/// scratch), then checks `rings_written` and `points_written` (required) and the ring and
-/// point buffers, in that order (as every function checks its object first; the failing
-/// argument first checked is the one `hibi_error_argument` names), runs `$query` on the
-/// buffers (named `$rings` and `$points` there; it gives the ring and point counts it wrote)
-/// and writes the counts. The doc comment is the caller's; the signature and the checks are
-/// here.
+/// A polygon query `$name`: runs the statements in braces, which open the object, then checks
+/// `rings_written` and `points_written` (required) and the ring and point buffers, in that
+/// order (every function checks its object first; the first failing argument is the one
+/// `hibi_error_argument` names), runs `$query` on the buffers (named `$rings` and `$points`
+/// there; it checks anything else of its own, such as a scratch, before it writes, and gives
+/// the ring and point counts it wrote) and writes the counts. The doc comment is the caller's,
+/// ending in its Safety clause for the object; the buffers' clause, the signature and the
+/// checks are here.
 macro_rules! polygon_query {
     (
         $(#[$doc:meta])*
@@ -17,6 +18,8 @@ macro_rules! polygon_query {
         |$rings:ident, $points:ident| $query:expr
     ) => {
         $(#[$doc])*
+        /// `rings` and `points` NULL (only with length 0) or writable for their lengths, not
+        /// overlapping; `rings_written` and `points_written` NULL (refused) or writable.
         #[unsafe(no_mangle)]
         #[allow(clippy::too_many_arguments)]
         pub unsafe extern "C" fn $name(

@@ -24,8 +24,11 @@ impl<'a> Pixels<'a> {
     }
 
     /// The raster as values of `T` (NULL, alignment and size checked; named `pixels`).
-    pub(crate) fn values<T>(self) -> Result<&'a mut [T], hibi_status> {
-        // SAFETY: the contract of `new`.
+    ///
+    /// # Safety
+    /// `T` must be the type of the layer the caller chose (the header names each layer's).
+    pub(crate) unsafe fn values<T>(self) -> Result<&'a mut [T], hibi_status> {
+        // SAFETY: the contract of `new`, with `T` the layer's type (this function's contract).
         unsafe { buffer(self.ptr.cast::<T>(), self.len, c"pixels") }
     }
 }
@@ -39,14 +42,15 @@ macro_rules! render {
         $(#[$doc])*
         ///
         /// # Safety
-        #[doc = concat!(" `", stringify!($arg), "` must be NULL or a live ", $what, "; `render` NULL or readable; `pixels`")]
-        /// NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the layer's type.
+        #[doc = concat!(" `", stringify!($arg), "` must be NULL or a live ", $what, "; `render` NULL or readable;")]
+        /// `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
+        /// layer's type.
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $name(
             $arg: *const $object,
             render: *const $params,
             layer: u32,
-            pixels: *mut c_void,
+            pixels: *mut core::ffi::c_void,
             pixels_len: usize,
         ) -> $crate::status::hibi_status {
             $crate::guard::guard(|| {

@@ -91,9 +91,9 @@ pub struct MudParams {
     /// refuses a step that fails the stability test of its damped step (about ten times the
     /// paper's at the defaults: [`MudParamError::ShortStepStability`]).
     pub short_step: f32,
-    /// γ: shrink ratio per long step, in (0, 1): the rest lengths shrink to γⁿ after n long
-    /// steps (γ = 1 would never shrink, so nothing would ever crack; it is rejected, as both
-    /// solvers would otherwise disagree on what it means). With [`Drive::Growth`] the deep
+    /// γ: shrink ratio per long step, in [`f32::MIN_POSITIVE`, 1): the rest lengths shrink to
+    /// γⁿ after n long steps (γ = 1 would never shrink, so nothing would ever crack; it is
+    /// rejected, as both solvers would otherwise disagree on what it means). With [`Drive::Growth`] the deep
     /// layer grows by 1/γ per long step, at most 101-fold: γ ≥ 1/101. Paper: 0.9999.
     pub shrink_ratio: f32,
     /// δx: allowed displacement error \[cm\]; the force tolerance is δF = k_min·δx. Paper: 1e-4.
