@@ -2179,8 +2179,9 @@ const char *hibi_status_string(hibi_status status);
 /**
  * The name of the pointer argument that the latest call on this thread refused, as it is
  * spelled in this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
- * `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`; `""`
- * after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
+ * `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`, or
+ * `HIBI_ERROR_BUFFER_TOO_SMALL` for caller memory (`"memory"`) or a scratch (`"scratch"`);
+ * `""` after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
  * thread's calls do not change it, and neither do `hibi_status_string`,
  * `hibi_error_argument` and `hibi_version`.
  */

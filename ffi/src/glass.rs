@@ -5,7 +5,8 @@
 //! hibi_glass *glass = NULL;
 //! if (hibi_glass_create(&params, &glass) != HIBI_OK) { ... }
 //! hibi_glass_progress progress;
-//! do { hibi_glass_step(glass, 1000, &progress); } while (!progress.finished);
+//! hibi_status status;
+//! do { status = hibi_glass_step(glass, 1000, &progress); } while (status == HIBI_OK && !progress.finished);
 //! hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, pixels, width * height);
 //! hibi_glass_destroy(glass);
 //! ```

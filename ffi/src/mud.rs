@@ -6,7 +6,8 @@
 //! hibi_mud *mud = NULL;
 //! if (hibi_mud_create(&params, &mud) != HIBI_OK) { ... }
 //! hibi_mud_progress progress;
-//! do { hibi_mud_step(mud, 1000000, &progress); } while (!progress.finished);
+//! hibi_status status;
+//! do { status = hibi_mud_step(mud, 1000000, &progress); } while (status == HIBI_OK && !progress.finished);
 //! hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, width * height);
 //! size_t rings, points, wrapping;
 //! hibi_mud_cell_counts(mud, &rings, &points, &wrapping);

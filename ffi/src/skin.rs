@@ -7,7 +7,8 @@
 //! hibi_skin *skin = NULL;
 //! if (hibi_skin_create(&params, &skin) != HIBI_OK) { ... }
 //! hibi_skin_progress progress;
-//! do { hibi_skin_step(skin, 100000, &progress); } while (!progress.finished);
+//! hibi_status status;
+//! do { status = hibi_skin_step(skin, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
 //! size_t scratch_size;
 //! hibi_skin_scratch_size(skin, &scratch_size); /* a render only reads the skin */
 //! void *scratch = malloc(scratch_size);
@@ -19,7 +20,9 @@
 //! ```
 //!
 //! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
-//! another; rendering only reads them (it draws what is built so far). An object is one block: the header, then the core's cell, vertex, site, clip-vertex and word arrays.
+//! another; rendering only reads them (it draws what is built so far). An object is one block:
+//! the header, then the core's cell, vertex, site, clip-vertex, word, level-record and
+//! chunk-box arrays (the render scratch is the caller's, apart).
 
 use core::ffi::{CStr, c_char, c_void};
 use core::mem::size_of;

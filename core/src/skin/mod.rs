@@ -10,7 +10,7 @@
 //! and normals come from the profiles' slopes.
 //!
 //! [`Skin::step`] builds the cell outlines into caller memory, one level-0 cell with its
-//! descendants after another (fixed point, 1/256 px, shared edges bit for bit);
+//! descendants after another (fixed point, 1/2^(8+12·level) px, shared edges bit for bit);
 //! [`Skin::render`] evaluates height, normal and cell maps into caller buffers; [`shade`]
 //! lights a normal map for a preview.
 //!
