@@ -13,7 +13,7 @@ use hibi_scenes::{Memory, check};
 
 /// The models' thread's stack: 32 KiB in an optimised build (as glibc counts it: its guard
 /// page and the thread's TLS come out of it). A debug build of the library (debug assertions,
-/// overflow checks) has larger frames (Skin::new 14 KB against 4 KB) and gets 64 KiB.
+/// overflow checks) has larger frames and gets 64 KiB.
 const THREAD_STACK: usize = if cfg!(debug_assertions) { 64 * 1024 } else { 32 * 1024 };
 /// The golden scenes' thread's stack.
 const SCENES_STACK: usize = 64 * 1024;
