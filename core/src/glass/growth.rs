@@ -179,7 +179,7 @@ impl Glass<'_> {
         }
         let (cx0, cy0, cx1, cy1) = cells;
         // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
-        self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
+        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
         for cy in cy0..=cy1 {
             let row = sector.map(|s| s.row(cy));
             for cx in cx0..=cx1 {
@@ -193,7 +193,7 @@ impl Glass<'_> {
                     continue;
                 }
                 while entry != NONE {
-                    self.clock.work += 1;
+                    work += 1;
                     let [e, next] = self.index.segments.entries[entry as usize];
                     if self.index.stamps[e as usize] != self.index.stamp {
                         self.index.stamps[e as usize] = self.index.stamp;
@@ -203,6 +203,7 @@ impl Glass<'_> {
                 }
             }
         }
+        self.clock.work += work;
     }
 
     /// The cell tests for the sector S of a tip at `w` whose wedge's boundary rays are `rays`
@@ -425,9 +426,16 @@ impl Glass<'_> {
         }
         f[0] += extra[0];
         f[1] += extra[1];
-        // F2 for the plate's edges.
+        // F2 for the plate's edges; one farther than B (and SLACK) from the tip has no point
+        // in S (its nearest point's offset across it is exactly the tip's, so its distance is
+        // at least that).
         let corners = [[0.0, 0.0], [p.width, 0.0], [p.width, p.height], [0.0, p.height]];
+        let across = [w[1], p.width - w[0], p.height - w[1], w[0]];
+        let far = p.sector_radius + SLACK;
         for k in 0..4 {
+            if across[k].abs() > far {
+                continue;
+            }
             let (a, z) = (corners[k], corners[(k + 1) % 4]);
             if let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) {
                 let normal = self.normal_towards(a, z, v, d);
