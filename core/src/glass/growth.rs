@@ -180,9 +180,9 @@ impl Glass<'_> {
         let (cx0, cy0, cx1, cy1) = cells;
         // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
         let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..=cy1 {
+        for cy in cy0..cy1 + 1 {
             let row = sector.map(|s| s.row(cy));
-            for cx in cx0..=cx1 {
+            for cx in cx0..cx1 + 1 {
                 let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
                 if entry == NONE {
                     continue; // an empty cell: nothing to test it for
@@ -303,9 +303,9 @@ impl Glass<'_> {
         let tip_cells = self.sector_cells(w, rays, SLACK);
         let far = p.sector_radius + SLACK;
         let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..=cy1 {
+        for cy in cy0..cy1 + 1 {
             let row = tip_cells.row(cy);
-            for cx in cx0..=cx1 {
+            for cx in cx0..cx1 + 1 {
                 let mut entry = self.index.tips.heads[cy * self.index.grid.columns + cx];
                 if entry == NONE || tip_cells.outside(row, cx) {
                     continue;
