@@ -62,16 +62,6 @@ impl Buckets<'_> {
         self.used += 1;
         true
     }
-
-    /// Calls `visit` with every item of `cell`, newest first.
-    pub(super) fn for_each(&self, cell: usize, mut visit: impl FnMut(u32)) {
-        let mut entry = self.heads[cell];
-        while entry != NONE {
-            let [item, next] = self.entries[entry as usize];
-            visit(item);
-            entry = next;
-        }
-    }
 }
 
 #[cfg(test)]
@@ -88,12 +78,15 @@ mod tests {
         b.clear();
         assert!(b.insert(5, 10) && b.insert(5, 11) && b.insert(2, 12));
         assert!(!b.insert(1, 13));
+        // Newest first.
         let mut seen = [0u32; 2];
-        let mut n = 0;
-        b.for_each(5, |v| {
-            seen[n] = v;
+        let (mut n, mut entry) = (0, b.heads[5]);
+        while entry != NONE {
+            let [item, next] = b.entries[entry as usize];
+            seen[n] = item;
             n += 1;
-        });
+            entry = next;
+        }
         assert_eq!(seen, [11, 10]);
     }
 }

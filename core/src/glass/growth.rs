@@ -162,15 +162,14 @@ impl Glass<'_> {
     }
 
     /// As [`Self::segments_near`], over the cell range `cells` (as [`Grid::span`] gives it),
-    /// skipping the cells that lie wholly outside the sector S of a tip at `sector.0` whose
-    /// wedge's boundary rays are `sector.1` ([`Self::wedge`]): outside its disc, or beyond one
-    /// side of its wedge when φ ≤ 180°. No point of theirs is in S.
+    /// skipping the cells that `sector` finds wholly outside the sector S of a tip
+    /// ([`SectorCells::outside`]). No point of theirs is in S.
     ///
     /// [`Grid::span`]: super::grid::Grid::span
     fn segments_in(
         &mut self,
         cells: (usize, usize, usize, usize),
-        sector: Option<([f32; 2], [[f32; 2]; 2])>,
+        sector: Option<SectorCells>,
         mut visit: impl FnMut(&Self, u32),
     ) {
         self.index.stamp = self.index.stamp.wrapping_add(1);
@@ -179,47 +178,22 @@ impl Glass<'_> {
             self.index.stamp = 1;
         }
         let (cx0, cy0, cx1, cy1) = cells;
-        let cell = self.index.grid.cell;
-        let (c, b) = (self.sector.cosine, self.params.sector_radius);
         // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
-        self.clock.work += ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..=cy1 {
-            // The row's share of the cell tests below: its corners' offset from the apex in y,
-            // that offset's square for the disc, and its products with the rays for the wedge
-            // (formed once a row, the very products the per-corner tests use).
-            let row = sector.map(|(w, [left, right])| {
-                let ay = cy as f32 * cell - w[1];
-                let by = ay + cell;
-                let ny = nearest_to_zero(ay, by);
-                (ny * ny, [right[0] * ay, right[0] * by], [left[0] * ay, left[0] * by])
-            });
-            for cx in cx0..=cx1 {
+        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
+        for cy in cy0..cy1 + 1 {
+            let row = sector.map(|s| s.row(cy));
+            for cx in cx0..cx1 + 1 {
                 let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
                 if entry == NONE {
                     continue; // an empty cell: nothing to test it for
                 }
-                if let (Some((w, [left, right])), Some((ny2, right_y, left_y))) = (sector, row) {
-                    // The cell's corners relative to the apex, in x.
-                    let ax = cx as f32 * cell - w[0];
-                    let bx = ax + cell;
-                    // Outside the disc: its nearest point is farther than B.
-                    let nx = nearest_to_zero(ax, bx);
-                    if nx * nx + ny2 > b * b {
-                        continue;
-                    }
-                    if c >= 0.0 {
-                        // Beyond a side of the wedge: every corner (x, y) on the outer side of
-                        // it, by the cross product ray × corner = ray_x·y − ray_y·x.
-                        let (right_x, left_x) = ([right[1] * ax, right[1] * bx], [left[1] * ax, left[1] * bx]);
-                        let outside_right = right_y.iter().all(|&y| right_x.iter().all(|&x| y - x < 0.0));
-                        let outside_left = left_y.iter().all(|&y| left_x.iter().all(|&x| y - x > 0.0));
-                        if outside_right || outside_left {
-                            continue;
-                        }
-                    }
+                if let (Some(s), Some(row)) = (sector, row)
+                    && s.outside(row, cx)
+                {
+                    continue;
                 }
                 while entry != NONE {
-                    self.clock.work += 1;
+                    work += 1;
                     let [e, next] = self.index.segments.entries[entry as usize];
                     if self.index.stamps[e as usize] != self.index.stamp {
                         self.index.stamps[e as usize] = self.index.stamp;
@@ -228,6 +202,21 @@ impl Glass<'_> {
                     entry = next;
                 }
             }
+        }
+        self.clock.work += work;
+    }
+
+    /// The cell tests for the sector S of a tip at `w` whose wedge's boundary rays are `rays`
+    /// ([`Self::wedge`]), with `margin` \[px\] of slack.
+    fn sector_cells(&self, w: [f32; 2], rays: [[f32; 2]; 2], margin: f32) -> SectorCells {
+        let reach = self.params.sector_radius + margin;
+        SectorCells {
+            w,
+            rays,
+            cell: self.index.grid.cell,
+            reach2: reach * reach,
+            wedge: self.sector.cosine >= 0.0,
+            margin,
         }
     }
 
@@ -306,30 +295,45 @@ impl Glass<'_> {
         let direction = [libm::cosf(heading), libm::sinf(heading)];
         let mut f = [0.0f32; 2];
         let [x0, y0, x1, y1] = self.sector_box(w, direction);
-        // F1: away from every other tip in S, |F1| = k1/r².
+        // F1: away from every other tip in S, |F1| = k1/r². Cells wholly outside S (by more
+        // than SLACK, which covers the rounding of `in_sector`'s cosine) hold no tip in it.
         let cells = self.index.grid.span(x0, y0, x1, y1);
         let (cx0, cy0, cx1, cy1) = cells;
+        let rays = self.wedge(direction);
+        let tip_cells = self.sector_cells(w, rays, SLACK);
+        let far = p.sector_radius + SLACK;
         let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..=cy1 {
-            for cx in cx0..=cx1 {
-                self.index.tips.for_each(cy * self.index.grid.columns + cx, |j| {
+        for cy in cy0..cy1 + 1 {
+            let row = tip_cells.row(cy);
+            for cx in cx0..cx1 + 1 {
+                let mut entry = self.index.tips.heads[cy * self.index.grid.columns + cx];
+                if entry == NONE || tip_cells.outside(row, cx) {
+                    continue;
+                }
+                while entry != NONE {
                     work += 1;
+                    let [j, next] = self.index.tips.entries[entry as usize];
+                    entry = next;
                     if j as usize == i {
-                        return;
+                        continue;
                     }
-                    let other = self.cracks[j as usize];
+                    let other = &self.cracks[j as usize];
+                    let e = [other.before[0] - w[0], other.before[1] - w[1]];
+                    // Only a tip growing towards this one pushes it (two tips closing in turn
+                    // apart); one running away from it, as the radial cracks of an impact do,
+                    // does not. Tested first, with the distance bound, as they are cheaper
+                    // than `in_sector`'s root (the same offset, so the same outcome).
+                    if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0
+                        || e[0] * e[0] + e[1] * e[1] > far * far
+                    {
+                        continue;
+                    }
                     if let Some((e, r)) = self.in_sector(w, direction, other.before) {
-                        // Only a tip growing towards this one pushes it (two tips closing in
-                        // turn apart); one running away from it, as the radial cracks of an
-                        // impact do, does not.
-                        if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0 {
-                            return;
-                        }
                         let k = p.tip_repulsion / (r * r * r);
                         f[0] -= k * e[0];
                         f[1] -= k * e[1];
                     }
-                });
+                }
             }
         }
         self.clock.work += work;
@@ -343,9 +347,9 @@ impl Glass<'_> {
         let crack = i as u32;
         let mut extra = [0.0f32; 2];
         let now = self.clock.time as f32;
-        let rays = self.wedge(direction);
         let radius = p.sector_radius;
-        self.segments_in(cells, Some((w, rays)), |glass, e| {
+        let sector = self.sector_cells(w, rays, 0.0);
+        self.segments_in(cells, Some(sector), |glass, e| {
             let edge = &glass.edges[e as usize];
             let owner = edge.crack;
             // Not its own crack, nor pieces other tips grew earlier in this time step (all
@@ -422,9 +426,16 @@ impl Glass<'_> {
         }
         f[0] += extra[0];
         f[1] += extra[1];
-        // F2 for the plate's edges.
+        // F2 for the plate's edges; one farther than B (and SLACK) from the tip has no point
+        // in S (its nearest point's offset across it is exactly the tip's, so its distance is
+        // at least that).
         let corners = [[0.0, 0.0], [p.width, 0.0], [p.width, p.height], [0.0, p.height]];
+        let across = [w[1], p.width - w[0], p.height - w[1], w[0]];
+        let far = p.sector_radius + SLACK;
         for k in 0..4 {
+            if across[k].abs() > far {
+                continue;
+            }
             let (a, z) = (corners[k], corners[(k + 1) % 4]);
             if let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) {
                 let normal = self.normal_towards(a, z, v, d);
@@ -762,6 +773,67 @@ impl Glass<'_> {
             }
         }
         Some(e)
+    }
+}
+
+/// The cell tests of a sector S (apex `w`, wedge boundary rays `rays`, radius B): which grid
+/// cells lie wholly outside it, by more than `margin`.
+#[derive(Clone, Copy)]
+struct SectorCells {
+    w: [f32; 2],
+    rays: [[f32; 2]; 2],
+    cell: f32,
+    /// (B + margin)².
+    reach2: f32,
+    /// φ ≤ 180°: the wedge is convex, and a cell beyond one side of it is outside.
+    wedge: bool,
+    margin: f32,
+}
+
+/// A row's share of [`SectorCells::outside`]: its corners' offset from the apex in y, that
+/// offset's square for the disc, and its products with the rays for the wedge (formed once a
+/// row, the very products the per-corner tests use).
+#[derive(Clone, Copy)]
+struct SectorRow {
+    ny2: f32,
+    right_y: [f32; 2],
+    left_y: [f32; 2],
+}
+
+impl SectorCells {
+    /// The share of the tests of the cells of row `cy`.
+    #[inline(always)]
+    fn row(&self, cy: usize) -> SectorRow {
+        let [left, right] = self.rays;
+        let ay = cy as f32 * self.cell - self.w[1];
+        let by = ay + self.cell;
+        let ny = nearest_to_zero(ay, by);
+        SectorRow { ny2: ny * ny, right_y: [right[0] * ay, right[0] * by], left_y: [left[0] * ay, left[0] * by] }
+    }
+
+    /// Whether cell `cx` of `row` lies outside the sector by more than the margin: its nearest
+    /// point farther than B from the apex, or (φ ≤ 180°) every corner beyond one side of the
+    /// wedge.
+    #[inline(always)]
+    fn outside(&self, row: SectorRow, cx: usize) -> bool {
+        let [left, right] = self.rays;
+        // The cell's corners relative to the apex, in x.
+        let ax = cx as f32 * self.cell - self.w[0];
+        let bx = ax + self.cell;
+        let nx = nearest_to_zero(ax, bx);
+        if nx * nx + row.ny2 > self.reach2 {
+            return true;
+        }
+        if !self.wedge {
+            return false;
+        }
+        // Beyond a side of the wedge: every corner (x, y) on the outer side of it, by the
+        // cross product ray × corner = ray_x·y − ray_y·x.
+        let m = self.margin;
+        let (right_x, left_x) = ([right[1] * ax, right[1] * bx], [left[1] * ax, left[1] * bx]);
+        let outside_right = row.right_y.iter().all(|&y| right_x.iter().all(|&x| y - x < -m));
+        let outside_left = row.left_y.iter().all(|&y| left_x.iter().all(|&x| y - x > m));
+        outside_right || outside_left
     }
 }
 
