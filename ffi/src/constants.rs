@@ -1,7 +1,7 @@
 //! The C constants that stand for the core's enumerations: their variants (`HIBI_MUD_SQUARE`,
 //! ...) and the models' parameter errors (`HIBI_ERROR_MUD_COLUMNS`, ...), in one table. Each
 //! is written once, as a row naming its variant, and checked against it when `hibi` compiles:
-//! its number is the variant's own plus its type's [`Numbered::BASE`].
+//! its number is the variant's own plus its type's `Numbered::BASE`.
 
 use hibi_core::Spread;
 use hibi_core::glass::{CrackEnd, CrackKind, GlassParamError};
