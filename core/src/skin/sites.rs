@@ -144,11 +144,8 @@ impl Lattice {
             let last = (libm::floor(hi / step - 0.5 - shift + half) as i64).min(to);
             last.saturating_sub(first).saturating_add(1).max(0)
         };
-        let [j0, j1] = {
-            let first = (libm::ceil(min[1] / self.step[1] - 0.5 - half) as i64).max(range[1]);
-            let last = (libm::floor(max[1] / self.step[1] - 0.5 + half) as i64).min(range[3]);
-            [first, last]
-        };
+        let rows = self.indices_over(min, max);
+        let (j0, j1) = (rows[1].max(range[1]), rows[3].min(range[3]));
         if j1 < j0 {
             return 0;
         }
