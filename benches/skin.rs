@@ -80,7 +80,7 @@ fn main() {
     let (w, h) = (params.width as usize, params.height as usize);
     let pixels = w * h;
     let m = params.memory().expect("valid parameters");
-    let (mut memory, mut scratch) = (m.allocate(), m.allocate_scratch());
+    let mut memory = m.allocate();
     let (mut height, mut normals) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels]);
 
     let noise = black_box(cellular());
@@ -103,7 +103,7 @@ fn main() {
         skin.run();
         let built = start.elapsed();
         let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normals), ..SkinLayers::default() };
-        skin.render(&SkinRender::default(), layers, &mut scratch.scratch()).expect("buffers suffice");
+        skin.render(&SkinRender::default(), layers).expect("buffers suffice");
         let total = start.elapsed();
         cell_count = skin.cells().len();
         black_box((&height, &normals));

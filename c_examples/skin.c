@@ -24,17 +24,10 @@ static void report(const char *what, hibi_status status) {
 }
 
 /* Renders the height and normal maps of `skin` and shades them into `rgb`. A render only
-   reads the skin: it works in scratch memory of the caller's, here one block per call. */
+   reads the skin, so several threads may render one skin at once. */
 static hibi_status preview(const hibi_skin *skin, size_t pixels, float *height, float *normal, unsigned char *rgb) {
     hibi_skin_shade_params light = hibi_skin_shade_params_default();
-    size_t scratch_size = 0;
-    void *scratch;
-    hibi_status status = hibi_skin_scratch_size(skin, &scratch_size);
-    if (status != HIBI_OK) return status;
-    scratch = malloc(scratch_size); /* malloc's alignment suffices (hibi_skin_memory_align(): 8) */
-    if (scratch == NULL) return HIBI_ERROR_OUT_OF_MEMORY;
-    status = hibi_skin_render(skin, scratch, scratch_size, height, pixels, normal, 3 * pixels, NULL, 0, 0);
-    free(scratch);
+    hibi_status status = hibi_skin_render(skin, height, pixels, normal, 3 * pixels, NULL, 0, 0);
     if (status != HIBI_OK) return status;
     return hibi_skin_shade(height, pixels, normal, 3 * pixels, &light, rgb, 3 * pixels);
 }
@@ -52,8 +45,7 @@ int main(int argc, char **argv) {
     float *height, *normal;
     uint32_t *map;
     unsigned char *rgb, *again;
-    void *memory, *scratch;
-    size_t scratch_size = 0;
+    void *memory;
     FILE *file;
 
     status = hibi_skin_params_preset("fig99", &params);
@@ -130,15 +122,11 @@ int main(int argc, char **argv) {
     again = malloc(3 * pixels);
     map = malloc(pixels * sizeof *map);
     if (height == NULL || normal == NULL || rgb == NULL || again == NULL || map == NULL) return 1;
-    status = hibi_skin_scratch_size(skin, &scratch_size);
-    if (status != HIBI_OK) return fail("hibi_skin_scratch_size", status);
-    scratch = malloc(scratch_size);
-    if (scratch == NULL) return 1;
-    status = hibi_skin_render(skin, scratch, scratch_size, height, pixels, normal, 3 * pixels - 1, NULL, 0, 0);
+    status = hibi_skin_render(skin, height, pixels, normal, 3 * pixels - 1, NULL, 0, 0);
     report("short normal buffer", status);
-    status = hibi_skin_render(skin, scratch, scratch_size, NULL, 0, NULL, 0, map, pixels, 3);
+    status = hibi_skin_render(skin, NULL, 0, NULL, 0, map, pixels, 3);
     report("cell map of level 3", status);
-    status = hibi_skin_render(skin, scratch, scratch_size, NULL, 0, NULL, 0, map, pixels, 2);
+    status = hibi_skin_render(skin, NULL, 0, NULL, 0, map, pixels, 2);
     if (status != HIBI_OK) return fail("hibi_skin_render", status);
     i = map[100 * params.width + 100];
     status = hibi_skin_cell_info(skin, i, &cell);
@@ -173,7 +161,6 @@ int main(int argc, char **argv) {
     printf("caller memory, same bytes: %s\n", memcmp(rgb, again, 3 * pixels) == 0 ? "yes" : "no");
     hibi_skin_destroy(placed);
     free(memory);
-    free(scratch);
     free(height);
     free(normal);
     free(rgb);

@@ -20,8 +20,8 @@
  * once. On one object, the functions that take a const pointer (counts, queries, renders,
  * fragments) only read it and may run concurrently with each other; those that take a
  * non-const pointer (step, impact, destroy) need the object to themselves. The read-only
- * calls that need working memory (hibi_glass_fragment_counts, hibi_glass_fragments,
- * hibi_skin_render) take a caller scratch of *_scratch_size bytes: one per thread.
+ * calls that need working memory (hibi_glass_fragment_counts, hibi_glass_fragments) take
+ * a caller scratch of hibi_glass_scratch_size bytes: one per thread.
  */
 
 #ifndef HIBI_H
@@ -2056,34 +2056,20 @@ hibi_status hibi_skin_create_in(const struct hibi_skin_params *params,
 void hibi_skin_destroy(struct hibi_skin *skin);
 
 /**
- * Writes the bytes of scratch (aligned to `hibi_skin_memory_align()`) that `hibi_skin_render`
- * works in. The scratch is the caller's so that renders only read the skin: several threads
- * may render one skin at once, each with its own scratch.
- *
- * # Safety
- * `skin` must be NULL or a live skin; `size` NULL or writable.
- */
-hibi_status hibi_skin_scratch_size(const struct hibi_skin *skin, size_t *size);
-
-/**
  * Draws the surface's maps, each row-major over `width × height` pixels of the params:
  * `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
  * (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
  * OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
  * cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
- * without it). Pass NULL and length 0 for a map you do not want. Works in `scratch`
- * (`scratch_size` bytes, at least `hibi_skin_scratch_size`); the skin is only read. If the
- * scratch or any map is short or misaligned, or `cell_level` is not below `levels`, nothing
- * is written.
+ * without it). Pass NULL and length 0 for a map you do not want. The skin is only read:
+ * several threads may render one skin at once. If any map is short or misaligned, or
+ * `cell_level` is not below `levels`, nothing is written.
  *
  * # Safety
- * `skin` must be NULL or a live skin; `scratch` NULL or writable for `scratch_size` bytes
- * and used by no other call meanwhile; each map NULL (only with length 0) or writable for its
+ * `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for its
  * length, and the maps must not overlap.
  */
 hibi_status hibi_skin_render(const struct hibi_skin *skin,
-                             void *scratch,
-                             size_t scratch_size,
                              float *height,
                              size_t height_len,
                              float *normal,

@@ -22,8 +22,8 @@
  *   raw pointer + length calls for buffers you already own (render(), render_into()).
  * - Threads: as in hibi.h. const members only read the object and may run concurrently on
  *   one object; step, impact, moves and destruction need it to themselves. The const calls
- *   that need working memory (Glass::fragment_counts, Glass::fragments, Skin::render*) take
- *   a Scratch: one per thread.
+ *   that need working memory (Glass::fragment_counts, Glass::fragments) take a Scratch: one
+ *   per thread.
  * - The C types are used as they are (hibi_mud_params, hibi_mud_segment, ...): a params
  *   struct comes from hibi::Mud::default_params() or ::preset(name) and its fields are
  *   changed in place, exactly as in C.
@@ -489,34 +489,26 @@ public:
         return xy;
     }
 
-    std::size_t scratch_size() const {
-        std::size_t size = 0;
-        check(hibi_skin_scratch_size(handle_.get(), &size));
-        return size;
-    }
-    /// Scratch for the renders: one per thread.
-    Scratch scratch() const { return Scratch(scratch_size(), memory_align()); }
     /// hibi_skin_render into caller maps (NULL and 0 for a map you do not want).
-    void render_into(Scratch &scratch, float *height, std::size_t height_len, float *normal, std::size_t normal_len,
+    void render_into(float *height, std::size_t height_len, float *normal, std::size_t normal_len,
                      std::uint32_t *cells, std::size_t cells_len, std::uint32_t cell_level) const {
-        check(hibi_skin_render(handle_.get(), scratch.data(), scratch.size(), height, height_len, normal, normal_len,
-                               cells, cells_len, cell_level));
+        check(hibi_skin_render(handle_.get(), height, height_len, normal, normal_len, cells, cells_len, cell_level));
     }
-    std::vector<float> render_height(Scratch &scratch) const {
+    std::vector<float> render_height() const {
         std::vector<float> out(pixels());
-        render_into(scratch, out.data(), out.size(), nullptr, 0, nullptr, 0, 0);
+        render_into(out.data(), out.size(), nullptr, 0, nullptr, 0, 0);
         return out;
     }
     /// Three floats per pixel.
-    std::vector<float> render_normal(Scratch &scratch) const {
+    std::vector<float> render_normal() const {
         std::vector<float> out(3 * pixels());
-        render_into(scratch, nullptr, 0, out.data(), out.size(), nullptr, 0, 0);
+        render_into(nullptr, 0, out.data(), out.size(), nullptr, 0, 0);
         return out;
     }
     /// Per pixel the index of its cell at `level`, HIBI_SKIN_NO_CELL where none is.
-    std::vector<std::uint32_t> render_cells(Scratch &scratch, std::uint32_t level) const {
+    std::vector<std::uint32_t> render_cells(std::uint32_t level) const {
         std::vector<std::uint32_t> out(pixels());
-        render_into(scratch, nullptr, 0, nullptr, 0, out.data(), out.size(), level);
+        render_into(nullptr, 0, nullptr, 0, out.data(), out.size(), level);
         return out;
     }
     /// 8-bit sRGB preview of a height and a normal map (three bytes per pixel).

@@ -397,18 +397,18 @@ fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
 
     let params = SkinParams { width: 200, height: 200, ..preset("fig19a").unwrap() };
     let m = params.memory().unwrap();
-    let (mut memory, mut scratch) = (m.allocate(), m.allocate_scratch());
+    let mut memory = m.allocate();
     let buffers = memory.buffers();
     let mut skin = Skin::<f32>::new(&params, buffers).unwrap();
     assert!(skin.run().finished);
     let pixels = 200 * 200;
     let (mut height, mut normal, mut map) = (vec![0.0f32; pixels], vec![[0.0f32; 3]; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
-    skin.render(&SkinRender::default(), layers, &mut scratch.scratch()).unwrap();
+    skin.render(&SkinRender::default(), layers).unwrap();
     let mut rgb = vec![[0u8; 3]; pixels];
     shade(&height, &normal, &ShadeParams::default(), &mut rgb).unwrap();
     let layers = SkinLayers { cell: Some(&mut map), ..SkinLayers::default() };
-    skin.render(&SkinRender { cell_level: 2 }, layers, &mut scratch.scratch()).unwrap();
+    skin.render(&SkinRender { cell_level: 2 }, layers).unwrap();
     let mut per_level = [0; 3];
     for c in skin.cells() {
         per_level[c.level as usize] += 1;
@@ -747,7 +747,6 @@ fn check_wrapper(output: &str) {
         "skin built: yes, cells yes",
         "skin renders from four threads equal the lone render: yes",
         "skin cell map of level 9: status 1346",
-        "skin short scratch: status 3",
         "skin caller memory, same preview: yes",
         "rng caller memory, same draws: yes",
     ];

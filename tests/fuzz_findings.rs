@@ -87,18 +87,13 @@ fn a_null_buffer_shorter_than_one_pixel_is_refused() {
     let mut params = hibi_skin_params_default();
     (params.width, params.height) = (16, 16);
     let mut skin = core::ptr::null_mut();
-    let mut size = 0;
-    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    // SAFETY: valid pointers.
     unsafe {
         assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
-        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
-        let mut scratch = vec![0u64; size.div_ceil(8)];
         let mut height = vec![-1.0f32; 16 * 16];
         for len in [1, 2] {
             let status = hibi_skin_render(
                 skin,
-                scratch.as_mut_ptr().cast(),
-                size,
                 height.as_mut_ptr(),
                 height.len(),
                 core::ptr::null_mut(),
@@ -294,26 +289,13 @@ fn a_huge_skin_stretch_renders() {
     params.level[0].perturbation_depth = 2;
     params.level[0].stretch = [4.193_125_7e21, 1.0];
     let mut skin = core::ptr::null_mut();
-    let mut size = 0;
-    // SAFETY: valid pointers; the scratch holds `size` bytes, aligned to 8.
+    // SAFETY: valid pointers.
     unsafe {
         assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
         assert_eq!(hibi_skin_step(skin, u64::MAX, core::ptr::null_mut()), HIBI_OK);
-        assert_eq!(hibi_skin_scratch_size(skin, &mut size), HIBI_OK);
-        let mut scratch = vec![0u64; size.div_ceil(8)];
         let (mut height, mut normal) = (vec![0f32; 196], vec![0f32; 3 * 196]);
-        let status = hibi_skin_render(
-            skin,
-            scratch.as_mut_ptr().cast(),
-            size,
-            height.as_mut_ptr(),
-            196,
-            normal.as_mut_ptr(),
-            3 * 196,
-            core::ptr::null_mut(),
-            0,
-            0,
-        );
+        let status =
+            hibi_skin_render(skin, height.as_mut_ptr(), 196, normal.as_mut_ptr(), 3 * 196, core::ptr::null_mut(), 0, 0);
         assert_eq!(status, HIBI_OK);
         hibi_skin_destroy(skin);
     }

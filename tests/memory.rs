@@ -1,22 +1,22 @@
 //! Memory that follows the work (issue 24 item 3): each model's memory need is a function of
 //! its parameters, the one `new` (Rust) and `*_create_in` (C) check, and it is exact: one
 //! element (one byte) less is refused with a clear status, the need itself suffices to build
-//! and render. A 64×64 one-level skin needs about 17 KiB (17 056 bytes of arrays, `cargo test
-//! --release --test memory -- --nocapture`): cells and vertices only for the centre points that
-//! can reach the surface, its vertices bounded by the planar Delaunay graph's edges, and clip
-//! buffers for a clipped outline; not the 110 KB it needed at first, nor the 434 KB of fixed
-//! capacities before that. Most of the rest does not grow with the image: a level's record
-//! (profile table, shared edges, edge grid and scratch, 6.4 KB), level 0's neighbour window (81
-//! centre points, 3.9 KB) and two clip buffers (4.1 KB).
+//! and render. A 64×64 one-level skin needs about 19 KiB (19 296 bytes of arrays, `cargo test
+//! --release --test memory -- --nocapture`), and a render nothing more: cells, vertices and
+//! their wedges only for the centre points that can reach the surface, its vertices bounded by
+//! the planar Delaunay graph's edges, and clip buffers for a clipped outline; not the 110 KB it
+//! needed at first, nor the 434 KB of fixed capacities before that. Most of it does not grow
+//! with the image: a level's record (profile table, shared edges, edge grid and scratch,
+//! 6.4 KB), level 0's neighbour window (81 centre points, 3.9 KB) and two clip buffers
+//! (4.1 KB).
 
 use core::ffi::c_void;
 
 use hibi::*;
-use hibi_core::skin::{
-    Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, SkinScratch, preset,
-};
+use hibi_core::skin::{Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinRender, preset};
 
-/// Bytes of a skin's arrays (its render scratch, [`SkinScratch`], is apart: [`scratch_bytes`]).
+/// Bytes of a skin's arrays (all a build and a render need; a render's working memory is a few
+/// KiB of stack).
 fn skin_bytes(m: &SkinMemory) -> usize {
     use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinLevel};
     m.cells * size_of::<SkinCell>()
@@ -26,15 +26,11 @@ fn skin_bytes(m: &SkinMemory) -> usize {
         + m.words * 4
         + m.levels * size_of::<SkinLevel>()
         + m.boxes * 32
-}
-
-/// Bytes of a skin's render scratch.
-fn scratch_bytes(m: &SkinMemory) -> usize {
-    m.wedges * size_of::<hibi_core::skin::Wedge>() + m.crossings * 8
+        + m.wedges * size_of::<hibi_core::skin::Wedge>()
 }
 
 /// Builds and renders `params` in buffers of exactly `m` elements, or with the array `short`
-/// (0 to 8, in `SkinBuffers` then `SkinScratch` order) one element short.
+/// (0 to 7, in `SkinBuffers` order) one element short.
 fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<(), SkinError> {
     let less = |k: usize, n: usize| if short == Some(k) { n - 1 } else { n };
     let mut cells = vec![Default::default(); less(0, m.cells)];
@@ -45,7 +41,6 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
     let mut levels = vec![Default::default(); less(5, m.levels)];
     let mut boxes = vec![[0; 4]; less(6, m.boxes)];
     let mut wedges = vec![Default::default(); less(7, m.wedges)];
-    let mut crossings = vec![0; less(8, m.crossings)];
     let buffers = SkinBuffers {
         cells: &mut cells,
         vertices: &mut vertices,
@@ -54,14 +49,14 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
         words: &mut words,
         levels: &mut levels,
         boxes: &mut boxes,
+        wedges: &mut wedges,
     };
     let mut skin = Skin::<f32>::new(params, buffers)?;
     assert!(!skin.run().capacity_reached, "the capacities suffice");
     let pixels = (params.width * params.height) as usize;
     let (mut height, mut cell) = (vec![0.0; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), cell: Some(&mut cell), ..SkinLayers::default() };
-    let mut scratch = SkinScratch { wedges: &mut wedges, crossings: &mut crossings };
-    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers, &mut scratch)?;
+    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers)?;
     assert!(cell.iter().all(|&c| c != hibi_core::skin::NO_CELL), "every pixel lies in a cell");
     Ok(())
 }
@@ -73,7 +68,7 @@ fn a_skin_needs_exactly_its_memory() {
     for params in [one, three] {
         let m = params.memory().expect("valid");
         skin_in(&params, &m, None).expect("the exact need suffices");
-        let needs = [m.cells, m.vertices, m.sites, m.clip, m.words, m.levels, m.boxes, m.wedges, m.crossings];
+        let needs = [m.cells, m.vertices, m.sites, m.clip, m.words, m.levels, m.boxes, m.wedges];
         for (k, &needed) in needs.iter().enumerate().filter(|(_, n)| **n > 0) {
             assert_eq!(skin_in(&params, &m, Some(k)), Err(SkinError::BufferTooSmall { needed }), "array {k} short");
         }
@@ -87,12 +82,8 @@ fn a_64_by_64_one_level_skin_needs_its_own_capacities_only() {
     let bytes = skin_bytes(&params.memory().expect("valid"));
     let fig19a = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     let three = skin_bytes(&fig19a.memory().expect("valid"));
-    let scratch = scratch_bytes(&params.memory().expect("valid"));
-    println!(
-        "skin 64x64: one level (default) {bytes} bytes (render scratch {scratch} apart); fig19a (three levels) \
-         {three} bytes"
-    );
-    assert!(bytes < 17 * 1024, "{bytes} bytes");
+    println!("skin 64x64: one level (default) {bytes} bytes; fig19a (three levels) {three} bytes");
+    assert!(bytes < 19 * 1024, "{bytes} bytes");
     // The C library's need: the arrays, the object's header and alignment.
     let mut c = hibi_skin_params_default();
     (c.width, c.height) = (64, 64);
@@ -204,31 +195,6 @@ fn every_model_in_c_needs_exactly_its_memory_size() {
         assert!(fits == HIBI_OK && rings > 0 && points > 0);
         sizes.push(("glass 128x128 fragment scratch", size));
         hibi_glass_destroy(g);
-        let mut k = core::ptr::null_mut();
-        assert_eq!(hibi_skin_create(&skin, &mut k), HIBI_OK);
-        assert_eq!(hibi_skin_step(k, u64::MAX, core::ptr::null_mut()), HIBI_OK);
-        assert_eq!(hibi_skin_scratch_size(k, &mut size), HIBI_OK);
-        let mut scratch = vec![0u64; size.div_ceil(8)];
-        let mut height = vec![0.0f32; 64 * 64];
-        let nothing = core::ptr::null_mut();
-        let mut render = |len| {
-            hibi_skin_render(
-                k,
-                scratch.as_mut_ptr().cast(),
-                len,
-                height.as_mut_ptr(),
-                64 * 64,
-                nothing,
-                0,
-                nothing.cast(),
-                0,
-                0,
-            )
-        };
-        assert_eq!((render(size - 1), refused()), (HIBI_ERROR_BUFFER_TOO_SMALL, "scratch".into()));
-        assert_eq!(render(size), HIBI_OK);
-        sizes.push(("skin 64x64 render scratch", size));
-        hibi_skin_destroy(k);
     }
     println!("{sizes:?}");
 }

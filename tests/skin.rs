@@ -3,7 +3,7 @@
 use hibi_core::Scalar;
 use hibi_core::skin::{
     PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, SkinRender,
-    SkinScratch, SkinScratchStore, preset, shade,
+    preset, shade,
 };
 use hibi_tests::fnv1a64;
 
@@ -20,11 +20,6 @@ fn with_skin_in<S: Scalar, R>(params: &SkinParams, inspect: impl FnOnce(&mut Ski
     inspect(&mut skin)
 }
 
-/// Owned scratch for rendering `skin`.
-fn scratch<S: Scalar>(skin: &Skin<S>) -> SkinScratchStore {
-    skin.params().memory().expect("valid parameters").allocate_scratch()
-}
-
 fn sized(name: &str, size: u32) -> SkinParams {
     SkinParams { width: size, height: size, ..preset(name).unwrap() }
 }
@@ -35,14 +30,12 @@ fn coverage(skin: &mut Skin) -> (Vec<Vec<u8>>, Vec<Vec<u32>>) {
     let pixels = (p.width * p.height) as usize;
     let mut counts = vec![vec![0u8; pixels]; p.levels as usize];
     let mut owner = vec![vec![u32::MAX; pixels]; p.levels as usize];
-    let mut scratch = scratch(skin);
     for (k, c) in skin.cells().to_vec().iter().enumerate() {
-        skin.for_each_pixel(c, &mut scratch.scratch(), |x, y| {
+        skin.for_each_pixel(c, |x, y| {
             let i = (y * p.width + x) as usize;
             counts[c.level as usize][i] += 1;
             owner[c.level as usize][i] = k as u32;
-        })
-        .unwrap();
+        });
     }
     (counts, owner)
 }
@@ -212,15 +205,13 @@ fn maps<S: Scalar>(skin: &Skin<S>) -> (Vec<f32>, Vec<[f32; 3]>) {
     skin.render(
         &SkinRender::default(),
         SkinLayers { height: Some(&mut h), normal: Some(&mut nm), ..SkinLayers::default() },
-        &mut scratch(skin).scratch(),
     )
     .unwrap();
     (h, nm)
 }
 
-/// A render only reads the skin: four threads render one skin at once, each with its own
-/// scratch, and get the maps one render alone gets; a short scratch is refused, naming the
-/// elements it needs, and nothing is written.
+/// A render only reads the skin: four threads render one skin at once and get the maps one
+/// render alone gets.
 #[test]
 fn renders_share_the_skin_across_threads() {
     with_skin(&sized("fig19a", 96), |skin| {
@@ -228,14 +219,6 @@ fn renders_share_the_skin_across_threads() {
         let skin = &*skin;
         let together = hibi_tests::on_four_threads(|| maps(skin));
         assert!(together.iter().all(|m| *m == alone));
-        let m = skin.params().memory().unwrap();
-        let (mut wedges, mut crossings) = (vec![Default::default(); m.wedges - 1], vec![0; m.crossings]);
-        let mut h = vec![5.0f32; 96 * 96];
-        let layers = SkinLayers { height: Some(&mut h), ..SkinLayers::default() };
-        let mut short = SkinScratch { wedges: &mut wedges, crossings: &mut crossings };
-        let refused = skin.render(&SkinRender::default(), layers, &mut short);
-        assert_eq!(refused, Err(SkinError::BufferTooSmall { needed: m.wedges }));
-        assert!(h.iter().all(|&v| v == 5.0));
     });
 }
 
@@ -252,18 +235,8 @@ fn each_map_is_the_same_alone_or_with_the_others() {
             let (together_h, together_n) = maps(skin);
             let n = together_h.len();
             let (mut h, mut nm) = (vec![-1.0f32; n], vec![[-1.0f32; 3]; n]);
-            skin.render(
-                &SkinRender::default(),
-                SkinLayers { height: Some(&mut h), ..SkinLayers::default() },
-                &mut scratch(skin).scratch(),
-            )
-            .unwrap();
-            skin.render(
-                &SkinRender::default(),
-                SkinLayers { normal: Some(&mut nm), ..SkinLayers::default() },
-                &mut scratch(skin).scratch(),
-            )
-            .unwrap();
+            skin.render(&SkinRender::default(), SkinLayers { height: Some(&mut h), ..SkinLayers::default() }).unwrap();
+            skin.render(&SkinRender::default(), SkinLayers { normal: Some(&mut nm), ..SkinLayers::default() }).unwrap();
             let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert!(bits(&h) == bits(&together_h), "{name}: heights alone");
             assert!(bits(nm.as_flattened()) == bits(together_n.as_flattened()), "{name}: normals alone");
@@ -273,11 +246,10 @@ fn each_map_is_the_same_alone_or_with_the_others() {
                 skin.render(
                     &SkinRender { cell_level: level },
                     SkinLayers { cell: Some(&mut alone), ..SkinLayers::default() },
-                    &mut scratch(skin).scratch(),
                 )
                 .unwrap();
                 let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut with) };
-                skin.render(&SkinRender { cell_level: level }, layers, &mut scratch(skin).scratch()).unwrap();
+                skin.render(&SkinRender { cell_level: level }, layers).unwrap();
                 assert!(alone == owner[level as usize], "{name}: cell map of level {level}");
                 assert!(with == alone, "{name}: cell map of level {level} with the other maps");
                 assert!(bits(&h) == bits(&together_h), "{name}: heights with cell map {level}");
@@ -317,7 +289,6 @@ fn heights_and_normals_follow_the_profile() {
     let p = sized("fig13b", 200);
     with_skin(&p, |skin| {
         let (h, n) = maps(skin);
-        let mut scratch = scratch(skin);
         // Fig. 13 b: a plateau at 3 falling to 0 at the furrows.
         let max = h.iter().cloned().fold(f32::MIN, f32::max);
         let min = h.iter().cloned().fold(f32::MAX, f32::min);
@@ -335,7 +306,7 @@ fn heights_and_normals_follow_the_profile() {
         let mut total = 0usize;
         for c in &skin.cells().to_vec() {
             let centre = [c.centre[0] as f64 / unit, c.centre[1] as f64 / unit];
-            skin.for_each_pixel(c, &mut scratch.scratch(), |x, y| {
+            skin.for_each_pixel(c, |x, y| {
                 let i = (y * p.width + x) as usize;
                 if n[i][2] < 0.95 {
                     // y flips: the normal map is y-up, the raster y-down.
@@ -343,8 +314,7 @@ fn heights_and_normals_follow_the_profile() {
                     total += 1;
                     outward += usize::from(d[0] * f64::from(n[i][0]) + d[1] * f64::from(n[i][1]) > 0.0);
                 }
-            })
-            .unwrap();
+            });
         }
         assert!(outward as f64 > 0.99 * total as f64, "{outward} of {total}");
     });
@@ -397,6 +367,7 @@ fn bad_input_is_refused_and_nothing_is_written() {
         (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
     let mut levels = vec![Default::default(); m.levels];
     let mut boxes = vec![[0; 4]; m.boxes];
+    let mut wedges = vec![Default::default(); m.wedges];
     let buffers = SkinBuffers {
         cells: &mut cells,
         vertices: &mut vertices,
@@ -405,6 +376,7 @@ fn bad_input_is_refused_and_nothing_is_written() {
         words: &mut words,
         levels: &mut levels,
         boxes: &mut boxes,
+        wedges: &mut wedges,
     };
     assert_eq!(Skin::<f32>::new(&p, buffers).err(), Some(SkinError::BufferTooSmall { needed: m.vertices }));
     assert!(vertices.iter().all(|v| *v == [7, 7]));
@@ -414,17 +386,11 @@ fn bad_input_is_refused_and_nothing_is_written() {
         let mut short = vec![5.0f32; 64 * 64 - 1];
         let mut normal = vec![[5.0f32; 3]; 64 * 64];
         let layers = SkinLayers { height: Some(&mut short), normal: Some(&mut normal), ..SkinLayers::default() };
-        assert_eq!(
-            skin.render(&SkinRender::default(), layers, &mut scratch(skin).scratch()),
-            Err(SkinError::BufferTooSmall { needed: 64 * 64 })
-        );
+        assert_eq!(skin.render(&SkinRender::default(), layers), Err(SkinError::BufferTooSmall { needed: 64 * 64 }));
         assert!(short.iter().all(|&v| v == 5.0) && normal.iter().all(|v| *v == [5.0; 3]));
         let mut ids = vec![9u32; 64 * 64];
         let layers = SkinLayers { cell: Some(&mut ids), ..SkinLayers::default() };
-        assert_eq!(
-            skin.render(&SkinRender { cell_level: 3 }, layers, &mut scratch(skin).scratch()),
-            Err(SkinError::Level)
-        );
+        assert_eq!(skin.render(&SkinRender { cell_level: 3 }, layers), Err(SkinError::Level));
         assert!(ids.iter().all(|&v| v == 9));
         let (h, n) = maps(skin);
         let mut rgb = vec![[1u8; 3]; 64 * 64];
@@ -456,8 +422,8 @@ fn every_preset_builds_and_renders() {
     }
 }
 
-/// A full-size fig19a skin builds and renders on a thread of 32 KiB: its scratch is in caller
-/// memory (tests/stack.rs measures each function). An overflow aborts the test run.
+/// A full-size fig19a skin builds and renders on a thread of 32 KiB: its build scratch is in
+/// caller memory, a render's few KiB on the stack (tests/stack.rs measures each function). An overflow aborts the test run.
 #[test]
 fn a_fig19a_skin_builds_and_renders_in_a_32_kib_stack() {
     let cells = std::thread::Builder::new()
@@ -468,7 +434,7 @@ fn a_fig19a_skin_builds_and_renders_in_a_32_kib_stack() {
                 let n = (p.width * p.height) as usize;
                 let (mut h, mut nm, mut c) = (vec![0.0f32; n], vec![[0.0f32; 3]; n], vec![0u32; n]);
                 let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut c) };
-                skin.render(&SkinRender { cell_level: 2 }, layers, &mut scratch(skin).scratch()).unwrap();
+                skin.render(&SkinRender { cell_level: 2 }, layers).unwrap();
                 assert!(c.iter().all(|&i| i != hibi_core::skin::NO_CELL));
                 skin.cells().len()
             })

@@ -142,30 +142,23 @@ fn every_public_function(peaks: &mut Calls) {
 
     let params = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     let memory = measured(peaks, "SkinParams::memory", || params.memory().expect("valid"));
-    let (mut store, mut scratch) = (memory.allocate(), memory.allocate_scratch());
-    let mut scratch = scratch.scratch();
+    let mut store = memory.allocate();
     let mut skin = measured(peaks, "Skin::new", || Skin::<f32>::new(&params, store.buffers()).expect("memory"));
     measured(peaks, "Skin::step", || skin.step(1000));
     measured(peaks, "Skin::run", || skin.run());
     let (mut height, mut normal, mut cell) = (vec![0.0; 64 * 64], vec![[0.0; 3]; 64 * 64], vec![0u32; 64 * 64]);
     let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), cell: Some(&mut cell) };
-    measured(peaks, "Skin::render", || {
-        skin.render(&SkinRender { cell_level: 2 }, layers, &mut scratch).expect("sized")
-    });
+    measured(peaks, "Skin::render", || skin.render(&SkinRender { cell_level: 2 }, layers).expect("sized"));
     let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
-    measured(peaks, "Skin::render (cells)", || {
-        skin.render(&SkinRender::default(), layers, &mut scratch).expect("sized")
-    });
+    measured(peaks, "Skin::render (cells)", || skin.render(&SkinRender::default(), layers).expect("sized"));
     let longest = *skin.cells().iter().max_by_key(|c| c.vertex_count).expect("cells");
-    measured(peaks, "Skin::for_each_pixel", || {
-        skin.for_each_pixel(&longest, &mut scratch, |x, y| _ = black_box((x, y))).expect("sized")
-    });
+    measured(peaks, "Skin::for_each_pixel", || skin.for_each_pixel(&longest, |x, y| _ = black_box((x, y))));
     let mut rgb = vec![[0u8; 3]; 64 * 64];
     measured(peaks, "skin::shade", || shade(&height, &normal, &ShadeParams::default(), &mut rgb).expect("sized"));
     let mut skin = measured(peaks, "Skin<Q16>::new", || Skin::<Q16>::new(&params, store.buffers()).expect("memory"));
     measured(peaks, "Skin<Q16>::run", || skin.run());
     let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), ..SkinLayers::default() };
-    measured(peaks, "Skin<Q16>::render", || skin.render(&SkinRender::default(), layers, &mut scratch).expect("sized"));
+    measured(peaks, "Skin<Q16>::render", || skin.render(&SkinRender::default(), layers).expect("sized"));
 }
 
 #[test]

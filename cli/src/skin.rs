@@ -4,7 +4,7 @@
 use hibi_core::Spread;
 use hibi_core::skin::{
     MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinError, SkinLayers, SkinParamError,
-    SkinParams, SkinRender, SkinScratch, shade,
+    SkinParams, SkinRender, shade,
 };
 
 use crate::Failure;
@@ -168,7 +168,7 @@ impl SkinRun {
 /// Builds the skin and renders `layer`. The parameters must have passed [`check`].
 pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<SkinRun, Failure> {
     let memory = params.memory().expect("checked parameters");
-    let (mut store, mut scratch) = (memory.allocate(), memory.allocate_scratch());
+    let mut store = memory.allocate();
     let mut skin = Skin::<f32>::new(params, store.buffers()).map_err(failure)?;
     if skin.run().capacity_reached {
         return Err(Failure::Runtime(
@@ -184,12 +184,12 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
         counts[c.level as usize] += 1;
     }
     let image = match layer {
-        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&skin, &mut scratch.scratch())?) },
+        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&skin)?) },
         Layer::Height | Layer::Normal | Layer::Shaded => {
             let mut h = vec![0.0f32; pixels];
             let mut n = vec![[0.0f32; 3]; pixels];
             let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut n), ..SkinLayers::default() };
-            skin.render(&SkinRender::default(), layers, &mut scratch.scratch()).map_err(failure)?;
+            skin.render(&SkinRender::default(), layers).map_err(failure)?;
             let pixels = match layer {
                 Layer::Height => {
                     let top = h.iter().copied().fold(0.0f32, f32::max);
@@ -212,14 +212,14 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
 
 /// The furrow net: 255 on the outline of every level-1 cell, fainter for finer levels (a
 /// pixel is on an outline when its right or lower neighbour lies in another cell).
-fn furrows(skin: &Skin, scratch: &mut SkinScratch) -> Result<Vec<u8>, Failure> {
+fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
     let p = *skin.params();
     let (w, h) = (p.width as usize, p.height as usize);
     let mut mask = vec![0u8; w * h];
     let mut cell = vec![0u32; w * h];
     for level in 0..p.levels {
         let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
-        skin.render(&SkinRender { cell_level: level }, layers, scratch).map_err(failure)?;
+        skin.render(&SkinRender { cell_level: level }, layers).map_err(failure)?;
         let value = [255, 160, 100, 64][level as usize];
         for y in 0..h {
             for x in 0..w {

@@ -5,8 +5,8 @@
 //! hit by a ball (Agui et al.), and hierarchical Voronoi cells for skin (Ishii et al.).
 //!
 //! This crate is the core: `#![no_std]`, no `alloc` (the compiler proves it never
-//! allocates; the `alloc` feature adds only `XMemory::allocate` and
-//! `SkinMemory::allocate_scratch`, owned buffers for callers with a heap), no `unsafe`. Every byte it writes is handed in by the caller, every run is
+//! allocates; the `alloc` feature adds only `XMemory::allocate`, owned buffers for callers
+//! with a heap), no `unsafe`. Every byte it writes is handed in by the caller, every run is
 //! bounded and resumable, and the same seed, parameters and scalar backend give the same
 //! bytes on every platform and in every build.
 //!

@@ -9,11 +9,7 @@
 //! hibi_skin_progress progress;
 //! hibi_status status;
 //! do { status = hibi_skin_step(skin, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
-//! size_t scratch_size;
-//! hibi_skin_scratch_size(skin, &scratch_size); /* a render only reads the skin */
-//! void *scratch = malloc(scratch_size);
-//! hibi_skin_render(skin, scratch, scratch_size, height, w * h, normal, 3 * w * h, NULL, 0, 0);
-//! free(scratch);
+//! hibi_skin_render(skin, height, w * h, normal, 3 * w * h, NULL, 0, 0);
 //! hibi_skin_shade_params light = hibi_skin_shade_params_default();
 //! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
 //! hibi_skin_destroy(skin);
@@ -21,21 +17,21 @@
 //!
 //! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
 //! another; rendering only reads them (it draws what is built so far). An object is one block:
-//! the header, then the core's cell, vertex, site, clip-vertex, word, level-record and
-//! chunk-box arrays (the render scratch is the caller's, apart).
+//! the header, then the core's cell, vertex, site, clip-vertex, word, level-record,
+//! chunk-box and wedge arrays.
 
 use core::ffi::{CStr, c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
     LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams, Skin,
-    SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, SkinScratch, preset, shade,
+    SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, preset, shade,
 };
 
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, query, update, write_out};
-use crate::object::{self, Arena, Object, Origin, lifecycle};
+use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
     HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_SHADE, HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW,
@@ -201,8 +197,6 @@ impl Outcome for hibi_skin_shade_params {
 pub struct hibi_skin {
     skin: Skin<'static>,
     origin: Origin,
-    /// The sizes of a render's scratch.
-    memory: SkinMemory,
 }
 
 convert!(hibi_skin_profile <=> Profile { segments, points });
@@ -246,11 +240,12 @@ impl Object for hibi_skin {
             words: arena.take(m.words),
             levels: arena.take(m.levels),
             boxes: arena.take(m.boxes),
+            wedges: arena.take(m.wedges),
         }
     }
 
-    fn make((params, memory): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
-        Ok(hibi_skin { skin: Skin::new(params, buffers).map_err(skin_status)?, origin, memory: *memory })
+    fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {
+        Ok(hibi_skin { skin: Skin::new(params, buffers).map_err(skin_status)?, origin })
     }
 
     fn origin(&self) -> Origin {
@@ -289,46 +284,22 @@ unsafe fn layer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<O
     unsafe { buffer(ptr, len, name) }.map(Some)
 }
 
-impl hibi_skin {
-    /// Takes a render's scratch from `arena`.
-    fn scratch(&self, arena: &mut Arena) -> SkinScratch<'static> {
-        SkinScratch { wedges: arena.take(self.memory.wedges), crossings: arena.take(self.memory.crossings) }
-    }
-}
-
-/// Writes the bytes of scratch (aligned to `hibi_skin_memory_align()`) that `hibi_skin_render`
-/// works in. The scratch is the caller's so that renders only read the skin: several threads
-/// may render one skin at once, each with its own scratch.
-///
-/// # Safety
-/// `skin` must be NULL or a live skin; `size` NULL or writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn hibi_skin_scratch_size(skin: *const hibi_skin, size: *mut usize) -> hibi_status {
-    let read = |skin: &hibi_skin| object::scratch_size(|arena| skin.scratch(arena));
-    // SAFETY: the caller's contract.
-    guard(|| unsafe { query(skin, c"skin", (size, c"size"), read) })
-}
-
 /// Draws the surface's maps, each row-major over `width × height` pixels of the params:
 /// `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
 /// (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
 /// OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
 /// cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
-/// without it). Pass NULL and length 0 for a map you do not want. Works in `scratch`
-/// (`scratch_size` bytes, at least `hibi_skin_scratch_size`); the skin is only read. If the
-/// scratch or any map is short or misaligned, or `cell_level` is not below `levels`, nothing
-/// is written.
+/// without it). Pass NULL and length 0 for a map you do not want. The skin is only read:
+/// several threads may render one skin at once. If any map is short or misaligned, or
+/// `cell_level` is not below `levels`, nothing is written.
 ///
 /// # Safety
-/// `skin` must be NULL or a live skin; `scratch` NULL or writable for `scratch_size` bytes
-/// and used by no other call meanwhile; each map NULL (only with length 0) or writable for its
+/// `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for its
 /// length, and the maps must not overlap.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn hibi_skin_render(
     skin: *const hibi_skin,
-    scratch: *mut c_void,
-    scratch_size: usize,
     height: *mut f32,
     height_len: usize,
     normal: *mut f32,
@@ -354,9 +325,7 @@ pub unsafe extern "C" fn hibi_skin_render(
                 cell: layer(cells, cells_len, c"cells")?,
             }
         };
-        // SAFETY: the caller's contract.
-        let mut scratch = unsafe { object::scratch(scratch, scratch_size, |arena| skin.scratch(arena)) }?;
-        skin.skin.render(&SkinRender { cell_level }, layers, &mut scratch).map_err(skin_status)
+        skin.skin.render(&SkinRender { cell_level }, layers).map_err(skin_status)
     })
 }
 
@@ -668,10 +637,6 @@ mod tests {
         unsafe {
             assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
             assert_eq!(hibi_skin_step(skin, u64::MAX, null_mut()), HIBI_OK);
-            let mut ss = 0;
-            assert_eq!(hibi_skin_scratch_size(skin, &mut ss), HIBI_OK);
-            let mut scratch = vec![0u64; ss.div_ceil(8)];
-            let sp = scratch.as_mut_ptr().cast::<c_void>();
             let mut height = vec![7.0f32; pixels];
             let mut normal = vec![7.0f32; 3 * pixels];
             let mut cells = vec![7u32; pixels];
@@ -686,26 +651,20 @@ mod tests {
                 (pixels, 0, pixels),
             ];
             for (hl, nl, cl) in short {
-                assert_eq!(hibi_skin_render(skin, sp, ss, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
+                assert_eq!(hibi_skin_render(skin, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
             }
-            assert_eq!(hibi_skin_render(skin, sp, ss, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
+            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
             assert_eq!(
-                hibi_skin_render(skin, sp, ss, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
+                hibi_skin_render(skin, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
                 HIBI_ERROR_NULL_POINTER
             );
             let odd = n.cast::<u8>().add(1).cast::<f32>();
-            assert_eq!(
-                hibi_skin_render(skin, sp, ss, h, pixels, odd, 3 * pixels - 3, c, pixels, 0),
-                HIBI_ERROR_MISALIGNED
-            );
-            assert_eq!(
-                hibi_skin_render(null_mut(), sp, ss, h, pixels, n, 3 * pixels, c, pixels, 0),
-                HIBI_ERROR_NULL_POINTER
-            );
+            assert_eq!(hibi_skin_render(skin, h, pixels, odd, 3 * pixels - 3, c, pixels, 0), HIBI_ERROR_MISALIGNED);
+            assert_eq!(hibi_skin_render(null_mut(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
             assert!(untouched(&height, &normal, &cells));
 
             // Only the cell map; the level is checked only when the map is wanted.
-            assert_eq!(hibi_skin_render(skin, sp, ss, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
+            assert_eq!(hibi_skin_render(skin, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
             assert!(untouched(&height, &normal, &[]));
             let mut count = 0;
             assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
@@ -714,7 +673,7 @@ mod tests {
                 assert_eq!(hibi_skin_cell_info(skin, index as usize, &mut info), HIBI_OK);
                 assert_eq!(info.level, 1);
             }
-            assert_eq!(hibi_skin_render(skin, sp, ss, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
+            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
             assert!(height.iter().all(|&v| v >= 0.0) && height.iter().any(|&v| v > 2.0));
             assert!(normal.chunks(3).all(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-4));
 

@@ -1,6 +1,6 @@
 //! Model C through the C ABI: params from the input, `hibi_skin_create` or
 //! `hibi_skin_create_in` (any memory length and alignment), then any sequence of steps (any
-//! budgets), cell queries and outlines (any lengths), renders (any scratch, any map lengths,
+//! budgets), cell queries and outlines (any lengths), renders (any map lengths,
 //! any cell level) and shading of what was rendered.
 #![no_main]
 
@@ -79,10 +79,6 @@ fn cell(u: &mut Unstructured, s: &Surface) -> Result<()> {
 }
 
 fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
-    let mut size = WRITTEN;
-    // SAFETY: a live skin, a writable size.
-    assert!(check(unsafe { hibi_skin_scratch_size(s.skin, &mut size) }));
-    let mut scratch = Buffer::pick(u, size, size + 64, 1)?;
     let pixels = s.params.width as usize * s.params.height as usize;
     let map = |u: &mut Unstructured, need: usize, size: usize| -> Result<(Buffer, bool)> {
         Ok(if u.ratio(1u8, 3)? {
@@ -95,12 +91,10 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
     let (mut normal, _) = map(u, 3 * pixels, 4)?;
     let (mut cells, _) = map(u, pixels, 4)?;
     let level = count(u, 0..=4)?;
-    // SAFETY: every buffer NULL or writable for its length; the scratch is ours.
+    // SAFETY: every buffer NULL or writable for its length.
     let status = unsafe {
         hibi_skin_render(
             s.skin,
-            scratch.ptr(),
-            scratch.len,
             height.ptr(),
             height.len,
             normal.ptr(),
@@ -114,9 +108,8 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
     // map of length 0 is asked for, and too short).
     let wanted = |b: &Buffer, need: usize| if b.is_null() && b.len == 0 { (true, true) } else { b.fits(need, 4) };
     let [a, b, d] = [wanted(&height, pixels), wanted(&normal, 3 * pixels), wanted(&cells, pixels)];
-    let sc = scratch.fits(size, 8);
     let level_ok = (cells.is_null() && cells.len == 0) || level < s.params.levels;
-    let (possible, required) = (a.0 && b.0 && d.0 && sc.0 && level_ok, a.1 && b.1 && d.1 && sc.1 && level_ok);
+    let (possible, required) = (a.0 && b.0 && d.0 && level_ok, a.1 && b.1 && d.1 && level_ok);
     if check(status) {
         assert!(possible, "render accepted what does not fit");
         if height.len > 0 {
@@ -147,8 +140,8 @@ fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
     } else {
         assert!(
             !required,
-            "render refused what fits: {status} ({} scratch of {size}; maps {} {} {}; level {level}); params {:?}",
-            scratch.len, height.len, normal.len, cells.len, s.params
+            "render refused what fits: {status} (maps {} {} {}; level {level}); params {:?}",
+            height.len, normal.len, cells.len, s.params
         );
         assert!(height.untouched() && normal.untouched() && cells.untouched(), "a failing render wrote");
     }

@@ -38,8 +38,7 @@ int main() {
         skin_params.height = 64;
         hibi::Skin skin(skin_params);
         skin.run();
-        hibi::Scratch skin_scratch = skin.scratch();
-        std::vector<float> height = skin.render_height(skin_scratch);
+        std::vector<float> height = skin.render_height();
         std::printf("skin: %zu cells, %zu heights\n", skin.cell_count() > 0 ? std::size_t{1} : std::size_t{0},
                     height.size());
 

@@ -214,23 +214,21 @@ void skin() {
     std::printf("skin built: %s, cells %s\n", yes(calls > 1 && progress.cells == cells),
                 yes(cells > 0 && skin.outline(0).size() == 2 * skin.cell(0).vertex_count));
 
-    hibi::Scratch scratch = skin.scratch();
-    std::vector<float> height = skin.render_height(scratch);
-    std::vector<float> normal = skin.render_normal(scratch);
-    std::vector<std::uint32_t> map = skin.render_cells(scratch, 1);
+    std::vector<float> height = skin.render_height();
+    std::vector<float> normal = skin.render_normal();
+    std::vector<std::uint32_t> map = skin.render_cells(1);
     std::vector<std::uint8_t> rgb = hibi::Skin::shade(height, normal, hibi::Skin::default_shade());
 
-    // Issue 26 item 4: concurrent renders of one skin from four threads (const calls, each
-    // thread its own scratch) equal the lone render.
+    // Issue 26 item 4: concurrent renders of one skin from four threads (const calls that
+    // only read the skin; each thread its own maps) equal the lone render.
     std::vector<int> equal(4, 0);
     std::vector<std::thread> threads;
     for (int t = 0; t < 4; t++) {
         threads.emplace_back([&skin, &height, &normal, &map, &equal, t] {
-            hibi::Scratch mine = skin.scratch();
             std::vector<float> h(skin.pixels()), n(3 * skin.pixels());
             std::vector<std::uint32_t> m(skin.pixels());
             for (int round = 0; round < 3; round++) {
-                skin.render_into(mine, h.data(), h.size(), n.data(), n.size(), m.data(), m.size(), 1);
+                skin.render_into(h.data(), h.size(), n.data(), n.size(), m.data(), m.size(), 1);
             }
             equal[static_cast<std::size_t>(t)] = same_bytes(h, height) && same_bytes(n, normal) && same_bytes(m, map);
         });
@@ -240,24 +238,17 @@ void skin() {
                 yes(equal[0] && equal[1] && equal[2] && equal[3]));
 
     try {
-        skin.render_cells(scratch, 9);
+        skin.render_cells(9);
         std::printf("skin cell map of level 9: no throw\n");
     } catch (const hibi::Error &e) {
         std::printf("skin cell map of level 9: status %u\n", static_cast<unsigned>(e.status()));
-    }
-    hibi::Scratch small(8, hibi::Skin::memory_align());
-    try {
-        skin.render_height(small);
-        std::printf("skin short scratch: no throw\n");
-    } catch (const hibi::Error &e) {
-        std::printf("skin short scratch: status %u\n", static_cast<unsigned>(e.status()));
     }
 
     hibi::Buffer memory(hibi::Skin::memory_size(params), hibi::Skin::memory_align());
     hibi::Skin placed = hibi::Skin::create_in(params, memory.data(), memory.size());
     placed.run();
     std::vector<std::uint8_t> again =
-        hibi::Skin::shade(placed.render_height(scratch), placed.render_normal(scratch), hibi::Skin::default_shade());
+        hibi::Skin::shade(placed.render_height(), placed.render_normal(), hibi::Skin::default_shade());
     std::printf("skin caller memory, same preview: %s\n", yes(same_bytes(again, rgb)));
 }
 

@@ -24,9 +24,7 @@
 //! while !skin.step(100_000).finished {}
 //! let mut height = vec![0.0f32; 64 * 64];
 //! let render = SkinRender::default();
-//! let mut scratch = params.memory().unwrap().allocate_scratch(); // a render only reads the skin
-//! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }, &mut scratch.scratch())
-//!     .unwrap();
+//! skin.render(&render, SkinLayers { height: Some(&mut height), ..SkinLayers::default() }).unwrap();
 //! assert!(height.iter().any(|&h| h > 2.0));
 //! # }
 //! ```
@@ -112,10 +110,9 @@ impl Default for SkinLevel {
 }
 
 /// Where each level's scratch lies in the caller's arrays, sized by the parameters: the
-/// longest outline a level can have, and from it the clip vertices, chunk boxes and wedges.
+/// longest outline a level can have, and from it the clip vertices and chunk boxes.
 #[derive(Clone, Copy, Debug)]
 struct Layout {
-    levels: usize,
     /// Per level, the most vertices one of its outlines can have: at level 0, a cell is
     /// clipped to a rectangle (4 corners, convex) by the bisectors of at most
     /// `WINDOW_SITES − 1` neighbours, each adding at most one edge (a convex polygon meets a
@@ -143,12 +140,7 @@ impl Layout {
         let first = ((WINDOW_SITES - 1) * level0_pieces(p) + 4).min(MAX_OUTLINE);
         let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
         let clip = if p.levels > 1 { MAX_OUTLINE } else { (WINDOW_SITES - 1 + 4).min(MAX_OUTLINE) };
-        Layout { levels: p.levels as usize, outline, clip }
-    }
-
-    /// The longest outline of any level (a render's crossing scratch).
-    fn longest(&self) -> usize {
-        self.outline[..self.levels].iter().copied().max().unwrap_or(0)
+        Layout { outline, clip }
     }
 
     /// The vertices of a level's parent outline: the 4 corners of a rectangle at level 0.
@@ -164,11 +156,6 @@ impl Layout {
     /// Chunk boxes of level `level`'s parent outline (levels from 1).
     fn boxes(&self, level: usize) -> usize {
         self.parent(level) / cell::CHUNK + 1
-    }
-
-    /// Where level `level`'s wedges start (one per outline edge, one in front).
-    fn wedges_at(&self, level: usize) -> usize {
-        (0..level).map(|l| self.outline[l] + 1).sum()
     }
 
     /// Where level `level`'s centre points start in `sites`: level 0 holds one neighbour
@@ -195,10 +182,9 @@ pub struct SkinMemory {
     pub levels: usize,
     /// Chunk boxes (`[i64; 4]`) of the parent outlines being divided.
     pub boxes: usize,
-    /// [`Wedge`] records of [`SkinScratch`] (not in [`SkinBuffers`]).
+    /// [`Wedge`] records: per cell, one per outline vertex and one more (what a render reads
+    /// of each cell, made as it is built).
     pub wedges: usize,
-    /// `u64` words of [`SkinScratch`]: one outline's crossings of a pixel row.
-    pub crossings: usize,
 }
 
 /// Caller memory for a skin.
@@ -217,16 +203,8 @@ pub struct SkinBuffers<'a> {
     pub levels: &'a mut [SkinLevel],
     /// At least [`SkinMemory::boxes`].
     pub boxes: &'a mut [[i64; 4]],
-}
-
-/// Scratch for one render or pixel walk ([`Skin::render`], [`Skin::for_each_pixel`]): the
-/// caller's, not the skin's, so that those calls only read the skin and may run at once on
-/// one skin, each with its own scratch.
-pub struct SkinScratch<'a> {
-    /// At least [`SkinMemory::wedges`]: the wedges of one outline per level.
+    /// At least [`SkinMemory::wedges`].
     pub wedges: &'a mut [Wedge],
-    /// At least [`SkinMemory::crossings`]: one outline's crossings of a pixel row.
-    pub crossings: &'a mut [u64],
 }
 
 /// The buffers of a [`SkinStore`] or [`SkinStorage`], field by field.
@@ -240,6 +218,7 @@ macro_rules! buffers_of {
             words: &mut $store.words,
             levels: &mut $store.levels,
             boxes: &mut $store.boxes,
+            wedges: &mut $store.wedges,
         }
     };
 }
@@ -254,13 +233,7 @@ pub struct SkinStore {
     words: alloc::vec::Vec<u32>,
     levels: alloc::vec::Vec<SkinLevel>,
     boxes: alloc::vec::Vec<[i64; 4]>,
-}
-
-/// Owned scratch (the `alloc` feature), from [`SkinMemory::allocate_scratch`].
-#[cfg(feature = "alloc")]
-pub struct SkinScratchStore {
     wedges: alloc::vec::Vec<Wedge>,
-    crossings: alloc::vec::Vec<u64>,
 }
 
 #[cfg(feature = "alloc")]
@@ -275,23 +248,8 @@ impl SkinMemory {
             words: alloc::vec![0; self.words],
             levels: alloc::vec![SkinLevel::default(); self.levels],
             boxes: alloc::vec![[0; 4]; self.boxes],
-        }
-    }
-
-    /// Owned scratch of this size.
-    pub fn allocate_scratch(&self) -> SkinScratchStore {
-        SkinScratchStore {
             wedges: alloc::vec![Wedge::default(); self.wedges],
-            crossings: alloc::vec![0; self.crossings],
         }
-    }
-}
-
-#[cfg(feature = "alloc")]
-impl SkinScratchStore {
-    /// The scratch, for [`Skin::render`] and [`Skin::for_each_pixel`].
-    pub fn scratch(&mut self) -> SkinScratch<'_> {
-        SkinScratch { wedges: &mut self.wedges, crossings: &mut self.crossings }
     }
 }
 
@@ -313,6 +271,7 @@ pub struct SkinStorage<
     const WORDS: usize,
     const LEVELS: usize,
     const BOXES: usize,
+    const WEDGES: usize,
 > {
     /// Cell records.
     pub cells: [SkinCell; CELLS],
@@ -328,10 +287,20 @@ pub struct SkinStorage<
     pub levels: [SkinLevel; LEVELS],
     /// Chunk boxes.
     pub boxes: [[i64; 4]; BOXES],
+    /// Wedges.
+    pub wedges: [Wedge; WEDGES],
 }
 
-impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize, const L: usize, const B: usize>
-    SkinStorage<C, V, S, K, W, L, B>
+impl<
+    const C: usize,
+    const V: usize,
+    const S: usize,
+    const K: usize,
+    const W: usize,
+    const L: usize,
+    const B: usize,
+    const G: usize,
+> SkinStorage<C, V, S, K, W, L, B, G>
 {
     /// Empty storage.
     pub fn new() -> Self {
@@ -343,6 +312,7 @@ impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: us
             words: [0; W],
             levels: core::array::from_fn(|_| SkinLevel::default()),
             boxes: [[0; 4]; B],
+            wedges: [Wedge::default(); G],
         }
     }
 
@@ -352,8 +322,16 @@ impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: us
     }
 }
 
-impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize, const L: usize, const B: usize>
-    Default for SkinStorage<C, V, S, K, W, L, B>
+impl<
+    const C: usize,
+    const V: usize,
+    const S: usize,
+    const K: usize,
+    const W: usize,
+    const L: usize,
+    const B: usize,
+    const G: usize,
+> Default for SkinStorage<C, V, S, K, W, L, B, G>
 {
     fn default() -> Self {
         Self::new()
@@ -521,8 +499,8 @@ impl SkinParams {
             words: if levels > 1 { MAX_CHILDREN } else { 0 },
             levels,
             boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
-            wedges: layout.wedges_at(levels),
-            crossings: layout.longest(),
+            // (Both counts are below i32::MAX.)
+            wedges: vertices + cells,
         })
     }
 }
@@ -594,10 +572,18 @@ struct Build<'b> {
     /// Per level from 1, the chunk boxes of the parent outline being divided
     /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
     boxes: &'b mut [[i64; 4]],
+    /// Per cell, from its first vertex's index plus its own, its fan: one wedge per outline
+    /// vertex and one in front ([`surface::fan`]).
+    wedges: &'b mut [Wedge],
     builder: Builder<'b>,
 }
 
 impl Build<'_> {
+    /// The fans of the cells built so far.
+    fn wedges(&self) -> &[Wedge] {
+        &self.wedges[..self.vertex_count + self.cell_count]
+    }
+
     /// Builds `site`'s outline in level `level` among `neighbours` (sites[range]) inside the
     /// outline `parent` (vertices[parent range] or the given one), stores the cell and its
     /// descendants; `boxes` holds the chunk boxes of the levels below.
@@ -654,6 +640,9 @@ impl Build<'_> {
         self.cell_count += 1;
         let first = self.vertex_count;
         self.vertex_count += n;
+        let fan = &mut self.wedges[first + index..][..n + 1];
+        let bits = cell::fixed_point_bits(self.params.levels);
+        surface::fan(&self.vertices[first..first + n], self.cells[index].centre, bits, fan);
         if level + 1 < self.params.levels as usize {
             self.children(level + 1, index as u32, (first, n), boxes)?;
         }
@@ -746,6 +735,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             (buffers.words.len(), m.words),
             (buffers.levels.len(), m.levels),
             (buffers.boxes.len(), m.boxes),
+            (buffers.wedges.len(), m.wedges),
         ];
         if let Some(&(_, needed)) = short.iter().find(|(have, need)| have < need) {
             return Err(SkinError::BufferTooSmall { needed });
@@ -787,6 +777,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             builder: Builder { clip, spare, order: &mut buffers.words[..m.words] },
             levels,
             boxes: buffers.boxes,
+            wedges: buffers.wedges,
         };
         let range = params.level0_indices(&lattices[0]);
         Ok(Skin {
@@ -916,29 +907,8 @@ impl<'a, S: Scalar> Skin<'a, S> {
 
     /// Calls `visit(column, row)` for every pixel whose centre lies in `cell` (wrapped onto
     /// the surface when periodic). Across the cells of one level every pixel is visited
-    /// exactly once. Works in `scratch`'s crossings; the skin is only read. A scratch shorter
-    /// than [`SkinMemory::crossings`] gives [`SkinError::BufferTooSmall`] and visits nothing.
-    pub fn for_each_pixel(
-        &self,
-        cell: &SkinCell,
-        scratch: &mut SkinScratch,
-        mut visit: impl FnMut(u32, u32),
-    ) -> Result<(), SkinError> {
-        self.check_scratch(scratch)?;
-        self.for_each_pixel_unwrapped(cell, scratch.crossings, |_, _, x, y| visit(x, y));
-        Ok(())
-    }
-
-    /// Whether `scratch` holds what [`SkinMemory`] asks for this skin's parameters.
-    fn check_scratch(&self, scratch: &SkinScratch) -> Result<(), SkinError> {
-        let layout = self.build.layout;
-        let needed = [
-            (scratch.wedges.len(), layout.wedges_at(self.params.levels as usize)),
-            (scratch.crossings.len(), layout.longest()),
-        ];
-        match needed.iter().find(|(have, need)| have < need) {
-            Some(&(_, needed)) => Err(SkinError::BufferTooSmall { needed }),
-            None => Ok(()),
-        }
+    /// exactly once. The skin is only read.
+    pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
+        self.for_each_pixel_unwrapped(cell, |_, _, x, y| visit(x, y));
     }
 }

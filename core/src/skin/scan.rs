@@ -59,23 +59,35 @@ pub(super) fn contains_among(outline: &[[i64; 2]], edges: u64, p: [i64; 2]) -> b
 /// Rows a cell may span for [`for_each_span`]'s direct path.
 const DIRECT_ROWS: usize = 64;
 
+/// Crossings [`for_each_span`] holds at once, on the stack (2 KiB).
+const HELD: usize = 256;
+
+/// Bits of a crossing's sort key below its column: the edge's index, which makes every key of
+/// a band unique (an outline has at most [`super::MAX_OUTLINE`] edges).
+const EDGE_BITS: u32 = 11;
+
+/// Bits of a crossing's sort key for its column, counted from the outline's left.
+const COLUMN_BITS: u32 = 40;
+
+const _: () = assert!(super::MAX_OUTLINE <= 1 << EDGE_BITS);
+// A band's row (below HELD) fits above the column and the edge.
+const _: () = assert!((HELD as u64) < 1 << (64 - COLUMN_BITS - EDGE_BITS));
+
 /// Calls `visit(row, c1, c2)` for every run of pixels `c1..c2` (c1 < c2) of one row whose
 /// centres `outline` (fixed point of `shift` fractional bits) contains, in row order
-/// (columns and rows may lie outside the raster; the caller wraps or clips them). `crossings`
-/// is scratch for edge crossings (at least the outline's length).
+/// (columns and rows may lie outside the raster; the caller wraps or clips them). Its working
+/// memory is a fixed [`HELD`] crossings on the stack, whatever the outline's length.
 ///
 /// A centre is inside when an odd number of crossings lie strictly to its right: in each row,
 /// the columns in [c1, c2), [c3, c4), ... of the sorted crossings. Most cells are crossed
 /// twice in every row: their crossings are kept per row directly. Otherwise the outline is
-/// walked edge by edge over bands of rows whose crossings fit in `crossings`, and sorted.
-pub(super) fn for_each_span(
-    outline: &[[i64; 2]],
-    shift: u32,
-    crossings: &mut [u64],
-    mut visit: impl FnMut(i64, i64, i64),
-) {
+/// walked edge by edge over bands of rows whose crossings fit in [`HELD`], and sorted; a
+/// row with more crossings than that (an outline of over [`HELD`] edges) is taken in
+/// passes, each collecting the next crossings in order (by row, column and edge, which is
+/// unique) and drawing the runs of an even number of them.
+pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, mut visit: impl FnMut(i64, i64, i64)) {
     let n = outline.len();
-    if n < 3 || crossings.len() < n {
+    if n < 3 {
         return;
     }
     let half = 1i64 << (shift - 1);
@@ -90,11 +102,12 @@ pub(super) fn for_each_span(
     let first = (y0 - half) >> shift;
     let last = ((y1 - half) >> shift) + 1;
     let rows = (last - first + 1) as usize;
-    if rows <= DIRECT_ROWS && 2 * rows <= crossings.len() {
-        // Each row's first two crossings, in `crossings`, and how many it has.
+    let mut held = [0u64; HELD];
+    if rows <= DIRECT_ROWS {
+        // Each row's first two crossings, in `held`, and how many it has.
         let mut count = [0u8; DIRECT_ROWS];
-        let pair = &mut crossings[..2 * rows];
-        each_crossing(outline, shift, first, last, |row, column| {
+        let pair = &mut held[..2 * rows];
+        each_crossing(outline, shift, first, last, |_, row, column| {
             let r = (row - first) as usize;
             let k = count[r];
             if k < 2 {
@@ -115,39 +128,70 @@ pub(super) fn for_each_span(
     }
     // Columns counted from `base` in the sort keys.
     let base = (x0 >> shift) - 2;
-    let band = (crossings.len() / n).max(1) as i64;
+    let column_mask = (1u64 << COLUMN_BITS) - 1;
+    let band = (HELD / n).max(1) as i64;
     let mut top = first;
     while top <= last {
         let bottom = (top + band - 1).min(last);
-        let mut m = 0;
-        each_crossing(outline, shift, top, bottom, |row, column| {
-            crossings[m] = (((row - top) as u64) << 40) | (column - base) as u64;
-            m += 1;
-        });
-        let found = &mut crossings[..m];
-        found.sort_unstable();
-        for pair in found.chunks_exact(2) {
-            let row = top + (pair[0] >> 40) as i64;
-            let (c1, c2) = ((pair[0] & ((1 << 40) - 1)) as i64 + base, (pair[1] & ((1 << 40) - 1)) as i64 + base);
-            if c1 < c2 {
-                visit(row, c1, c2);
+        // The keys from `floor` on are still to draw.
+        let mut floor = 0u64;
+        loop {
+            // The smallest keys from `floor` on: all those up to `limit`, which drops when
+            // `held` fills and its larger half is let go.
+            let (mut m, mut limit) = (0, u64::MAX);
+            each_crossing(outline, shift, top, bottom, |edge, row, column| {
+                let key = ((row - top) as u64) << (COLUMN_BITS + EDGE_BITS)
+                    | ((column - base) as u64 & column_mask) << EDGE_BITS
+                    | edge as u64;
+                if key < floor || key > limit {
+                    return;
+                }
+                if m == HELD {
+                    held.sort_unstable();
+                    m = HELD / 2;
+                    limit = held[m - 1];
+                    if key > limit {
+                        return;
+                    }
+                }
+                held[m] = key;
+                m += 1;
+            });
+            let found = &mut held[..m];
+            found.sort_unstable();
+            // Every key left is here unless some were let go; then an even number are drawn
+            // now and the rest found again.
+            let whole = limit == u64::MAX;
+            let drawn = if whole { m } else { m & !1 };
+            for pair in found[..drawn].chunks_exact(2) {
+                let row = top + (pair[0] >> (COLUMN_BITS + EDGE_BITS)) as i64;
+                let column = |key: u64| ((key >> EDGE_BITS) & column_mask) as i64 + base;
+                let (c1, c2) = (column(pair[0]), column(pair[1]));
+                if c1 < c2 {
+                    visit(row, c1, c2);
+                }
             }
+            if whole {
+                break;
+            }
+            floor = found[drawn - 1] + 1;
         }
         top = bottom + 1;
     }
 }
 
-/// Calls `put(row, column)` for every crossing of an edge of `outline` with the centre line of
-/// a row in `top..=bottom`: `column` is the first pixel column whose centre is not left of the
-/// crossing (the half-open [`crosses`] test, decided exactly).
+/// Calls `put(edge, row, column)` for every crossing of edge `edge` of `outline` (the one
+/// ending at vertex `edge`) with the centre line of a row in `top..=bottom`: `column` is
+/// the first pixel column whose centre is not left of the crossing (the half-open [`crosses`]
+/// test, decided exactly).
 #[inline]
-fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut put: impl FnMut(i64, i64)) {
+fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut put: impl FnMut(usize, i64, i64)) {
     let unit = 1i64 << shift;
     let half = unit / 2;
     // 2^−shift: scaling by it is exact, like dividing by `unit`.
     let to_pixels = 1.0 / unit as f64;
     let mut a = outline[outline.len() - 1];
-    for &b in outline {
+    for (edge, &b) in outline.iter().enumerate() {
         // The edge a→b (in any order: the caller sorts the crossings by row).
         let a = core::mem::replace(&mut a, b);
         let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
@@ -202,7 +246,7 @@ fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut pu
                 }
                 column
             };
-            put(row, column);
+            put(edge, row, column);
         }
     }
 }
@@ -223,8 +267,8 @@ fn floor(x: f64) -> i64 {
 /// Calls `visit(column, row)` for every pixel whose centre `outline` (fixed point of `shift`
 /// fractional bits) contains, in row order; see [`for_each_span`].
 #[cfg(test)]
-fn for_each_pixel(outline: &[[i64; 2]], shift: u32, crossings: &mut [u64], mut visit: impl FnMut(i64, i64)) {
-    for_each_span(outline, shift, crossings, |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
+fn for_each_pixel(outline: &[[i64; 2]], shift: u32, mut visit: impl FnMut(i64, i64)) {
+    for_each_span(outline, shift, |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
 }
 
 #[cfg(test)]
@@ -236,9 +280,9 @@ mod tests {
         let u = 256;
         // A square split along a slanted diagonal, with vertices off the pixel grid.
         let (a, b, c, d) = ([3 * u / 2 + 7, 5], [20 * u + 3, 11], [20 * u + 9, 17 * u + 1], [13, 17 * u - 5]);
-        let (mut count, mut scratch) = ([[0u8; 24]; 24], [0u64; 8]);
+        let mut count = [[0u8; 24]; 24];
         for tri in [[a, b, c], [a, c, d]] {
-            for_each_pixel(&tri, 8, &mut scratch, |x, y| count[y as usize][x as usize] += 1);
+            for_each_pixel(&tri, 8, |x, y| count[y as usize][x as usize] += 1);
         }
         let mut inside = 0;
         for (y, row) in count.iter().enumerate() {
@@ -293,7 +337,7 @@ mod tests {
                 let rows = (last - first + 1).max(0) as usize;
                 let mut found = 0;
                 // Both directions of the edge (an outline of two vertices).
-                each_crossing(&[a, b], shift, i64::MIN / 4, i64::MAX / 4, |row, column| {
+                each_crossing(&[a, b], shift, i64::MIN / 4, i64::MAX / 4, |_, row, column| {
                     let yc = pixel_centre(row, shift);
                     assert!((low..high).contains(&yc), "{a:?} {b:?}: row {row}");
                     let left = crosses(a, b, [pixel_centre(column - 1, shift), yc]);
@@ -332,17 +376,55 @@ mod tests {
                     }
                 }
                 let outline = &outline[..n];
-                for scratch in [&mut [0u64; 512][..], &mut [0u64; 16][..n.max(3)]] {
-                    let mut grid = [[0u8; 44]; 44];
-                    for_each_pixel(outline, shift, scratch, |x, y| grid[y as usize][x as usize] += 1);
-                    for (y, row) in grid.iter().enumerate() {
-                        for (x, &k) in row.iter().enumerate() {
-                            let p = [pixel_centre(x as i64, shift), pixel_centre(y as i64, shift)];
-                            assert_eq!(k, u8::from(contains(outline, p)), "case {case}: ({x}, {y})");
-                        }
+                let mut grid = [[0u8; 44]; 44];
+                for_each_pixel(outline, shift, |x, y| grid[y as usize][x as usize] += 1);
+                for (y, row) in grid.iter().enumerate() {
+                    for (x, &k) in row.iter().enumerate() {
+                        let p = [pixel_centre(x as i64, shift), pixel_centre(y as i64, shift)];
+                        assert_eq!(k, u8::from(contains(outline, p)), "case {case}: ({x}, {y})");
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn rows_crossed_more_often_than_the_stack_holds_are_drawn_in_passes() {
+        // Combs: a top edge of `teeth` spikes over a bar, each row through the spikes crossed
+        // twice per spike (more than HELD for the larger ones), tall enough (over DIRECT_ROWS
+        // rows) or short, with corners on and off pixel centres.
+        let u = 256i64;
+        for (teeth, height, offset) in
+            [(40usize, 80i64, 0i64), (150, 40, 7), (300, 40, 128), (700, 20, 3), (690, 20, 5)]
+        {
+            let mut outline = [[0i64; 2]; 2 * 700 + 2];
+            let width = 3 * teeth as i64;
+            outline[0] = [width * u + offset, height * u];
+            outline[1] = [offset, height * u];
+            for t in 0..teeth {
+                let x = 3 * t as i64 * u + offset;
+                outline[2 + 2 * t] = [x + u, 2 * u + offset];
+                outline[3 + 2 * t] = [x + 2 * u + 100, (height - 3) * u];
+            }
+            let n = 2 * teeth + 2;
+            // Starting mid-comb too, so that smaller crossings come after the stack fills.
+            outline[..n].rotate_left(offset as usize % 7 * n / 13);
+            let outline = &outline[..n];
+            assert!(outline.len() > HELD || teeth < 100);
+            let (columns, rows) = (width as usize + 2, height as usize + 2);
+            let mut grid = [0u8; 2102 * 42];
+            assert!(columns * rows <= grid.len());
+            for_each_pixel(outline, 8, |x, y| grid[y as usize * columns + x as usize] += 1);
+            let mut inside = 0;
+            for y in 0..rows {
+                for x in 0..columns {
+                    let p = [pixel_centre(x as i64, 8), pixel_centre(y as i64, 8)];
+                    let k = grid[y * columns + x];
+                    assert_eq!(k, u8::from(contains(outline, p)), "{teeth} teeth: ({x}, {y})");
+                    inside += usize::from(k);
+                }
+            }
+            assert!(inside > teeth * height as usize / 2, "{teeth} teeth: {inside} pixels");
         }
     }
 }

@@ -25,7 +25,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use super::profile::{ProfileTable, blend};
-use super::{MAX_LEVELS, Skin, SkinCell, SkinError, SkinScratch};
+use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
 
@@ -50,9 +50,9 @@ pub struct SkinRender {
     pub cell_level: u32,
 }
 
-/// Per outline edge of the cell being drawn: g (so that u = (p − p0)·g), 1 / apothem, and
-/// the pseudo-angle of the edge's first vertex seen from the centre.
-/// (Opaque; caller memory for [`super::SkinScratch`].)
+/// Per outline edge of a cell: g (so that u = (p − p0)·g), 1 / apothem, and the pseudo-angle
+/// of the edge's first vertex seen from the centre; made once, as the cell is built.
+/// (Opaque; caller memory for [`super::SkinBuffers`].)
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Wedge {
     g: [f32; 2],
@@ -95,10 +95,12 @@ const EDGES: usize = 8;
 /// arrays are on the stack, and each pixel's sums are its own, whatever the queue's length).
 const QUEUE: usize = BATCH;
 
-/// Where a level's fan is kept while its cell's descendants are drawn: its length (with the
-/// front slot), whether its angles ascend, its centre (pixels) and its cell.
+/// A level's fan while its cell's descendants are drawn: where it starts in the skin's
+/// wedges and its length (with the front slot), whether its angles ascend, its centre
+/// (pixels) and its cell.
 #[derive(Clone, Copy, Default)]
 struct FanAt {
+    start: usize,
     len: usize,
     sorted: bool,
     centre: [f32; 2],
@@ -107,9 +109,8 @@ struct FanAt {
 
 /// The fans of the cell being drawn and of its ancestors, one per level.
 struct Fans<'w> {
-    /// Per level, one per outline edge and one at the front (see [`Fan`]), from `first`.
+    /// The skin's wedges: per cell, one per outline edge and one at the front (see [`Fan`]).
     wedges: &'w [Wedge],
-    first: [usize; MAX_LEVELS],
     at: &'w [FanAt; MAX_LEVELS],
     /// The level of the cells being drawn (the finest).
     finest: usize,
@@ -118,7 +119,7 @@ struct Fans<'w> {
 impl Fans<'_> {
     fn fan(&self, level: usize) -> Fan<'_> {
         let at = &self.at[level];
-        Fan { slots: &self.wedges[self.first[level]..][..at.len], sorted: at.sorted }
+        Fan { slots: &self.wedges[at.start..][..at.len], sorted: at.sorted }
     }
 }
 
@@ -440,12 +441,10 @@ impl<S: Scalar> Ridge<'_, S> {
 }
 
 impl<S: Scalar> Skin<'_, S> {
-    /// Writes the requested maps. Every buffer is checked first: if one is too short (the
-    /// scratch included), or the cell level is not below `levels`, nothing is written. The
-    /// wedges of one outline per level and one outline's crossings are in the caller's
-    /// `scratch`; the skin is only read.
-    pub fn render(&self, render: &SkinRender, layers: SkinLayers, scratch: &mut SkinScratch) -> Result<(), SkinError> {
-        self.check_scratch(scratch)?;
+    /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
+    /// cell level is not below `levels`, nothing is written. The skin is only read (renders
+    /// of one skin may run at once), and the working memory is a few KiB of stack.
+    pub fn render(&self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { height, normal, cell } = layers;
         let cell_level = render.cell_level;
@@ -463,46 +462,39 @@ impl<S: Scalar> Skin<'_, S> {
         });
         // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
         let flat = unit_normal([0.0; 2]);
-        let scratch = (&mut *scratch.wedges, &mut *scratch.crossings);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
-            (None, None) => self.draw(&mut NoMaps, cell, scratch),
+            (None, None) => self.draw(&mut NoMaps, cell),
             (Some(h), None) => {
                 h.fill(0.0);
-                self.draw(&mut Heights(h), cell, scratch);
+                self.draw(&mut Heights(h), cell);
             }
             (None, Some(n)) => {
                 n.fill(flat);
-                self.draw(&mut Normals(n), cell, scratch);
+                self.draw(&mut Normals(n), cell);
             }
             (Some(h), Some(n)) => {
                 h.fill(0.0);
                 n.fill(flat);
-                self.draw(&mut Both(h, n), cell, scratch);
+                self.draw(&mut Both(h, n), cell);
             }
         }
         Ok(())
     }
 
     /// Sets every pixel's height and normal in `sink`, summed over the levels, and writes the
-    /// cells of one level into the cell map. `wedges` holds one more than a level's longest
-    /// outline per level, `crossings` the longest outline's length.
+    /// cells of one level into the cell map.
     ///
     /// The cells of the finest level are drawn: the cells of every coarser level are the
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
     /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
     /// while its descendants are drawn.
-    fn draw<K: Sink>(
-        &self,
-        sink: &mut K,
-        mut cell: Option<(&mut [u32], u32)>,
-        (wedges, crossings): (&mut [Wedge], &mut [u64]),
-    ) {
+    fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
         let width = self.params.width as usize;
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
             let Some((map, level)) = cell else { return };
             for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
-                self.for_each_run(c, crossings, |_, x0, x1, wx, wy| {
+                self.for_each_run(c, |_, x0, x1, wx, wy| {
                     let i0 = wy as usize * width + wx as usize;
                     map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
                 });
@@ -514,8 +506,7 @@ impl<S: Scalar> Skin<'_, S> {
         let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
         let levels = self.params.levels as usize;
         let finest = levels - 1;
-        let layout = self.build.layout;
-        let first = core::array::from_fn(|l| layout.wedges_at(l.min(levels)));
+        let wedges = self.build.wedges();
         let ridges: [Ridge<S>; MAX_LEVELS] = core::array::from_fn(|level| {
             let table = &self.build.levels[level.min(levels - 1)].table;
             let roundness = S::from_f32(self.params.level[level].roundness);
@@ -526,17 +517,18 @@ impl<S: Scalar> Skin<'_, S> {
             let level = c.level as usize;
             if level < finest && batch.len > 0 {
                 // The queued pixels lie in the cell this one follows.
-                batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
+                batch.flush(&Fans { wedges, at: &fans, finest }, ridges, sink);
             }
-            let fan = self.prepare(c, &mut wedges[first[level]..][..layout.outline[level] + 1]);
+            let start = c.first_vertex as usize + index;
+            let slots = &wedges[start..][..c.vertex_count as usize + 1];
             let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
-            fans[level] = FanAt { len: fan.slots.len(), sorted: fan.sorted, centre, cell: index as u32 };
+            fans[level] = FanAt { start, len: slots.len(), sorted: ascends(slots), centre, cell: index as u32 };
             if level < finest {
                 continue;
             }
-            let view = Fans { wedges, first, at: &fans, finest };
+            let view = Fans { wedges, at: &fans, finest };
             let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
-            self.for_each_run(c, crossings, |y, x0, x1, wx, wy| {
+            self.for_each_run(c, |y, x0, x1, wx, wy| {
                 let i0 = wy as usize * width + wx as usize;
                 if let Some((map, owner)) = map.as_mut() {
                     map[i0..i0 + (x1 - x0) as usize].fill(*owner);
@@ -545,91 +537,18 @@ impl<S: Scalar> Skin<'_, S> {
             });
             batch.close_cell(&view);
         }
-        batch.flush(&Fans { wedges, first, at: &fans, finest }, ridges, sink);
+        batch.flush(&Fans { wedges, at: &fans, finest }, ridges, sink);
         batch.evaluate(ridges, sink);
-    }
-
-    /// Fills `slots` with `cell`'s fan.
-    fn prepare<'w>(&self, cell: &SkinCell, slots: &'w mut [Wedge]) -> Fan<'w> {
-        let outline = self.outline(cell);
-        let n = outline.len();
-        // 2^−bits: scaling by it is exact, so that (x as f32)·to_pixels rounds x / unit once,
-        // like an exact division (below 2^53 also like (x as f64 / unit) as f32).
-        let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f32;
-        let pixels = |x: i64| x as f32 * to_pixels;
-        let c = cell.centre;
-        let wedges = &mut slots[1..=n];
-        // The first corner of smallest angle, and the last place where the angle does not
-        // ascend (cyclically) and how many there are: the angles ascend from `start` on if that
-        // is only just before `start`, or nowhere.
-        let (mut start, mut smallest) = (0, f32::INFINITY);
-        let (mut descents, mut descent, mut previous) = (0, 0, f32::NAN);
-        // A few edges at a time, each step a plain loop over them, so that the divisions go
-        // several at once (the lanes past the outline's end hold zeros, and are not kept).
-        for (chunk, out) in wedges.chunks_mut(EDGES).enumerate() {
-            let first = chunk * EDGES;
-            // The first corner relative to the centre, and the edge, in pixels.
-            let (mut va, mut e) = ([[0.0f32; EDGES]; 2], [[0.0f32; EDGES]; 2]);
-            for l in 0..out.len() {
-                let i = first + l;
-                let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
-                // Wrapping, as release builds always did: a stretch of 1e21 puts an outline's
-                // fixed-point corners far enough apart that the differences overflow i64
-                // (found by fuzzing; a panic with overflow checks on).
-                (va[0][l], va[1][l]) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
-                (e[0][l], e[1][l]) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
-            }
-            // (libm's square root is a scalar instruction, in a loop of its own.)
-            let mut length = [0.0f32; EDGES];
-            for l in 0..EDGES {
-                length[l] = libm::sqrtf(e[0][l] * e[0][l] + e[1][l] * e[1][l]);
-            }
-            let (mut gx, mut gy) = ([0.0f32; EDGES], [0.0f32; EDGES]);
-            let (mut inverse_apothem, mut angle) = ([0.0f32; EDGES], [0.0f32; EDGES]);
-            let [vx, vy] = va;
-            let [ex, ey] = e;
-            for l in 0..EDGES {
-                // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
-                let outward = [ey[l], -ex[l]];
-                let reach = vx[l] * outward[0] + vy[l] * outward[1];
-                let per_reach = 1.0 / reach;
-                // With the centre on or beyond this edge's line (a fold), the wedge reads as
-                // edge.
-                let kept = (reach > 0.0) & (length[l] > 0.0);
-                gx[l] = if kept { outward[0] * per_reach } else { 0.0 };
-                gy[l] = if kept { outward[1] * per_reach } else { 0.0 };
-                inverse_apothem[l] = if kept { length[l] * per_reach } else { 1.0 };
-                angle[l] = pseudo_angle([vx[l], vy[l]]);
-            }
-            for (l, w) in out.iter_mut().enumerate() {
-                let (i, angle) = (first + l, angle[l]);
-                *w = Wedge { g: [gx[l], gy[l]], inverse_apothem: inverse_apothem[l], angle };
-                if angle < smallest || i == 0 {
-                    (start, smallest) = (i, angle);
-                }
-                if i > 0 && previous.partial_cmp(&angle).is_none_or(Ordering::is_gt) {
-                    (descents, descent) = (descents + 1, i);
-                }
-                previous = angle;
-            }
-        }
-        if wedges[n - 1].angle.partial_cmp(&wedges[0].angle).is_none_or(Ordering::is_gt) {
-            (descents, descent) = (descents + 1, 0);
-        }
-        let sorted = descents == 0 || (descents == 1 && descent == start);
-        wedges.rotate_left(start);
-        slots[0] = slots[n];
-        Fan { slots: &slots[..=n], sorted }
     }
 
     /// Calls `visit(row, x0, x1, wrapped x0, wrapped row)` for every run of pixels `x0..x1` of
     /// one row whose centres lie in `cell`: unwrapped as the outline places them, and on the
     /// surface, where the run is contiguous (a run across the periodic seam comes in two
-    /// pieces). `crossings` is scratch of at least the outline's length.
-    fn for_each_run(&self, cell: &SkinCell, crossings: &mut [u64], mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
+    /// pieces).
+    fn for_each_run(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
         let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
         let periodic = self.params.periodic;
-        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), crossings, |y, x0, x1| {
+        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), |y, x0, x1| {
             if periodic {
                 let wy = y.rem_euclid(h) as u32;
                 let mut x = x0;
@@ -649,20 +568,80 @@ impl<S: Scalar> Skin<'_, S> {
     }
 
     /// Calls `visit(column, row, wrapped column, wrapped row)` for every pixel whose centre lies
-    /// in `cell`: unwrapped as the outline places it, and on the surface. `crossings` is scratch
-    /// of at least the outline's length.
-    pub(super) fn for_each_pixel_unwrapped(
-        &self,
-        cell: &SkinCell,
-        crossings: &mut [u64],
-        mut visit: impl FnMut(i64, i64, u32, u32),
-    ) {
-        self.for_each_run(cell, crossings, |y, x0, x1, wx, wy| {
+    /// in `cell`: unwrapped as the outline places it, and on the surface.
+    pub(super) fn for_each_pixel_unwrapped(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, u32, u32)) {
+        self.for_each_run(cell, |y, x0, x1, wx, wy| {
             for (x, wx) in (x0..x1).zip(wx..) {
                 visit(x, y, wx, wy);
             }
         });
     }
+}
+
+/// Fills `slots` (one more than `outline`'s length) with the fan of the cell of this
+/// outline and centre (fixed point of `bits` fractional bits), as [`Fan`] reads it.
+pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wedge]) {
+    let n = outline.len();
+    // 2^−bits: scaling by it is exact, so that (x as f32)·to_pixels rounds x / unit once,
+    // like an exact division (below 2^53 also like (x as f64 / unit) as f32).
+    let to_pixels = 1.0 / (1u64 << bits) as f32;
+    let pixels = |x: i64| x as f32 * to_pixels;
+    let wedges = &mut slots[1..=n];
+    // The first corner of smallest angle: the fan starts there.
+    let (mut start, mut smallest) = (0, f32::INFINITY);
+    // A few edges at a time, each step a plain loop over them, so that the divisions go
+    // several at once (the lanes past the outline's end hold zeros, and are not kept).
+    for (chunk, out) in wedges.chunks_mut(EDGES).enumerate() {
+        let first = chunk * EDGES;
+        // The first corner relative to the centre, and the edge, in pixels.
+        let (mut va, mut e) = ([[0.0f32; EDGES]; 2], [[0.0f32; EDGES]; 2]);
+        for l in 0..out.len() {
+            let i = first + l;
+            let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
+            // Wrapping, as release builds always did: a stretch of 1e21 puts an outline's
+            // fixed-point corners far enough apart that the differences overflow i64
+            // (found by fuzzing; a panic with overflow checks on).
+            (va[0][l], va[1][l]) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
+            (e[0][l], e[1][l]) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
+        }
+        // (libm's square root is a scalar instruction, in a loop of its own.)
+        let mut length = [0.0f32; EDGES];
+        for l in 0..EDGES {
+            length[l] = libm::sqrtf(e[0][l] * e[0][l] + e[1][l] * e[1][l]);
+        }
+        let (mut gx, mut gy) = ([0.0f32; EDGES], [0.0f32; EDGES]);
+        let (mut inverse_apothem, mut angle) = ([0.0f32; EDGES], [0.0f32; EDGES]);
+        let [vx, vy] = va;
+        let [ex, ey] = e;
+        for l in 0..EDGES {
+            // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
+            let outward = [ey[l], -ex[l]];
+            let reach = vx[l] * outward[0] + vy[l] * outward[1];
+            let per_reach = 1.0 / reach;
+            // With the centre on or beyond this edge's line (a fold), the wedge reads as
+            // edge.
+            let kept = (reach > 0.0) & (length[l] > 0.0);
+            gx[l] = if kept { outward[0] * per_reach } else { 0.0 };
+            gy[l] = if kept { outward[1] * per_reach } else { 0.0 };
+            inverse_apothem[l] = if kept { length[l] * per_reach } else { 1.0 };
+            angle[l] = pseudo_angle([vx[l], vy[l]]);
+        }
+        for (l, w) in out.iter_mut().enumerate() {
+            let (i, angle) = (first + l, angle[l]);
+            *w = Wedge { g: [gx[l], gy[l]], inverse_apothem: inverse_apothem[l], angle };
+            if angle < smallest || i == 0 {
+                (start, smallest) = (i, angle);
+            }
+        }
+    }
+    wedges.rotate_left(start);
+    slots[0] = slots[n];
+}
+
+/// Whether a fan's angles ascend from its first wedge to its last (the fan of a cell
+/// star-shaped around its centre): then a pixel's wedge is found by counting.
+fn ascends(slots: &[Wedge]) -> bool {
+    slots[1..].windows(2).all(|w| w[0].angle.partial_cmp(&w[1].angle).is_some_and(Ordering::is_le))
 }
 
 /// Fig. 10: each level's normal has z = 1; x and y add up to `slope`. Rows run down the

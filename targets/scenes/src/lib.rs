@@ -25,8 +25,8 @@ use hibi_core::mud::{
 };
 use hibi_core::scalar::Q16;
 use hibi_core::skin::{
-    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender,
-    SkinScratch, Wedge, shade,
+    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender, Wedge,
+    shade,
 };
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
@@ -209,8 +209,8 @@ const SKIN_CLIP: usize = 6792;
 const SKIN_WORDS: usize = 4096;
 const SKIN_LEVELS: usize = 3;
 const SKIN_BOXES: usize = 675;
-const SKIN_WEDGES: usize = 4743;
-const SKIN_CROSSINGS: usize = 2048;
+// A wedge per outline vertex and one per cell.
+const SKIN_WEDGES: usize = SKIN_VERTICES + SKIN_CELLS;
 const WORDS: usize =
     max(max(MUD_LARGE_MEMORY.words, MUD_IRREGULAR_MEMORY.words), max(GLASS_WORDS + GLASS_SCRATCH, SKIN_WORDS));
 const NETWORK_VERTICES: usize = 2048;
@@ -267,7 +267,6 @@ pub struct Memory {
     skin_levels: &'static mut [SkinLevel],
     boxes: &'static mut [[i64; 4]],
     wedges: &'static mut [Wedge],
-    crossings: &'static mut [u64],
     normals: &'static mut [[f32; 3]],
     rgb: &'static mut [[u8; 3]],
     cell_map: &'static mut [u32],
@@ -307,7 +306,6 @@ impl Memory {
         static SKIN_LEVEL: Slot<SkinLevel, SKIN_LEVELS> = Slot::new();
         static BOXES: Slot<[i64; 4], SKIN_BOXES> = Slot::new();
         static WEDGES: Slot<Wedge, SKIN_WEDGES> = Slot::new();
-        static CROSSINGS: Slot<u64, SKIN_CROSSINGS> = Slot::new();
         static MASK: Slot<u8, PIXELS> = Slot::new();
         static FLOATS: Slot<f32, PIXELS> = Slot::new();
         static NORMALS: Slot<[f32; 3], SKIN_PIXELS> = Slot::new();
@@ -342,7 +340,6 @@ impl Memory {
                 skin_levels: SKIN_LEVEL.init(),
                 boxes: BOXES.init(),
                 wedges: WEDGES.init(),
-                crossings: CROSSINGS.init(),
                 normals: NORMALS.init(),
                 rgb: RGB.init(),
                 cell_map: CELL_MAP.init(),
@@ -371,7 +368,6 @@ impl Memory {
             + SKIN_LEVELS * size_of::<SkinLevel>()
             + SKIN_BOXES * 32
             + SKIN_WEDGES * size_of::<Wedge>()
-            + SKIN_CROSSINGS * 8
             + PIXELS * 5
             + SKIN_PIXELS * 19
             + SMALL_ARENA_WORDS * 8
@@ -583,7 +579,6 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         skin_levels,
         boxes,
         wedges,
-        crossings,
         out,
         normals,
         rgb,
@@ -605,13 +600,13 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
                 words: &mut **words,
                 levels: &mut **skin_levels,
                 boxes: &mut **boxes,
+                wedges: &mut **wedges,
             }
         };
     }
-    let mut scratch = SkinScratch { wedges, crossings };
     let q16 = Skin::<Q16>::new(&params, buffers!())
         .map_err(|_| Failure("skin: Skin::new refused (memory too small?)"))
-        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&skin, &mut scratch, height, normals)));
+        .and_then(|mut skin| built(&mut skin).and_then(|()| maps(&skin, height, normals)));
     let mut skin = match Skin::<f32>::new(&params, buffers!()) {
         Ok(skin) => skin,
         Err(_) => {
@@ -626,7 +621,7 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let mut h = Fnv::new();
     outlines_hash(&mut h, &skin);
     emit(names[0], Ok(h.finish()));
-    let f32 = maps(&skin, &mut scratch, height, normals);
+    let f32 = maps(&skin, height, normals);
     emit(names[1], f32);
     emit(names[2], q16);
     let rgb = &mut rgb[..pixels];
@@ -636,8 +631,7 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         let mut h = Fnv::new();
         for level in 0..params.levels {
             let layers = SkinLayers { cell: Some(&mut **cell_map), ..SkinLayers::default() };
-            skin.render(&SkinRender { cell_level: level }, layers, &mut scratch)
-                .map_err(|_| Failure("skin: cell map refused"))?;
+            skin.render(&SkinRender { cell_level: level }, layers).map_err(|_| Failure("skin: cell map refused"))?;
             cell_map.iter().for_each(|&c| h.u32(c));
         }
         Ok(h.finish())
@@ -651,14 +645,9 @@ fn built<S: Scalar>(skin: &mut Skin<'_, S>) -> Result<(), Failure> {
 }
 
 /// The hash of a skin's height and normal maps, rendered into `height` and `normals`.
-fn maps<S: Scalar>(
-    skin: &Skin<'_, S>,
-    scratch: &mut SkinScratch,
-    height: &mut [f32],
-    normals: &mut [[f32; 3]],
-) -> Outcome {
+fn maps<S: Scalar>(skin: &Skin<'_, S>, height: &mut [f32], normals: &mut [[f32; 3]]) -> Outcome {
     let layers = SkinLayers { height: Some(&mut *height), normal: Some(&mut *normals), ..SkinLayers::default() };
-    skin.render(&SkinRender::default(), layers, scratch).map_err(|_| Failure("skin: render refused"))?;
+    skin.render(&SkinRender::default(), layers).map_err(|_| Failure("skin: render refused"))?;
     let mut h = Fnv::new();
     height.iter().for_each(|&v| h.f32(v));
     normals.iter().flatten().for_each(|&v| h.f32(v));
@@ -720,7 +709,7 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
 /// `u64` words of the arena the 64 KiB scenes share: each scene takes its model's memory and
 /// its outputs from it and gives them back when it ends, so the arena is the largest scene's
 /// need, not the sum: the glass plate and its mask, 41,104 bytes on x86_64 (the mud scenes
-/// take 27,904; the 64×64 skin 17,056, with its 64×64 height map and render scratch 35,472).
+/// take 27,904; the 64×64 skin 19,296, with its 64×64 height map 35,680).
 /// The rest of the 64 KiB is the stack's (`targets/run lm3s6965evb` reports its peak).
 pub const SMALL_ARENA_WORDS: usize = 5138;
 
@@ -882,16 +871,15 @@ fn small_skin_run<S: Scalar>(arena: &mut [u64], side: u32, height: bool) -> Outc
         words: arena.take(memory.words, short)?,
         levels: arena.take(memory.levels, short)?,
         boxes: arena.take(memory.boxes, short)?,
+        wedges: arena.take(memory.wedges, short)?,
     };
     let mut skin = Skin::<S>::new(&params, buffers).map_err(|_| Failure("skin: Skin::new refused"))?;
     built(&mut skin)?;
     let mut h = Fnv::new();
     if height {
         let map = arena.take::<f32>((side * side) as usize, "skin: arena too small for the height map")?;
-        let mut scratch =
-            SkinScratch { wedges: arena.take(memory.wedges, short)?, crossings: arena.take(memory.crossings, short)? };
         let layers = SkinLayers { height: Some(&mut *map), ..SkinLayers::default() };
-        skin.render(&SkinRender::default(), layers, &mut scratch).map_err(|_| Failure("skin: render refused"))?;
+        skin.render(&SkinRender::default(), layers).map_err(|_| Failure("skin: render refused"))?;
         map.iter().for_each(|&v| h.f32(v));
     } else {
         outlines_hash(&mut h, &skin);
