@@ -291,17 +291,10 @@ pub struct SkinStorage<
     pub wedges: [Wedge; WEDGES],
 }
 
-impl<
-    const C: usize,
-    const V: usize,
-    const S: usize,
-    const K: usize,
-    const W: usize,
-    const L: usize,
-    const B: usize,
-    const G: usize,
-> SkinStorage<C, V, S, K, W, L, B, G>
-{
+// (Unformatted: one line per four sizes, not one per size.)
+#[rustfmt::skip]
+impl<const C: usize, const V: usize, const S: usize, const K: usize,
+     const W: usize, const L: usize, const B: usize, const G: usize> SkinStorage<C, V, S, K, W, L, B, G> {
     /// Empty storage.
     pub fn new() -> Self {
         SkinStorage {
@@ -322,17 +315,9 @@ impl<
     }
 }
 
-impl<
-    const C: usize,
-    const V: usize,
-    const S: usize,
-    const K: usize,
-    const W: usize,
-    const L: usize,
-    const B: usize,
-    const G: usize,
-> Default for SkinStorage<C, V, S, K, W, L, B, G>
-{
+#[rustfmt::skip]
+impl<const C: usize, const V: usize, const S: usize, const K: usize,
+     const W: usize, const L: usize, const B: usize, const G: usize> Default for SkinStorage<C, V, S, K, W, L, B, G> {
     fn default() -> Self {
         Self::new()
     }
