@@ -122,6 +122,7 @@ int main(int argc, char **argv) {
         hibi::Mud::RenderParams mud_render = hibi::Mud::default_render();
         mud_render.width = 160;
         mud_render.height = 160;
+        hibi::Skin::RenderParams skin_render = hibi::Skin::default_render();
 
         bool glass_done = false, mud_done = false, skin_done = false;
         unsigned frame = 0, glass_frames = 0, mud_frames = 0, skin_frames = 0, written = 0;
@@ -184,7 +185,7 @@ int main(int argc, char **argv) {
         std::printf("budgeted = one go: glass %s, mud %s, skin %s\n",
                     same(glass.render_time(glass_render), whole_glass.render_time(glass_render)) ? "yes" : "no",
                     same(mud.render_time(mud_render), whole_mud.render_time(mud_render)) ? "yes" : "no",
-                    same(skin.render_height(), whole_skin.render_height()) ? "yes" : "no");
+                    same(skin.render_height(skin_render), whole_skin.render_height(skin_render)) ? "yes" : "no");
         return 0;
     } catch (const hibi::Error &e) {
         std::fprintf(stderr, "hibi: %s (status %u)\n", e.what(), static_cast<unsigned>(e.status()));

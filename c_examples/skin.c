@@ -23,11 +23,14 @@ static void report(const char *what, hibi_status status) {
     printf("%s: status %u, %s\n", what, (unsigned)status, hibi_status_string(status));
 }
 
-/* Renders the height and normal maps of `skin` and shades them into `rgb`. A render only
-   reads the skin, so several threads may render one skin at once. */
+/* Renders the height and normal maps of `skin`, one layer per call, and shades them into
+   `rgb`. A render only reads the skin, so several threads may render one skin at once. */
 static hibi_status preview(const hibi_skin *skin, size_t pixels, float *height, float *normal, unsigned char *rgb) {
+    hibi_skin_render_params render = hibi_skin_render_params_default();
     hibi_skin_shade_params light = hibi_skin_shade_params_default();
-    hibi_status status = hibi_skin_render(skin, height, pixels, normal, 3 * pixels, NULL, 0, 0);
+    hibi_status status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, height, pixels);
+    if (status != HIBI_OK) return status;
+    status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, normal, 3 * pixels);
     if (status != HIBI_OK) return status;
     return hibi_skin_shade(height, pixels, normal, 3 * pixels, &light, rgb, 3 * pixels);
 }
@@ -35,6 +38,7 @@ static hibi_status preview(const hibi_skin *skin, size_t pixels, float *height, 
 int main(int argc, char **argv) {
     const char *path = argc > 1 ? argv[1] : "skin.ppm";
     hibi_skin_params params, bad;
+    hibi_skin_render_params render = hibi_skin_render_params_default();
     hibi_skin *skin = NULL, *placed = NULL;
     hibi_skin_cell cell;
     hibi_status status;
@@ -122,11 +126,13 @@ int main(int argc, char **argv) {
     again = malloc(3 * pixels);
     map = malloc(pixels * sizeof *map);
     if (height == NULL || normal == NULL || rgb == NULL || again == NULL || map == NULL) return 1;
-    status = hibi_skin_render(skin, height, pixels, normal, 3 * pixels - 1, NULL, 0, 0);
+    status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, normal, 3 * pixels - 1);
     report("short normal buffer", status);
-    status = hibi_skin_render(skin, NULL, 0, NULL, 0, map, pixels, 3);
+    render.cell_level = 3;
+    status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, map, pixels);
     report("cell map of level 3", status);
-    status = hibi_skin_render(skin, NULL, 0, NULL, 0, map, pixels, 2);
+    render.cell_level = 2;
+    status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, map, pixels);
     if (status != HIBI_OK) return fail("hibi_skin_render", status);
     i = map[100 * params.width + 100];
     status = hibi_skin_cell_info(skin, i, &cell);

@@ -494,6 +494,24 @@
 #define HIBI_SKIN_NO_CELL UINT32_MAX
 
 /**
+ * `hibi_skin_render` layer: height, one `float` per pixel, the sum over levels of the
+ * profile heights.
+ */
+#define HIBI_SKIN_LAYER_HEIGHT 0
+
+/**
+ * `hibi_skin_render` layer: normal, three `float`s per pixel, a unit tangent-space normal
+ * with x right, y up, z out, as in OpenGL normal maps.
+ */
+#define HIBI_SKIN_LAYER_NORMAL 1
+
+/**
+ * `hibi_skin_render` layer: cells, one `uint32_t` per pixel, the index of its cell at
+ * `cell_level` (`HIBI_SKIN_NO_CELL` where none is).
+ */
+#define HIBI_SKIN_LAYER_CELLS 2
+
+/**
  * A glass plate and its cracks. Opaque.
  */
 typedef struct hibi_glass hibi_glass;
@@ -1217,6 +1235,17 @@ typedef struct hibi_skin_params {
 } hibi_skin_params;
 
 /**
+ * How to draw a skin's maps: which level the cell layer shows. Defaults from
+ * `hibi_skin_render_params_default`.
+ */
+typedef struct hibi_skin_render_params {
+  /**
+   * The level `HIBI_SKIN_LAYER_CELLS` shows (below `levels`; default 0, the coarsest).
+   */
+  uint32_t cell_level;
+} hibi_skin_render_params;
+
+/**
  * Where a build stands.
  */
 typedef struct hibi_skin_progress {
@@ -1497,6 +1526,11 @@ typedef struct hibi_skin_cell {
  * A cell index is not below `hibi_skin_cell_count`.
  */
 #define HIBI_ERROR_SKIN_CELL_INDEX 1349
+
+/**
+ * `hibi_skin_render`: `layer` is not one of the `HIBI_SKIN_LAYER_*` constants.
+ */
+#define HIBI_ERROR_SKIN_RENDER_LAYER 1354
 
 #ifdef __cplusplus
 extern "C" {
@@ -2056,27 +2090,27 @@ hibi_status hibi_skin_create_in(const struct hibi_skin_params *params,
 void hibi_skin_destroy(struct hibi_skin *skin);
 
 /**
- * Draws the surface's maps, each row-major over `width × height` pixels of the params:
- * `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
- * (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
- * OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
- * cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
- * without it). Pass NULL and length 0 for a map you do not want. The skin is only read:
- * several threads may render one skin at once. If any map is short or misaligned, or
- * `cell_level` is not below `levels`, nothing is written.
+ * The default render params (the cell layer shows level 0).
+ */
+struct hibi_skin_render_params hibi_skin_render_params_default(void);
+
+/**
+ * Draws `layer` into `pixels` (row-major over the params' `width × height`; `float` for
+ * `HIBI_SKIN_LAYER_HEIGHT`, three `float`s per pixel for `HIBI_SKIN_LAYER_NORMAL`,
+ * `uint32_t` for `HIBI_SKIN_LAYER_CELLS`). `pixels_len` counts values (floats for the
+ * normal layer), not bytes. The skin is only read: several threads may render one skin at
+ * once. Nothing is written on failure.
  *
  * # Safety
- * `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for its
- * length, and the maps must not overlap.
+ * `skin` must be NULL or a live skin; `render` NULL or readable;
+ * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
+ * layer's type.
  */
 hibi_status hibi_skin_render(const struct hibi_skin *skin,
-                             float *height,
-                             size_t height_len,
-                             float *normal,
-                             size_t normal_len,
-                             uint32_t *cells,
-                             size_t cells_len,
-                             uint32_t cell_level);
+                             const struct hibi_skin_render_params *render,
+                             uint32_t layer,
+                             void *pixels,
+                             size_t pixels_len);
 
 /**
  * Advances the build by about `budget` units of work (outline vertices written; at least

@@ -19,7 +19,7 @@
  *   aligned byte block for it and for scratch, if you have no allocator of your own.
  * - Outputs come two ways: std::vector helpers that size themselves with the C count calls
  *   (segments(), network(), cells(), fragments(), points(), outline(), render_*()), and the
- *   raw pointer + length calls for buffers you already own (render(), render_into()).
+ *   raw pointer + length calls for buffers you already own (render()).
  * - Threads: as in hibi.h. const members only read the object and may run concurrently on
  *   one object; step, impact, moves and destruction need it to themselves. The const calls
  *   that need working memory (Glass::fragment_counts, Glass::fragments) take a Scratch: one
@@ -425,6 +425,7 @@ class Skin {
 public:
     using Params = hibi_skin_params;
     using Progress = hibi_skin_progress;
+    using RenderParams = hibi_skin_render_params;
     using ShadeParams = hibi_skin_shade_params;
 
     static Params default_params() noexcept { return hibi_skin_params_default(); }
@@ -433,6 +434,7 @@ public:
         check(hibi_skin_params_preset(name, &params));
         return params;
     }
+    static RenderParams default_render() noexcept { return hibi_skin_render_params_default(); }
     static ShadeParams default_shade() noexcept { return hibi_skin_shade_params_default(); }
     static std::size_t memory_size(const Params &params) {
         std::size_t size = 0;
@@ -489,27 +491,21 @@ public:
         return xy;
     }
 
-    /// hibi_skin_render into caller maps (NULL and 0 for a map you do not want).
-    void render_into(float *height, std::size_t height_len, float *normal, std::size_t normal_len,
-                     std::uint32_t *cells, std::size_t cells_len, std::uint32_t cell_level) const {
-        check(hibi_skin_render(handle_.get(), height, height_len, normal, normal_len, cells, cells_len, cell_level));
+    /// Draws `layer` into caller pixels (`len` values of the layer's type; floats for the
+    /// normal layer, three per pixel).
+    void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
+        check(hibi_skin_render(handle_.get(), &render, layer, pixels, len));
     }
-    std::vector<float> render_height() const {
-        std::vector<float> out(pixels());
-        render_into(out.data(), out.size(), nullptr, 0, nullptr, 0, 0);
-        return out;
+    std::vector<float> render_height(const RenderParams &params) const {
+        return draw<float>(params, HIBI_SKIN_LAYER_HEIGHT, 1);
     }
     /// Three floats per pixel.
-    std::vector<float> render_normal() const {
-        std::vector<float> out(3 * pixels());
-        render_into(nullptr, 0, out.data(), out.size(), nullptr, 0, 0);
-        return out;
+    std::vector<float> render_normal(const RenderParams &params) const {
+        return draw<float>(params, HIBI_SKIN_LAYER_NORMAL, 3);
     }
-    /// Per pixel the index of its cell at `level`, HIBI_SKIN_NO_CELL where none is.
-    std::vector<std::uint32_t> render_cells(std::uint32_t level) const {
-        std::vector<std::uint32_t> out(pixels());
-        render_into(nullptr, 0, nullptr, 0, out.data(), out.size(), level);
-        return out;
+    /// Per pixel the index of its cell at params.cell_level, HIBI_SKIN_NO_CELL where none is.
+    std::vector<std::uint32_t> render_cells(const RenderParams &params) const {
+        return draw<std::uint32_t>(params, HIBI_SKIN_LAYER_CELLS, 1);
     }
     /// 8-bit sRGB preview of a height and a normal map (three bytes per pixel).
     static std::vector<std::uint8_t> shade(const std::vector<float> &height, const std::vector<float> &normal,
@@ -525,6 +521,13 @@ public:
 private:
     Skin(hibi_skin *raw, const Params &params) noexcept
         : handle_(raw), width_(params.width), height_(params.height) {}
+    /// The layer's raster over the skin's width x height, `per_pixel` values a pixel.
+    template <class T>
+    std::vector<T> draw(const RenderParams &params, std::uint32_t layer, std::size_t per_pixel) const {
+        std::vector<T> out(per_pixel * pixels());
+        render(params, layer, out.data(), out.size());
+        return out;
+    }
     std::unique_ptr<hibi_skin, detail::SkinDelete> handle_;
     std::uint32_t width_;
     std::uint32_t height_;

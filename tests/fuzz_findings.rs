@@ -60,10 +60,11 @@ fn argument() -> String {
     unsafe { core::ffi::CStr::from_ptr(hibi_error_argument()) }.to_str().expect("ASCII").to_owned()
 }
 
-/// Finding 3: a NULL `rgb` (`hibi_skin_shade`) or `normal` (`hibi_skin_shade`,
-/// `hibi_skin_render`) whose length is 1 or 2, too short for one pixel, was accepted as an
-/// empty buffer; the header allows NULL only with length 0. Now `HIBI_ERROR_NULL_POINTER`,
-/// naming the buffer, like every other NULL buffer with a length.
+/// Finding 3: a NULL `rgb` (`hibi_skin_shade`) or `normal` (`hibi_skin_shade`, and
+/// `hibi_skin_render` when it took every map at once) whose length is 1 or 2, too short for
+/// one pixel, was accepted as an empty buffer; the header allows NULL only with length 0. Now
+/// `HIBI_ERROR_NULL_POINTER`, naming the buffer, like every other NULL buffer with a length
+/// (the render's normal layer, now one layer per call, names `pixels`).
 #[test]
 fn a_null_buffer_shorter_than_one_pixel_is_refused() {
     let shade = hibi_skin_shade_params_default();
@@ -90,20 +91,10 @@ fn a_null_buffer_shorter_than_one_pixel_is_refused() {
     // SAFETY: valid pointers.
     unsafe {
         assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
-        let mut height = vec![-1.0f32; 16 * 16];
+        let render = hibi_skin_render_params_default();
         for len in [1, 2] {
-            let status = hibi_skin_render(
-                skin,
-                height.as_mut_ptr(),
-                height.len(),
-                core::ptr::null_mut(),
-                len,
-                core::ptr::null_mut(),
-                0,
-                0,
-            );
-            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "normal"));
-            assert!(height.iter().all(|&h| h == -1.0), "nothing written");
+            let status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, core::ptr::null_mut(), len);
+            assert_eq!((status, argument().as_str()), (HIBI_ERROR_NULL_POINTER, "pixels"));
         }
         hibi_skin_destroy(skin);
     }
@@ -294,8 +285,10 @@ fn a_huge_skin_stretch_renders() {
         assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
         assert_eq!(hibi_skin_step(skin, u64::MAX, core::ptr::null_mut()), HIBI_OK);
         let (mut height, mut normal) = (vec![0f32; 196], vec![0f32; 3 * 196]);
-        let status =
-            hibi_skin_render(skin, height.as_mut_ptr(), 196, normal.as_mut_ptr(), 3 * 196, core::ptr::null_mut(), 0, 0);
+        let render = hibi_skin_render_params_default();
+        let status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, height.as_mut_ptr().cast(), 196);
+        assert_eq!(status, HIBI_OK);
+        let status = hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, normal.as_mut_ptr().cast(), 3 * 196);
         assert_eq!(status, HIBI_OK);
         hibi_skin_destroy(skin);
     }

@@ -455,17 +455,15 @@ fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
         }
         let pixels = (p.width * p.height) as usize;
         let (mut height, mut normal, mut map) = (vec![0f32; pixels], vec![0f32; 3 * pixels], vec![0u32; pixels]);
-        let status = hibi_skin_render(
-            skin.0,
-            height.as_mut_ptr(),
-            pixels,
-            normal.as_mut_ptr(),
-            3 * pixels,
-            map.as_mut_ptr(),
-            pixels,
-            p.levels - 1,
-        );
-        assert_eq!(status, HIBI_OK);
+        let render = hibi_skin_render_params { cell_level: p.levels - 1 };
+        let layers = [
+            (HIBI_SKIN_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels),
+            (HIBI_SKIN_LAYER_NORMAL, normal.as_mut_ptr().cast(), 3 * pixels),
+            (HIBI_SKIN_LAYER_CELLS, map.as_mut_ptr().cast(), pixels),
+        ];
+        for (layer, pixels, len) in layers {
+            assert_eq!(hibi_skin_render(skin.0, &render, layer, pixels, len), HIBI_OK, "layer {layer}");
+        }
         assert!(finite(&height), "height map");
         assert!(finite(&normal), "normal map");
         assert!(map.iter().all(|&c| c == HIBI_SKIN_NO_CELL || (c as usize) < cells));

@@ -463,7 +463,7 @@ render! {
     /// Draws `layer` into `pixels` (row-major, `width × height` values: `uint8_t` for
     /// `HIBI_GLASS_LAYER_MASK`, `float` for `HIBI_GLASS_LAYER_TIME`). `pixels_len` counts values.
     /// Nothing is written on failure.
-    hibi_glass_render(glass: hibi_glass, "plate", hibi_glass_render_params) = glass_layers
+    hibi_glass_render(glass: hibi_glass, "plate", hibi_glass_render_params) = glass_layers, crate::status::raster_status
 }
 
 /// Glass's layers with `layer` to be drawn into `pixels`.

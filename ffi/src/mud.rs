@@ -468,7 +468,7 @@ render! {
     /// Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
     /// `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
     /// `pixels_len` counts values, not bytes. Nothing is written on failure.
-    hibi_mud_render(mud: hibi_mud, "run", hibi_mud_render_params) = mud_layers
+    hibi_mud_render(mud: hibi_mud, "run", hibi_mud_render_params) = mud_layers, crate::status::raster_status
 }
 
 /// Mud's layers with `layer` to be drawn into `pixels`.

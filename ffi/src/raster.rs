@@ -1,6 +1,7 @@
-//! The renders of mud and glass, `hibi_mud_render` and `hibi_glass_render`: one C shape (the
-//! object, its render params, a layer number and one raster of that layer's values), written
-//! once by [`render!`]; each model says only how a layer number picks its core layers.
+//! The renders of the three models, `hibi_mud_render`, `hibi_glass_render` and
+//! `hibi_skin_render`: one C shape (the object, its render params, a layer number and one
+//! raster of that layer's values), written once by [`render!`]; each model says only how a
+//! layer number picks its core layers and which status each core error is.
 
 use core::ffi::c_void;
 use core::marker::PhantomData;
@@ -35,10 +36,10 @@ impl<'a> Pixels<'a> {
 
 /// A render `$name` of the object `$arg` (a `$what`), whose field `$arg` is the core model:
 /// reads the render params (`$params`, converted to the core's), picks the core layers with
-/// `$layers(layer, pixels)` and draws them. The doc comment is the caller's; the signature,
+/// `$layers(layer, pixels)` and draws them, reporting a core error as `$status(error)`. The doc comment is the caller's; the signature,
 /// the checks and the Safety notes are here.
 macro_rules! render {
-    ($(#[$doc:meta])* $name:ident($arg:ident: $object:ty, $what:literal, $params:ty) = $layers:path) => {
+    ($(#[$doc:meta])* $name:ident($arg:ident: $object:ty, $what:literal, $params:ty) = $layers:path, $status:path) => {
         $(#[$doc])*
         ///
         /// # Safety
@@ -62,7 +63,7 @@ macro_rules! render {
                 let render = $crate::fields::Field::to_core(render).ok_or($crate::status::HIBI_ERROR_BAD_ENUM)?;
                 // SAFETY: the caller's contract.
                 let layers = $layers(layer, unsafe { $crate::raster::Pixels::new(pixels, pixels_len) })?;
-                object.$arg.render(&render, layers).map_err($crate::status::raster_status)
+                object.$arg.render(&render, layers).map_err($status)
             })
         }
     };

@@ -9,7 +9,9 @@
 //! hibi_skin_progress progress;
 //! hibi_status status;
 //! do { status = hibi_skin_step(skin, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
-//! hibi_skin_render(skin, height, w * h, normal, 3 * w * h, NULL, 0, 0);
+//! hibi_skin_render_params render = hibi_skin_render_params_default();
+//! hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, height, w * h);
+//! hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, normal, 3 * w * h);
 //! hibi_skin_shade_params light = hibi_skin_shade_params_default();
 //! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
 //! hibi_skin_destroy(skin);
@@ -20,7 +22,7 @@
 //! the header, then the core's cell, vertex, site, clip-vertex, word, level-record,
 //! chunk-box and wedge arrays.
 
-use core::ffi::{CStr, c_char, c_void};
+use core::ffi::{c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
@@ -32,10 +34,11 @@ use crate::constants::param_status;
 use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, query, update, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
+use crate::raster::{Pixels, render};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
-    HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_SHADE, HIBI_ERROR_SKIN_SHADE_AMBIENT, HIBI_ERROR_SKIN_SHADE_FURROW,
-    HIBI_ERROR_SKIN_SHADE_RIDGE, HIBI_ERROR_SKIN_SHADE_SPECULAR, hibi_status,
+    HIBI_ERROR_SKIN_LEVEL, HIBI_ERROR_SKIN_RENDER_LAYER, HIBI_ERROR_SKIN_SHADE, HIBI_ERROR_SKIN_SHADE_AMBIENT,
+    HIBI_ERROR_SKIN_SHADE_FURROW, HIBI_ERROR_SKIN_SHADE_RIDGE, HIBI_ERROR_SKIN_SHADE_SPECULAR, hibi_status,
 };
 
 /// Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -272,60 +275,65 @@ fn pixels_per_unit(skin: &Skin) -> f64 {
     1.0 / (1u64 << skin.fixed_point_bits()) as f64
 }
 
-/// An optional output layer: NULL with length 0 is "not wanted"; anything else is checked.
-///
-/// # Safety
-/// As [`buffer`].
-unsafe fn layer<'a, T>(ptr: *mut T, len: usize, name: &'static CStr) -> Result<Option<&'a mut [T]>, hibi_status> {
-    if ptr.is_null() && len == 0 {
-        return Ok(None);
-    }
-    // SAFETY: the caller's contract.
-    unsafe { buffer(ptr, len, name) }.map(Some)
+/// How to draw a skin's maps: which level the cell layer shows. Defaults from
+/// `hibi_skin_render_params_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct hibi_skin_render_params {
+    /// The level `HIBI_SKIN_LAYER_CELLS` shows (below `levels`; default 0, the coarsest).
+    pub cell_level: u32,
 }
 
-/// Draws the surface's maps, each row-major over `width × height` pixels of the params:
-/// `height` (one `float` per pixel, the sum over levels of the profile heights), `normal`
-/// (three `float`s per pixel, a unit tangent-space normal with x right, y up, z out, as in
-/// OpenGL normal maps; `normal_len` counts floats) and `cells` (per pixel the index of its
-/// cell at level `cell_level`, `HIBI_SKIN_NO_CELL` where none is; `cell_level` is ignored
-/// without it). Pass NULL and length 0 for a map you do not want. The skin is only read:
-/// several threads may render one skin at once. If any map is short or misaligned, or
-/// `cell_level` is not below `levels`, nothing is written.
-///
-/// # Safety
-/// `skin` must be NULL or a live skin; each map NULL (only with length 0) or writable for its
-/// length, and the maps must not overlap.
+impl crate::guard::Outcome for hibi_skin_render_params {
+    type C = hibi_skin_render_params;
+    fn into_c(self) -> Self {
+        self
+    }
+    /// A level past every skin's, which the cell layer rejects.
+    fn on_panic() -> Self {
+        hibi_skin_render_params { cell_level: u32::MAX }
+    }
+}
+
+convert!(hibi_skin_render_params <=> SkinRender { cell_level });
+
+/// The default render params (the cell layer shows level 0).
 #[unsafe(no_mangle)]
-#[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn hibi_skin_render(
-    skin: *const hibi_skin,
-    height: *mut f32,
-    height_len: usize,
-    normal: *mut f32,
-    normal_len: usize,
-    cells: *mut u32,
-    cells_len: usize,
-    cell_level: u32,
-) -> hibi_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let skin = unsafe { object_ref(skin, c"skin") }?;
-        // NULL with a length (even one too short for a whole pixel) is refused, as for every
-        // buffer; so is a misaligned one (fuzzing found `normal_len` 1 or 2 with NULL accepted).
-        if normal_len > 0 {
-            check_pointer(normal.cast_const(), c"normal")?;
+pub extern "C" fn hibi_skin_render_params_default() -> hibi_skin_render_params {
+    guard(|| hibi_skin_render_params::from_core(&SkinRender::default()))
+}
+
+/// `hibi_skin_render` layer: height, one `float` per pixel, the sum over levels of the
+/// profile heights.
+pub const HIBI_SKIN_LAYER_HEIGHT: u32 = 0;
+/// `hibi_skin_render` layer: normal, three `float`s per pixel, a unit tangent-space normal
+/// with x right, y up, z out, as in OpenGL normal maps.
+pub const HIBI_SKIN_LAYER_NORMAL: u32 = 1;
+/// `hibi_skin_render` layer: cells, one `uint32_t` per pixel, the index of its cell at
+/// `cell_level` (`HIBI_SKIN_NO_CELL` where none is).
+pub const HIBI_SKIN_LAYER_CELLS: u32 = 2;
+
+render! {
+    /// Draws `layer` into `pixels` (row-major over the params' `width × height`; `float` for
+    /// `HIBI_SKIN_LAYER_HEIGHT`, three `float`s per pixel for `HIBI_SKIN_LAYER_NORMAL`,
+    /// `uint32_t` for `HIBI_SKIN_LAYER_CELLS`). `pixels_len` counts values (floats for the
+    /// normal layer), not bytes. The skin is only read: several threads may render one skin at
+    /// once. Nothing is written on failure.
+    hibi_skin_render(skin: hibi_skin, "skin", hibi_skin_render_params) = skin_layers, skin_status
+}
+
+/// Skin's layers with `layer` to be drawn into `pixels`.
+fn skin_layers(layer: u32, pixels: Pixels<'_>) -> Result<SkinLayers<'_>, hibi_status> {
+    // SAFETY (every arm): the layer's type, as the header gives it for that layer.
+    Ok(match layer {
+        HIBI_SKIN_LAYER_HEIGHT => SkinLayers { height: Some(unsafe { pixels.values() }?), ..SkinLayers::default() },
+        HIBI_SKIN_LAYER_NORMAL => {
+            // Whole pixels of three floats (a trailing partial one is not used).
+            let (normal, _) = unsafe { pixels.values::<f32>() }?.as_chunks_mut::<3>();
+            SkinLayers { normal: Some(normal), ..SkinLayers::default() }
         }
-        // SAFETY (all three): the caller's contract; `[f32; 3]` has the alignment of `f32`,
-        // and a trailing partial pixel of `normal` is not used.
-        let layers = unsafe {
-            SkinLayers {
-                height: layer(height, height_len, c"height")?,
-                normal: layer(normal.cast::<[f32; 3]>(), normal_len / 3, c"normal")?,
-                cell: layer(cells, cells_len, c"cells")?,
-            }
-        };
-        skin.skin.render(&SkinRender { cell_level }, layers).map_err(skin_status)
+        HIBI_SKIN_LAYER_CELLS => SkinLayers { cell: Some(unsafe { pixels.values() }?), ..SkinLayers::default() },
+        _ => return Err(HIBI_ERROR_SKIN_RENDER_LAYER),
     })
 }
 
@@ -583,7 +591,7 @@ mod tests {
 
     #[test]
     fn every_skin_status_has_its_own_message() {
-        let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1353).collect();
+        let codes: Vec<hibi_status> = (1280..=1290).chain(1343..=1354).collect();
         // SAFETY: hibi_status_string returns static NUL-terminated strings.
         let text = |code| unsafe { core::ffi::CStr::from_ptr(hibi_status_string(code)) }.to_str().unwrap();
         for (i, a) in codes.iter().enumerate() {
@@ -593,7 +601,7 @@ mod tests {
             }
         }
         assert_eq!(text(1291), "unknown status code");
-        assert_eq!(text(1354), "unknown status code");
+        assert_eq!(text(1355), "unknown status code");
     }
 
     #[test]
@@ -629,7 +637,7 @@ mod tests {
     }
 
     #[test]
-    fn render_takes_optional_layers_and_leaves_short_ones_untouched() {
+    fn render_draws_one_layer_and_leaves_a_refused_one_untouched() {
         let p = small();
         let pixels = (p.width * p.height) as usize;
         let mut skin = null_mut();
@@ -641,30 +649,39 @@ mod tests {
             let mut normal = vec![7.0f32; 3 * pixels];
             let mut cells = vec![7u32; pixels];
             let (h, n, c) = (height.as_mut_ptr(), normal.as_mut_ptr(), cells.as_mut_ptr());
+            let (hv, nv, cv) = (h.cast::<c_void>(), n.cast::<c_void>(), c.cast::<c_void>());
             let untouched = |h: &[f32], n: &[f32], c: &[u32]| {
                 h.iter().all(|&v| v == 7.0) && n.iter().all(|&v| v == 7.0) && c.iter().all(|&v| v == 7)
             };
-            let short = [
-                (pixels - 1, 3 * pixels, pixels),
-                (pixels, 3 * pixels - 1, pixels),
-                (pixels, 3 * pixels, pixels - 1),
-                (pixels, 0, pixels),
+            let mut render = hibi_skin_render_params_default();
+            assert_eq!(render.cell_level, 0);
+            let refused = [
+                (HIBI_SKIN_LAYER_HEIGHT, hv, pixels - 1, HIBI_ERROR_BUFFER_TOO_SMALL, ""),
+                (HIBI_SKIN_LAYER_NORMAL, nv, 3 * pixels - 1, HIBI_ERROR_BUFFER_TOO_SMALL, ""),
+                (HIBI_SKIN_LAYER_CELLS, cv, pixels - 1, HIBI_ERROR_BUFFER_TOO_SMALL, ""),
+                (HIBI_SKIN_LAYER_HEIGHT, null_mut(), pixels, HIBI_ERROR_NULL_POINTER, "pixels"),
+                (HIBI_SKIN_LAYER_NORMAL, n.cast::<u8>().add(1).cast(), 3 * pixels - 3, HIBI_ERROR_MISALIGNED, "pixels"),
+                (3, hv, pixels, HIBI_ERROR_SKIN_RENDER_LAYER, ""),
             ];
-            for (hl, nl, cl) in short {
-                assert_eq!(hibi_skin_render(skin, h, hl, n, nl, c, cl, 0), HIBI_ERROR_BUFFER_TOO_SMALL);
+            for (layer, ptr, len, status, argument) in refused {
+                assert_eq!(hibi_skin_render(skin, &render, layer, ptr, len), status, "layer {layer}, length {len}");
+                if !argument.is_empty() {
+                    let named = core::ffi::CStr::from_ptr(crate::status::hibi_error_argument());
+                    assert_eq!(named.to_str(), Ok(argument));
+                }
             }
-            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, c, pixels, 2), HIBI_ERROR_SKIN_LEVEL);
             assert_eq!(
-                hibi_skin_render(skin, null_mut(), pixels, n, 3 * pixels, c, pixels, 0),
+                hibi_skin_render(null_mut(), &render, HIBI_SKIN_LAYER_HEIGHT, hv, pixels),
                 HIBI_ERROR_NULL_POINTER
             );
-            let odd = n.cast::<u8>().add(1).cast::<f32>();
-            assert_eq!(hibi_skin_render(skin, h, pixels, odd, 3 * pixels - 3, c, pixels, 0), HIBI_ERROR_MISALIGNED);
-            assert_eq!(hibi_skin_render(null_mut(), h, pixels, n, 3 * pixels, c, pixels, 0), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_skin_render(skin, null_mut(), HIBI_SKIN_LAYER_HEIGHT, hv, pixels), HIBI_ERROR_NULL_POINTER);
+            render.cell_level = 2;
+            assert_eq!(hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, cv, pixels), HIBI_ERROR_SKIN_LEVEL);
             assert!(untouched(&height, &normal, &cells));
 
-            // Only the cell map; the level is checked only when the map is wanted.
-            assert_eq!(hibi_skin_render(skin, null_mut(), 0, null_mut(), 0, c, pixels, 1), HIBI_OK);
+            // The cell level matters only to the cell layer.
+            render.cell_level = 1;
+            assert_eq!(hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, cv, pixels), HIBI_OK);
             assert!(untouched(&height, &normal, &[]));
             let mut count = 0;
             assert_eq!(hibi_skin_cell_count(skin, &mut count), HIBI_OK);
@@ -673,7 +690,9 @@ mod tests {
                 assert_eq!(hibi_skin_cell_info(skin, index as usize, &mut info), HIBI_OK);
                 assert_eq!(info.level, 1);
             }
-            assert_eq!(hibi_skin_render(skin, h, pixels, n, 3 * pixels, null_mut(), 0, 9), HIBI_OK);
+            render.cell_level = 9;
+            assert_eq!(hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, hv, pixels), HIBI_OK);
+            assert_eq!(hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, nv, 3 * pixels), HIBI_OK);
             assert!(height.iter().all(|&v| v >= 0.0) && height.iter().any(|&v| v > 2.0));
             assert!(normal.chunks(3).all(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-4));
 

@@ -105,6 +105,8 @@ pub const HIBI_ERROR_SKIN_SHADE_SPECULAR: hibi_status = 1353;
 pub const HIBI_ERROR_SKIN_UNKNOWN_PRESET: hibi_status = 1348;
 /// A cell index is not below `hibi_skin_cell_count`.
 pub const HIBI_ERROR_SKIN_CELL_INDEX: hibi_status = 1349;
+/// `hibi_skin_render`: `layer` is not one of the `HIBI_SKIN_LAYER_*` constants.
+pub const HIBI_ERROR_SKIN_RENDER_LAYER: hibi_status = 1354;
 
 /// The status that reports a raster error.
 pub(crate) fn raster_status(error: RasterError) -> hibi_status {
@@ -173,6 +175,9 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
             c"skin: an outline or a parent's centre points outgrew their capacity (lower depth or spacing ratio)"
         }
         HIBI_ERROR_SKIN_LEVEL => c"skin: cell_level must be below levels",
+        HIBI_ERROR_SKIN_RENDER_LAYER => {
+            c"skin: hibi_skin_render's layer is not HIBI_SKIN_LAYER_HEIGHT, HIBI_SKIN_LAYER_NORMAL or HIBI_SKIN_LAYER_CELLS"
+        }
         HIBI_ERROR_SKIN_SHADE => ShadeError::Light.message(),
         HIBI_ERROR_SKIN_SHADE_RIDGE => ShadeError::Ridge.message(),
         HIBI_ERROR_SKIN_SHADE_FURROW => ShadeError::Furrow.message(),

@@ -1,7 +1,7 @@
 //! Model C through the C ABI: params from the input, `hibi_skin_create` or
 //! `hibi_skin_create_in` (any memory length and alignment), then any sequence of steps (any
-//! budgets), cell queries and outlines (any lengths), renders (any map lengths,
-//! any cell level) and shading of what was rendered.
+//! budgets), cell queries and outlines (any lengths), renders (any layer, length and cell
+//! level) and shading of what was rendered.
 #![no_main]
 
 use arbitrary::{Result, Unstructured};
@@ -80,70 +80,60 @@ fn cell(u: &mut Unstructured, s: &Surface) -> Result<()> {
 
 fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
     let pixels = s.params.width as usize * s.params.height as usize;
-    let map = |u: &mut Unstructured, need: usize, size: usize| -> Result<(Buffer, bool)> {
-        Ok(if u.ratio(1u8, 3)? {
-            (Buffer::new(0, size, 0, true), false)
-        } else {
-            (Buffer::pick(u, need, need + 8, size)?, true)
-        })
-    };
-    let (mut height, _) = map(u, pixels, 4)?;
-    let (mut normal, _) = map(u, 3 * pixels, 4)?;
-    let (mut cells, _) = map(u, pixels, 4)?;
-    let level = count(u, 0..=4)?;
-    // SAFETY: every buffer NULL or writable for its length.
-    let status = unsafe {
-        hibi_skin_render(
-            s.skin,
-            height.ptr(),
-            height.len,
-            normal.ptr(),
-            normal.len,
-            cells.ptr(),
-            cells.len,
-            level,
-        )
-    };
-    // A map not asked for is NULL with length 0; any other must hold every pixel (a non-NULL
-    // map of length 0 is asked for, and too short).
-    let wanted = |b: &Buffer, need: usize| if b.is_null() && b.len == 0 { (true, true) } else { b.fits(need, 4) };
-    let [a, b, d] = [wanted(&height, pixels), wanted(&normal, 3 * pixels), wanted(&cells, pixels)];
-    let level_ok = (cells.is_null() && cells.len == 0) || level < s.params.levels;
-    let (possible, required) = (a.0 && b.0 && d.0 && level_ok, a.1 && b.1 && d.1 && level_ok);
+    let render = hibi_skin_render_params { cell_level: count(u, 0..=4)? };
+    let layer = enumeration(u, 3)?;
+    // Values per pixel (floats for the normal layer); each value is 4 bytes.
+    let per = if layer == HIBI_SKIN_LAYER_NORMAL { 3 } else { 1 };
+    let need = per * pixels;
+    let mut out = Buffer::pick(u, need, need + 8, 4)?;
+    let rp: *const hibi_skin_render_params = if u.ratio(1u8, 48)? { core::ptr::null() } else { &render };
+    // SAFETY: `out` NULL or writable for its length.
+    let status = unsafe { hibi_skin_render(s.skin, rp, layer, out.ptr(), out.len) };
+    let (possible, required) = out.fits(need, 4);
+    let level_ok = layer != HIBI_SKIN_LAYER_CELLS || render.cell_level < s.params.levels;
+    let valid = !rp.is_null() && layer < 3 && level_ok;
     if check(status) {
-        assert!(possible, "render accepted what does not fit");
-        if height.len > 0 {
-            assert!(height.untouched_past(pixels));
-            assert!((0..pixels).all(|i| height.get::<f32>(i).is_finite()), "a height not finite");
-        }
-        if normal.len > 0 {
-            assert!(normal.untouched_past(3 * pixels));
-            for i in 0..pixels {
-                let v = [normal.get::<f32>(3 * i), normal.get::<f32>(3 * i + 1), normal.get::<f32>(3 * i + 2)];
-                let length = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-                assert!(finite(&v) && (length - 1.0).abs() < 1e-3, "normal {v:?} not unit");
+        assert!(valid && possible, "render accepted layer {layer}, level {}, {} values", render.cell_level, out.len);
+        assert!(out.untouched_past(need));
+        match layer {
+            HIBI_SKIN_LAYER_HEIGHT => {
+                assert!((0..pixels).all(|i| out.get::<f32>(i).is_finite()), "a height not finite");
             }
-        }
-        if cells.len > 0 {
-            assert!(cells.untouched_past(pixels));
-            let mut count = 0;
-            // SAFETY: a live skin, a writable count.
-            assert!(check(unsafe { hibi_skin_cell_count(s.skin, &mut count) }));
-            assert!((0..pixels).all(|i| {
-                let c = cells.get::<u32>(i);
-                c == HIBI_SKIN_NO_CELL || (c as usize) < count
-            }));
-        }
-        if height.len > 0 && normal.len > 0 && u.arbitrary()? {
-            shade(u, &height, &normal, pixels)?;
+            HIBI_SKIN_LAYER_NORMAL => {
+                for i in 0..pixels {
+                    let v = [out.get::<f32>(3 * i), out.get::<f32>(3 * i + 1), out.get::<f32>(3 * i + 2)];
+                    let length = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                    assert!(finite(&v) && (length - 1.0).abs() < 1e-3, "normal {v:?} not unit");
+                }
+                if u.arbitrary()? {
+                    // The heights beside these normals, then shading them.
+                    let mut height = Buffer::new(pixels, 4, 0, false);
+                    // SAFETY: `height` writable for `pixels` floats.
+                    let status =
+                        unsafe { hibi_skin_render(s.skin, &render, HIBI_SKIN_LAYER_HEIGHT, height.ptr(), pixels) };
+                    assert!(check(status), "the height layer beside an accepted normal layer: {status}");
+                    shade(u, &height, &out, pixels)?;
+                }
+            }
+            _ => {
+                let mut cells = 0;
+                // SAFETY: a live skin, a writable count.
+                assert!(check(unsafe { hibi_skin_cell_count(s.skin, &mut cells) }));
+                assert!((0..pixels).all(|i| {
+                    let c = out.get::<u32>(i);
+                    c == HIBI_SKIN_NO_CELL || (c as usize) < cells
+                }));
+            }
         }
     } else {
         assert!(
-            !required,
-            "render refused what fits: {status} (maps {} {} {}; level {level}); params {:?}",
-            height.len, normal.len, cells.len, s.params
+            !(valid && required),
+            "render refused what fits: {status} (layer {layer}, level {}, {} values); params {:?}",
+            render.cell_level,
+            out.len,
+            s.params
         );
-        assert!(height.untouched() && normal.untouched() && cells.untouched(), "a failing render wrote");
+        assert!(out.untouched(), "a failing render wrote");
     }
     Ok(())
 }

@@ -292,6 +292,7 @@ static void calls_and_buffers(void) {
     }
     {
         hibi_skin_cell cell;
+        hibi_skin_render_params render = hibi_skin_render_params_default();
         double xy[4] = {KEPT, KEPT, KEPT, KEPT};
         uint32_t *cells = malloc(64 * 48 * sizeof *cells);
         if (cells == NULL) {
@@ -306,9 +307,11 @@ static void calls_and_buffers(void) {
         written = 777;
         row_kept("outline-index-huge", hibi_skin_outline(skin, SIZE_MAX, xy, 4, &written),
                  written == 777 && xy[0] == KEPT);
-        row_kept("cell-level-past-the-levels", hibi_skin_render(skin, NULL, 0, NULL, 0, cells, 64 * 48, 2),
+        row_kept("skin-unknown-layer", hibi_skin_render(skin, &render, 3, cells, 64 * 48), cells[0] == 777);
+        row_kept("short-cell-map", hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, cells, 4), cells[0] == 777);
+        render.cell_level = 2;
+        row_kept("cell-level-past-the-levels", hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_CELLS, cells, 64 * 48),
                  cells[0] == 777);
-        row_kept("short-cell-map", hibi_skin_render(skin, NULL, 0, NULL, 0, cells, 4, 0), cells[0] == 777);
         free(cells);
     }
     {

@@ -38,7 +38,7 @@ int main() {
         skin_params.height = 64;
         hibi::Skin skin(skin_params);
         skin.run();
-        std::vector<float> height = skin.render_height();
+        std::vector<float> height = skin.render_height(hibi::Skin::default_render());
         std::printf("skin: %zu cells, %zu heights\n", skin.cell_count() > 0 ? std::size_t{1} : std::size_t{0},
                     height.size());
 

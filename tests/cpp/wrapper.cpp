@@ -214,9 +214,11 @@ void skin() {
     std::printf("skin built: %s, cells %s\n", yes(calls > 1 && progress.cells == cells),
                 yes(cells > 0 && skin.outline(0).size() == 2 * skin.cell(0).vertex_count));
 
-    std::vector<float> height = skin.render_height();
-    std::vector<float> normal = skin.render_normal();
-    std::vector<std::uint32_t> map = skin.render_cells(1);
+    hibi::Skin::RenderParams render = hibi::Skin::default_render();
+    render.cell_level = 1;
+    std::vector<float> height = skin.render_height(render);
+    std::vector<float> normal = skin.render_normal(render);
+    std::vector<std::uint32_t> map = skin.render_cells(render);
     std::vector<std::uint8_t> rgb = hibi::Skin::shade(height, normal, hibi::Skin::default_shade());
 
     // Issue 26 item 4: concurrent renders of one skin from four threads (const calls that
@@ -224,11 +226,13 @@ void skin() {
     std::vector<int> equal(4, 0);
     std::vector<std::thread> threads;
     for (int t = 0; t < 4; t++) {
-        threads.emplace_back([&skin, &height, &normal, &map, &equal, t] {
+        threads.emplace_back([&skin, &render, &height, &normal, &map, &equal, t] {
             std::vector<float> h(skin.pixels()), n(3 * skin.pixels());
             std::vector<std::uint32_t> m(skin.pixels());
             for (int round = 0; round < 3; round++) {
-                skin.render_into(h.data(), h.size(), n.data(), n.size(), m.data(), m.size(), 1);
+                skin.render(render, HIBI_SKIN_LAYER_HEIGHT, h.data(), h.size());
+                skin.render(render, HIBI_SKIN_LAYER_NORMAL, n.data(), n.size());
+                skin.render(render, HIBI_SKIN_LAYER_CELLS, m.data(), m.size());
             }
             equal[static_cast<std::size_t>(t)] = same_bytes(h, height) && same_bytes(n, normal) && same_bytes(m, map);
         });
@@ -238,7 +242,9 @@ void skin() {
                 yes(equal[0] && equal[1] && equal[2] && equal[3]));
 
     try {
-        skin.render_cells(9);
+        hibi::Skin::RenderParams deep = render;
+        deep.cell_level = 9;
+        skin.render_cells(deep);
         std::printf("skin cell map of level 9: no throw\n");
     } catch (const hibi::Error &e) {
         std::printf("skin cell map of level 9: status %u\n", static_cast<unsigned>(e.status()));
@@ -248,7 +254,7 @@ void skin() {
     hibi::Skin placed = hibi::Skin::create_in(params, memory.data(), memory.size());
     placed.run();
     std::vector<std::uint8_t> again =
-        hibi::Skin::shade(placed.render_height(), placed.render_normal(), hibi::Skin::default_shade());
+        hibi::Skin::shade(placed.render_height(render), placed.render_normal(render), hibi::Skin::default_shade());
     std::printf("skin caller memory, same preview: %s\n", yes(same_bytes(again, rgb)));
 }
 

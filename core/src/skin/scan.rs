@@ -59,8 +59,16 @@ pub(super) fn contains_among(outline: &[[i64; 2]], edges: u64, p: [i64; 2]) -> b
 /// Rows a cell may span for [`for_each_span`]'s direct path.
 const DIRECT_ROWS: usize = 64;
 
-/// Crossings [`for_each_span`] holds at once, on the stack (2 KiB).
+/// Crossings [`for_each_span`] holds at once (2 KiB, on the caller's stack).
 const HELD: usize = 256;
+
+/// [`for_each_span`]'s working memory: one per render, not one per cell.
+pub(super) type Held = [u64; HELD];
+
+/// Working memory for [`for_each_span`].
+pub(super) const fn held() -> Held {
+    [0; HELD]
+}
 
 /// Bits of a crossing's sort key below its column: the edge's index, which makes every key of
 /// a band unique (an outline has at most [`super::MAX_OUTLINE`] edges).
@@ -76,7 +84,8 @@ const _: () = assert!((HELD as u64) < 1 << (64 - COLUMN_BITS - EDGE_BITS));
 /// Calls `visit(row, c1, c2)` for every run of pixels `c1..c2` (c1 < c2) of one row whose
 /// centres `outline` (fixed point of `shift` fractional bits) contains, in row order
 /// (columns and rows may lie outside the raster; the caller wraps or clips them). Its working
-/// memory is a fixed [`HELD`] crossings on the stack, whatever the outline's length.
+/// memory is `held`, [`HELD`] crossings whatever the outline's length (its contents on entry
+/// do not matter).
 ///
 /// A centre is inside when an odd number of crossings lie strictly to its right: in each row,
 /// the columns in [c1, c2), [c3, c4), ... of the sorted crossings. Most cells are crossed
@@ -85,7 +94,7 @@ const _: () = assert!((HELD as u64) < 1 << (64 - COLUMN_BITS - EDGE_BITS));
 /// row with more crossings than that (an outline of over [`HELD`] edges) is taken in
 /// passes, each collecting the next crossings in order (by row, column and edge, which is
 /// unique) and drawing the runs of an even number of them.
-pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, mut visit: impl FnMut(i64, i64, i64)) {
+pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, held: &mut Held, mut visit: impl FnMut(i64, i64, i64)) {
     let n = outline.len();
     if n < 3 {
         return;
@@ -102,7 +111,6 @@ pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, mut visit: impl Fn
     let first = (y0 - half) >> shift;
     let last = ((y1 - half) >> shift) + 1;
     let rows = (last - first + 1) as usize;
-    let mut held = [0u64; HELD];
     if rows <= DIRECT_ROWS {
         // Each row's first two crossings, in `held`, and how many it has.
         let mut count = [0u8; DIRECT_ROWS];
@@ -268,7 +276,7 @@ fn floor(x: f64) -> i64 {
 /// fractional bits) contains, in row order; see [`for_each_span`].
 #[cfg(test)]
 fn for_each_pixel(outline: &[[i64; 2]], shift: u32, mut visit: impl FnMut(i64, i64)) {
-    for_each_span(outline, shift, |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
+    for_each_span(outline, shift, &mut held(), |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
 }
 
 #[cfg(test)]

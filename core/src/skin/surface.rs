@@ -25,6 +25,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use super::profile::{ProfileTable, blend};
+use super::scan::{Held, held};
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
 use crate::scalar::Scalar;
@@ -493,8 +494,9 @@ impl<S: Scalar> Skin<'_, S> {
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
             let Some((map, level)) = cell else { return };
+            let mut held = held();
             for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
-                self.for_each_run(c, |_, x0, x1, wx, wy| {
+                self.for_each_run(c, &mut held, |_, x0, x1, wx, wy| {
                     let i0 = wy as usize * width + wx as usize;
                     map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
                 });
@@ -503,6 +505,7 @@ impl<S: Scalar> Skin<'_, S> {
         }
         let mut fans = [FanAt::default(); MAX_LEVELS];
         let mut batch = Batch::<S>::new();
+        let mut held = held();
         let to_pixels = 1.0 / (1u64 << self.fixed_point_bits()) as f64;
         let levels = self.params.levels as usize;
         let finest = levels - 1;
@@ -528,7 +531,7 @@ impl<S: Scalar> Skin<'_, S> {
             }
             let view = Fans { wedges, at: &fans, finest };
             let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
-            self.for_each_run(c, |y, x0, x1, wx, wy| {
+            self.for_each_run(c, &mut held, |y, x0, x1, wx, wy| {
                 let i0 = wy as usize * width + wx as usize;
                 if let Some((map, owner)) = map.as_mut() {
                     map[i0..i0 + (x1 - x0) as usize].fill(*owner);
@@ -545,10 +548,10 @@ impl<S: Scalar> Skin<'_, S> {
     /// one row whose centres lie in `cell`: unwrapped as the outline places them, and on the
     /// surface, where the run is contiguous (a run across the periodic seam comes in two
     /// pieces).
-    fn for_each_run(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
+    fn for_each_run(&self, cell: &SkinCell, held: &mut Held, mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
         let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
         let periodic = self.params.periodic;
-        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), |y, x0, x1| {
+        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), held, |y, x0, x1| {
             if periodic {
                 let wy = y.rem_euclid(h) as u32;
                 let mut x = x0;
@@ -570,7 +573,7 @@ impl<S: Scalar> Skin<'_, S> {
     /// Calls `visit(column, row, wrapped column, wrapped row)` for every pixel whose centre lies
     /// in `cell`: unwrapped as the outline places it, and on the surface.
     pub(super) fn for_each_pixel_unwrapped(&self, cell: &SkinCell, mut visit: impl FnMut(i64, i64, u32, u32)) {
-        self.for_each_run(cell, |y, x0, x1, wx, wy| {
+        self.for_each_run(cell, &mut held(), |y, x0, x1, wx, wy| {
             for (x, wx) in (x0..x1).zip(wx..) {
                 visit(x, y, wx, wy);
             }
