@@ -6,10 +6,13 @@
 //! if (hibi_glass_create(&params, &glass) != HIBI_OK) { ... }
 //! hibi_glass_progress progress;
 //! hibi_status status;
-//! do { status = hibi_glass_step(glass, 1000, &progress); } while (status == HIBI_OK && !progress.finished);
-//! hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, pixels, width * height);
+//! do { status = hibi_glass_step(glass, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
+//! hibi_glass_render_params render = hibi_glass_render_params_default();
+//! hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, pixels, render.width * render.height);
 //! hibi_glass_destroy(glass);
 //! ```
+//!
+//! The same sequence drives mud and skin but for the names.
 //!
 //! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
 

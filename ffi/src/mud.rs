@@ -2,19 +2,18 @@
 //!
 //! ```c
 //! hibi_mud_params params = hibi_mud_params_default();
-//! params.columns = params.rows = 128;
 //! hibi_mud *mud = NULL;
 //! if (hibi_mud_create(&params, &mud) != HIBI_OK) { ... }
 //! hibi_mud_progress progress;
 //! hibi_status status;
-//! do { status = hibi_mud_step(mud, 1000000, &progress); } while (status == HIBI_OK && !progress.finished);
-//! hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, width * height);
-//! size_t rings, points, wrapping;
-//! hibi_mud_cell_counts(mud, &rings, &points, &wrapping);
-//! /* allocate rings and points, then */
-//! hibi_mud_cells(mud, ring_buffer, rings, point_buffer, points, &rings, &points);
+//! do { status = hibi_mud_step(mud, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
+//! hibi_mud_render_params render = hibi_mud_render_params_default();
+//! hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, render.width * render.height);
 //! hibi_mud_destroy(mud);
 //! ```
+//!
+//! The same sequence drives glass and skin but for the names. The cells come by count, then
+//! write: `hibi_mud_cell_counts`, then `hibi_mud_cells` into buffers of those sizes.
 //!
 //! An object is one block: the header, then the model's scalar and word arrays. With
 //! `hibi_mud_memory_size` and `hibi_mud_create_in` the block is the caller's.

@@ -1,21 +1,19 @@
 //! `hibi_skin`: model C, skin from hierarchical Voronoi cells (Ishii et al.), from C.
 //!
 //! ```c
-//! hibi_skin_params params;
-//! if (hibi_skin_params_preset("fig19a", &params) != HIBI_OK) { ... }
-//! params.width = params.height = 256;
+//! hibi_skin_params params = hibi_skin_params_default();
 //! hibi_skin *skin = NULL;
 //! if (hibi_skin_create(&params, &skin) != HIBI_OK) { ... }
 //! hibi_skin_progress progress;
 //! hibi_status status;
 //! do { status = hibi_skin_step(skin, 100000, &progress); } while (status == HIBI_OK && !progress.finished);
 //! hibi_skin_render_params render = hibi_skin_render_params_default();
-//! hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, height, w * h);
-//! hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_NORMAL, normal, 3 * w * h);
-//! hibi_skin_shade_params light = hibi_skin_shade_params_default();
-//! hibi_skin_shade(height, w * h, normal, 3 * w * h, &light, rgb, 3 * w * h);
+//! hibi_skin_render(skin, &render, HIBI_SKIN_LAYER_HEIGHT, pixels, params.width * params.height);
 //! hibi_skin_destroy(skin);
 //! ```
+//!
+//! The same sequence drives mud and glass but for the names. A preview: render
+//! `HIBI_SKIN_LAYER_NORMAL` too, then `hibi_skin_shade` the two maps.
 //!
 //! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
 //! another; rendering only reads them (it draws what is built so far). An object is one block:
