@@ -1727,7 +1727,7 @@ struct hibi_glass_render_params hibi_glass_render_params_default(void);
  * # Safety
  * `glass` must be NULL or a live plate; `render` NULL or readable;
  * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
- * layer's type.
+ * layer's type, and overlapping neither the object nor `render`.
  */
 hibi_status hibi_glass_render(const struct hibi_glass *glass,
                               const struct hibi_glass_render_params *render,
@@ -1933,7 +1933,7 @@ struct hibi_mud_render_params hibi_mud_render_params_default(void);
  * # Safety
  * `mud` must be NULL or a live run; `render` NULL or readable;
  * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
- * layer's type.
+ * layer's type, and overlapping neither the object nor `render`.
  */
 hibi_status hibi_mud_render(const struct hibi_mud *mud,
                             const struct hibi_mud_render_params *render,
@@ -2104,7 +2104,7 @@ struct hibi_skin_render_params hibi_skin_render_params_default(void);
  * # Safety
  * `skin` must be NULL or a live skin; `render` NULL or readable;
  * `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
- * layer's type.
+ * layer's type, and overlapping neither the object nor `render`.
  */
 hibi_status hibi_skin_render(const struct hibi_skin *skin,
                              const struct hibi_skin_render_params *render,

@@ -1,4 +1,5 @@
-//! Stack (issue 24 item 2): every model's scratch lives in caller memory, and no public
+//! Stack (issue 24 item 2): every model's scratch that grows with its parameters lives in
+//! caller memory (a skin render's fixed 2 KiB of crossing slots is on the stack), and no public
 //! function needs more than 16 KiB of stack. A thread with a 32 KiB stack runs every model end
 //! to end (create, step, run, every output, render, on both backends; an overflow aborts the
 //! test process); the same calls on a larger thread are each measured on their own: the stack

@@ -12,7 +12,8 @@
 //! hibi_glass_destroy(glass);
 //! ```
 //!
-//! The same sequence drives mud and skin but for the names.
+//! The same sequence drives mud and skin but for the names (a skin renders at its params'
+//! size).
 //!
 //! An object is one block: the header, then the plate's crack, vertex, edge and word arrays.
 

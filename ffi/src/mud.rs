@@ -12,8 +12,9 @@
 //! hibi_mud_destroy(mud);
 //! ```
 //!
-//! The same sequence drives glass and skin but for the names. The cells come by count, then
-//! write: `hibi_mud_cell_counts`, then `hibi_mud_cells` into buffers of those sizes.
+//! The same sequence drives glass and skin but for the names (a skin renders at its params'
+//! size). The cells come by count, then write: `hibi_mud_cell_counts`, then `hibi_mud_cells`
+//! into buffers of those sizes.
 //!
 //! An object is one block: the header, then the model's scalar and word arrays. With
 //! `hibi_mud_memory_size` and `hibi_mud_create_in` the block is the caller's.

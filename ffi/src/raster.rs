@@ -39,13 +39,16 @@ impl<'a> Pixels<'a> {
 /// `$layers(layer, pixels)` and draws them, reporting a core error as `$status(error)`. The doc comment is the caller's; the signature,
 /// the checks and the Safety notes are here.
 macro_rules! render {
-    ($(#[$doc:meta])* $name:ident($arg:ident: $object:ty, $what:literal, $params:ty) = $layers:path, $status:path) => {
+    (
+        $(#[$doc:meta])*
+        $name:ident($arg:ident: $object:ty, $what:literal, $params:ty) = $layers:path, $status:path
+    ) => {
         $(#[$doc])*
         ///
         /// # Safety
         #[doc = concat!(" `", stringify!($arg), "` must be NULL or a live ", $what, "; `render` NULL or readable;")]
         /// `pixels` NULL (only with `pixels_len` 0) or writable for `pixels_len` values of the
-        /// layer's type.
+        /// layer's type, and overlapping neither the object nor `render`.
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $name(
             $arg: *const $object,

@@ -12,8 +12,9 @@
 //! hibi_skin_destroy(skin);
 //! ```
 //!
-//! The same sequence drives mud and glass but for the names. A preview: render
-//! `HIBI_SKIN_LAYER_NORMAL` too, then `hibi_skin_shade` the two maps.
+//! The same sequence drives mud and glass but for the names (a skin renders at its params'
+//! size). A preview: render `HIBI_SKIN_LAYER_NORMAL` too, then `hibi_skin_shade` the two maps;
+//! each layer is its own render (in Rust, `Skin::render` draws several layers in one pass).
 //!
 //! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
 //! another; rendering only reads them (it draws what is built so far). An object is one block:
@@ -287,7 +288,7 @@ impl crate::guard::Outcome for hibi_skin_render_params {
     fn into_c(self) -> Self {
         self
     }
-    /// A level past every skin's, which the cell layer rejects.
+    /// A level past every skin's (the cell layer rejects it; the others do not read it).
     fn on_panic() -> Self {
         hibi_skin_render_params { cell_level: u32::MAX }
     }

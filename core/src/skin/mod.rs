@@ -611,7 +611,9 @@ impl Build<'_> {
             return Ok(());
         }
         let index = self.cell_count;
-        if index == self.cells.len() {
+        // (With buffers of exactly the need neither runs out; larger cell or vertex buffers
+        // than the need do not make room for more fans than the wedges hold.)
+        if index == self.cells.len() || self.vertex_count + index + n + 1 > self.wedges.len() {
             return Err(Full);
         }
         self.cells[index] = SkinCell {

@@ -99,6 +99,8 @@ pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, held: &mut Held, m
     if n < 3 {
         return;
     }
+    // Keys tell edges apart by their index (a longer outline is no cell's).
+    debug_assert!(n <= super::MAX_OUTLINE);
     let half = 1i64 << (shift - 1);
     let (mut y0, mut y1, mut x0) = (i64::MAX, i64::MIN, i64::MAX);
     for v in outline {
@@ -134,7 +136,8 @@ pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, held: &mut Held, m
             return;
         }
     }
-    // Columns counted from `base` in the sort keys.
+    // Columns counted from `base` in the sort keys, modulo 2^40 (an outline 2^40 px wide, which
+    // only a degenerate stretch makes, has its columns wrap, drawing wrong pixels but no more).
     let base = (x0 >> shift) - 2;
     let column_mask = (1u64 << COLUMN_BITS) - 1;
     let band = (HELD / n).max(1) as i64;
