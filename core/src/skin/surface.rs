@@ -444,7 +444,8 @@ impl<S: Scalar> Ridge<'_, S> {
 impl<S: Scalar> Skin<'_, S> {
     /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
     /// cell level is not below `levels`, nothing is written. The skin is only read (renders
-    /// of one skin may run at once), and the working memory is a few KiB of stack.
+    /// of one skin may run at once), and its working memory is on the stack (about 12 KiB in
+    /// all: `tests/stack.rs`).
     pub fn render(&self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.params.width as usize * self.params.height as usize;
         let SkinLayers { height, normal, cell } = layers;
