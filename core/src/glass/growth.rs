@@ -20,6 +20,14 @@ const MIN_UPDATE: f32 = 0.5;
 /// The least share of MIN_UPDATE an update near a crack covers.
 const MIN_SQUARENESS: f32 = 0.25;
 
+/// The cosine (20°) between a radial crack's heading and the normal of the crack or edge it
+/// closes in on above which its update is not cut: a tip heading that squarely at it already
+/// meets it at nearly a right angle, and the short updates would only slow it (rule 8's figures
+/// stay: a median meeting angle of 79.0° over seeds 0–99, against 82.4° with every approach cut,
+/// for 17.5 % fewer instructions). A ring crack's updates are always cut near a crack: without
+/// it 1 of 990 ring cracks (seeds 0–99) turned 2° less than the arc it spans (rule 5).
+const SQUARE: f32 = 0.94;
+
 /// A margin \[px\] on the distance bounds that let a sector query skip a segment: far larger
 /// than the rounding of a distance on the plate (about 1e-4 px at 640 px), so that a skipped
 /// segment is one whose computed distance could not have passed the bound.
@@ -505,9 +513,9 @@ impl Glass<'_> {
     /// stopped). A time step moves the tip |v|·dt with dt = 1 in updates of at most
     /// UPDATE_LENGTH; an update is cut shorter while a crack or edge the tip is closing in on
     /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE scaled by how squarely the
-    /// tip heads at it, down to MIN_SQUARENESS of it), so that F2 can turn
-    /// the tip to meet it at a right angle (rule 8). The tip stops exactly on a crack or the
-    /// edge.
+    /// tip heads at it, down to MIN_SQUARENESS of it), so that F2 can turn the tip to meet it
+    /// at a right angle (rule 8), unless a radial crack already heads at it within 20° of
+    /// square (SQUARE). The tip stops exactly on a crack or the edge.
     fn update(&mut self, i: usize) -> bool {
         let p = self.params;
         let c = self.cracks[i];
@@ -521,10 +529,12 @@ impl Glass<'_> {
         let planned = full.min(left);
         // Near a crack, an update covers a quarter of the distance to it, and at least
         // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
-        // coming in at a shallow angle needs more turns before it arrives.
+        // coming in at a shallow angle needs more turns before it arrives; a radial crack
+        // heading at it nearly squarely is not slowed.
         let (gap, squareness) = closing;
         let least = MIN_UPDATE * squareness.max(MIN_SQUARENESS);
-        let length = (APPROACH_SHARE * gap).max(least).min(planned);
+        let length =
+            if !ring && squareness >= SQUARE { planned } else { (APPROACH_SHARE * gap).max(least).min(planned) };
         // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
         // per 10 px (scaled by the square root of the update's length, so that the random
         // turning per unit length does not depend on how a step is cut, and for a radial crack
