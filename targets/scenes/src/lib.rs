@@ -720,10 +720,10 @@ const SMALL_PLATE: u32 = 128;
 /// Side of its mask (the plate stretched over it): a 128×128 mask (16 KiB) does not fit beside
 /// the plate and the skin's stack.
 const SMALL_MASK: u32 = 64;
-/// M_ave of the small plate. The paper's 100 draws M = 102 here and needs 1571 vertices and
-/// about 215 KiB; 40 draws M = 44 (no ring cracks: those need M > 70) and 218 vertices.
+/// M_ave of the small plate. The paper's 100 draws M = 102 here and needs 1313 vertices and
+/// about 165 KiB; 40 draws M = 44 (no ring cracks: those need M > 70) and 175 vertices.
 const SMALL_RADIAL_MEAN: f32 = 40.0;
-/// Crack and vertex capacities of the small plate: what it uses (44 and 218) and a margin.
+/// Crack and vertex capacities of the small plate: what it uses (44 and 175) and a margin.
 const SMALL_GLASS_CRACKS: u32 = 48;
 const SMALL_GLASS_VERTICES: u32 = 240;
 /// Side of the small skin and its height map.
