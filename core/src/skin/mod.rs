@@ -473,9 +473,19 @@ impl SkinParams {
     /// - the pieces of side k belong to distinct cells that meet it: at most n_k of them,
     ///   one vertex each.
     ///
-    /// So the vertices number at most 2·pieces·(3n − 6) + Σ n_k, and at most n times the
-    /// longest outline ([`Layout`]). (In exact arithmetic; a build that finds more, through
-    /// rounding, stops with `capacity_reached`.)
+    /// So the vertices number at most 2·pieces·(3n − 6) + Σ n_k.
+    ///
+    /// Counted over the surface instead: its c ≤ n cells divide the rectangle into c convex
+    /// faces, a connected plane graph with one face more outside (the sides split where edges
+    /// meet them). Every vertex of it but the 4 corners has degree 3 or more (a Voronoi vertex,
+    /// or an edge meeting a side), the corners 2 or more, so 2E ≥ 3(V − 4) + 8; with Euler's
+    /// V − E + (c + 1) = 2 that gives E ≤ 3c + 1. The outlines write each of the E − E_s inner
+    /// edges twice, as `pieces` vertices each, and each of the E_s ≥ 4 edges along the sides
+    /// once: 2·pieces·E − (2·pieces − 1)·E_s ≤ 6·pieces·(c − 1) + 4 ≤ 6·pieces·(n − 1) + 4
+    /// vertices (4 for one cell, the rectangle).
+    ///
+    /// The need is the least of these and n times the longest outline ([`Layout`]). (In exact
+    /// arithmetic; a build that finds more, through rounding, stops with `capacity_reached`.)
     fn level0_need(&self, lattice: &Lattice, outline: usize) -> Option<(usize, usize)> {
         let r = self.level0_indices(lattice);
         let pieces = level0_pieces(self);
@@ -501,7 +511,8 @@ impl SkinParams {
         };
         let euler =
             edges.checked_mul(2 * pieces)?.checked_add(sides.iter().try_fold(0usize, |s, &n| s.checked_add(n))?)?;
-        let vertices = euler.min(cells.checked_mul(outline)?);
+        let faces = (6 * pieces).checked_mul(cells.saturating_sub(1))?.checked_add(4)?;
+        let vertices = euler.min(faces).min(cells.checked_mul(outline)?);
         Some((cells, vertices))
     }
 
