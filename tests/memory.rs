@@ -7,9 +7,9 @@
 //! the planar Delaunay graph's edges and by the faces of the divided surface, a neighbour
 //! window of the centre points within twice the covering radius (25 of them at jitter 0.5),
 //! and clip buffers for a clipped outline among them; not the 19 296 bytes of a fixed 81-point
-//! window, the 110 KB it needed at first, nor the 434 KB of fixed capacities before that. Half
-//! of it does not grow with the image: the level's record (profile table, shared edges, edge
-//! grid and scratch, 6.4 KB), the window (1.2 KB) and two clip buffers (1.4 KB).
+//! window, the 110 KB it needed at first, nor the 434 KB of fixed capacities before that. Most
+//! of it (9.1 KB) does not grow with the image: the level's record (profile table, shared
+//! edges, edge grid and scratch, 6.4 KB), the window (1.2 KB) and two clip buffers (1.4 KB).
 
 use core::ffi::c_void;
 

@@ -134,8 +134,9 @@ impl Default for SkinLevel {
 #[derive(Clone, Copy, Debug)]
 struct Window {
     rows: i64,
-    /// Per row from `−WINDOW` (index 0), the columns on either side (0 beyond `rows`).
-    columns: [i64; 2 * WINDOW as usize + 1],
+    /// Per row from `−WINDOW` (index 0), the columns on either side (0 beyond `rows`; bytes:
+    /// the window is part of every `Skin`, which callers keep on a small stack).
+    columns: [u8; 2 * WINDOW as usize + 1],
 }
 
 impl Window {
@@ -148,15 +149,15 @@ impl Window {
             // within it: its distance grows with |dj|.)
             let Some(c) = lattice.columns_within(dj, radius) else { break };
             rows = dj;
-            columns[(WINDOW + dj) as usize] = c.clamp(0, WINDOW);
-            columns[(WINDOW - dj) as usize] = c.clamp(0, WINDOW);
+            columns[(WINDOW + dj) as usize] = c.clamp(0, WINDOW) as u8;
+            columns[(WINDOW - dj) as usize] = c.clamp(0, WINDOW) as u8;
         }
         Window { rows, columns }
     }
 
     /// The columns on either side in row `dj` (|dj| ≤ `rows`).
     fn columns(&self, dj: i64) -> i64 {
-        self.columns[(WINDOW + dj) as usize]
+        i64::from(self.columns[(WINDOW + dj) as usize])
     }
 
     /// The centre points it holds.
@@ -906,7 +907,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
         let (lattice, f) = (self.build.lattices[0], self.build.frames[0]);
         // The centre's neighbours: the window around it, row by row (level 0 keeps them in the
         // first block of `sites`), slid along the row one column at a time.
-        let window = self.build.layout.window;
+        let window = &self.build.layout.window;
         let slide = self.window == Some([i - 1, j]);
         let mut at = 0;
         for dj in -window.rows..=window.rows {
@@ -998,7 +999,7 @@ mod tests {
         // among all 81 of WINDOW = 4, bit for bit; and off a period the window is never capped.
         let mut rng = Rng::from_key(11, 12);
         let mut unit = move || rng.uniform_f64() as f32;
-        let widest = Window { rows: WINDOW, columns: [WINDOW; 2 * WINDOW as usize + 1] };
+        let widest = Window { rows: WINDOW, columns: [WINDOW as u8; 2 * WINDOW as usize + 1] };
         for case in 0..200 {
             let mut p = SkinParams { seed: case, ..SkinParams::default() };
             (p.width, p.height) = (1 + (unit() * 120.0) as u32, 1 + (unit() * 120.0) as u32);
