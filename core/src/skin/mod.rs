@@ -59,8 +59,9 @@ use core::marker::PhantomData;
 
 use crate::scalar::Scalar;
 
-/// Neighbours on each side a level-1 centre is clipped against (jitter is at most half a
-/// spacing per axis, so a cell never reaches past them).
+/// Most rows and columns on each side of a level-0 centre that its neighbour window reaches
+/// ([`Window`]), and the reach of the box a periodic level-0 cell is clipped to, in lattice
+/// steps (less one).
 const WINDOW: i64 = 4;
 /// Most centre points one parent can hold, or one level-1 window.
 pub const MAX_CHILDREN: usize = 4096;
@@ -109,13 +110,76 @@ impl Default for SkinLevel {
     }
 }
 
+/// The level-0 centre points a cell is clipped among: rows `−rows..=rows` around the centre's
+/// own, row `dj` holding the columns `−columns[dj]..=columns[dj]` around its own, listed row by
+/// row (the order of ids, which breaks ties in the clipping).
+///
+/// It holds every centre point within 2ρ of the centre a ([`Lattice::reach`]: every point of
+/// the plane lies within ρ of some centre; [`Lattice::columns_within`] bounds the rows and
+/// columns that can lie within 2ρ), and those are all that can bound a's cell. Proof: a cell
+/// is clipped by its neighbours' bisectors nearest first ([`cell`]). Once every centre within
+/// 2ρ has clipped, the outline lies in W = {p : |p − a| ≤ |p − c| for each of them}, which is
+/// convex and holds a. A point p of W nearer a than 2ρ − ρ′ (ρ′ < ρ the true reach, ρ adding a
+/// hundredth of a step) has its nearest centre c within ρ′ of it, hence within 2ρ of a, so c
+/// is among them and |p − a| ≤ |p − c| ≤ ρ′. So no point of W lies between ρ′ and 2ρ − ρ′ > ρ′
+/// from a, and being convex and holding a, W lies within ρ′ of a. The bisector of a farther
+/// centre is more than ρ from a: it leaves the outline as it is, and a larger window (as the
+/// 81 centres of WINDOW = 4 once were) builds the very same outline.
+///
+/// Each side is capped at [`WINDOW`] rows or columns. On a lattice of the spacing's own steps
+/// the bound stays within it (4 rows and columns at most, for jitter 1 on a triangular
+/// lattice); a periodic lattice's steps are fitted to the period, and where that squeezes one
+/// axis's step far below the other's (a period of a few spacings or less) the bound can pass
+/// it. There the window is capped, as every skin's was before, and not proven.
+#[derive(Clone, Copy, Debug)]
+struct Window {
+    rows: i64,
+    /// Per row from `−WINDOW` (index 0), the columns on either side (0 beyond `rows`; bytes:
+    /// the window is part of every `Skin`, which callers keep on a small stack).
+    columns: [u8; 2 * WINDOW as usize + 1],
+}
+
+impl Window {
+    fn of(lattice: &Lattice) -> Window {
+        let radius = 2.0 * lattice.reach();
+        let mut columns = [0; 2 * WINDOW as usize + 1];
+        let mut rows = 0;
+        for dj in 0..=WINDOW {
+            // (Row 0 always holds the centre itself; a row beyond reach has no farther one
+            // within it: its distance grows with |dj|.)
+            let Some(c) = lattice.columns_within(dj, radius) else { break };
+            rows = dj;
+            columns[(WINDOW + dj) as usize] = c.clamp(0, WINDOW) as u8;
+            columns[(WINDOW - dj) as usize] = c.clamp(0, WINDOW) as u8;
+        }
+        Window { rows, columns }
+    }
+
+    /// The columns on either side in row `dj` (|dj| ≤ `rows`).
+    fn columns(&self, dj: i64) -> i64 {
+        i64::from(self.columns[(WINDOW + dj) as usize])
+    }
+
+    /// The centre points it holds.
+    fn sites(&self) -> usize {
+        (-self.rows..=self.rows).map(|dj| 2 * self.columns(dj) as usize + 1).sum()
+    }
+
+    /// Where the centre itself lies among them.
+    fn centre(&self) -> usize {
+        (-self.rows..0).map(|dj| 2 * self.columns(dj) as usize + 1).sum::<usize>() + self.columns(0) as usize
+    }
+}
+
 /// Where each level's scratch lies in the caller's arrays, sized by the parameters: the
 /// longest outline a level can have, and from it the clip vertices and chunk boxes.
 #[derive(Clone, Copy, Debug)]
 struct Layout {
+    /// Level 0's neighbour window.
+    window: Window,
     /// Per level, the most vertices one of its outlines can have: at level 0, a cell is
     /// clipped to a rectangle (4 corners, convex) by the bisectors of at most
-    /// `WINDOW_SITES − 1` neighbours, each adding at most one edge (a convex polygon meets a
+    /// `window.sites() − 1` neighbours, each adding at most one edge (a convex polygon meets a
     /// line in one segment), each bisector edge written as [`level0_pieces`] vertices and
     /// each piece of a side as one (level 0 crosses no parent edges); finer levels inherit
     /// their parent's corners and cross its edges: [`MAX_OUTLINE`].
@@ -137,10 +201,16 @@ fn level0_pieces(p: &SkinParams) -> usize {
 
 impl Layout {
     fn of(p: &SkinParams) -> Layout {
-        let first = ((WINDOW_SITES - 1) * level0_pieces(p) + 4).min(MAX_OUTLINE);
+        Layout::around(p, Window::of(&Lattice::new(p, 0)))
+    }
+
+    /// The layout of `p` with level-0 neighbour window `window`.
+    fn around(p: &SkinParams, window: Window) -> Layout {
+        let neighbours = window.sites() - 1;
+        let first = (neighbours * level0_pieces(p) + 4).min(MAX_OUTLINE);
         let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
-        let clip = if p.levels > 1 { MAX_OUTLINE } else { (WINDOW_SITES - 1 + 4).min(MAX_OUTLINE) };
-        Layout { outline, clip }
+        let clip = if p.levels > 1 { MAX_OUTLINE } else { (neighbours + 4).min(MAX_OUTLINE) };
+        Layout { window, outline, clip }
     }
 
     /// The vertices of a level's parent outline: the 4 corners of a rectangle at level 0.
@@ -160,8 +230,8 @@ impl Layout {
 
     /// Where level `level`'s centre points start in `sites`: level 0 holds one neighbour
     /// window, each finer level one parent's children.
-    fn sites_at(level: usize) -> usize {
-        if level == 0 { 0 } else { WINDOW_SITES + (level - 1) * MAX_CHILDREN }
+    fn sites_at(&self, level: usize) -> usize {
+        if level == 0 { 0 } else { self.window.sites() + (level - 1) * MAX_CHILDREN }
     }
 }
 
@@ -388,7 +458,7 @@ impl SkinParams {
     /// surface lies in the cell of its nearest centre, which is at most [`Lattice::reach`]
     /// (ρ) away: so a cell that meets the surface has its centre within ρ of it, and one that
     /// meets a side of the surface within ρ of that side (the window a cell is clipped among
-    /// holds every centre that can bound it: [`WINDOW`]). Counting the n lattice indices
+    /// holds every centre that can bound it: [`Window`]). Counting the n lattice indices
     /// whose centre can lie within ρ of the surface ([`Lattice::count_over`]), and the n_k
     /// that can lie within ρ of side k (all within [`SkinParams::level0_indices`]: ρ is under
     /// 1.6 steps of either axis, the rows being at least √3/2 of a column step apart, and an
@@ -404,9 +474,19 @@ impl SkinParams {
     /// - the pieces of side k belong to distinct cells that meet it: at most n_k of them,
     ///   one vertex each.
     ///
-    /// So the vertices number at most 2·pieces·(3n − 6) + Σ n_k, and at most n times the
-    /// longest outline ([`Layout`]). (In exact arithmetic; a build that finds more, through
-    /// rounding, stops with `capacity_reached`.)
+    /// So the vertices number at most 2·pieces·(3n − 6) + Σ n_k.
+    ///
+    /// Counted over the surface instead: its c ≤ n cells divide the rectangle into c convex
+    /// faces, a connected plane graph with one face more outside (the sides split where edges
+    /// meet them). Every vertex of it but the 4 corners has degree 3 or more (a Voronoi vertex,
+    /// or an edge meeting a side), the corners 2 or more, so 2E ≥ 3(V − 4) + 8; with Euler's
+    /// V − E + (c + 1) = 2 that gives E ≤ 3c + 1. The outlines write each of the E − E_s inner
+    /// edges twice, as `pieces` vertices each, and each of the E_s ≥ 4 edges along the sides
+    /// once: 2·pieces·E − (2·pieces − 1)·E_s ≤ 6·pieces·(c − 1) + 4 ≤ 6·pieces·(n − 1) + 4
+    /// vertices (4 for one cell, the rectangle).
+    ///
+    /// The need is the least of these and n times the longest outline ([`Layout`]). (In exact
+    /// arithmetic; a build that finds more, through rounding, stops with `capacity_reached`.)
     fn level0_need(&self, lattice: &Lattice, outline: usize) -> Option<(usize, usize)> {
         let r = self.level0_indices(lattice);
         let pieces = level0_pieces(self);
@@ -432,7 +512,8 @@ impl SkinParams {
         };
         let euler =
             edges.checked_mul(2 * pieces)?.checked_add(sides.iter().try_fold(0usize, |s, &n| s.checked_add(n))?)?;
-        let vertices = euler.min(cells.checked_mul(outline)?);
+        let faces = (6 * pieces).checked_mul(cells.saturating_sub(1))?.checked_add(4)?;
+        let vertices = euler.min(faces).min(cells.checked_mul(outline)?);
         Some((cells, vertices))
     }
 
@@ -476,7 +557,7 @@ impl SkinParams {
         Ok(SkinMemory {
             cells,
             vertices,
-            sites: Layout::sites_at(levels),
+            sites: layout.sites_at(levels),
             // Two outlines being clipped, and each level's parent outline as its children start.
             clip: 2 * layout.clip + layout.frames_at(levels),
             // The order of a cell's neighbours, when there are more than a few: a parent's
@@ -500,7 +581,8 @@ pub struct Skin<'a, S: Scalar = f32> {
     range: [i64; 4],
     /// The next level-0 index (i, j) to build.
     next: [i64; 2],
-    /// The level-0 index whose neighbour window `sites[..WINDOW_SITES]` holds, if any.
+    /// The level-0 index whose neighbour window (the first [`Window::sites`] of `sites`)
+    /// holds, if any.
     window: Option<[i64; 2]>,
     /// Level-0 cells whose trees are built.
     done: u32,
@@ -530,12 +612,9 @@ pub struct SkinProgress {
     pub work: u64,
 }
 
-/// Sites in a level-0 centre's neighbour window.
-const WINDOW_SITES: usize = ((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize;
-
 // Level 0's neighbours are few enough to be picked nearest first without sorting them in
-// `words` (a one-level skin needs none).
-const _: () = assert!(WINDOW_SITES <= cell::FEW);
+// `words` (a one-level skin needs none): the window holds at most (2·WINDOW + 1)² of them.
+const _: () = assert!(((2 * WINDOW + 1) * (2 * WINDOW + 1)) as usize <= cell::FEW);
 
 /// The state of a build: the buffers and how far they are filled.
 struct Build<'b> {
@@ -664,7 +743,7 @@ impl Build<'_> {
         for (k, v) in self.parent_frames[self.layout.frames_at(level)..][..n].iter_mut().enumerate() {
             *v = cell::parent_vertex(&f, outline, k);
         }
-        let base = Layout::sites_at(level);
+        let base = self.layout.sites_at(level);
         let mut count = 0;
         for j in r[1]..=r[3] {
             for i in r[0]..=r[2] {
@@ -713,6 +792,11 @@ impl<'a, S: Scalar> Skin<'a, S> {
     /// elements; [`Skin::step`] builds its cells. Nothing is written to the buffers on
     /// failure.
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
+        Skin::new_in(params, buffers, Layout::of(params))
+    }
+
+    /// [`Skin::new`] with the scratch laid out as `layout` says (the buffers at least the need).
+    fn new_in(params: &SkinParams, buffers: SkinBuffers<'a>, layout: Layout) -> Result<Self, SkinError> {
         let m = params.memory()?;
         let short = [
             (buffers.cells.len(), m.cells),
@@ -732,7 +816,6 @@ impl<'a, S: Scalar> Skin<'a, S> {
             Frame::new(l, &params.level[l.min(params.levels as usize - 1)], params.seed, size, params.levels)
         });
         let lattices = core::array::from_fn(|l| Lattice::new(params, l.min(params.levels as usize - 1)));
-        let layout = Layout::of(params);
         let (clip, rest) = buffers.clip.split_at_mut(layout.clip);
         let (spare, parent_frames) = rest.split_at_mut(layout.clip);
         let levels = &mut buffers.levels[..params.levels as usize];
@@ -824,20 +907,24 @@ impl<'a, S: Scalar> Skin<'a, S> {
         let (lattice, f) = (self.build.lattices[0], self.build.frames[0]);
         // The centre's neighbours: the window around it, row by row (level 0 keeps them in the
         // first block of `sites`), slid along the row one column at a time.
-        let side = (2 * WINDOW + 1) as usize;
+        let window = &self.build.layout.window;
         let slide = self.window == Some([i - 1, j]);
-        for (row, dj) in self.build.sites[..WINDOW_SITES].chunks_exact_mut(side).zip(-WINDOW..) {
+        let mut at = 0;
+        for dj in -window.rows..=window.rows {
+            let c = window.columns(dj);
+            let row = &mut self.build.sites[at..][..2 * c as usize + 1];
+            at += row.len();
             if slide {
                 row.copy_within(1.., 0);
-                row[side - 1] = lattice.site(i + WINDOW, j + dj);
+                row[2 * c as usize] = lattice.site(i + c, j + dj);
             } else {
-                for (s, di) in row.iter_mut().zip(-WINDOW..) {
+                for (s, di) in row.iter_mut().zip(-c..) {
                     *s = lattice.site(i + di, j + dj);
                 }
             }
         }
         self.window = Some([i, j]);
-        let site = self.build.sites[WINDOW_SITES / 2];
+        let site = self.build.sites[window.centre()];
         let shift = f.shift;
         let parent = if self.params.periodic {
             let reach = [(WINDOW as f64 + 1.0) * lattice.step[0], (WINDOW as f64 + 1.0) * lattice.step[1]];
@@ -859,7 +946,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
         };
         let before = self.build.vertex_count;
         let boxes = core::mem::take(&mut self.build.boxes);
-        let built = self.build.cell(0, site, (0, WINDOW_SITES), (parent, NO_CELL), &mut *boxes);
+        let built = self.build.cell(0, site, (0, at), (parent, NO_CELL), &mut *boxes);
         self.build.boxes = boxes;
         self.work += (self.build.vertex_count - before) as u64 + 1;
         built
@@ -897,5 +984,54 @@ impl<'a, S: Scalar> Skin<'a, S> {
     /// exactly once. The skin is only read.
     pub fn for_each_pixel(&self, cell: &SkinCell, mut visit: impl FnMut(u32, u32)) {
         self.for_each_pixel_unwrapped(cell, |_, _, x, y| visit(x, y));
+    }
+}
+
+#[cfg(all(test, feature = "alloc"))]
+mod tests {
+    use super::*;
+    use crate::rng::{Rng, Spread};
+
+    #[test]
+    fn the_window_builds_what_the_widest_window_builds() {
+        // Every layout, jitter, stretch, perturbation, size and period, some with a second
+        // level: the outlines built among the centres within 2ρ ([`Window`]) are those built
+        // among all 81 of WINDOW = 4, bit for bit; and off a period the window is never capped.
+        let mut rng = Rng::from_key(11, 12);
+        let mut unit = move || rng.uniform_f64() as f32;
+        let widest = Window { rows: WINDOW, columns: [WINDOW as u8; 2 * WINDOW as usize + 1] };
+        for case in 0..200 {
+            let mut p = SkinParams { seed: case, ..SkinParams::default() };
+            (p.width, p.height) = (1 + (unit() * 120.0) as u32, 1 + (unit() * 120.0) as u32);
+            p.layout = [SiteLayout::Triangular, SiteLayout::Square, SiteLayout::Random][case as usize % 3];
+            p.jitter = if unit() < 0.5 { Spread::Uniform } else { Spread::Normal };
+            p.jitter_ratio = if unit() < 0.3 { 1.0 } else { unit() };
+            p.periodic = unit() < 0.25;
+            p.levels = if unit() < 0.15 { 2 } else { 1 };
+            let l = &mut p.level[0];
+            l.spacing = 3.0 + unit() * unit() * 50.0;
+            l.stretch = [0.5 + unit() * 2.0, 0.5 + unit() * 2.0];
+            l.perturbation = if unit() < 0.5 { 0.0 } else { unit() * 0.4 };
+            l.perturbation_depth = (unit() * 4.0) as u32;
+            p.level[1].spacing = p.level[0].spacing / 3.0;
+            let window = Window::of(&Lattice::new(&p, 0));
+            if !p.periodic {
+                let lattice = Lattice::new(&p, 0);
+                let radius = 2.0 * lattice.reach();
+                assert!(lattice.columns_within(window.rows + 1, radius).is_none(), "case {case}: rows capped");
+                for dj in -window.rows..=window.rows {
+                    assert!(lattice.columns_within(dj, radius).is_some_and(|c| c <= WINDOW), "case {case}");
+                }
+            }
+            let m = p.memory().expect("valid");
+            let wide =
+                SkinMemory { sites: m.sites + 81, clip: m.clip + 2 * MAX_OUTLINE, boxes: m.boxes + MAX_OUTLINE, ..m };
+            let (mut near, mut far) = (m.allocate(), wide.allocate());
+            let mut a: Skin = Skin::new(&p, near.buffers()).expect("its need");
+            let mut b: Skin = Skin::new_in(&p, far.buffers(), Layout::around(&p, widest)).expect("more than its need");
+            let (pa, pb) = (a.run(), b.run());
+            assert!(!pa.capacity_reached && !pb.capacity_reached, "case {case}");
+            assert_eq!((a.cells(), a.vertices()), (b.cells(), b.vertices()), "case {case}: {p:?}");
+        }
     }
 }

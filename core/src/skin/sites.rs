@@ -131,6 +131,27 @@ impl Lattice {
         (0.5 + 0.5 * self.jitter + 0.01) * diagonal
     }
 
+    /// The most columns on either side of a centre point's own whose centre points, in the
+    /// row `dj` rows away, can lie within `radius` of it (the frame's units); None when none
+    /// of that row can.
+    ///
+    /// Proof: centre points (i, j) and (i + di, j + dj) lie `dj + y' − y` row steps apart
+    /// vertically and `di + s' − s + x' − x` column steps horizontally, each jitter |x|, |y| at
+    /// most J/2 ([`Lattice::reach`]'s strata) and the row shifts s, s' differing by at most σ
+    /// (½ between rows of unlike parity on a triangular lattice, whose period holds an even
+    /// number of rows; else 0). So they are at least `dy = (|dj| − J)⁺` row steps and
+    /// `(|di| − σ − J)⁺` column steps apart, and within `radius` only if dy·step₁ ≤ radius and
+    /// |di| ≤ σ + J + √(radius² − (dy·step₁)²) / step₀.
+    pub(super) fn columns_within(&self, dj: i64, radius: f64) -> Option<i64> {
+        let dy = (dj.unsigned_abs() as f64 - self.jitter).max(0.0) * self.step[1];
+        if dy > radius {
+            return None;
+        }
+        let sigma = if self.layout == SiteLayout::Triangular && dj % 2 != 0 { 0.5 } else { 0.0 };
+        // (`as` saturates a huge count: the caller caps it.)
+        Some(libm::floor(sigma + self.jitter + libm::sqrt(radius * radius - dy * dy) / self.step[0]) as i64)
+    }
+
     /// How many lattice indices (i, j) within `range` (inclusive: i0, j0, i1, j1) have a centre
     /// point that can lie in the frame box [min, max] (jitter included, each row's shift
     /// counted; a hundredth of a step covers rounding). Not periodic images: the lattice's own

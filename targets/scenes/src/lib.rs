@@ -204,11 +204,11 @@ const GLASS_WORDS: usize = 214216;
 const GLASS_SCRATCH: usize = 51725;
 const SKIN_CELLS: usize = 2292;
 const SKIN_VERTICES: usize = 108408;
-const SKIN_SITES: usize = 8273;
-const SKIN_CLIP: usize = 6792;
+const SKIN_SITES: usize = 8217;
+const SKIN_CLIP: usize = 6344;
 const SKIN_WORDS: usize = 4096;
 const SKIN_LEVELS: usize = 3;
-const SKIN_BOXES: usize = 675;
+const SKIN_BOXES: usize = 563;
 // A wedge per outline vertex and one per cell.
 const SKIN_WEDGES: usize = SKIN_VERTICES + SKIN_CELLS;
 const WORDS: usize =
@@ -709,7 +709,7 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
 /// `u64` words of the arena the 64 KiB scenes share: each scene takes its model's memory and
 /// its outputs from it and gives them back when it ends, so the arena is the largest scene's
 /// need, not the sum: the glass plate and its mask, 41,104 bytes on x86_64 (the mud scenes
-/// take 27,904; the 64×64 skin 19,296, with its 64×64 height map 35,680).
+/// take 27,904; the 64×64 skin 12,960, with its 64×64 height map 29,344).
 /// The rest of the 64 KiB is the stack's (`targets/run lm3s6965evb` reports its peak).
 pub const SMALL_ARENA_WORDS: usize = 5138;
 
