@@ -117,6 +117,8 @@ fn every_public_function(peaks: &mut Calls) {
     let (mut rings, mut points) = (vec![Default::default(); 4096], vec![[0.0; 2]; 65536]);
     measured(peaks, "Mud::cells", || mud.cells(&mut rings, &mut points).expect("sized"));
     measured(peaks, "Mud::statistics", || mud.statistics());
+    let mut segments = vec![Default::default(); mud.segment_count()];
+    measured(peaks, "Mud::segments", || mud.segments(&mut segments).expect("sized"));
     let (mut mask, mut time, mut height) = (vec![0u8; 128 * 128], vec![0.0; 128 * 128], vec![0.0; 128 * 128]);
     let render = MudRender { width: 128, height: 128, ..MudRender::default() };
     let layers = MudLayers { mask: Some(&mut mask), time: Some(&mut time), height: Some(&mut height) };
@@ -124,6 +126,10 @@ fn every_public_function(peaks: &mut Calls) {
     let mut store = params.memory().expect("valid").allocate::<Q16>();
     let mut mud = measured(peaks, "Mud<Q16>::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
     measured(peaks, "Mud<Q16>::run", || mud.run());
+    let explicit = MudParams { solver: hibi_core::mud::Solver::Explicit, columns: 16, rows: 16, ..params };
+    let mut store = explicit.memory().expect("valid").allocate::<f32>();
+    let mut mud = measured(peaks, "Mud::new (explicit)", || Mud::new(&explicit, store.buffers()).expect("memory"));
+    measured(peaks, "Mud::step (explicit)", || mud.step(100_000));
     let irregular = MudParams { topology: hibi_core::mud::Topology::Irregular, ..params };
     let mut store = irregular.memory().expect("valid").allocate::<f32>();
     let mut mud = measured(peaks, "Mud::new (irregular)", || Mud::new(&irregular, store.buffers()).expect("memory"));
@@ -135,6 +141,11 @@ fn every_public_function(peaks: &mut Calls) {
     let mut glass = measured(peaks, "Glass::new", || Glass::new(&params, store.buffers()).expect("memory suffices"));
     measured(peaks, "Glass::step", || glass.step(1000));
     measured(peaks, "Glass::run", || glass.run());
+    measured(peaks, "Glass::impact", || glass.impact([40.0, 60.0]).expect("room for a second impact"));
+    measured(peaks, "Glass::run (second impact)", || glass.run());
+    let mut crack_points = vec![Default::default(); glass.point_count(0)];
+    measured(peaks, "Glass::points", || glass.points(0, &mut crack_points).expect("sized"));
+    measured(peaks, "Glass::fragment_counts", || glass.fragment_counts(&mut scratch).expect("sized"));
     measured(peaks, "Glass::fragments", || glass.fragments(&mut scratch, &mut rings, &mut points).expect("sized"));
     let render = GlassRender { width: 160, height: 160, ..GlassRender::default() };
     let (mut mask, mut time) = (vec![0u8; 160 * 160], vec![0.0; 160 * 160]);
@@ -153,6 +164,7 @@ fn every_public_function(peaks: &mut Calls) {
     let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
     measured(peaks, "Skin::render (cells)", || skin.render(&SkinRender::default(), layers).expect("sized"));
     let longest = *skin.cells().iter().max_by_key(|c| c.vertex_count).expect("cells");
+    measured(peaks, "Skin::outline", || black_box(skin.outline(&longest).len()));
     measured(peaks, "Skin::for_each_pixel", || skin.for_each_pixel(&longest, |x, y| _ = black_box((x, y))));
     let mut rgb = vec![[0u8; 3]; 64 * 64];
     measured(peaks, "skin::shade", || shade(&height, &normal, &ShadeParams::default(), &mut rgb).expect("sized"));
@@ -162,23 +174,137 @@ fn every_public_function(peaks: &mut Calls) {
     measured(peaks, "Skin<Q16>::render", || skin.render(&SkinRender::default(), layers).expect("sized"));
 }
 
+/// The C ABI's calls that do a model's work, each measured on its own as a C caller makes it
+/// (the entry point's argument checks and panic guard included).
+fn every_c_entry_point(peaks: &mut Calls) {
+    use hibi::*;
+    use std::ffi::c_void;
+
+    // SAFETY (the whole block): every pointer passed is valid for the length given with it,
+    // each object is destroyed once, after its last use.
+    unsafe {
+        let mut mud = hibi_mud_params_default();
+        (mud.columns, mud.rows) = (32, 32);
+        let mut m = core::ptr::null_mut();
+        assert_eq!(measured(peaks, "hibi_mud_create", || hibi_mud_create(&mud, &mut m)), HIBI_OK);
+        let mut progress = hibi_mud_progress::default();
+        measured(peaks, "hibi_mud_step", || hibi_mud_step(m, u64::MAX, &mut progress));
+        assert_ne!(progress.finished, 0);
+        let (mut count, mut written) = (0, 0);
+        assert_eq!(hibi_mud_segment_count(m, &mut count), HIBI_OK);
+        let mut segments = vec![hibi_core::mud::CrackSegment::default(); count];
+        let status =
+            measured(peaks, "hibi_mud_segments", || hibi_mud_segments(m, segments.as_mut_ptr(), count, &mut written));
+        assert_eq!(status, HIBI_OK);
+        let (mut rings, mut points, mut wrapping) = (0, 0, 0);
+        assert_eq!(hibi_mud_cell_counts(m, &mut rings, &mut points, &mut wrapping), HIBI_OK);
+        let mut ring = vec![core::mem::zeroed::<hibi_mud_cell_ring>(); rings];
+        let mut point = vec![core::mem::zeroed::<hibi_vec2>(); points];
+        let status = measured(peaks, "hibi_mud_cells", || {
+            hibi_mud_cells(m, ring.as_mut_ptr(), rings, point.as_mut_ptr(), points, &mut written, &mut count)
+        });
+        assert_eq!(status, HIBI_OK);
+        let mut render = hibi_mud_render_params_default();
+        (render.width, render.height) = (128, 128);
+        let mut pixels = vec![0f32; 128 * 128];
+        let status = measured(peaks, "hibi_mud_render", || {
+            hibi_mud_render(m, &render, HIBI_MUD_LAYER_HEIGHT, pixels.as_mut_ptr().cast::<c_void>(), pixels.len())
+        });
+        assert_eq!(status, HIBI_OK);
+        hibi_mud_destroy(m);
+
+        let mut glass = hibi_glass_params_default();
+        (glass.width, glass.height, glass.impact, glass.seed) = (160.0, 160.0, [80.0; 2], 7);
+        let mut g = core::ptr::null_mut();
+        assert_eq!(measured(peaks, "hibi_glass_create", || hibi_glass_create(&glass, &mut g)), HIBI_OK);
+        let mut progress = hibi_glass_progress::default();
+        measured(peaks, "hibi_glass_step", || hibi_glass_step(g, u64::MAX, &mut progress));
+        assert_ne!(progress.finished, 0);
+        let mut size = 0;
+        assert_eq!(hibi_glass_scratch_size(g, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let (mut rings, mut points) = (0, 0);
+        let status = measured(peaks, "hibi_glass_fragment_counts", || {
+            hibi_glass_fragment_counts(g, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points)
+        });
+        assert_eq!(status, HIBI_OK);
+        let mut ring = vec![hibi_core::glass::FragmentRing::default(); rings];
+        let mut point = vec![core::mem::zeroed::<hibi_vec2>(); points];
+        let (mut rings_written, mut points_written) = (0, 0);
+        let status = measured(peaks, "hibi_glass_fragments", || {
+            let (r, p) = (ring.as_mut_ptr(), point.as_mut_ptr());
+            hibi_glass_fragments(
+                g,
+                scratch.as_mut_ptr().cast(),
+                size,
+                r,
+                rings,
+                p,
+                points,
+                &mut rings_written,
+                &mut points_written,
+            )
+        });
+        assert_eq!(status, HIBI_OK);
+        let mut render = hibi_glass_render_params_default();
+        (render.width, render.height) = (160, 160);
+        let mut pixels = vec![0f32; 160 * 160];
+        let status = measured(peaks, "hibi_glass_render", || {
+            hibi_glass_render(g, &render, HIBI_GLASS_LAYER_TIME, pixels.as_mut_ptr().cast::<c_void>(), pixels.len())
+        });
+        assert_eq!(status, HIBI_OK);
+        hibi_glass_destroy(g);
+
+        let mut skin = core::mem::zeroed::<hibi_skin_params>();
+        assert_eq!(hibi_skin_params_preset(c"fig19a".as_ptr(), &mut skin), HIBI_OK);
+        (skin.width, skin.height) = (64, 64);
+        let mut k = core::ptr::null_mut();
+        assert_eq!(measured(peaks, "hibi_skin_create", || hibi_skin_create(&skin, &mut k)), HIBI_OK);
+        let mut progress = hibi_skin_progress::default();
+        measured(peaks, "hibi_skin_step", || hibi_skin_step(k, u64::MAX, &mut progress));
+        assert_ne!(progress.finished, 0);
+        let render = hibi_skin_render_params_default();
+        let (mut height, mut normal) = (vec![0f32; 64 * 64], vec![0f32; 3 * 64 * 64]);
+        let status = measured(peaks, "hibi_skin_render", || {
+            hibi_skin_render(k, &render, HIBI_SKIN_LAYER_NORMAL, normal.as_mut_ptr().cast::<c_void>(), normal.len())
+        });
+        assert_eq!(status, HIBI_OK);
+        let status =
+            hibi_skin_render(k, &render, HIBI_SKIN_LAYER_HEIGHT, height.as_mut_ptr().cast::<c_void>(), height.len());
+        assert_eq!(status, HIBI_OK);
+        let shade = hibi_skin_shade_params_default();
+        let mut rgb = vec![0u8; 3 * 64 * 64];
+        let status = measured(peaks, "hibi_skin_shade", || {
+            let (h, n) = (height.as_ptr(), normal.as_ptr());
+            hibi_skin_shade(h, height.len(), n, normal.len(), &shade, rgb.as_mut_ptr(), rgb.len())
+        });
+        assert_eq!(status, HIBI_OK);
+        hibi_skin_destroy(k);
+    }
+}
+
 #[test]
 fn every_model_runs_end_to_end_in_a_thread_of_32_kib_in_release() {
     std::thread::Builder::new()
         .stack_size(THREAD_STACK)
-        .spawn(|| every_public_function(&mut Calls { measure: false, peaks: Vec::new() }))
+        .spawn(|| {
+            let mut calls = Calls { measure: false, peaks: Vec::new() };
+            every_public_function(&mut calls);
+            every_c_entry_point(&mut calls);
+        })
         .expect("a thread")
         .join()
         .expect("every model ran");
 }
 
 #[test]
-fn no_public_function_of_a_model_needs_more_than_16_kib_of_stack() {
+fn no_public_function_of_a_model_or_c_entry_point_needs_more_than_16_kib_of_stack() {
     let peaks = std::thread::Builder::new()
         .stack_size(1 << 20)
         .spawn(|| {
             let mut calls = Calls { measure: true, peaks: Vec::new() };
             every_public_function(&mut calls);
+            every_c_entry_point(&mut calls);
             calls.peaks
         })
         .expect("a thread")

@@ -51,7 +51,7 @@ pub use surface::{SkinLayers, SkinRender, Wedge};
 
 use cell::{Builder, Frame, Parent};
 use grid::EdgeGrid;
-use profile::{ProfileTable, Sampling};
+use profile::{ProfileTable, SAMPLES};
 use shared::SharedEdges;
 use sites::Lattice;
 
@@ -819,16 +819,26 @@ impl<'a, S: Scalar> Skin<'a, S> {
         let (clip, rest) = buffers.clip.split_at_mut(layout.clip);
         let (spare, parent_frames) = rest.split_at_mut(layout.clip);
         let levels = &mut buffers.levels[..params.levels as usize];
-        // One table per level, each level sampled where the level before was when their
-        // profiles share the sampling.
+        // One table per level; levels whose profiles place their samples alike (a run of
+        // them) share each sample's place, found once for the run.
         let profile = |l: usize| &params.level[l].profile;
-        let mut sampling = Sampling::of(profile(0));
-        for (l, level) in levels.iter_mut().enumerate() {
-            if l > 0 && !Sampling::shared(profile(l - 1), profile(l)) {
-                sampling = Sampling::of(profile(l));
+        let mut first = 0;
+        while first < levels.len() {
+            let mut end = first + 1;
+            while end < levels.len() && ProfileTable::shares_places(profile(end - 1), profile(end)) {
+                end += 1;
             }
+            for k in 0..=SAMPLES {
+                let (s, t) = ProfileTable::place(profile(first), k);
+                for (l, level) in levels.iter_mut().enumerate().take(end).skip(first) {
+                    level.table.sample_at(profile(l), k, s, t);
+                }
+            }
+            first = end;
+        }
+        for (l, level) in levels.iter_mut().enumerate() {
             // (Field by field, each built in place: a level is a few KiB.)
-            level.table.sample(profile(l), &sampling);
+            level.table.finish(profile(l));
             level.shared = SharedEdges::new();
             level.grid = EdgeGrid::new();
             level.scratch = cell::EdgeScratch::new();

@@ -37,52 +37,6 @@ fn bezier_derivative(p: [f64; 4], t: f64) -> f64 {
     3.0 * s * s * (p[1] - p[0]) + 6.0 * s * t * (p[2] - p[1]) + 3.0 * t * t * (p[3] - p[2])
 }
 
-/// Where each table sample lies on a profile's curve: its segment and its Bézier parameter t.
-/// Found from the control points' x' alone, so profiles that differ only in height (as a
-/// hierarchy's levels often do) share it.
-pub(super) struct Sampling {
-    segment: [usize; SAMPLES + 1],
-    t: [f64; SAMPLES + 1],
-}
-
-impl Sampling {
-    /// The sampling of `profile` (validated: x' starts at 0 and never decreases).
-    pub(super) fn of(profile: &Profile) -> Sampling {
-        let points = profile.used();
-        let end = points[points.len() - 1][0];
-        let segments = points.len() / 3;
-        let (mut segment, mut t) = ([0usize; SAMPLES + 1], [0.0f64; SAMPLES + 1]);
-        for k in 0..=SAMPLES {
-            // The sample's x and segment (the last one that starts at or before it).
-            let x = f64::from(end) * k as f64 / SAMPLES as f64;
-            let mut s = 0;
-            while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x {
-                s += 1;
-            }
-            segment[k] = s;
-            // x'(t) is monotone (control x' never decrease): bisection finds t. (One sample
-            // at a time: a few hundred samples once per skin, with no arrays of them on the
-            // stack.)
-            let c = controls(points, s, 0);
-            let (mut lo, mut hi) = (0.0f64, 1.0f64);
-            for _ in 0..48 {
-                let mid = 0.5 * (lo + hi);
-                let below = bezier(c, mid) < x;
-                lo = if below { mid } else { lo };
-                hi = if below { hi } else { mid };
-            }
-            t[k] = 0.5 * (lo + hi);
-        }
-        Sampling { segment, t }
-    }
-
-    /// Whether `a` and `b` have the same sampling: the same segments and control x'.
-    pub(super) fn shared(a: &Profile, b: &Profile) -> bool {
-        let (p, q) = (a.used(), b.used());
-        p.len() == q.len() && p.iter().zip(q).all(|(p, q)| p[0].to_bits() == q[0].to_bits())
-    }
-}
-
 /// The coordinates `axis` (0 for x', 1 for z') of segment `s`'s four control points.
 fn controls(points: &[[f32; 2]], s: usize, axis: usize) -> [f64; 4] {
     let c = &points[3 * s..3 * s + 4];
@@ -94,25 +48,63 @@ impl ProfileTable {
     #[cfg(test)]
     pub(super) fn new(profile: &Profile) -> ProfileTable {
         let mut table = ProfileTable::default();
-        table.sample(profile, &Sampling::of(profile));
+        for k in 0..=SAMPLES {
+            let (s, t) = ProfileTable::place(profile, k);
+            table.sample_at(profile, k, s, t);
+        }
+        table.finish(profile);
         table
     }
 
-    /// Samples `profile` where `sampling` (its own, or one it [shares](Sampling::shared))
-    /// places the samples, in place.
-    pub(super) fn sample(&mut self, profile: &Profile, sampling: &Sampling) {
+    /// Where sample `k` lies on `profile`'s curve: its segment and its Bézier parameter t.
+    /// Found from the control points' x' alone, so profiles that differ only in height (as a
+    /// hierarchy's levels often do, see [`ProfileTable::shares_places`]) place their samples
+    /// alike. One sample at a time, so that no array of them is on the stack.
+    pub(super) fn place(profile: &Profile, k: usize) -> (usize, f64) {
         let points = profile.used();
         let end = points[points.len() - 1][0];
-        for k in 0..=SAMPLES {
-            let (s, t) = (sampling.segment[k], sampling.t[k]);
-            let pz = controls(points, s, 1);
-            let dx = bezier_derivative(controls(points, s, 0), t);
-            let dz = bezier_derivative(pz, t);
-            // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
-            // clamp it to a steep but finite value.
-            let slope = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
-            self.samples[k] = [bezier(pz, t) as f32, slope];
+        let segments = points.len() / 3;
+        // The sample's x and segment (the last one that starts at or before it).
+        let x = f64::from(end) * k as f64 / SAMPLES as f64;
+        let mut s = 0;
+        while s + 1 < segments && f64::from(points[3 * (s + 1)][0]) <= x {
+            s += 1;
         }
+        // x'(t) is monotone (control x' never decrease): bisection finds t.
+        let c = controls(points, s, 0);
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..48 {
+            let mid = 0.5 * (lo + hi);
+            let below = bezier(c, mid) < x;
+            lo = if below { mid } else { lo };
+            hi = if below { hi } else { mid };
+        }
+        (s, 0.5 * (lo + hi))
+    }
+
+    /// Whether `a` and `b` place their samples alike: the same segments and control x'.
+    pub(super) fn shares_places(a: &Profile, b: &Profile) -> bool {
+        let (p, q) = (a.used(), b.used());
+        p.len() == q.len() && p.iter().zip(q).all(|(p, q)| p[0].to_bits() == q[0].to_bits())
+    }
+
+    /// Sets sample `k` of `profile`, placed at parameter `t` of segment `s` (from
+    /// [`ProfileTable::place`] of this profile or of one that shares its places).
+    pub(super) fn sample_at(&mut self, profile: &Profile, k: usize, s: usize, t: f64) {
+        let points = profile.used();
+        let pz = controls(points, s, 1);
+        let dx = bezier_derivative(controls(points, s, 0), t);
+        let dz = bezier_derivative(pz, t);
+        // Where the curve is vertical in x' (dx = 0) the slope is the limit of its neighbours;
+        // clamp it to a steep but finite value.
+        let slope = if dx.abs() > 1e-9 { (dz / dx).clamp(-1e3, 1e3) as f32 } else { 0.0 };
+        self.samples[k] = [bezier(pz, t) as f32, slope];
+    }
+
+    /// Completes a table whose every sample `sample_at` has set.
+    pub(super) fn finish(&mut self, profile: &Profile) {
+        let points = profile.used();
+        let end = points[points.len() - 1][0];
         // Fill vertical tangents with their neighbours' slope.
         let samples = &mut self.samples;
         for k in 0..=SAMPLES {
@@ -190,32 +182,35 @@ mod tests {
     }
 
     #[test]
-    fn profiles_with_the_same_abscissae_share_a_sampling() {
-        // Fig. 19's levels differ only in height: each one's table from the first's sampling
+    fn profiles_with_the_same_abscissae_share_their_places() {
+        // Fig. 19's levels differ only in height: each one's table from the first's places
         // is its table from its own.
         let fig19 = crate::skin::preset("fig19a").expect("a preset");
         let levels = fig19.level.map(|l| l.profile);
-        let first = Sampling::of(&levels[0]);
-        let sampled = |profile: &Profile, sampling: &Sampling| {
+        let placed = |profile: &Profile, by: &Profile| {
             let mut table = ProfileTable::default();
-            table.sample(profile, sampling);
+            for k in 0..=SAMPLES {
+                let (s, t) = ProfileTable::place(by, k);
+                table.sample_at(profile, k, s, t);
+            }
+            table.finish(profile);
             table
         };
         for profile in &levels[..fig19.levels as usize] {
-            assert!(Sampling::shared(&levels[0], profile));
-            assert_eq!(sampled(profile, &first), ProfileTable::new(profile));
+            assert!(ProfileTable::shares_places(&levels[0], profile));
+            assert_eq!(placed(profile, &levels[0]), ProfileTable::new(profile));
         }
-        // Moving one control point along x' (or adding a segment) gives another sampling.
+        // Moving one control point along x' (or adding a segment) places them elsewhere.
         let mut moved = levels[1];
         moved.points[2][0] = 8.0;
-        assert!(!Sampling::shared(&levels[1], &moved));
-        assert_ne!(sampled(&moved, &first), ProfileTable::new(&moved));
+        assert!(!ProfileTable::shares_places(&levels[1], &moved));
+        assert_ne!(placed(&moved, &levels[0]), ProfileTable::new(&moved));
         // (A second segment after the same first one: the x' agree as far as both go.)
         let two = Profile::two(
             [[0.0, 2.0], [5.0, 2.0], [9.0, 1.5], [10.0, 0.5]],
             [[10.0, 0.5], [11.0, 0.3], [12.0, 0.1], [13.0, 0.0]],
         );
-        assert!(!Sampling::shared(&levels[1], &two));
+        assert!(!ProfileTable::shares_places(&levels[1], &two));
     }
 
     #[test]
