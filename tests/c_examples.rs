@@ -560,7 +560,7 @@ fn c_glass_plate_out_of_capacity_stays_usable() {
     }
 }
 
-/// Defect 3: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
+/// Defect 4: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
 /// both solvers alike: at the target shrink, uncracked, at a positive time.
 #[test]
 fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
@@ -585,7 +585,7 @@ fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
     }
 }
 
-/// Defect 4: refusals name the field or argument the caller wrote, and the `*_written`
+/// Defect 5: refusals name the field or argument the caller wrote, and the `*_written`
 /// counts are required everywhere while the optional outputs are skipped.
 #[test]
 fn c_refusals_name_what_the_caller_wrote() {
