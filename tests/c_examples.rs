@@ -13,7 +13,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use hibi_core::Rng;
-use hibi_tests::workspace_root;
+use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, workspace_root};
 
 /// The native libraries a Rust static library needs on Linux
 /// (`rustc --print native-static-libs`).
@@ -56,11 +56,6 @@ enum Linkage {
     Valgrind,
 }
 
-/// Valgrind's command line: quiet (it prints only what it finds), and any error or leak a
-/// failing exit status.
-/// (Still-reachable blocks are not errors: the panic hook hibi installs once stays.)
-const VALGRIND: &[&str] = &["valgrind", "-q", "--error-exitcode=1", "--leak-check=full"];
-
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
 /// returns what it printed.
 fn build_and_run(compiler: &str, standard: &str, source: &str, linkage: Linkage) -> String {
@@ -99,9 +94,7 @@ fn build_and_run_capturing(
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Sanitized => {
-            cc.args(["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"])
-                .arg(lib.join("libhibi.a"))
-                .args(NATIVE_STATIC_LIBS);
+            cc.args(SANITIZE_FLAGS).arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Shared => {
             cc.arg("-L").arg(lib).arg("-lhibi").arg(format!("-Wl,-rpath,{}", lib.display()));
@@ -123,9 +116,7 @@ fn build_and_run_capturing(
         }
         Linkage::Sanitized => {
             let mut sanitized = Command::new(&exe);
-            // A refused allocation is a null pointer (hibi reports HIBI_ERROR_OUT_OF_MEMORY),
-            // as from the C library, not an abort.
-            sanitized.env("ASAN_OPTIONS", "allocator_may_return_null=1");
+            sanitized.env(ASAN_OPTIONS.0, ASAN_OPTIONS.1);
             sanitized
         }
         Linkage::Static | Linkage::Shared => Command::new(&exe),
