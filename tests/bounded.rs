@@ -8,6 +8,10 @@
 //! its budget plus one indivisible piece bounded by the model's size and capacities, and a
 //! render of a fixed size completes. NaN and infinity in every float field, and the
 //! out-of-range ends, are refused through the C ABI with the field's status, nothing written.
+//!
+//! Create and render report no work count: `tests/c_examples.rs`
+//! (`c_create_and_render_work_does_not_grow_with_extreme_floats`) counts their instructions
+//! under Callgrind instead, extreme values against moderate twins of the same sizes.
 
 use hibi::*;
 use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};

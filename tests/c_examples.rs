@@ -5,6 +5,8 @@
 //! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
 //! programs in `tests/c/` (issue 25) run under the sanitizers and under Valgrind; one of them,
 //! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
+//! `tests/c/work_counts.c` also runs under Callgrind, which counts the instructions of create
+//! and render calls with extreme float values (issue 25 item 6).
 //! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` (issue 26) against the C
 //! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind.
 
@@ -13,7 +15,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use hibi_core::Rng;
-use hibi_tests::workspace_root;
+use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, workspace_root};
 
 /// The native libraries a Rust static library needs on Linux
 /// (`rustc --print native-static-libs`).
@@ -54,12 +56,18 @@ enum Linkage {
     /// Static, run under `valgrind --error-exitcode=1 --leak-check=full`; any error or leak
     /// fails the run.
     Valgrind,
+    /// Static, run under Callgrind with collection off until the program turns it on; the
+    /// counts go to [`callgrind_counts`].
+    Callgrind,
 }
 
-/// Valgrind's command line: quiet (it prints only what it finds), and any error or leak a
-/// failing exit status.
-/// (Still-reachable blocks are not errors: the panic hook hibi installs once stays.)
-const VALGRIND: &[&str] = &["valgrind", "-q", "--error-exitcode=1", "--leak-check=full"];
+/// The program `build_and_run_capturing` builds from `source` with `compiler` and `linkage`.
+fn program_path(compiler: &str, source: &str, linkage: Linkage) -> PathBuf {
+    let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
+    // Named by compiler too: the same source may be built by two compilers at once.
+    let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{stem}_{by}_{linkage:?}"))
+}
 
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
 /// returns what it printed.
@@ -82,11 +90,7 @@ fn build_and_run_capturing(
 ) -> (String, String) {
     let root = workspace_root();
     let lib = library_dir();
-    let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
-    // Named by compiler too: the same source may be built by two compilers at once.
-    let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
-    let exe = out_dir.join(format!("{stem}_{by}_{linkage:?}"));
+    let exe = program_path(compiler, source, linkage);
     let mut cc = Command::new(compiler);
     cc.arg(format!("-std={standard}"))
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
@@ -95,13 +99,11 @@ fn build_and_run_capturing(
         .arg("-o")
         .arg(&exe);
     match linkage {
-        Linkage::Static | Linkage::Valgrind => {
+        Linkage::Static | Linkage::Valgrind | Linkage::Callgrind => {
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Sanitized => {
-            cc.args(["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"])
-                .arg(lib.join("libhibi.a"))
-                .args(NATIVE_STATIC_LIBS);
+            cc.args(SANITIZE_FLAGS).arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Shared => {
             cc.arg("-L").arg(lib).arg("-lhibi").arg(format!("-Wl,-rpath,{}", lib.display()));
@@ -121,11 +123,20 @@ fn build_and_run_capturing(
             valgrind.args(&VALGRIND[1..]).arg(&exe);
             valgrind
         }
+        Linkage::Callgrind => {
+            for old in callgrind_dumps(&exe) {
+                std::fs::remove_file(old).expect("remove an old Callgrind dump");
+            }
+            let mut callgrind = Command::new("valgrind");
+            callgrind
+                .args(["-q", "--tool=callgrind", "--collect-atstart=no"])
+                .arg(format!("--callgrind-out-file={}", exe.with_extension("callgrind").display()))
+                .arg(&exe);
+            callgrind
+        }
         Linkage::Sanitized => {
             let mut sanitized = Command::new(&exe);
-            // A refused allocation is a null pointer (hibi reports HIBI_ERROR_OUT_OF_MEMORY),
-            // as from the C library, not an abort.
-            sanitized.env("ASAN_OPTIONS", "allocator_may_return_null=1");
+            sanitized.env(ASAN_OPTIONS.0, ASAN_OPTIONS.1);
             sanitized
         }
         Linkage::Static | Linkage::Shared => Command::new(&exe),
@@ -533,6 +544,99 @@ fn c_tests_are_clean_under_clang_sanitizers() {
     }
 }
 
+/// The files Callgrind wrote for the program `exe` (its dumps and its final summary).
+fn callgrind_dumps(exe: &Path) -> Vec<PathBuf> {
+    let name = exe.with_extension("callgrind").file_name().unwrap().to_string_lossy().into_owned();
+    std::fs::read_dir(exe.parent().unwrap())
+        .expect("read the test's directory")
+        .map(|entry| entry.expect("an entry").path())
+        .filter(|path| path.file_name().unwrap().to_string_lossy().starts_with(&name))
+        .collect()
+}
+
+/// The instructions each `CALLGRIND_DUMP_STATS_AT(name)` of the program `exe` counted, by
+/// name.
+fn callgrind_counts(exe: &Path) -> std::collections::BTreeMap<String, u64> {
+    let mut counts = std::collections::BTreeMap::new();
+    for dump in callgrind_dumps(exe) {
+        let text = std::fs::read_to_string(&dump).expect("read a Callgrind dump");
+        let Some(name) = text.lines().find_map(|l| l.strip_prefix("desc: Trigger: Client Request: ")) else {
+            continue; // the summary at the program's end
+        };
+        let summary = text.lines().find_map(|l| l.strip_prefix("summary: ")).expect("a summary line");
+        let count = summary.trim().parse().unwrap_or_else(|_| panic!("{}: summary {summary}", dump.display()));
+        assert!(counts.insert(name.to_owned(), count).is_none(), "{name} dumped twice");
+    }
+    counts
+}
+
+/// Issue 25 item 6 for the calls that report no work: each case of `tests/c/work_counts.c`
+/// calls create or render with an extreme float value and, as its twin, with a moderate value
+/// of the same sizes and capacities that already saturates what the value can change;
+/// Callgrind counts each call's instructions. The extreme may cost at most `factor` times its
+/// twin (plus 10,000 instructions), and where `same` the two results are equal (the value
+/// cannot matter past the twin's). Two cases cost more: a glass `radial_mean` of 10000 (the
+/// most that is valid) is a Poisson draw of that mean, one uniform per unit of the mean
+/// (Knuth's method), so creation is bounded by the validation's cap rather than by the
+/// capacities (about 17 times the twin with mean 100); a mud `anisotropy_direction` of 1e30
+/// costs libm's argument reduction of the huge angle in creation (about 1.7 times).
+#[test]
+fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
+    const CASES: &[(&str, f64, bool)] = &[
+        ("glass-create ring_slope", 1.1, true),
+        ("glass-create ring_offset", 1.1, true),
+        ("glass-create large_slope", 1.1, true),
+        ("glass-create ring_radius_slope", 1.1, true),
+        ("glass-create speeds", 1.1, true),
+        ("glass-create radial_mean", 32.0, false),
+        ("mud-create break_stretch_mean", 1.1, false),
+        ("mud-create anisotropy", 2.0, false),
+        ("mud-create target_crack_density", 1.1, false),
+        ("skin-create perturbation", 1.1, false),
+        ("skin-create stretch", 1.1, false),
+        ("mud-render min_width", 1.1, true),
+        ("mud-render periodic min_width", 1.1, true),
+        ("mud-render width_scale", 1.1, true),
+        ("mud-render groove_depth", 1.1, false),
+        ("mud-render height width_scale", 1.1, false),
+        ("mud-render offset", 1.1, false),
+        ("mud-render periodic offset", 1.1, false),
+        ("glass-render line_width", 1.1, true),
+    ];
+    let source = "tests/c/work_counts.c";
+    let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Callgrind, &[]);
+    assert!(stderr.is_empty(), "{source} under Callgrind printed on stderr:\n{stderr}");
+    assert_eq!(line(&stdout, "glass-render cracks:"), "glass-render cracks: some");
+    let counts = callgrind_counts(&program_path(&c_compiler(), source, Linkage::Callgrind));
+    let names: Vec<String> =
+        CASES.iter().flat_map(|(case, ..)| ["twin", "extreme"].map(|k| format!("{case} {k}"))).collect();
+    assert_eq!(
+        counts.keys().collect::<Vec<_>>(),
+        names.iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect::<Vec<_>>()
+    );
+    for &(case, factor, same) in CASES {
+        let (twin, extreme) = (format!("{case} twin"), format!("{case} extreme"));
+        let (t, e) = (counts[&twin], counts[&extreme]);
+        // Callgrind counted the call (a program that never turned collection on counts 0).
+        assert!(t > 1000 && e > 1000, "{case}: {t} and {e} instructions");
+        assert!(e as f64 <= factor * t as f64 + 10_000.0, "{case}: {e} instructions, the twin {t} (factor {factor})");
+        let result = |name: &str| line(&stdout, &format!("{name}:")).split_once(": ").unwrap().1.to_owned();
+        assert_eq!(&result(&twin)[..8], "status 0", "{twin}");
+        assert_eq!(&result(&extreme)[..8], "status 0", "{extreme}");
+        if same {
+            assert_eq!(result(&twin), result(&extreme), "{case}: the value changed the result past the twin's");
+        }
+        println!("{case}: twin {t}, extreme {e} instructions ({:.2}x)", e as f64 / t as f64);
+    }
+}
+
+/// The program `tests/c/work_counts.c` (run under Callgrind above) prints every case's result.
+#[test]
+fn c_work_counts_prints_every_case() {
+    let output = regression("tests/c/work_counts.c");
+    assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 38, "{output}");
+}
+
 /// Defect 1: a huge ring count formula is bounded by `max_cracks` (it ran for minutes).
 #[test]
 fn c_glass_create_is_bounded_by_the_capacities() {
@@ -560,7 +664,7 @@ fn c_glass_plate_out_of_capacity_stays_usable() {
     }
 }
 
-/// Defect 3: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
+/// Defect 4: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
 /// both solvers alike: at the target shrink, uncracked, at a positive time.
 #[test]
 fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
@@ -585,7 +689,7 @@ fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
     }
 }
 
-/// Defect 4: refusals name the field or argument the caller wrote, and the `*_written`
+/// Defect 5: refusals name the field or argument the caller wrote, and the `*_written`
 /// counts are required everywhere while the optional outputs are skipped.
 #[test]
 fn c_refusals_name_what_the_caller_wrote() {

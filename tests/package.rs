@@ -3,14 +3,15 @@
 //! against the install through pkg-config and through CMake, shared and static, and runs.
 //! The shared library's SONAME, the header's version macros, the symbols the libraries
 //! export, and a program linking libhibi.a next to a second Rust static library
-//! (`tests/second_rust_lib/`) are checked here too.
+//! (`tests/second_rust_lib/`) are checked here too. Both programs also run clean under
+//! AddressSanitizer + UndefinedBehaviorSanitizer and under Valgrind (issue 25 item 3).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
 use hibi_core::Rng;
-use hibi_tests::workspace_root;
+use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, workspace_root};
 
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -202,9 +203,10 @@ fn consumer_builds_with_pkg_config_shared() {
     check_consumer(&stdout(Command::new(&exe).env_remove("LD_LIBRARY_PATH")));
 }
 
-#[test]
-fn consumer_builds_with_pkg_config_static() {
-    let dir = scratch_dir("pkg-config-static");
+/// Builds tests/consumer/main.cpp against the installed libhibi.a through pkg-config, with
+/// `flags` added, in a scratch directory `name`; returns the program.
+fn consumer_static(name: &str, flags: &[&str]) -> PathBuf {
+    let dir = scratch_dir(name);
     let exe = dir.join("consumer");
     let libdir = pkg_config(&["--variable=libdir"]).concat();
     // The archive by path (-lhibi would find the shared library first), then what
@@ -213,6 +215,7 @@ fn consumer_builds_with_pkg_config_static() {
         pkg_config(&["--static", "--libs-only-l"]).into_iter().filter(|l| l != "-lhibi").collect();
     run(Command::new(cxx())
         .args(["-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror"])
+        .args(flags)
         .args(pkg_config(&["--cflags"]))
         .arg(workspace_root().join("tests/consumer/main.cpp"))
         .arg(Path::new(&libdir).join("libhibi.a"))
@@ -220,7 +223,51 @@ fn consumer_builds_with_pkg_config_static() {
         .arg("-o")
         .arg(&exe));
     assert_eq!(needs_libhibi(&exe), None);
+    exe
+}
+
+/// `program` under Valgrind (quiet, any error or leak a failing status).
+fn valgrind(program: &Path) -> Command {
+    let mut command = Command::new(VALGRIND[0]);
+    command.args(&VALGRIND[1..]).arg(program);
+    command
+}
+
+/// `program`, built with [`SANITIZE_FLAGS`], with the sanitizers' options.
+fn sanitized(program: &Path) -> Command {
+    let mut command = Command::new(program);
+    command.env(ASAN_OPTIONS.0, ASAN_OPTIONS.1);
+    command
+}
+
+/// Runs `command`, which must succeed and print nothing on stderr (where the sanitizers and
+/// Valgrind report); returns what it printed on stdout.
+fn clean_stdout(command: &mut Command) -> String {
+    let output = run(command);
+    assert!(output.stderr.is_empty(), "{command:?} printed on stderr:\n{}", String::from_utf8_lossy(&output.stderr));
+    String::from_utf8(output.stdout).expect("UTF-8 output")
+}
+
+#[test]
+fn consumer_builds_with_pkg_config_static() {
+    let exe = consumer_static("pkg-config-static", &[]);
     check_consumer(&stdout(&mut Command::new(&exe)));
+}
+
+/// The installed package's consumer, linked statically, under ASan (with LeakSanitizer) and
+/// UBSan: no report, the same output.
+#[test]
+fn consumer_is_clean_under_sanitizers() {
+    let exe = consumer_static("pkg-config-sanitized", SANITIZE_FLAGS);
+    check_consumer(&clean_stdout(&mut sanitized(&exe)));
+}
+
+/// The installed package's consumer, linked statically, under Valgrind: no error, no leak,
+/// the same output.
+#[test]
+fn consumer_is_clean_under_valgrind() {
+    let exe = consumer_static("pkg-config-valgrind", &[]);
+    check_consumer(&clean_stdout(&mut valgrind(&exe)));
 }
 
 /// Configures and builds tests/consumer with CMake against the install; `extra` are more
@@ -268,10 +315,10 @@ fn cmake_package_refuses_another_major_version() {
     assert!(error.contains(&format!("version: {VERSION}")), "{error}");
 }
 
-/// Link hygiene: one C program links the installed libhibi.a and a second Rust static
-/// library (its own std, threads and a caught panic) and runs both.
-#[test]
-fn static_library_links_next_to_a_second_rust_static_library() {
+/// Builds tests/second_rust_lib's libsecond.a, then its C program linked with it and the
+/// installed libhibi.a in both orders, with `flags` added, in a scratch directory `name`;
+/// returns each order's name and program.
+fn second_rust_lib_programs(name: &str, flags: &[&str]) -> Vec<(&'static str, PathBuf)> {
     let root = workspace_root();
     let target = root.join("target/second-rust-lib");
     run(Command::new(env!("CARGO"))
@@ -280,16 +327,20 @@ fn static_library_links_next_to_a_second_rust_static_library() {
         .arg("--target-dir")
         .arg(&target));
     let second = target.join("debug/libsecond.a");
-    let dir = scratch_dir("second-rust-lib");
+    let dir = scratch_dir(name);
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     // Both orders: neither library's Rust symbols may satisfy or clash with the other's.
-    for (name, first, then) in [
+    [
         ("hibi_first", &prefix().join("lib/libhibi.a"), &second),
         ("second_first", &second, &prefix().join("lib/libhibi.a")),
-    ] {
-        let exe = dir.join(name);
+    ]
+    .into_iter()
+    .map(|(order, first, then)| {
+        let exe = dir.join(order);
         run(Command::new(&cc)
-            .args(["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
+            .args(["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror"])
+            .args(flags)
+            .arg("-I")
             .arg(prefix().join("include"))
             .arg(root.join("tests/second_rust_lib/main.c"))
             .arg(first)
@@ -297,12 +348,42 @@ fn static_library_links_next_to_a_second_rust_static_library() {
             .args(["-lpthread", "-ldl", "-lm"])
             .arg("-o")
             .arg(&exe));
-        let output = run(&mut Command::new(&exe));
-        assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
-        assert_eq!(
-            String::from_utf8(output.stdout).unwrap(),
-            format!("second_work(100): 5054\nsecond_work(0): 2\nhibi draw: {}\n", Rng::from_key(42, 7).next_u32()),
-            "{name}"
-        );
+        (order, exe)
+    })
+    .collect()
+}
+
+/// What tests/second_rust_lib/main.c prints: the second library's work (its thread and its
+/// caught panic) and hibi's first draw for seed 42, stream 7.
+fn check_second_rust_lib(order: &str, output: &str) {
+    assert_eq!(
+        output,
+        format!("second_work(100): 5054\nsecond_work(0): 2\nhibi draw: {}\n", Rng::from_key(42, 7).next_u32()),
+        "{order}"
+    );
+}
+
+/// Link hygiene: one C program links the installed libhibi.a and a second Rust static
+/// library (its own std, threads and a caught panic) and runs both.
+#[test]
+fn static_library_links_next_to_a_second_rust_static_library() {
+    for (order, exe) in second_rust_lib_programs("second-rust-lib", &[]) {
+        check_second_rust_lib(order, &clean_stdout(&mut Command::new(&exe)));
+    }
+}
+
+/// The two Rust static libraries in one program, under ASan (with LeakSanitizer) and UBSan.
+#[test]
+fn second_rust_static_library_program_is_clean_under_sanitizers() {
+    for (order, exe) in second_rust_lib_programs("second-rust-lib-sanitized", SANITIZE_FLAGS) {
+        check_second_rust_lib(order, &clean_stdout(&mut sanitized(&exe)));
+    }
+}
+
+/// The two Rust static libraries in one program, under Valgrind.
+#[test]
+fn second_rust_static_library_program_is_clean_under_valgrind() {
+    for (order, exe) in second_rust_lib_programs("second-rust-lib-valgrind", &[]) {
+        check_second_rust_lib(order, &clean_stdout(&mut valgrind(&exe)));
     }
 }

@@ -4,6 +4,18 @@
 //! - no NaN or infinity in any output (mud segments, network and cells; glass polylines and
 //!   fragments; skin cells and outlines; every float raster, except the break-time layers'
 //!   documented +infinity where no crack is);
+//! - every raster in its documented range, drawn with random render parameters: the masks'
+//!   coverage and the break-time layers agree (a pixel has a break time exactly where a crack
+//!   covers at least half of it, mask ≥ 128), break times lie in [0, the run's end time]; mud
+//!   heights in [1 − `groove_depth`, 1]; skin heights within the sums over the levels of the
+//!   profiles' lowest and highest control points (a Bézier curve stays in its control
+//!   points' hull, and the table between samples is linear), normals of unit length (within
+//!   2·10⁻⁶: the `f32` reciprocal square root is within 3·10⁻⁷) pointing out of the surface,
+//!   and the cell map naming cells of the level asked for, every pixel once the build is
+//!   complete;
+//! - every index in an output points at something that exists: mud network edges' vertices
+//!   and points (and each vertex's degree is the number of edge ends at it), mud cell and
+//!   glass fragment rings' points and `hole_of`; glass cracks' kind, end and impact;
 //! - every `step(budget)` call's work is bounded by its budget plus one indivisible piece
 //!   (mud: a short step or a relaxation or break event; glass: one tip update's queries;
 //!   skin: one level-0 cell's tree). The largest piece is measured by a run with budget 1,
@@ -19,7 +31,7 @@
 use core::ffi::c_void;
 
 use hibi::*;
-use hibi_core::glass::{CrackPoint, FragmentRing, Glass, GlassParams};
+use hibi_core::glass::{CrackPoint, FragmentRing, Glass, GlassParams, GlassProgress};
 use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
 use proptest::prelude::*;
 
@@ -142,7 +154,49 @@ impl Drop for Mud {
     }
 }
 
-fn mud_outputs_are_finite(mud: &Mud) {
+prop_compose! {
+    fn mud_render()(
+        width in 8u32..=48,
+        height in 8u32..=48,
+        width_scale in 0f32..3.0,
+        min_width in 0f32..2.0,
+        groove_depth in 0f32..2.0,
+        offset in (-20f32..20.0, -20f32..20.0),
+    ) -> hibi_mud_render_params {
+        let mut r = hibi_mud_render_params_default();
+        (r.width, r.height) = (width, height);
+        (r.width_scale, r.min_width, r.groove_depth) = (width_scale, min_width, groove_depth);
+        r.offset = [offset.0, offset.1];
+        r
+    }
+}
+
+/// A mask and a break-time layer of the same strokes agree: the mask is each pixel's largest
+/// coverage (0 to 255), the time layer has a time where a crack covers at least half of the
+/// pixel (rounded, 255 / 2 is 128) and +infinity elsewhere; every time lies in [0, `end`].
+fn mask_and_time_agree(mask: &[u8], time: &[f32], end: f32) {
+    for (i, (&m, &t)) in mask.iter().zip(time).enumerate() {
+        assert!(t == f32::INFINITY || (t >= 0.0 && t <= end), "pixel {i}: time {t} outside [0, {end}]");
+        assert_eq!(t.is_finite(), m >= 128, "pixel {i}: mask {m}, time {t}");
+    }
+}
+
+/// The rings of a cell or fragment outline index points that exist; a hole names an outer
+/// ring and has a negative area, an outer ring a positive one.
+fn rings_are_consistent(rings: &[FragmentRing], points: usize) {
+    for (i, ring) in rings.iter().enumerate() {
+        let end = ring.first_point as usize + ring.point_count as usize;
+        assert!(ring.point_count >= 3 && end <= points, "ring {i}: {ring:?} of {points} points");
+        if ring.hole_of == HIBI_GLASS_NOT_A_HOLE {
+            assert!(ring.area > 0.0, "outer ring {i}: {ring:?}");
+        } else {
+            let outer = rings.get(ring.hole_of as usize).unwrap_or_else(|| panic!("ring {i}: {ring:?}"));
+            assert!(ring.area < 0.0 && outer.hole_of == HIBI_GLASS_NOT_A_HOLE, "hole {i}: {ring:?} in {outer:?}");
+        }
+    }
+}
+
+fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_render_params) {
     let mut n = 0;
     // SAFETY (every call below): a live run, buffers of the lengths passed.
     unsafe {
@@ -150,9 +204,10 @@ fn mud_outputs_are_finite(mud: &Mud) {
         let mut segments = vec![CrackSegment::default(); n];
         let mut written = 0;
         assert_eq!(hibi_mud_segments(mud.0, segments.as_mut_ptr(), n, &mut written), HIBI_OK);
+        let in_time = |t: f32| (0.0..=end.time).contains(&t);
         for s in &segments {
             assert!(finite(&[s.start[0], s.start[1], s.end[0], s.end[1], s.width[0], s.width[1]]), "{s:?}");
-            assert!(finite(&s.time), "{s:?}");
+            assert!(s.time.iter().all(|&t| in_time(t)), "{s:?} after a run of {}", end.time);
         }
         let (mut v, mut e, mut p) = (0, 0, 0);
         assert_eq!(hibi_mud_network_counts(mud.0, &mut v, &mut e, &mut p), HIBI_OK);
@@ -174,7 +229,21 @@ fn mud_outputs_are_finite(mud: &Mud) {
         );
         assert_eq!(status, HIBI_OK);
         assert!(vertices.iter().all(|x| finite(&x.at)));
-        assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1], x.width, x.time])));
+        assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1], x.width]) && in_time(x.time)));
+        let mut degree = vec![0u32; v];
+        for (i, edge) in edges.iter().enumerate() {
+            assert!(edge.point_count >= 2 && (edge.first_point + edge.point_count) as usize <= p, "edge {i}: {edge:?}");
+            for end in [edge.from, edge.to] {
+                if end != HIBI_MUD_NO_VERTEX {
+                    *degree.get_mut(end as usize).unwrap_or_else(|| panic!("edge {i}: {edge:?} of {v} vertices")) += 1;
+                }
+            }
+            assert_eq!(edge.from == HIBI_MUD_NO_VERTEX, edge.to == HIBI_MUD_NO_VERTEX, "edge {i}: {edge:?}");
+        }
+        for (i, vertex) in vertices.iter().enumerate() {
+            assert_eq!(vertex.degree, degree[i], "vertex {i}: {vertex:?}");
+            assert!(vertex.degree == 1 || vertex.degree >= 3, "vertex {i}: {vertex:?}");
+        }
         let (mut r, mut q, mut wrapping) = (0, 0, 0);
         assert_eq!(hibi_mud_cell_counts(mud.0, &mut r, &mut q, &mut wrapping), HIBI_OK);
         let mut rings = vec![FragmentRing::default(); r];
@@ -183,23 +252,28 @@ fn mud_outputs_are_finite(mud: &Mud) {
         assert_eq!(status, HIBI_OK);
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(ring_points.iter().all(|x| finite(&[x.x, x.y])));
+        rings_are_consistent(&rings, q);
         let mut stats = hibi_mud_crack_statistics::default();
         assert_eq!(hibi_mud_statistics(mud.0, &mut stats), HIBI_OK);
         let s = stats;
         assert!(finite(&[s.crack_density, s.mean_cell_area, s.cell_area_spread, s.mean_widest_junction_angle]));
-        let mut render = hibi_mud_render_params_default();
-        (render.width, render.height) = (40, 24);
-        let pixels = 40 * 24;
+        let pixels = (render.width * render.height) as usize;
         let mut mask = vec![0u8; pixels];
-        assert_eq!(hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_MASK, mask.as_mut_ptr().cast(), pixels), HIBI_OK);
+        assert_eq!(hibi_mud_render(mud.0, render, HIBI_MUD_LAYER_MASK, mask.as_mut_ptr().cast(), pixels), HIBI_OK);
         let mut height = vec![0f32; pixels];
-        let status = hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels);
+        let status = hibi_mud_render(mud.0, render, HIBI_MUD_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels);
         assert_eq!(status, HIBI_OK);
-        assert!(finite(&height), "height layer");
+        // 1 on the surface, down to 1 − groove_depth in the widest crack (f32 rounding aside).
+        let deepest = 1.0 - render.groove_depth - 1e-5;
+        assert!(height.iter().all(|&h| (deepest..=1.0).contains(&h)), "height layer outside [{deepest}, 1]");
         let mut time = vec![0f32; pixels];
-        let status = hibi_mud_render(mud.0, &render, HIBI_MUD_LAYER_TIME, time.as_mut_ptr().cast(), pixels);
+        let status = hibi_mud_render(mud.0, render, HIBI_MUD_LAYER_TIME, time.as_mut_ptr().cast(), pixels);
         assert_eq!(status, HIBI_OK);
-        assert!(time.iter().all(|t| t.is_finite() || *t == f32::INFINITY), "time layer");
+        mask_and_time_agree(&mask, &time, end.time);
+        if n == 0 {
+            // No crack: a blank mask, no break times, a flat surface.
+            assert!(mask.iter().all(|&m| m == 0) && height.iter().all(|&h| h == 1.0));
+        }
     }
 }
 
@@ -207,7 +281,11 @@ proptest! {
     #![proptest_config(config())]
 
     #[test]
-    fn mud_outputs_finite_steps_bounded_memory_exact(p in mud_params(), budget in 0u64..5000) {
+    fn mud_outputs_in_range_steps_bounded_memory_exact(
+        p in mud_params(),
+        budget in 0u64..5000,
+        render in mud_render(),
+    ) {
         memory_is_exact(&p, hibi_mud_memory_size, hibi_mud_create_in);
         // Budget 1: each call does exactly one indivisible piece; the largest is the bound.
         let single = Mud::new(&p);
@@ -215,7 +293,7 @@ proptest! {
         let mud = Mud::new(&p);
         let (_, other) = mud.run(budget, piece);
         prop_assert_eq!((other.work, other.broken_springs), (end.work, end.broken_springs), "the budget changed the run");
-        mud_outputs_are_finite(&mud);
+        mud_outputs_in_range(&mud, &other, &render);
     }
 }
 
@@ -285,7 +363,17 @@ fn glass_run(glass: &mut Glass, budget: u64, piece: u64) -> u64 {
     }
 }
 
-fn glass_outputs_are_finite(p: &hibi_glass_params) {
+prop_compose! {
+    fn glass_render()(width in 8u32..=48, height in 8u32..=48, line_width in 0.3f32..3.0) -> hibi_glass_render_params {
+        let mut r = hibi_glass_render_params_default();
+        (r.width, r.height, r.line_width) = (width, height, line_width);
+        r
+    }
+}
+
+/// Runs the plate of `p` through the C ABI and checks its outputs; `end` is where the same
+/// plate ends in the Rust API (`hibi_glass_step` writes no progress once a capacity ran out).
+fn glass_outputs_in_range(p: &hibi_glass_params, end: &GlassProgress, render: &hibi_glass_render_params) {
     let mut glass = core::ptr::null_mut();
     // SAFETY (every call below): valid pointers, buffers of the lengths passed.
     unsafe {
@@ -294,19 +382,41 @@ fn glass_outputs_are_finite(p: &hibi_glass_params) {
         while progress.finished == 0 {
             let status = hibi_glass_step(glass, 100_000, &mut progress);
             if status == HIBI_ERROR_GLASS_CAPACITY {
+                assert!(end.capacity_reached, "C ran out of capacity, Rust did not");
                 break;
             }
             assert_eq!(status, HIBI_OK);
         }
+        if progress.finished == 1 {
+            assert_eq!((progress.time, progress.cracks), (end.time, end.cracks), "C and Rust differ");
+        }
+        // A time step stamps its pieces with times in (t, t + 1] and counts itself once it is
+        // complete; a capacity that runs out stops the plate inside a step, whose pieces then
+        // reach up to one step past `time`. (Times are f32 sums of steps and fractions: the
+        // slack is rounding.)
+        let end_time = end.time as f32 + if end.capacity_reached { 1.0 } else { 0.0 };
+        let end_time = end_time + 1e-5 * (1.0 + end_time);
         let mut cracks = 0;
         assert_eq!(hibi_glass_crack_count(glass, &mut cracks), HIBI_OK);
         for i in 0..cracks {
             let mut info = hibi_glass_crack::default();
             assert_eq!(hibi_glass_crack_info(glass, i, &mut info), HIBI_OK);
+            assert!(info.kind <= HIBI_GLASS_KIND_RING_CLOCKWISE && info.end <= HIBI_GLASS_END_ENCLOSED, "{info:?}");
+            assert_eq!(info.impact, 0, "crack {i}: one impact");
+            if !end.capacity_reached {
+                assert_ne!(info.end, HIBI_GLASS_END_GROWING, "crack {i} still grows after the end");
+            }
             let mut points = vec![CrackPoint::default(); info.points as usize];
             let mut written = 0;
             assert_eq!(hibi_glass_points(glass, i, points.as_mut_ptr(), points.len(), &mut written), HIBI_OK);
-            assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1], x.time])), "crack {i}");
+            assert_eq!(written, points.len());
+            assert!(points.iter().all(|x| finite(&[x.at[0], x.at[1]])), "crack {i}");
+            let inside = |x: &CrackPoint| (0.0..=p.width).contains(&x.at[0]) && (0.0..=p.height).contains(&x.at[1]);
+            assert!(points.iter().all(inside), "crack {i} leaves the plate");
+            assert!(
+                points.iter().all(|x| (0.0..=end_time).contains(&x.time)),
+                "crack {i}: time past {end_time}: {points:?}"
+            );
         }
         let mut size = 0;
         assert_eq!(hibi_glass_scratch_size(glass, &mut size), HIBI_OK);
@@ -333,12 +443,15 @@ fn glass_outputs_are_finite(p: &hibi_glass_params) {
         assert_eq!(status, HIBI_OK);
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(points.iter().all(|x| finite(&[x.x, x.y])));
-        let mut render = hibi_glass_render_params_default();
-        (render.width, render.height) = (32, 40);
-        let mut time = vec![0f32; 32 * 40];
-        let status = hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_TIME, time.as_mut_ptr().cast(), time.len());
+        rings_are_consistent(&rings, q);
+        let pixels = (render.width * render.height) as usize;
+        let mut mask = vec![0u8; pixels];
+        let status = hibi_glass_render(glass, render, HIBI_GLASS_LAYER_MASK, mask.as_mut_ptr().cast(), pixels);
         assert_eq!(status, HIBI_OK);
-        assert!(time.iter().all(|t| t.is_finite() || *t == f32::INFINITY), "time layer");
+        let mut time = vec![0f32; pixels];
+        let status = hibi_glass_render(glass, render, HIBI_GLASS_LAYER_TIME, time.as_mut_ptr().cast(), pixels);
+        assert_eq!(status, HIBI_OK);
+        mask_and_time_agree(&mask, &time, end_time);
         hibi_glass_destroy(glass);
     }
 }
@@ -347,13 +460,17 @@ proptest! {
     #![proptest_config(config())]
 
     #[test]
-    fn glass_outputs_finite_steps_bounded_memory_exact(p in glass_params(), budget in 0u64..5000) {
+    fn glass_outputs_in_range_steps_bounded_memory_exact(
+        p in glass_params(),
+        budget in 0u64..5000,
+        render in glass_render(),
+    ) {
         memory_is_exact(&p, hibi_glass_memory_size, hibi_glass_create_in);
-        glass_outputs_are_finite(&p);
         let params = glass_core(&p);
         let mut single_memory = params.memory().expect("valid").allocate();
         let mut single = Glass::new(&params, single_memory.buffers()).expect("valid");
         let piece = glass_run(&mut single, 1, u64::MAX);
+        glass_outputs_in_range(&p, &single.progress(), &render);
         let mut memory = params.memory().expect("valid").allocate();
         let mut glass = Glass::new(&params, memory.buffers()).expect("valid");
         glass_run(&mut glass, budget, piece);
@@ -379,6 +496,7 @@ prop_compose! {
         depth in 0u32..=3,
         stretch in (0.7f32..1.5, 0.7f32..1.5),
         roundness in 0f32..=1.0,
+        heights in prop::array::uniform13(-4f32..4.0),
     ) -> hibi_skin_params {
         let mut p = hibi_skin_params_default();
         (p.width, p.height) = size;
@@ -392,9 +510,24 @@ prop_compose! {
             level.perturbation_depth = depth.saturating_sub(k as u32);
             level.stretch = [stretch.0, stretch.1];
             level.roundness = roundness;
+            // The default profile's x', random heights (smaller at the finer levels).
+            for (point, z) in level.profile.points.iter_mut().zip(heights) {
+                point[1] = z / (k + 1) as f32;
+            }
         }
         p
     }
+}
+
+/// The range the height map keeps to: per level, the lowest and highest z' of the profile's
+/// control points (a cubic Bézier stays in the hull of its control points, and the sampled
+/// table is linear between samples), summed over the levels.
+fn skin_height_bounds(p: &hibi_skin_params) -> (f32, f32) {
+    p.level[..p.levels as usize].iter().fold((0.0, 0.0), |(low, high), level| {
+        let used = &level.profile.points[..3 * level.profile.segments as usize + 1];
+        let z = used.iter().map(|point| point[1]);
+        (low + z.clone().fold(f32::INFINITY, f32::min), high + z.fold(f32::NEG_INFINITY, f32::max))
+    })
 }
 
 struct Skin(*mut hibi_skin);
@@ -439,14 +572,23 @@ impl Drop for Skin {
     }
 }
 
-fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
+fn skin_outputs_in_range(skin: &Skin, p: &hibi_skin_params, end: &hibi_skin_progress, cell_level: u32) {
     // SAFETY (every call below): a live skin, buffers of the lengths passed.
     unsafe {
         let mut cells = 0;
         assert_eq!(hibi_skin_cell_count(skin.0, &mut cells), HIBI_OK);
+        let mut levels = vec![0; cells];
         for i in 0..cells {
             let mut cell = hibi_skin_cell::default();
             assert_eq!(hibi_skin_cell_info(skin.0, i, &mut cell), HIBI_OK);
+            levels[i] = cell.level;
+            assert!(cell.level < p.levels, "cell {i}: {cell:?}");
+            if cell.level == 0 {
+                assert_eq!(cell.parent, HIBI_SKIN_NO_CELL, "cell {i}: {cell:?}");
+            } else {
+                // Parents come before their children (Skin::cells).
+                assert!((cell.parent as usize) < i && levels[cell.parent as usize] + 1 == cell.level, "{i}: {cell:?}");
+            }
             assert!(cell.centre.iter().all(|c| c.is_finite()));
             let mut xy = vec![0f64; 2 * cell.vertex_count as usize];
             let mut written = 0;
@@ -455,7 +597,7 @@ fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
         }
         let pixels = (p.width * p.height) as usize;
         let (mut height, mut normal, mut map) = (vec![0f32; pixels], vec![0f32; 3 * pixels], vec![0u32; pixels]);
-        let render = hibi_skin_render_params { cell_level: p.levels - 1 };
+        let render = hibi_skin_render_params { cell_level };
         let layers = [
             (HIBI_SKIN_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels),
             (HIBI_SKIN_LAYER_NORMAL, normal.as_mut_ptr().cast(), 3 * pixels),
@@ -464,9 +606,27 @@ fn skin_outputs_are_finite(skin: &Skin, p: &hibi_skin_params) {
         for (layer, pixels, len) in layers {
             assert_eq!(hibi_skin_render(skin.0, &render, layer, pixels, len), HIBI_OK, "layer {layer}");
         }
-        assert!(finite(&height), "height map");
-        assert!(finite(&normal), "normal map");
-        assert!(map.iter().all(|&c| c == HIBI_SKIN_NO_CELL || (c as usize) < cells));
+        // Pixels in no built cell (a build that ran out of capacity) are flat at height 0.
+        let (low, high) = skin_height_bounds(p);
+        let (low, high) = if end.finished == 1 { (low, high) } else { (low.min(0.0), high.max(0.0)) };
+        let slack = 1e-5 * (1.0 + low.abs().max(high.abs()));
+        assert!(
+            height.iter().all(|&h| h >= low - slack && h <= high + slack),
+            "height map outside [{low}, {high}]: {:?}",
+            height.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &h| (a.min(h), b.max(h)))
+        );
+        for (i, n) in normal.chunks_exact(3).enumerate() {
+            let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            assert!((length - 1.0).abs() <= 2e-6 && n[2] > 0.0, "pixel {i}: normal {n:?}, length {length}");
+        }
+        for (i, &c) in map.iter().enumerate() {
+            if c == HIBI_SKIN_NO_CELL {
+                // Across the cells of one level every pixel is drawn once the build is done.
+                assert!(end.finished == 0, "pixel {i} is in no cell of level {cell_level}");
+            } else {
+                assert!((c as usize) < cells && levels[c as usize] == cell_level, "pixel {i}: cell {c}");
+            }
+        }
     }
 }
 
@@ -474,7 +634,11 @@ proptest! {
     #![proptest_config(config())]
 
     #[test]
-    fn skin_outputs_finite_steps_bounded_memory_exact(p in skin_params(), budget in 0u64..3000) {
+    fn skin_outputs_in_range_steps_bounded_memory_exact(
+        p in skin_params(),
+        budget in 0u64..3000,
+        cell_level in 0u32..3,
+    ) {
         memory_is_exact(&p, hibi_skin_memory_size, hibi_skin_create_in);
         let single = Skin::new(&p);
         let (piece, end) = single.run(1, u64::MAX);
@@ -484,6 +648,6 @@ proptest! {
         if end.capacity_reached == 0 {
             prop_assert_eq!(other.work, end.work);
         }
-        skin_outputs_are_finite(&skin, &p);
+        skin_outputs_in_range(&skin, &p, &other, cell_level % p.levels);
     }
 }

@@ -380,6 +380,11 @@ static void calls_and_buffers(void) {
         memset(rgb, 0xA5, sizeof rgb);
         shade = hibi_skin_shade_params_default();
         row_kept("shade-short-rgb", hibi_skin_shade(height, 2, normal, 6, &shade, rgb, 5), rgb[0] == 0xA5);
+        /* Issue 25 defect 3: five floats are one whole normal, not two; the call used to
+         * return HIBI_OK with the second pixel unwritten. No byte of rgb may change. */
+        row_kept("shade-short-normal", hibi_skin_shade(height, 2, normal, 5, &shade, rgb, 6),
+                 rgb[0] == 0xA5 && rgb[1] == 0xA5 && rgb[2] == 0xA5 && rgb[3] == 0xA5 && rgb[4] == 0xA5 &&
+                     rgb[5] == 0xA5);
     }
     {
         hibi_mud_params out = small_mud();

@@ -1,5 +1,5 @@
 /*
- * Issue 25 defect 3: shrink_ratio = 1 (nothing ever shrinks) is refused by name, and a
+ * Issue 25 defect 4: shrink_ratio = 1 (nothing ever shrinks) is refused by name, and a
  * break_stretch_mean no spring reaches ends both solvers the same way: at the target
  * shrink, uncracked, at a positive time.
  */

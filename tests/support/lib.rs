@@ -25,6 +25,20 @@ pub fn line_diff(expected: &str, actual: &str) -> String {
     format!("{differing} line(s) differ (- checked in, + generated):\n{out}")
 }
 
+/// Compiler flags that build a C or C++ program under AddressSanitizer (with LeakSanitizer)
+/// and UndefinedBehaviorSanitizer; any report ends the run with a failing status.
+pub const SANITIZE_FLAGS: &[&str] =
+    &["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"];
+
+/// The environment a sanitized program runs with: a refused allocation is a null pointer
+/// (hibi reports `HIBI_ERROR_OUT_OF_MEMORY`), as from the C library, not an abort.
+pub const ASAN_OPTIONS: (&str, &str) = ("ASAN_OPTIONS", "allocator_may_return_null=1");
+
+/// Valgrind's command line: quiet (it prints only what it finds), and any error or leak a
+/// failing exit status. (Still-reachable blocks are not errors: the panic hook hibi installs
+/// once stays.)
+pub const VALGRIND: &[&str] = &["valgrind", "-q", "--error-exitcode=1", "--leak-check=full"];
+
 /// The workspace root.
 pub fn workspace_root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
