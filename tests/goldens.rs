@@ -39,7 +39,11 @@ fn first_outputs_of_every_stream() {
 fn every_scene_matches_its_golden() {
     let mut memory = Memory::take().expect("the only test that takes the scenes' memory");
     let mut report = String::new();
-    let differ = check(&mut memory, "host", &mut report).expect("a String takes every line");
-    println!("{report}");
+    // SAFETY: a test thread's stack is 2 MiB (Rust's default), of which the test harness's
+    // frames above this one use far less than the 1.5 MiB left below the painted 512 KiB.
+    let (differ, peak) =
+        unsafe { hibi_scenes::stack::measured(512 * 1024, || check(&mut memory, "host", &mut report)) };
+    let differ = differ.expect("a String takes every line");
+    println!("{report}stack peak {peak} bytes (painted below the scenes' caller)");
     assert_eq!(differ, 0, "golden scenes differ:\n{report}");
 }

@@ -20,40 +20,6 @@ const THREAD_STACK: usize = if cfg!(debug_assertions) { 64 * 1024 } else { 32 * 
 const SCENES_STACK: usize = 64 * 1024;
 /// The most stack one public function may use, from its caller's frame.
 const LIMIT: usize = 16 * 1024;
-/// What the painted words hold.
-const PAINT: u64 = 0x5eed_57ac_c0de_d00d;
-
-/// An address in the caller's frame (about its stack pointer).
-#[inline(never)]
-fn stack_pointer() -> usize {
-    let marker = 0u8;
-    black_box(&marker) as *const u8 as usize
-}
-
-/// Paints the stack from `bottom` up to a little below this function's own frame.
-#[inline(never)]
-fn paint(bottom: usize) {
-    let top = (stack_pointer() - 256) & !7;
-    let mut at = bottom;
-    while at < top {
-        // SAFETY: [bottom, top) lies in this thread's stack (1 MiB; `bottom` is MEASURED below
-        // the measuring frame) below every live frame; nothing else uses it.
-        unsafe { std::ptr::with_exposed_provenance_mut::<u64>(at).write_volatile(PAINT) };
-        at += 8;
-    }
-}
-
-/// The lowest address above `bottom` whose paint was overwritten.
-#[inline(never)]
-fn deepest(bottom: usize) -> usize {
-    let mut at = bottom;
-    // SAFETY: as in `paint`: reads of this thread's stack below every live frame.
-    while unsafe { std::ptr::with_exposed_provenance::<u64>(at).read_volatile() } == PAINT {
-        at += 8;
-    }
-    at
-}
-
 #[test]
 fn every_golden_scene_runs_in_a_thread_of_64_kib() {
     let report = std::thread::Builder::new()
@@ -83,11 +49,10 @@ fn measured<R>(calls: &mut Calls, name: &'static str, f: impl FnOnce() -> R) -> 
     if !calls.measure {
         return f();
     }
-    let base = stack_pointer();
-    let bottom = (base - MEASURED) & !7;
-    paint(bottom);
-    let result = black_box(f());
-    calls.peaks.push((name, base - deepest(bottom)));
+    // SAFETY: the measuring thread has a stack of 1 MiB, of which this frame's callers use
+    // far less than the 512 KiB left below MEASURED.
+    let (result, peak) = unsafe { hibi_scenes::stack::measured(MEASURED, f) };
+    calls.peaks.push((name, peak));
     result
 }
 

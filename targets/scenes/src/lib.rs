@@ -13,6 +13,8 @@
 #![no_std]
 #![deny(missing_docs)]
 
+pub mod stack;
+
 use core::cell::UnsafeCell;
 use core::fmt::{self, Write};
 use core::mem::MaybeUninit;

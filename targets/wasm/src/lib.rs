@@ -26,8 +26,19 @@ pub extern "C" fn hibi_scenes_run() -> u32 {
     let Some(mut memory) = hibi_scenes::Memory::take() else {
         return u32::MAX;
     };
-    hibi_scenes::check(&mut memory, "wasm32-unknown-unknown", &mut Out).map_or(u32::MAX, |n| n as u32)
+    // SAFETY: the module's stack is its first MiB of linear memory (the linker's default),
+    // growing down; this call is its outermost frame, so the STACK_MEASURED bytes below it are
+    // that stack's, unused.
+    let (differ, peak) = unsafe {
+        hibi_scenes::stack::measured(STACK_MEASURED, || hibi_scenes::check(&mut memory, "wasm32-unknown-unknown", &mut Out))
+    };
+    let _ = writeln!(Out, "stack peak {peak} bytes (painted below the scenes' caller)");
+    differ.map_or(u32::MAX, |n| n as u32)
 }
+
+/// Bytes of stack painted below the scenes' caller: far more than the scenes need (about
+/// 32 KiB), within the module's 1 MiB stack.
+const STACK_MEASURED: usize = 512 * 1024;
 
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
