@@ -448,6 +448,7 @@ impl Builder<'_> {
             }
             let mut kept = [[0i64; 2]; KEPT_POINTS];
             let (mut m, mut fits) = (0, true);
+            // (Level 0: the edge is one piece, from corner to corner.)
             let ends = [start, end];
             let (pieces, nearby) = match crossing.as_deref_mut() {
                 Some(CrossingScratch { pieces, listed }) => {

@@ -723,7 +723,7 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
 /// `u64` words of the arena the 64 KiB scenes share: each scene takes its model's memory and
 /// its outputs from it and gives them back when it ends, so the arena is the largest scene's
 /// need, not the sum: the glass plate and its mask, 41,104 bytes on x86_64 (the mud scenes
-/// take 27,904; the 64×64 skin 12,960, with its 64×64 height map 29,344).
+/// take 27,904; the 64×64 skin 8,608, with its 64×64 height map 24,992).
 /// The rest of the 64 KiB is the stack's (`targets/run lm3s6965evb` reports its peak).
 pub const SMALL_ARENA_WORDS: usize = 5138;
 
