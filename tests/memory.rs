@@ -1,16 +1,18 @@
 //! Memory that follows the work (issue 24 item 3): each model's memory need is a function of
 //! its parameters, the one `new` (Rust) and `*_create_in` (C) check, and it is exact: one
 //! element (one byte) less is refused with a clear status, the need itself suffices to build
-//! and render. A 64×64 one-level skin needs about 13 KiB (12 960 bytes of arrays, `cargo test
+//! and render. A 64×64 one-level skin needs 8.4 KiB (8 608 bytes of arrays, `cargo test
 //! --release --test memory -- --nocapture`), and a render nothing more: cells, vertices and
 //! their wedges only for the centre points that can reach the surface, its vertices bounded by
 //! the planar Delaunay graph's edges and by the faces of the divided surface, a neighbour
 //! window of the centre points within twice the covering radius (25 of them at jitter 0.5),
-//! and clip buffers for a clipped outline among them; not the 19 296 bytes of a fixed 81-point
-//! window, the 110 KB it needed at first, nor the 434 KB of fixed capacities before that. Most
-//! of it (9.1 KB) does not grow with the image: the level's record (profile table, shared
-//! edges, edge grid and scratch, 6.4 KB), the window (1.2 KB) and two clip buffers (1.4 KB).
-
+//! clip buffers for a clipped outline among them, and of the per-level records only what
+//! level 0 reads; not the 12 960 bytes with a whole level record (profile table, shared edges,
+//! edge grid and edge scratch, 6.4 KB), the 19 296 of a fixed 81-point window, the 110 KB it
+//! needed at first, nor the 434 KB of fixed capacities before that. Most of it (4.7 KB) does
+//! not grow with the image: the level's profile table (2.1 KB), the window (1.2 KB) and two
+//! clip buffers (1.4 KB). A finer level adds its division (edge grid and crossing scratch), and
+//! a level that keeps edges for its cells' neighbours its shared edges.
 use core::ffi::c_void;
 
 use hibi::*;
@@ -19,19 +21,21 @@ use hibi_core::skin::{Skin, SkinBuffers, SkinError, SkinLayers, SkinMemory, Skin
 /// Bytes of a skin's arrays (all a build and a render need; a render's working memory is a few
 /// KiB of stack).
 fn skin_bytes(m: &SkinMemory) -> usize {
-    use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinLevel};
+    use hibi_core::skin::{ClipVertex, Site, SkinCell, SkinDivision, SkinLevel, SkinSharedEdges};
     m.cells * size_of::<SkinCell>()
         + m.vertices * 16
         + m.sites * size_of::<Site>()
         + m.clip * size_of::<ClipVertex>()
         + m.words * 4
         + m.levels * size_of::<SkinLevel>()
+        + m.divisions * size_of::<SkinDivision>()
+        + m.shared_edges * size_of::<SkinSharedEdges>()
         + m.boxes * 32
         + m.wedges * size_of::<hibi_core::skin::Wedge>()
 }
 
 /// Builds and renders `params` in buffers of exactly `m` elements, or with the array `short`
-/// (0 to 7, in `SkinBuffers` order) one element short.
+/// (0 to 9, in `SkinBuffers` order) one element short.
 fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<(), SkinError> {
     let less = |k: usize, n: usize| if short == Some(k) { n - 1 } else { n };
     let mut cells = vec![Default::default(); less(0, m.cells)];
@@ -40,8 +44,10 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
     let mut clip = vec![Default::default(); less(3, m.clip)];
     let mut words = vec![0; less(4, m.words)];
     let mut levels = vec![Default::default(); less(5, m.levels)];
-    let mut boxes = vec![[0; 4]; less(6, m.boxes)];
-    let mut wedges = vec![Default::default(); less(7, m.wedges)];
+    let mut divisions = vec![Default::default(); less(6, m.divisions)];
+    let mut shared_edges = vec![Default::default(); less(7, m.shared_edges)];
+    let mut boxes = vec![[0; 4]; less(8, m.boxes)];
+    let mut wedges = vec![Default::default(); less(9, m.wedges)];
     let buffers = SkinBuffers {
         cells: &mut cells,
         vertices: &mut vertices,
@@ -49,6 +55,8 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
         clip: &mut clip,
         words: &mut words,
         levels: &mut levels,
+        divisions: &mut divisions,
+        shared_edges: &mut shared_edges,
         boxes: &mut boxes,
         wedges: &mut wedges,
     };
@@ -67,16 +75,19 @@ fn a_skin_needs_exactly_its_memory() {
     let one = SkinParams { width: 64, height: 64, ..SkinParams::default() };
     let three = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     // Neighbour windows of other shapes (`Lattice::columns_within`): a square lattice of full
-    // jitter, perturbed; a periodic random layout, stretched.
+    // jitter, perturbed (to depth 2: level 0 keeps its edges); a periodic random layout,
+    // stretched.
     let mut square = SkinParams { width: 72, height: 50, layout: hibi_core::skin::SiteLayout::Square, ..one };
     square.jitter_ratio = 1.0;
     (square.level[0].perturbation, square.level[0].spacing) = (0.2, 12.0);
+    square.level[0].perturbation_depth = 2;
     let mut random = SkinParams { periodic: true, layout: hibi_core::skin::SiteLayout::Random, ..one };
     (random.level[0].stretch, random.level[0].spacing) = ([1.5, 0.8], 9.0);
     for params in [one, three, square, random] {
         let m = params.memory().expect("valid");
         skin_in(&params, &m, None).expect("the exact need suffices");
-        let needs = [m.cells, m.vertices, m.sites, m.clip, m.words, m.levels, m.boxes, m.wedges];
+        let needs =
+            [m.cells, m.vertices, m.sites, m.clip, m.words, m.levels, m.divisions, m.shared_edges, m.boxes, m.wedges];
         for (k, &needed) in needs.iter().enumerate().filter(|(_, n)| **n > 0) {
             assert_eq!(skin_in(&params, &m, Some(k)), Err(SkinError::BufferTooSmall { needed }), "array {k} short");
         }
@@ -91,7 +102,10 @@ fn a_64_by_64_one_level_skin_needs_its_own_capacities_only() {
     let fig19a = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     let three = skin_bytes(&fig19a.memory().expect("valid"));
     println!("skin 64x64: one level (default) {bytes} bytes; fig19a (three levels) {three} bytes");
-    assert!(bytes < 13 * 1024, "{bytes} bytes");
+    use hibi_core::skin::{SkinDivision, SkinLevel, SkinSharedEdges};
+    let records = [size_of::<SkinLevel>(), size_of::<SkinDivision>(), size_of::<SkinSharedEdges>()];
+    println!("skin records: level, division, shared edges {records:?} bytes");
+    assert!(bytes < 9 * 1024, "{bytes} bytes");
     // The C library's need: the arrays, the object's header and alignment.
     let mut c = hibi_skin_params_default();
     (c.width, c.height) = (64, 64);

@@ -366,6 +366,8 @@ fn bad_input_is_refused_and_nothing_is_written() {
     let (mut sites, mut clip, mut words) =
         (vec![Default::default(); m.sites], vec![Default::default(); m.clip], vec![0u32; m.words]);
     let mut levels = vec![Default::default(); m.levels];
+    let (mut divisions, mut shared_edges) =
+        (vec![Default::default(); m.divisions], vec![Default::default(); m.shared_edges]);
     let mut boxes = vec![[0; 4]; m.boxes];
     let mut wedges = vec![Default::default(); m.wedges];
     let buffers = SkinBuffers {
@@ -375,6 +377,8 @@ fn bad_input_is_refused_and_nothing_is_written() {
         clip: &mut clip,
         words: &mut words,
         levels: &mut levels,
+        divisions: &mut divisions,
+        shared_edges: &mut shared_edges,
         boxes: &mut boxes,
         wedges: &mut wedges,
     };

@@ -241,6 +241,8 @@ impl Object for hibi_skin {
             clip: arena.take(m.clip),
             words: arena.take(m.words),
             levels: arena.take(m.levels),
+            divisions: arena.take(m.divisions),
+            shared_edges: arena.take(m.shared_edges),
             boxes: arena.take(m.boxes),
             wedges: arena.take(m.wedges),
         }

@@ -58,11 +58,13 @@ fn next(i: usize, n: usize) -> usize {
 /// Edges of a parent outline per chunk (for its bounding boxes).
 pub(super) const CHUNK: usize = 4;
 
-/// Scratch for one bisector edge: its pieces and one piece's points.
+/// Scratch for splitting one bisector edge where its parent's outline crosses it: its pieces
+/// and the parent's edges near it. Only levels from 1 have one: a level-0 cell's parent is a
+/// rectangle its bisector edges end on, which no edge crosses (one piece, from corner to
+/// corner, and no parent edge to list).
 #[derive(Clone)]
-pub(super) struct EdgeScratch {
+pub(super) struct CrossingScratch {
     pieces: [Corner; MAX_CROSSINGS + 2],
-    points: [[i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
     /// The parent's edges near the edge being built.
     listed: [u32; LISTED],
 }
@@ -70,14 +72,18 @@ pub(super) struct EdgeScratch {
 /// Most parent edges listed near one bisector edge (beyond, its tests look at all of them).
 const LISTED: usize = 64;
 
-impl EdgeScratch {
-    pub(super) fn new() -> EdgeScratch {
-        EdgeScratch {
-            pieces: [Corner::default(); MAX_CROSSINGS + 2],
-            points: [[0; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1],
-            listed: [0; LISTED],
-        }
+impl CrossingScratch {
+    pub(super) fn new() -> CrossingScratch {
+        CrossingScratch { pieces: [Corner::default(); MAX_CROSSINGS + 2], listed: [0; LISTED] }
     }
+}
+
+/// Where a level's bisector edges are built: the shared edges it keeps for its cells'
+/// neighbours (none where it keeps none: [`super::Layout`]) and the crossing scratch of a
+/// level from 1.
+pub(super) struct EdgeWork<'w> {
+    pub(super) shared: Option<&'w mut SharedEdges>,
+    pub(super) crossing: Option<&'w mut CrossingScratch>,
 }
 
 /// Scratch for building outlines.
@@ -261,7 +267,7 @@ impl Builder<'_> {
         site: &Site,
         neighbours: &[Site],
         parent: Parent,
-        (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
+        (out, work): (&mut [[i64; 2]], EdgeWork),
     ) -> Result<usize, OutlineFull> {
         let n0 = parent.outline.len();
         debug_assert_eq!(parent.frame.len(), n0, "the parent's clip vertices are made");
@@ -343,7 +349,7 @@ impl Builder<'_> {
         if fresh {
             self.clip[..n].copy_from_slice(parent.frame);
         }
-        self.finish(f, site, neighbours, parent, n, (out, shared, scratch))
+        self.finish(f, site, neighbours, parent, n, (out, work))
     }
 
     /// The corner between an edge labelled `into` and one labelled `from` (starting at clip
@@ -386,6 +392,9 @@ impl Builder<'_> {
     }
 
     /// Recomputes the corners, perturbs the bisector edges and writes the fixed-point outline.
+    // (Never inlined: its frame, with one piece's points, is then on the stack only while an
+    // outline is finished, not in each level's frame of a build's recursion.)
+    #[inline(never)]
     fn finish(
         &mut self,
         f: &Frame,
@@ -393,8 +402,13 @@ impl Builder<'_> {
         neighbours: &[Site],
         near: Parent,
         n: usize,
-        (out, shared, scratch): (&mut [[i64; 2]], &mut SharedEdges, &mut EdgeScratch),
+        (out, work): (&mut [[i64; 2]], EdgeWork),
     ) -> Result<usize, OutlineFull> {
+        let EdgeWork { mut shared, mut crossing } = work;
+        // The points of one perturbed piece of a bisector edge (its start, inner points and
+        // end: 2^depth + 1), on the stack: one outline's edges are built one after another, at
+        // any level, and the points are written out before the next piece is perturbed.
+        let points = &mut [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
         let mut written = 0;
         let mut push = |p: [i64; 2], written: &mut usize| -> Result<(), OutlineFull> {
             if *written > 0 && out[*written - 1] == p {
@@ -425,7 +439,7 @@ impl Builder<'_> {
             push(start.fixed, &mut written)?;
             let (key, forward, image) = edge_key(f, a, b, &start, &end);
             let to_surface = |p: [i64; 2]| [p[0] + image[0], p[1] + image[1]];
-            if let Some((points, m)) = shared.take(&key) {
+            if let Some((points, m)) = shared.as_deref_mut().and_then(|s| s.take(&key)) {
                 for i in 0..m {
                     push(to_surface(points[if forward { i } else { m - 1 - i }]), &mut written)?;
                 }
@@ -434,18 +448,20 @@ impl Builder<'_> {
             }
             let mut kept = [[0i64; 2]; KEPT_POINTS];
             let (mut m, mut fits) = (0, true);
-            let EdgeScratch { pieces, points, listed } = &mut *scratch;
-            pieces[0] = start;
-            let (count, nearby) = if f.level > 0 {
-                let nearby = Nearby::list(f, near, (&start, &end), listed);
-                // (No parent edge near: nothing to cross.)
-                let count = if nearby.is_empty() { 0 } else { crossings(f, a, b, (&start, &end), &nearby, pieces) };
-                (count, nearby)
-            } else {
-                (0, Nearby { parent: near, region: [0; 4], listed: None })
+            // (Level 0: the edge is one piece, from corner to corner.)
+            let ends = [start, end];
+            let (pieces, nearby) = match crossing.as_deref_mut() {
+                Some(CrossingScratch { pieces, listed }) => {
+                    pieces[0] = start;
+                    let nearby = Nearby::list(f, near, (&start, &end), listed);
+                    // (No parent edge near: nothing to cross.)
+                    let count = if nearby.is_empty() { 0 } else { crossings(f, a, b, (&start, &end), &nearby, pieces) };
+                    pieces[count + 1] = end;
+                    (&pieces[..count + 2], nearby)
+                }
+                None => (&ends[..], Nearby { parent: near, region: [0; 4], listed: None }),
             };
-            pieces[count + 1] = end;
-            for (i, w) in pieces[..count + 2].windows(2).enumerate() {
+            for (i, w) in pieces.windows(2).enumerate() {
                 points[0] = w[0].fixed;
                 let inner = if f.perturbation > 0.0 && f.depth > 0 {
                     perturb(f, a, b, (&w[0], &w[1]), &nearby, points)
@@ -462,7 +478,7 @@ impl Builder<'_> {
                     }
                 }
             }
-            if fits {
+            if let Some(shared) = shared.as_deref_mut().filter(|_| fits) {
                 if !forward {
                     kept[..m].reverse();
                 }

@@ -89,25 +89,60 @@ pub struct SkinCell {
 }
 
 /// One level's state in caller memory (opaque; caller memory for [`SkinBuffers`]): its
-/// profile table, the shared edges kept for its cells' neighbours, its parent outline's edge
-/// grid, and scratch for one bisector edge.
-#[derive(Clone)]
+/// profile table, which every level reads (its cells' heights and slopes).
+#[derive(Clone, Default)]
 pub struct SkinLevel {
     table: ProfileTable,
-    shared: SharedEdges,
-    grid: EdgeGrid,
-    scratch: cell::EdgeScratch,
 }
 
-impl Default for SkinLevel {
+/// The state of one level from 1 in caller memory (opaque; caller memory for
+/// [`SkinBuffers`], one per level below the first): its parent outline's edge grid and the
+/// scratch that splits a bisector edge where that outline crosses it. Only these levels read
+/// them: a level-0 cell's parent is a rectangle (the surface, or a box around a periodic
+/// centre) that is never stored nor binned, and its
+/// bisector edges end on that rectangle, crossing none of its edges (one piece each, and no
+/// parent edge to list near it). A level's grid stays filled while all its siblings are built,
+/// between the cells of finer levels: one per level.
+#[derive(Clone)]
+pub struct SkinDivision {
+    grid: EdgeGrid,
+    crossing: cell::CrossingScratch,
+}
+
+impl Default for SkinDivision {
     fn default() -> Self {
-        SkinLevel {
-            table: ProfileTable::default(),
-            shared: SharedEdges::new(),
-            grid: EdgeGrid::new(),
-            scratch: cell::EdgeScratch::new(),
-        }
+        SkinDivision { grid: EdgeGrid::new(), crossing: cell::CrossingScratch::new() }
     }
+}
+
+/// The edges one level keeps for its cells' neighbours, in caller memory (opaque; caller
+/// memory for [`SkinBuffers`], one per level that keeps edges: perturbed to depth 1 or 2 at
+/// level 0, not perturbed deeper than 2 below it).
+#[derive(Clone)]
+pub struct SkinSharedEdges(SharedEdges);
+
+impl Default for SkinSharedEdges {
+    fn default() -> Self {
+        SkinSharedEdges(SharedEdges::new())
+    }
+}
+
+/// Whether level `level` of `p` keeps its bisector edges for its cells' neighbours (and so
+/// needs a [`SkinSharedEdges`]). An edge is kept only when the inner points it writes number
+/// at most [`shared::KEPT_POINTS`] (`finish` in [`cell`]; fewer slots would change nothing but
+/// what is recomputed): each piece of an edge writes `2^depth − 1` inner points when
+/// perturbed ([`level0_pieces`]' condition), none otherwise, and each piece after the first
+/// one more, its start where a parent edge crosses. So:
+/// - a level perturbed deeper than 2 writes 7 or more per piece: it keeps no edge;
+/// - level 0's edges are one piece each (nothing crosses them: [`SkinDivision`]); unperturbed
+///   they have no inner point, and keeping one would save nothing (its neighbour writes
+///   nothing between the edge's corners either way, the same vertices): it keeps edges only
+///   when perturbed to depth 1 or 2;
+/// - a finer level's edges keep their crossings even when unperturbed.
+fn keeps_edges(p: &SkinParams, level: usize) -> bool {
+    let l = &p.level[level];
+    let inner = if l.perturbation > 0.0 && l.perturbation_depth > 0 { (1usize << l.perturbation_depth) - 1 } else { 0 };
+    inner <= shared::KEPT_POINTS && (level > 0 || inner > 0)
 }
 
 /// The level-0 centre points a cell is clipped among: rows `−rows..=rows` around the centre's
@@ -189,6 +224,9 @@ struct Layout {
     /// a convex polygon by a half-plane adds at most one vertex); finer levels start from a
     /// parent outline that need not be convex: [`MAX_OUTLINE`].
     clip: usize,
+    /// Per level, its [`SkinSharedEdges`] among the levels that keep edges ([`keeps_edges`]),
+    /// none where it keeps none.
+    shared: [Option<usize>; MAX_LEVELS],
 }
 
 /// Vertices one level-0 bisector edge writes (its start and its inner points): `2^depth`
@@ -210,7 +248,15 @@ impl Layout {
         let first = (neighbours * level0_pieces(p) + 4).min(MAX_OUTLINE);
         let outline = core::array::from_fn(|l| if l == 0 { first } else { MAX_OUTLINE });
         let clip = if p.levels > 1 { MAX_OUTLINE } else { (neighbours + 4).min(MAX_OUTLINE) };
-        Layout { window, outline, clip }
+        let mut shared = [None; MAX_LEVELS];
+        let mut count = 0;
+        for (l, s) in shared.iter_mut().enumerate().take(p.levels as usize) {
+            if keeps_edges(p, l) {
+                *s = Some(count);
+                count += 1;
+            }
+        }
+        Layout { window, outline, clip, shared }
     }
 
     /// The vertices of a level's parent outline: the 4 corners of a rectangle at level 0.
@@ -226,6 +272,11 @@ impl Layout {
     /// Chunk boxes of level `level`'s parent outline (levels from 1).
     fn boxes(&self, level: usize) -> usize {
         self.parent(level) / cell::CHUNK + 1
+    }
+
+    /// The levels that keep edges ([`SkinSharedEdges`] records).
+    fn shared_edges(&self) -> usize {
+        self.shared.iter().flatten().count()
     }
 
     /// Where level `level`'s centre points start in `sites`: level 0 holds one neighbour
@@ -250,6 +301,11 @@ pub struct SkinMemory {
     pub words: usize,
     /// [`SkinLevel`] records, one per level.
     pub levels: usize,
+    /// [`SkinDivision`] records, one per level from 1 (none for one level).
+    pub divisions: usize,
+    /// [`SkinSharedEdges`] records, one per level that keeps edges (none for an unperturbed
+    /// one-level skin).
+    pub shared_edges: usize,
     /// Chunk boxes (`[i64; 4]`) of the parent outlines being divided.
     pub boxes: usize,
     /// [`Wedge`] records: per cell, one per outline vertex and one more (what a render reads
@@ -271,6 +327,10 @@ pub struct SkinBuffers<'a> {
     pub words: &'a mut [u32],
     /// At least [`SkinMemory::levels`].
     pub levels: &'a mut [SkinLevel],
+    /// At least [`SkinMemory::divisions`].
+    pub divisions: &'a mut [SkinDivision],
+    /// At least [`SkinMemory::shared_edges`].
+    pub shared_edges: &'a mut [SkinSharedEdges],
     /// At least [`SkinMemory::boxes`].
     pub boxes: &'a mut [[i64; 4]],
     /// At least [`SkinMemory::wedges`].
@@ -287,6 +347,8 @@ macro_rules! buffers_of {
             clip: &mut $store.clip,
             words: &mut $store.words,
             levels: &mut $store.levels,
+            divisions: &mut $store.divisions,
+            shared_edges: &mut $store.shared_edges,
             boxes: &mut $store.boxes,
             wedges: &mut $store.wedges,
         }
@@ -302,6 +364,8 @@ pub struct SkinStore {
     clip: alloc::vec::Vec<ClipVertex>,
     words: alloc::vec::Vec<u32>,
     levels: alloc::vec::Vec<SkinLevel>,
+    divisions: alloc::vec::Vec<SkinDivision>,
+    shared_edges: alloc::vec::Vec<SkinSharedEdges>,
     boxes: alloc::vec::Vec<[i64; 4]>,
     wedges: alloc::vec::Vec<Wedge>,
 }
@@ -317,6 +381,8 @@ impl SkinMemory {
             clip: alloc::vec![ClipVertex::default(); self.clip],
             words: alloc::vec![0; self.words],
             levels: alloc::vec![SkinLevel::default(); self.levels],
+            divisions: alloc::vec![SkinDivision::default(); self.divisions],
+            shared_edges: alloc::vec![SkinSharedEdges::default(); self.shared_edges],
             boxes: alloc::vec![[0; 4]; self.boxes],
             wedges: alloc::vec![Wedge::default(); self.wedges],
         }
@@ -340,6 +406,8 @@ pub struct SkinStorage<
     const CLIP: usize,
     const WORDS: usize,
     const LEVELS: usize,
+    const DIVISIONS: usize,
+    const SHARED_EDGES: usize,
     const BOXES: usize,
     const WEDGES: usize,
 > {
@@ -355,16 +423,21 @@ pub struct SkinStorage<
     pub words: [u32; WORDS],
     /// Level records.
     pub levels: [SkinLevel; LEVELS],
+    /// Division records.
+    pub divisions: [SkinDivision; DIVISIONS],
+    /// Shared-edge records.
+    pub shared_edges: [SkinSharedEdges; SHARED_EDGES],
     /// Chunk boxes.
     pub boxes: [[i64; 4]; BOXES],
     /// Wedges.
     pub wedges: [Wedge; WEDGES],
 }
 
-// (Unformatted: one line per four sizes, not one per size.)
+// (Unformatted: one line per five sizes, not one per size.)
 #[rustfmt::skip]
-impl<const C: usize, const V: usize, const S: usize, const K: usize,
-     const W: usize, const L: usize, const B: usize, const G: usize> SkinStorage<C, V, S, K, W, L, B, G> {
+impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize,
+     const L: usize, const D: usize, const E: usize, const B: usize, const G: usize>
+    SkinStorage<C, V, S, K, W, L, D, E, B, G> {
     /// Empty storage.
     pub fn new() -> Self {
         SkinStorage {
@@ -374,6 +447,8 @@ impl<const C: usize, const V: usize, const S: usize, const K: usize,
             clip: [ClipVertex::default(); K],
             words: [0; W],
             levels: core::array::from_fn(|_| SkinLevel::default()),
+            divisions: core::array::from_fn(|_| SkinDivision::default()),
+            shared_edges: core::array::from_fn(|_| SkinSharedEdges::default()),
             boxes: [[0; 4]; B],
             wedges: [Wedge::default(); G],
         }
@@ -386,8 +461,9 @@ impl<const C: usize, const V: usize, const S: usize, const K: usize,
 }
 
 #[rustfmt::skip]
-impl<const C: usize, const V: usize, const S: usize, const K: usize,
-     const W: usize, const L: usize, const B: usize, const G: usize> Default for SkinStorage<C, V, S, K, W, L, B, G> {
+impl<const C: usize, const V: usize, const S: usize, const K: usize, const W: usize,
+     const L: usize, const D: usize, const E: usize, const B: usize, const G: usize>
+    Default for SkinStorage<C, V, S, K, W, L, D, E, B, G> {
     fn default() -> Self {
         Self::new()
     }
@@ -564,6 +640,8 @@ impl SkinParams {
             // children below level 0 (level 0's window is few: picked without an order).
             words: if levels > 1 { MAX_CHILDREN } else { 0 },
             levels,
+            divisions: levels - 1,
+            shared_edges: layout.shared_edges(),
             boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
             // (Both counts are below i32::MAX.)
             wedges: vertices + cells,
@@ -630,9 +708,13 @@ struct Build<'b> {
     /// Per level, the parent outline of the cells being built, as their clipping starts from
     /// it ([`Layout::frames_at`]).
     parent_frames: &'b mut [ClipVertex],
-    /// Per level: its profile table, the edges of the parent outline of the cells being built,
-    /// binned (when it is short enough: [`EdgeGrid::of`]), its shared edges and edge scratch.
+    /// Per level, its profile table.
     levels: &'b mut [SkinLevel],
+    /// Per level from 1 (index level − 1): the edges of the parent outline of the cells being
+    /// built, binned (when it is short enough: [`EdgeGrid::of`]), and its crossing scratch.
+    divisions: &'b mut [SkinDivision],
+    /// Per level that keeps edges ([`Layout`]'s `shared`), its shared edges.
+    shared_edges: &'b mut [SkinSharedEdges],
     /// Per level from 1, the chunk boxes of the parent outline being divided
     /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
     boxes: &'b mut [[i64; 4]],
@@ -662,12 +744,22 @@ impl Build<'_> {
         let f = self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
-        let SkinLevel { grid, shared, scratch, .. } = &mut self.levels[level];
+        let (grid, crossing) = match level.checked_sub(1) {
+            Some(d) => {
+                let SkinDivision { grid, crossing } = &mut self.divisions[d];
+                (Some(&*grid), Some(crossing))
+            }
+            None => (None, None),
+        };
+        let shared = match self.layout.shared[level] {
+            Some(k) => Some(&mut self.shared_edges[k].0),
+            None => None,
+        };
         let outline = match parent {
             ParentOutline::Stored(first, count, chunks) => Parent {
                 outline: &head[first..first + count],
                 chunks,
-                grid: grid.of(count),
+                grid: grid.and_then(|g| g.of(count)),
                 frame: &self.parent_frames[self.layout.frames_at(level)..][..count],
             },
             ParentOutline::Box(ref b) => {
@@ -683,7 +775,7 @@ impl Build<'_> {
             .builder
             .outline(&f, &site, &self.sites[neighbours.0..neighbours.0 + neighbours.1], outline, {
                 let room = tail.len().min(self.layout.outline[level]);
-                (&mut tail[..room], shared, scratch)
+                (&mut tail[..room], cell::EdgeWork { shared, crossing })
             })
             .map_err(|_| Full)?;
         if n < 3 {
@@ -736,7 +828,7 @@ impl Build<'_> {
         let (boxes, below) = boxes.split_at_mut(self.layout.boxes(level));
         let outline = &self.vertices[first..first + n];
         let chunks = cell::chunk_boxes(outline, boxes);
-        let grid = &mut self.levels[level].grid;
+        let grid = &mut self.divisions[level - 1].grid;
         grid.fill(outline, (lo, hi));
         let outer = Parent { outline, chunks: &boxes[..chunks], grid: grid.of(n), frame: &[] };
         // Its outline as every child's clipping starts from it.
@@ -805,6 +897,8 @@ impl<'a, S: Scalar> Skin<'a, S> {
             (buffers.clip.len(), m.clip),
             (buffers.words.len(), m.words),
             (buffers.levels.len(), m.levels),
+            (buffers.divisions.len(), m.divisions),
+            (buffers.shared_edges.len(), m.shared_edges),
             (buffers.boxes.len(), m.boxes),
             (buffers.wedges.len(), m.wedges),
         ];
@@ -837,11 +931,14 @@ impl<'a, S: Scalar> Skin<'a, S> {
             first = end;
         }
         for (l, level) in levels.iter_mut().enumerate() {
-            // (Field by field, each built in place: a level is a few KiB.)
             level.table.finish(profile(l));
-            level.shared = SharedEdges::new();
-            level.grid = EdgeGrid::new();
-            level.scratch = cell::EdgeScratch::new();
+        }
+        // (A division is left as it is: its grid is filled for each parent before the parent's
+        // children read it, and its crossing scratch written for each edge before it is read.)
+        let divisions = &mut buffers.divisions[..m.divisions];
+        let shared_edges = &mut buffers.shared_edges[..m.shared_edges];
+        for s in shared_edges.iter_mut() {
+            s.0.clear();
         }
         let build = Build {
             params: *params,
@@ -856,6 +953,8 @@ impl<'a, S: Scalar> Skin<'a, S> {
             parent_frames,
             builder: Builder { clip, spare, order: &mut buffers.words[..m.words] },
             levels,
+            divisions,
+            shared_edges,
             boxes: buffers.boxes,
             wedges: buffers.wedges,
         };

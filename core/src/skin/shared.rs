@@ -65,6 +65,15 @@ impl SharedEdges {
         SharedEdges { kept: [Kept::default(); SLOTS], tags: [0; SLOTS], next: 0 }
     }
 
+    /// Frees every slot, in place (as [`SharedEdges::new`] leaves them).
+    pub(super) fn clear(&mut self) {
+        for (kept, tag) in self.kept.iter_mut().zip(&mut self.tags) {
+            kept.valid = false;
+            *tag = 0;
+        }
+        self.next = 0;
+    }
+
     /// The inner points kept for `key` (each edge is taken once: it has two sides).
     pub(super) fn take(&mut self, key: &EdgeKey) -> Option<([[i64; 2]; KEPT_POINTS], usize)> {
         // The last slot with the key's tag, without branches (which slot holds the edge, if

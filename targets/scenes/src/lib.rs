@@ -27,8 +27,8 @@ use hibi_core::mud::{
 };
 use hibi_core::scalar::Q16;
 use hibi_core::skin::{
-    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinLayers, SkinLevel, SkinParams, SkinRender, Wedge,
-    shade,
+    ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinDivision, SkinLayers, SkinLevel, SkinParams,
+    SkinRender, SkinSharedEdges, Wedge, shade,
 };
 use hibi_core::{Rng, Scalar, Spread, Stream};
 
@@ -210,6 +210,8 @@ const SKIN_SITES: usize = 8217;
 const SKIN_CLIP: usize = 6344;
 const SKIN_WORDS: usize = 4096;
 const SKIN_LEVELS: usize = 3;
+const SKIN_DIVISIONS: usize = 2;
+const SKIN_SHARED_EDGES: usize = 2;
 const SKIN_BOXES: usize = 563;
 // A wedge per outline vertex and one per cell.
 const SKIN_WEDGES: usize = SKIN_VERTICES + SKIN_CELLS;
@@ -267,6 +269,8 @@ pub struct Memory {
     sites: &'static mut [Site],
     clip: &'static mut [ClipVertex],
     skin_levels: &'static mut [SkinLevel],
+    skin_divisions: &'static mut [SkinDivision],
+    skin_shared_edges: &'static mut [SkinSharedEdges],
     boxes: &'static mut [[i64; 4]],
     wedges: &'static mut [Wedge],
     normals: &'static mut [[f32; 3]],
@@ -306,6 +310,8 @@ impl Memory {
         static SITES: Slot<Site, SKIN_SITES> = Slot::new();
         static CLIP: Slot<ClipVertex, SKIN_CLIP> = Slot::new();
         static SKIN_LEVEL: Slot<SkinLevel, SKIN_LEVELS> = Slot::new();
+        static SKIN_DIVISION: Slot<SkinDivision, SKIN_DIVISIONS> = Slot::new();
+        static SKIN_SHARED_EDGE: Slot<SkinSharedEdges, SKIN_SHARED_EDGES> = Slot::new();
         static BOXES: Slot<[i64; 4], SKIN_BOXES> = Slot::new();
         static WEDGES: Slot<Wedge, SKIN_WEDGES> = Slot::new();
         static MASK: Slot<u8, PIXELS> = Slot::new();
@@ -340,6 +346,8 @@ impl Memory {
                 sites: SITES.init(),
                 clip: CLIP.init(),
                 skin_levels: SKIN_LEVEL.init(),
+                skin_divisions: SKIN_DIVISION.init(),
+                skin_shared_edges: SKIN_SHARED_EDGE.init(),
                 boxes: BOXES.init(),
                 wedges: WEDGES.init(),
                 normals: NORMALS.init(),
@@ -368,6 +376,8 @@ impl Memory {
             + SKIN_SITES * size_of::<Site>()
             + SKIN_CLIP * size_of::<ClipVertex>()
             + SKIN_LEVELS * size_of::<SkinLevel>()
+            + SKIN_DIVISIONS * size_of::<SkinDivision>()
+            + SKIN_SHARED_EDGES * size_of::<SkinSharedEdges>()
             + SKIN_BOXES * 32
             + SKIN_WEDGES * size_of::<Wedge>()
             + PIXELS * 5
@@ -579,6 +589,8 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         clip,
         words,
         skin_levels,
+        skin_divisions,
+        skin_shared_edges,
         boxes,
         wedges,
         out,
@@ -601,6 +613,8 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
                 clip: &mut **clip,
                 words: &mut **words,
                 levels: &mut **skin_levels,
+                divisions: &mut **skin_divisions,
+                shared_edges: &mut **skin_shared_edges,
                 boxes: &mut **boxes,
                 wedges: &mut **wedges,
             }
@@ -711,7 +725,7 @@ fn scalars(emit: &mut dyn FnMut(&'static str, Outcome)) {
 /// `u64` words of the arena the 64 KiB scenes share: each scene takes its model's memory and
 /// its outputs from it and gives them back when it ends, so the arena is the largest scene's
 /// need, not the sum: the glass plate and its mask, 41,104 bytes on x86_64 (the mud scenes
-/// take 27,904; the 64×64 skin 12,960, with its 64×64 height map 29,344).
+/// take 27,904; the 64×64 skin 8,608, with its 64×64 height map 24,992).
 /// The rest of the 64 KiB is the stack's (`targets/run lm3s6965evb` reports its peak).
 pub const SMALL_ARENA_WORDS: usize = 5138;
 
@@ -872,6 +886,8 @@ fn small_skin_run<S: Scalar>(arena: &mut [u64], side: u32, height: bool) -> Outc
         clip: arena.take(memory.clip, short)?,
         words: arena.take(memory.words, short)?,
         levels: arena.take(memory.levels, short)?,
+        divisions: arena.take(memory.divisions, short)?,
+        shared_edges: arena.take(memory.shared_edges, short)?,
         boxes: arena.take(memory.boxes, short)?,
         wedges: arena.take(memory.wedges, short)?,
     };
