@@ -76,3 +76,49 @@ fn header_is_warning_free_in_c99_c11_and_cpp17_with_gcc_and_clang() {
         );
     }
 }
+
+/// Every `HIBI_*` constant the header, the C++ wrapper, the examples and the docs cite is one
+/// `include/hibi.h` defines (issue 25 defect 6: the header cited a `HIBI_GLASS_LARGE` it did
+/// not define). A name followed by `*` is a family (`HIBI_MUD_LAYER_*`), not a constant.
+#[test]
+fn every_cited_constant_is_defined() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let read = |path: &Path| std::fs::read_to_string(path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()));
+    let header = read(&root.join("include/hibi.h"));
+    let defined: std::collections::BTreeSet<&str> =
+        header.lines().filter_map(|l| l.strip_prefix("#define ")?.split_whitespace().next()).collect();
+    // Not constants: the wrapper's include guard, the environment variable that rewrites the
+    // header (`header_is_fresh`), and the CMake variable that picks the static library.
+    let not_constants = ["HIBI_HPP", "HIBI_BLESS", "HIBI_STATIC"];
+    let mut sources = vec![root.join("include/hibi.h"), root.join("include/hibi.hpp"), root.join("README.md")];
+    for dir in ["docs", "c_examples"] {
+        let mut entries: Vec<_> = std::fs::read_dir(root.join(dir)).expect(dir).map(|e| e.expect(dir).path()).collect();
+        entries.sort();
+        sources.extend(entries.into_iter().filter(|p| {
+            p.extension().is_some_and(|e| ["md", "c", "cpp", "h", "hpp"].contains(&e.to_str().unwrap_or("")))
+        }));
+    }
+    let mut undefined = Vec::new();
+    for path in &sources {
+        let text = read(path);
+        let bytes = text.as_bytes();
+        let mut at = 0;
+        while let Some(found) = text[at..].find("HIBI_") {
+            let start = at + found;
+            let mut end = start + 5;
+            while end < bytes.len()
+                && (bytes[end].is_ascii_uppercase() || bytes[end].is_ascii_digit() || bytes[end] == b'_')
+            {
+                end += 1;
+            }
+            at = end;
+            let name = &text[start..end];
+            let word_start = start == 0 || !(bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_');
+            let family = name.ends_with('_') && bytes.get(end) == Some(&b'*');
+            if word_start && !family && !defined.contains(name) && !not_constants.contains(&name) {
+                undefined.push(format!("{}: {name}", path.strip_prefix(root).unwrap_or(path).display()));
+            }
+        }
+    }
+    assert!(undefined.is_empty(), "cited but not defined in include/hibi.h:\n{}", undefined.join("\n"));
+}
