@@ -9,8 +9,8 @@
 //! profile along the ray from its centre point to its edge; heights add up over the levels
 //! and normals come from the profiles' slopes.
 //!
-//! [`Skin::step`] builds the cell outlines into caller memory, one level-0 cell with its
-//! descendants after another (fixed point, 1/2^(8+12·level) px, shared edges bit for bit);
+//! [`Skin::step`] builds the cell outlines into caller memory, one cell at a time, depth
+//! first (fixed point, 1/2^(8+12·level) px, shared edges bit for bit);
 //! [`Skin::render`] evaluates height, normal and cell maps into caller buffers; [`shade`]
 //! lights a normal map for a preview.
 //!
@@ -1007,11 +1007,12 @@ impl<'a, S: Scalar> Skin<'a, S> {
     }
 
     /// Builds cells, one at a time at any level, until about `budget` units of work have been
-    /// done in this call: the budget is checked before each cell, so a call builds at least
-    /// one cell and overruns the budget by less than one cell's work (at most [`MAX_OUTLINE`]
-    /// outline vertices, and one unit for a level-0 centre point). The units are outline
-    /// vertices written and one per level-0 centre point tried (whether or not its cell
-    /// reaches the surface). The cells do not depend on the budgets. Call until `finished`.
+    /// done in this call. The units are outline vertices written and one per level-0 centre
+    /// point tried (whether or not its cell reaches the surface). The budget is checked before
+    /// each cell, so a call builds at least one (or tries a level-0 centre point whose cell
+    /// misses the surface) and overruns the budget by less than one cell's work: at most
+    /// [`MAX_OUTLINE`] vertices and one unit. The cells do not depend on the budgets. Call
+    /// until `finished`.
     pub fn step(&mut self, budget: u64) -> SkinProgress {
         let start = self.work;
         while !self.finished && (self.work == start || self.work - start < budget) {
@@ -1134,8 +1135,9 @@ impl<'a, S: Scalar> Skin<'a, S> {
         &self.params
     }
 
-    /// Every cell, level by level inside each level-0 cell (a parent comes before its
-    /// children).
+    /// Every cell, depth first in the order [`Skin::step`] builds them: each level-0 cell,
+    /// then its descendants (a parent comes before its children, and a cell's descendants
+    /// before its next sibling).
     pub fn cells(&self) -> &[SkinCell] {
         &self.build.cells[..self.build.cell_count]
     }
