@@ -694,11 +694,14 @@ pub struct Skin<'a, S: Scalar = f32> {
 struct Siblings {
     /// The parent's index in `cells`.
     parent: u32,
-    /// Its children's centre points ([`Build::open`]).
-    count: u32,
+    /// Its children's centre points ([`Build::open`]; at most [`MAX_CHILDREN`]).
+    count: u16,
     /// The next of them to build.
-    next: u32,
+    next: u16,
 }
+
+// (A parent's children are counted in 16 bits: the cursors are part of every `Skin`.)
+const _: () = assert!(MAX_CHILDREN <= u16::MAX as usize);
 
 /// Where a build stands, as [`Skin::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -840,7 +843,7 @@ impl Build<'_> {
     /// [`Layout::frames_at`]; returns how many centre points (at least one). All of these
     /// are level `level`'s alone: building a child's own descendants, which reads and writes
     /// only those of finer levels, leaves them as they are for its siblings.
-    fn open(&mut self, level: usize, parent: u32) -> Result<u32, Full> {
+    fn open(&mut self, level: usize, parent: u32) -> Result<u16, Full> {
         let (f, lattice) = (self.frames[level], self.lattices[level]);
         let c = self.cells[parent as usize];
         let (first, n) = (c.first_vertex as usize, c.vertex_count as usize);
@@ -884,7 +887,7 @@ impl Build<'_> {
             self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
             count = 1;
         }
-        Ok(count as u32)
+        Ok(count as u16)
     }
 
     /// Builds child `k` of the `count` that [`Build::open`] listed for cell `parent` at
