@@ -1216,6 +1216,7 @@ mod tests {
             assert_eq!((a.cells(), a.vertices()), (b.cells(), b.vertices()), "case {case}: {p:?}");
         }
     }
+
     #[test]
     fn steps_of_any_budget_build_the_same_cells_one_cell_at_a_time() {
         // Layouts, jitters, periods, perturbations and 1 to 3 levels: budgets of 1, 7 and 100
@@ -1248,7 +1249,7 @@ mod tests {
             let end = one_go.run();
             assert!(end.finished && !end.capacity_reached && end.roots == end.root_total, "case {case}");
             if p.levels > 1 {
-                assert!(one_go.cells().iter().any(|c| c.level as u32 == p.levels - 1), "case {case}: a finest cell");
+                assert!(one_go.cells().iter().any(|c| c.level == p.levels - 1), "case {case}: a finest cell");
             }
             let level0 = one_go.cells().iter().filter(|c| c.level == 0).count() as u32;
             for budget in [1, 7, 100] {
