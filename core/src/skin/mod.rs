@@ -1283,4 +1283,27 @@ mod tests {
             }
         }
     }
+    #[test]
+    fn a_capacity_stops_a_stepped_build_where_it_stops_a_run() {
+        // A parent holding more centre points than the core can sort: with budget 1 as in one
+        // `run`, the build stops at the same cell with `capacity_reached`, and what it built
+        // renders.
+        let mut p = SkinParams { width: 128, height: 128, levels: 2, ..SkinParams::default() };
+        (p.level[0].spacing, p.level[1].spacing) = (128.0, 1.5);
+        (p.level[0].perturbation_depth, p.level[1].perturbation_depth) = (0, 0);
+        let m = p.memory().expect("valid");
+        let (mut whole, mut store) = (m.allocate(), m.allocate());
+        let mut one_go: Skin = Skin::new(&p, whole.buffers()).expect("its need");
+        let end = one_go.run();
+        assert!(end.finished && end.capacity_reached && end.roots < end.root_total, "{end:?}");
+        let mut skin: Skin = Skin::new(&p, store.buffers()).expect("its need");
+        while !skin.step(1).finished {}
+        assert_eq!(skin.progress(), end);
+        assert_eq!((skin.cells(), skin.vertices()), (one_go.cells(), one_go.vertices()));
+        assert_eq!(skin.step(1), end, "a stopped build stays stopped");
+        let mut height = alloc::vec![0.0f32; 128 * 128];
+        let layers = SkinLayers { height: Some(&mut height), ..SkinLayers::default() };
+        skin.render(&SkinRender::default(), layers).expect("what was built renders");
+        assert!(height.iter().any(|&h| h > 0.0));
+    }
 }
