@@ -2113,10 +2113,13 @@ hibi_status hibi_skin_render(const struct hibi_skin *skin,
                              size_t pixels_len);
 
 /**
- * Advances the build by about `budget` units of work (outline vertices written; at least
- * one level-0 cell with its descendants, and the cells do not depend on the budgets); writes
- * where it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and
- * writes nothing) once a cell outgrew its capacity; what was built stays usable.
+ * Advances the build by about `budget` units of work (outline vertices written, and one per
+ * level-0 centre point tried), one cell at a time at any level: the budget is checked before
+ * each cell, so a call builds at least one (or tries a level-0 centre point whose cell misses
+ * the surface) and overruns the budget by less than one cell's work (at most 2 049 units: an
+ * outline's most vertices and one). The cells do not depend on the budgets. Writes where it
+ * stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and writes
+ * nothing) once a cell outgrew its capacity; what was built stays usable.
  *
  * # Safety
  * `skin` must be NULL or a live skin; `progress` optional: NULL (not written) or writable.
@@ -2162,8 +2165,9 @@ hibi_status hibi_skin_shade(const float *height,
 hibi_status hibi_skin_cell_count(const struct hibi_skin *skin, size_t *count);
 
 /**
- * Describes cell `index` (below `hibi_skin_cell_count`). Cells come level by level inside
- * each level-0 cell: a parent before its children.
+ * Describes cell `index` (below `hibi_skin_cell_count`). Cells come depth first, in the
+ * order they are built: each level-0 cell, then its descendants (a parent before its
+ * children, and a cell's descendants before its next sibling).
  *
  * # Safety
  * `skin` must be NULL or a live skin; `cell` NULL or writable.

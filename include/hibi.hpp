@@ -456,7 +456,8 @@ public:
         return Skin(raw, params);
     }
 
-    /// Advances the build by about `budget` units of work (outline vertices).
+    /// Advances the build by about `budget` units of work (outline vertices, and one per
+    /// level-0 centre point tried), one cell at a time: overruns it by at most one cell's.
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_skin_step(handle_.get(), budget, &progress));

@@ -248,8 +248,9 @@ fn skin_case(name: &str, params: &SkinParams, budget: u64) -> (u64, bool) {
     let memory = params.memory().unwrap_or_else(|e| panic!("{name}: {e}"));
     let mut store = memory.allocate();
     let mut skin = Skin::<f32>::new(params, store.buffers()).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-    // One piece: a level-0 cell's tree, whose outline vertices fit in the skin's memory.
-    let piece = memory.vertices as u64 + 64;
+    // One piece: a cell, its outline's vertices (at most MAX_OUTLINE) and one unit for a
+    // level-0 centre point (the step checks its budget before each cell).
+    let piece = hibi_core::skin::MAX_OUTLINE as u64 + 1;
     let mut work = 0;
     let result = bounded(name, budget, piece, |b| {
         let progress = skin.step(b);

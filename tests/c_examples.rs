@@ -919,9 +919,10 @@ fn number_after(line: &str, prefix: &str) -> u64 {
 
 /// Issue 26 item 5: the game loop spreads each model over several frames within its budget
 /// (mud's step stops once its work reaches the budget, so a frame overruns it by less than
-/// one indivisible piece; skin's by at most one level-0 cell's build), writes four frames of
-/// each break-time raster, the last glass frame cracked where Rust's plate is, and the
-/// budgeted objects equal unbudgeted runs.
+/// one indivisible piece; skin's, which checks its budget before each cell, by at most one
+/// cell's outline and one unit: 2 049), writes four frames of each break-time raster, the
+/// last glass frame cracked where Rust's plate is, and the budgeted objects equal unbudgeted
+/// runs.
 fn check_engine(linkage: Linkage) {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("engine_{linkage:?}"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -937,7 +938,8 @@ fn check_engine(linkage: Linkage) {
     let (largest, budget) = (number_after(mud, "work "), number_after(mud, "budget "));
     assert!(largest >= budget / 2 && largest < 2 * budget, "{mud}");
     let skin = line(&output, "skin: largest frame work ");
-    assert!(number_after(skin, "work ") > 0, "{skin}");
+    let (largest, budget) = (number_after(skin, "work "), number_after(skin, "budget "));
+    assert!(largest >= budget && largest < budget + hibi_core::skin::MAX_OUTLINE as u64 + 1, "{skin}");
     // Glass overruns its budget by at most one tip update's queries and one face walk.
     let glass = line(&output, "glass: largest frame work ");
     let (largest, budget) = (number_after(glass, "work "), number_after(glass, "budget "));

@@ -18,7 +18,7 @@
 //!   glass fragment rings' points and `hole_of`; glass cracks' kind, end and impact;
 //! - every `step(budget)` call's work is bounded by its budget plus one indivisible piece
 //!   (mud: a short step or a relaxation or break event; glass: one tip update's queries;
-//!   skin: one level-0 cell's tree). The largest piece is measured by a run with budget 1,
+//!   skin: one cell at any level). The largest piece is measured by a run with budget 1,
 //!   whose calls each do exactly one piece; the run under test must then end in the same
 //!   state (the models do not depend on the budgets), so its pieces are the same ones;
 //! - the memory need is exact: `*_create_in` accepts `*_memory_size` bytes and refuses one

@@ -16,8 +16,8 @@
 //! size). A preview: render `HIBI_SKIN_LAYER_NORMAL` too, then `hibi_skin_shade` the two maps;
 //! each layer is its own render (in Rust, `Skin::render` draws several layers in one pass).
 //!
-//! `hibi_skin_step` builds the cell outlines, one level-0 cell with its descendants after
-//! another; rendering only reads them (it draws what is built so far). An object is one block:
+//! `hibi_skin_step` builds the cell outlines one cell at a time, depth first (a level-0 cell,
+//! then its descendants); rendering only reads them (it draws what is built so far). An object is one block:
 //! the header, then the core's cell, vertex, site, clip-vertex, word, level-record,
 //! chunk-box and wedge arrays.
 
@@ -338,10 +338,13 @@ fn skin_layers(layer: u32, pixels: Pixels<'_>) -> Result<SkinLayers<'_>, hibi_st
     })
 }
 
-/// Advances the build by about `budget` units of work (outline vertices written; at least
-/// one level-0 cell with its descendants, and the cells do not depend on the budgets); writes
-/// where it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and
-/// writes nothing) once a cell outgrew its capacity; what was built stays usable.
+/// Advances the build by about `budget` units of work (outline vertices written, and one per
+/// level-0 centre point tried), one cell at a time at any level: the budget is checked before
+/// each cell, so a call builds at least one (or tries a level-0 centre point whose cell misses
+/// the surface) and overruns the budget by less than one cell's work (at most 2 049 units: an
+/// outline's most vertices and one). The cells do not depend on the budgets. Writes where it
+/// stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and writes
+/// nothing) once a cell outgrew its capacity; what was built stays usable.
 ///
 /// # Safety
 /// `skin` must be NULL or a live skin; `progress` optional: NULL (not written) or writable.
@@ -422,8 +425,9 @@ pub unsafe extern "C" fn hibi_skin_cell_count(skin: *const hibi_skin, count: *mu
     guard(|| unsafe { query(skin, c"skin", (count, c"count"), read) })
 }
 
-/// Describes cell `index` (below `hibi_skin_cell_count`). Cells come level by level inside
-/// each level-0 cell: a parent before its children.
+/// Describes cell `index` (below `hibi_skin_cell_count`). Cells come depth first, in the
+/// order they are built: each level-0 cell, then its descendants (a parent before its
+/// children, and a cell's descendants before its next sibling).
 ///
 /// # Safety
 /// `skin` must be NULL or a live skin; `cell` NULL or writable.
@@ -585,7 +589,11 @@ mod tests {
         let (cells, vertices, one_go, done) = outlines(u64::MAX);
         let (cells_1, vertices_1, many, done_1) = outlines(1);
         assert_eq!(one_go, 1);
-        assert!(many > 2 && many as u32 == done.root_total, "{many} steps of one root each");
+        // A budget-1 step builds one cell, or tries one level-0 centre point whose cell misses
+        // the surface.
+        let level0 = cells.iter().filter(|c| c.0 == 0).count() as u32;
+        assert!(level0 < done.cells, "two levels");
+        assert_eq!(many as u32, done.cells + done.root_total - level0, "{many} steps of one cell each");
         assert!(cells == cells_1 && vertices == vertices_1);
         assert_eq!((done.cells, done.roots, done.work), (done_1.cells, done_1.roots, done_1.work));
     }

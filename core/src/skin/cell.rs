@@ -135,11 +135,16 @@ pub(super) fn parent_vertex(f: &Frame, outline: &[[i64; 2]], k: usize) -> ClipVe
     ClipVertex { at: f.in_frame(outline[k]), label: PARENT_EDGE | k as u32 }
 }
 
+/// How many chunk boxes an outline of `m` vertices has ([`chunk_boxes`]).
+pub(super) fn chunk_count(m: usize) -> usize {
+    m.div_ceil(CHUNK)
+}
+
 /// Fills `chunks` with the boxes of `outline`'s edges taken `CHUNK` at a time; returns how
-/// many.
+/// many ([`chunk_count`]).
 pub(super) fn chunk_boxes(outline: &[[i64; 2]], chunks: &mut [[i64; 4]]) -> usize {
     let m = outline.len();
-    let count = m.div_ceil(CHUNK);
+    let count = chunk_count(m);
     for (c, b) in chunks[..count].iter_mut().enumerate() {
         let mut bounds = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
         for i in c * CHUNK..=((c + 1) * CHUNK).min(m) {

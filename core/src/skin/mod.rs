@@ -9,8 +9,8 @@
 //! profile along the ray from its centre point to its edge; heights add up over the levels
 //! and normals come from the profiles' slopes.
 //!
-//! [`Skin::step`] builds the cell outlines into caller memory, one level-0 cell with its
-//! descendants after another (fixed point, 1/2^(8+12·level) px, shared edges bit for bit);
+//! [`Skin::step`] builds the cell outlines into caller memory, one cell at a time, depth
+//! first (fixed point, 1/2^(8+12·level) px, shared edges bit for bit);
 //! [`Skin::render`] evaluates height, normal and cell maps into caller buffers; [`shade`]
 //! lights a normal map for a preview.
 //!
@@ -272,6 +272,12 @@ impl Layout {
     /// Chunk boxes of level `level`'s parent outline (levels from 1).
     fn boxes(&self, level: usize) -> usize {
         self.parent(level) / cell::CHUNK + 1
+    }
+
+    /// Where level `level`'s chunk boxes (those of its parent outline) start in `boxes`
+    /// (levels from 1).
+    fn boxes_at(&self, level: usize) -> usize {
+        (1..level).map(|l| self.boxes(l)).sum()
     }
 
     /// The levels that keep edges ([`SkinSharedEdges`] records).
@@ -642,7 +648,7 @@ impl SkinParams {
             levels,
             divisions: levels - 1,
             shared_edges: layout.shared_edges(),
-            boxes: (1..levels).map(|l| layout.boxes(l)).sum(),
+            boxes: layout.boxes_at(levels),
             // (Both counts are below i32::MAX.)
             wedges: vertices + cells,
         })
@@ -650,26 +656,52 @@ impl SkinParams {
 }
 
 /// A skin surface: every cell outline of every level, over caller memory, built by
-/// [`Skin::step`] one level-0 cell (with all its descendants) after another. `S` is the
-/// scalar backend the maps are computed in (`f32`, `micromath::F32`, `Q16`).
+/// [`Skin::step`] one cell after another, depth first (each level-0 cell, then its
+/// descendants, before the next level-0 cell). `S` is the scalar backend the maps are
+/// computed in (`f32`, `micromath::F32`, `Q16`).
 pub struct Skin<'a, S: Scalar = f32> {
     params: SkinParams,
     build: Build<'a>,
     /// The level-0 lattice indices that can reach the surface (inclusive: i0, j0, i1, j1).
     range: [i64; 4],
-    /// The next level-0 index (i, j) to build.
+    /// The level-0 index (i, j) whose tree is being built, or the next to build.
     next: [i64; 2],
     /// The level-0 index whose neighbour window (the first [`Window::sites`] of `sites`)
     /// holds, if any.
     window: Option<[i64; 2]>,
+    /// The depth-first walk's cursors: entry `d` (of the first `open`) the children of level
+    /// `d + 1` being built, of the level-`d` cell last built at that level. The walk goes on
+    /// with the next child of the finest open entry, or with the next level-0 index when none
+    /// is open.
+    siblings: [Siblings; MAX_LEVELS - 1],
+    /// How many `siblings` entries are open.
+    open: usize,
     /// Level-0 cells whose trees are built.
     done: u32,
     finished: bool,
     capacity_reached: bool,
-    /// Outline vertices written so far: what [`Skin::step`]'s budget counts.
+    /// What [`Skin::step`]'s budget counts: outline vertices written so far, and one per
+    /// level-0 centre point tried.
     work: u64,
     backend: PhantomData<S>,
 }
+
+/// The children of one parent cell, as the build walks them ([`Skin`]'s `siblings`). The rest
+/// of what they are built from stays in caller memory, in places of their level alone
+/// ([`Build::open`]): the parent's outline in `vertices` (its cell record says where), their
+/// centre points in `sites`, the parent's chunk boxes, edge grid and parent frame.
+#[derive(Clone, Copy, Debug, Default)]
+struct Siblings {
+    /// The parent's index in `cells`.
+    parent: u32,
+    /// Its children's centre points ([`Build::open`]; at most [`MAX_CHILDREN`]).
+    count: u16,
+    /// The next of them to build.
+    next: u16,
+}
+
+// (A parent's children are counted in 16 bits: the cursors are part of every `Skin`.)
+const _: () = assert!(MAX_CHILDREN <= u16::MAX as usize);
 
 /// Where a build stands, as [`Skin::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -716,7 +748,7 @@ struct Build<'b> {
     /// Per level that keeps edges ([`Layout`]'s `shared`), its shared edges.
     shared_edges: &'b mut [SkinSharedEdges],
     /// Per level from 1, the chunk boxes of the parent outline being divided
-    /// ([`Layout::boxes`] each); taken out while a build runs ([`Build::cell`]'s `boxes`).
+    /// ([`Layout::boxes`] each, from [`Layout::boxes_at`]).
     boxes: &'b mut [[i64; 4]],
     /// Per cell, from its first vertex's index plus its own, its fan: one wedge per outline
     /// vertex and one in front ([`surface::fan`]).
@@ -731,16 +763,16 @@ impl Build<'_> {
     }
 
     /// Builds `site`'s outline in level `level` among `neighbours` (sites[range]) inside the
-    /// outline `parent` (vertices[parent range] or the given one), stores the cell and its
-    /// descendants; `boxes` holds the chunk boxes of the levels below.
+    /// outline `parent` (vertices[parent range], with level `level`'s chunk boxes and parent
+    /// frame, or the given rectangle) and stores the cell; returns its index, or `None` when
+    /// its outline is empty (fewer than 3 vertices: no cell).
     fn cell(
         &mut self,
         level: usize,
         site: Site,
         neighbours: (usize, usize),
         (parent, parent_index): (ParentOutline, u32),
-        boxes: &mut [[i64; 4]],
-    ) -> Result<(), Full> {
+    ) -> Result<Option<usize>, Full> {
         let f = self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
@@ -756,9 +788,9 @@ impl Build<'_> {
             None => None,
         };
         let outline = match parent {
-            ParentOutline::Stored(first, count, chunks) => Parent {
+            ParentOutline::Stored(first, count) => Parent {
                 outline: &head[first..first + count],
-                chunks,
+                chunks: &self.boxes[self.layout.boxes_at(level)..][..cell::chunk_count(count)],
                 grid: grid.and_then(|g| g.of(count)),
                 frame: &self.parent_frames[self.layout.frames_at(level)..][..count],
             },
@@ -779,7 +811,7 @@ impl Build<'_> {
             })
             .map_err(|_| Full)?;
         if n < 3 {
-            return Ok(());
+            return Ok(None);
         }
         let index = self.cell_count;
         // (With buffers of exactly the need neither runs out; larger cell or vertex buffers
@@ -801,22 +833,20 @@ impl Build<'_> {
         let fan = &mut self.wedges[first + index..][..n + 1];
         let bits = cell::fixed_point_bits(self.params.levels);
         surface::fan(&self.vertices[first..first + n], self.cells[index].centre, bits, fan);
-        if level + 1 < self.params.levels as usize {
-            self.children(level + 1, index as u32, (first, n), boxes)?;
-        }
-        Ok(())
+        Ok(Some(index))
     }
 
-    /// Divides cell `parent` (outline vertices[first..first + n]) into the cells of `level`;
-    /// `boxes` holds the chunk boxes of this level and those below.
-    fn children(
-        &mut self,
-        level: usize,
-        parent: u32,
-        (first, n): (usize, usize),
-        boxes: &mut [[i64; 4]],
-    ) -> Result<(), Full> {
+    /// Prepares the division of cell `parent` into the cells of `level`: lists its centre
+    /// points at `sites[Layout::sites_at(level)..]` (a stand-in at its own centre when none
+    /// falls inside it), its outline's chunk boxes at [`Layout::boxes_at`], its edge grid in
+    /// `divisions[level − 1]` and its outline as the children's clipping starts from it at
+    /// [`Layout::frames_at`]; returns how many centre points (at least one). All of these
+    /// are level `level`'s alone: building a child's own descendants, which reads and writes
+    /// only those of finer levels, leaves them as they are for its siblings.
+    fn open(&mut self, level: usize, parent: u32) -> Result<u16, Full> {
         let (f, lattice) = (self.frames[level], self.lattices[level]);
+        let c = self.cells[parent as usize];
+        let (first, n) = (c.first_vertex as usize, c.vertex_count as usize);
         let outline = &self.vertices[first..first + n];
         let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
         for v in outline {
@@ -825,8 +855,7 @@ impl Build<'_> {
         }
         let r = lattice.indices_over(f.in_frame(lo), f.in_frame(hi));
         // Its edges' boxes, for every child's outline too.
-        let (boxes, below) = boxes.split_at_mut(self.layout.boxes(level));
-        let outline = &self.vertices[first..first + n];
+        let boxes = &mut self.boxes[self.layout.boxes_at(level)..][..self.layout.boxes(level)];
         let chunks = cell::chunk_boxes(outline, boxes);
         let grid = &mut self.divisions[level - 1].grid;
         grid.fill(outline, (lo, hi));
@@ -854,17 +883,21 @@ impl Build<'_> {
         if count == 0 {
             // No centre point fell inside: the parent is one cell of this level,
             // centred where the parent is.
-            let c = self.cells[parent as usize].centre;
-            let at = f.in_frame(c);
+            let at = f.in_frame(c.centre);
             self.sites[base] = Site { at, base: at, id: 0x8000_0000 | parent, image: [0, 0] };
             count = 1;
         }
-        for k in 0..count {
-            let s = self.sites[base + k];
-            let outline = ParentOutline::Stored(first, n, &boxes[..chunks]);
-            self.cell(level, s, (base, count), (outline, parent), below)?;
-        }
-        Ok(())
+        Ok(count as u16)
+    }
+
+    /// Builds child `k` of the `count` that [`Build::open`] listed for cell `parent` at
+    /// `level`; returns its index, or `None` when its outline is empty.
+    fn child(&mut self, level: usize, parent: u32, (k, count): (usize, usize)) -> Result<Option<usize>, Full> {
+        let base = self.layout.sites_at(level);
+        let s = self.sites[base + k];
+        let c = self.cells[parent as usize];
+        let outline = ParentOutline::Stored(c.first_vertex as usize, c.vertex_count as usize);
+        self.cell(level, s, (base, count), (outline, parent))
     }
 }
 
@@ -872,9 +905,10 @@ impl Build<'_> {
 struct Full;
 
 /// The outline a cell is clipped to.
-enum ParentOutline<'c> {
-    /// Stored vertices (first, count) and their chunk boxes.
-    Stored(usize, usize, &'c [[i64; 4]]),
+enum ParentOutline {
+    /// Stored vertices (first, count), the parent of the level being built (its chunk boxes
+    /// and parent frame are the level's: [`Build::open`]).
+    Stored(usize, usize),
     /// A rectangle (the surface, or a box around a periodic centre).
     Box([[i64; 2]; 4]),
 }
@@ -965,6 +999,8 @@ impl<'a, S: Scalar> Skin<'a, S> {
             range,
             next: [range[0], range[1]],
             window: None,
+            siblings: [Siblings::default(); MAX_LEVELS - 1],
+            open: 0,
             done: 0,
             finished: false,
             capacity_reached: false,
@@ -973,22 +1009,21 @@ impl<'a, S: Scalar> Skin<'a, S> {
         })
     }
 
-    /// Builds level-0 cells, each with all its descendants, until about `budget` outline
-    /// vertices have been written in this call (at least one level-0 cell's tree; a tree is
-    /// at most a level-0 window of [`MAX_CHILDREN`] cells per level). The cells do not depend
-    /// on the budgets. Call until `finished`.
+    /// Builds cells, one at a time at any level, until about `budget` units of work have been
+    /// done in this call. The units are outline vertices written and one per level-0 centre
+    /// point tried (whether or not its cell reaches the surface). The budget is checked before
+    /// each cell, so a call builds at least one (or tries a level-0 centre point whose cell
+    /// misses the surface) and overruns the budget by less than one cell's work: at most
+    /// [`MAX_OUTLINE`] vertices and one unit. The cells do not depend on the budgets. Call
+    /// until `finished`.
     pub fn step(&mut self, budget: u64) -> SkinProgress {
         let start = self.work;
         while !self.finished && (self.work == start || self.work - start < budget) {
-            let [i, j] = self.next;
-            if self.root(i, j).is_err() {
+            if self.advance().is_err() {
                 self.capacity_reached = true;
                 self.finished = true;
                 break;
             }
-            self.done += 1;
-            self.next = if i < self.range[2] { [i + 1, j] } else { [self.range[0], j + 1] };
-            self.finished = self.next[1] > self.range[3];
         }
         self.progress()
     }
@@ -1011,8 +1046,50 @@ impl<'a, S: Scalar> Skin<'a, S> {
         }
     }
 
-    /// Builds the cell of level-0 lattice index (i, j) and its descendants.
-    fn root(&mut self, i: i64, j: i64) -> Result<(), Full> {
+    /// Builds the next cell of the depth-first walk and counts its work: the next child of the
+    /// finest open parent, or else the level-0 cell of `next`; opens its children if it has
+    /// any, then closes each parent whose children are all built, and with the last the
+    /// level-0 cell's tree (moving `next` on, and finishing after the last).
+    fn advance(&mut self) -> Result<(), Full> {
+        let before = self.build.vertex_count;
+        let (level, built) = match self.open.checked_sub(1) {
+            Some(d) => {
+                let s = &mut self.siblings[d];
+                let k = s.next;
+                s.next += 1;
+                (d + 1, self.build.child(d + 1, s.parent, (k as usize, s.count as usize)))
+            }
+            None => {
+                self.work += 1;
+                (0, self.root())
+            }
+        };
+        self.work += (self.build.vertex_count - before) as u64;
+        if let Some(index) = built?
+            && level + 1 < self.params.levels as usize
+        {
+            let count = self.build.open(level + 1, index as u32)?;
+            self.siblings[level] = Siblings { parent: index as u32, count, next: 0 };
+            self.open = level + 1;
+        }
+        while let Some(d) = self.open.checked_sub(1)
+            && self.siblings[d].next == self.siblings[d].count
+        {
+            self.open = d;
+        }
+        if self.open == 0 {
+            let [i, j] = self.next;
+            self.done += 1;
+            self.next = if i < self.range[2] { [i + 1, j] } else { [self.range[0], j + 1] };
+            self.finished = self.next[1] > self.range[3];
+        }
+        Ok(())
+    }
+
+    /// Builds the level-0 cell of lattice index `next` (its neighbour window first); returns
+    /// its index, or `None` when it does not reach the surface.
+    fn root(&mut self) -> Result<Option<usize>, Full> {
+        let [i, j] = self.next;
         let (lattice, f) = (self.build.lattices[0], self.build.frames[0]);
         // The centre's neighbours: the window around it, row by row (level 0 keeps them in the
         // first block of `sites`), slid along the row one column at a time.
@@ -1053,12 +1130,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             let (w, h) = (i64::from(self.params.width) << shift, i64::from(self.params.height) << shift);
             ParentOutline::Box([[0, 0], [w, 0], [w, h], [0, h]])
         };
-        let before = self.build.vertex_count;
-        let boxes = core::mem::take(&mut self.build.boxes);
-        let built = self.build.cell(0, site, (0, at), (parent, NO_CELL), &mut *boxes);
-        self.build.boxes = boxes;
-        self.work += (self.build.vertex_count - before) as u64 + 1;
-        built
+        self.build.cell(0, site, (0, at), (parent, NO_CELL))
     }
 
     /// The parameters.
@@ -1066,8 +1138,9 @@ impl<'a, S: Scalar> Skin<'a, S> {
         &self.params
     }
 
-    /// Every cell, level by level inside each level-0 cell (a parent comes before its
-    /// children).
+    /// Every cell, depth first in the order [`Skin::step`] builds them: each level-0 cell,
+    /// then its descendants (a parent comes before its children, and a cell's descendants
+    /// before its next sibling).
     pub fn cells(&self) -> &[SkinCell] {
         &self.build.cells[..self.build.cell_count]
     }
@@ -1142,5 +1215,95 @@ mod tests {
             assert!(!pa.capacity_reached && !pb.capacity_reached, "case {case}");
             assert_eq!((a.cells(), a.vertices()), (b.cells(), b.vertices()), "case {case}: {p:?}");
         }
+    }
+
+    #[test]
+    fn steps_of_any_budget_build_the_same_cells_one_cell_at_a_time() {
+        // Layouts, jitters, periods, perturbations and 1 to 3 levels: budgets of 1, 7 and 100
+        // build what one `run` builds, bit for bit (cells, vertices, wedges and work); each
+        // call overruns its budget by less than one cell's work, and a budget-1 call builds
+        // at most one cell: exactly one, unless its one unit was a level-0 centre point whose
+        // cell misses the surface.
+        let mut rng = Rng::from_key(26, 5);
+        let mut unit = move || rng.uniform_f64() as f32;
+        for case in 0..24 {
+            let mut p = SkinParams { seed: 100 + case, ..SkinParams::default() };
+            (p.width, p.height) = (8 + (unit() * 40.0) as u32, 8 + (unit() * 40.0) as u32);
+            p.layout = [SiteLayout::Triangular, SiteLayout::Square, SiteLayout::Random][case as usize % 3];
+            p.jitter = if unit() < 0.5 { Spread::Uniform } else { Spread::Normal };
+            p.jitter_ratio = if unit() < 0.3 { 1.0 } else { unit() };
+            p.periodic = case % 4 == 1;
+            p.levels = 1 + case as u32 % 3;
+            p.level[0].spacing = 12.0 + unit() * 12.0;
+            for l in 0..p.levels as usize {
+                let spacing = if l > 0 { p.level[l - 1].spacing / 3.0 } else { p.level[0].spacing };
+                let level = &mut p.level[l];
+                level.spacing = spacing;
+                level.stretch = [0.7 + unit(), 0.7 + unit()];
+                level.perturbation = if unit() < 0.4 { 0.0 } else { unit() * 0.3 };
+                level.perturbation_depth = (unit() * 3.0) as u32;
+            }
+            let m = p.memory().expect("valid");
+            let mut whole = m.allocate();
+            let mut one_go: Skin = Skin::new(&p, whole.buffers()).expect("its need");
+            let end = one_go.run();
+            assert!(end.finished && !end.capacity_reached && end.roots == end.root_total, "case {case}");
+            if p.levels > 1 {
+                assert!(one_go.cells().iter().any(|c| c.level == p.levels - 1), "case {case}: a finest cell");
+            }
+            let level0 = one_go.cells().iter().filter(|c| c.level == 0).count() as u32;
+            for budget in [1, 7, 100] {
+                let mut store = m.allocate();
+                let mut skin: Skin = Skin::new(&p, store.buffers()).expect("its need");
+                let (mut before, mut calls) = (skin.progress(), 0u32);
+                while !before.finished {
+                    let now = skin.step(budget);
+                    let done = now.work - before.work;
+                    assert!(done > 0 && done < budget + MAX_OUTLINE as u64 + 1, "case {case}: {done} for {budget}");
+                    if budget == 1 {
+                        let (cells, roots) = (now.cells - before.cells, now.roots - before.roots);
+                        assert!(cells == 1 || (cells == 0 && roots == 1), "case {case}: {cells} cells in one call");
+                        // One cell's work: its vertices, and one unit more for a level-0 cell.
+                        let last = skin.cells().last().filter(|_| cells == 1);
+                        let own = last.map_or(0, |c| u64::from(c.vertex_count))
+                            + u64::from(cells == 0 || last.is_some_and(|c| c.level == 0));
+                        assert_eq!(done, own, "case {case}");
+                    }
+                    before = now;
+                    calls += 1;
+                }
+                assert_eq!(before, end, "case {case}, budget {budget}");
+                assert_eq!((skin.cells(), skin.vertices()), (one_go.cells(), one_go.vertices()), "case {case}");
+                // (Wedges hold floats: compared as printed, which tells every value apart.)
+                let wedges = |s: &Skin| alloc::format!("{:?}", s.build.wedges());
+                assert!(wedges(&skin) == wedges(&one_go), "case {case}: wedges");
+                if budget == 1 {
+                    assert_eq!(calls, end.cells + end.root_total - level0, "case {case}: one cell a call");
+                }
+            }
+        }
+    }
+    #[test]
+    fn a_capacity_stops_a_stepped_build_where_it_stops_a_run() {
+        // A parent holding more centre points than the core can sort: with budget 1 as in one
+        // `run`, the build stops at the same cell with `capacity_reached`, and what it built
+        // renders.
+        let mut p = SkinParams { width: 128, height: 128, levels: 2, ..SkinParams::default() };
+        (p.level[0].spacing, p.level[1].spacing) = (128.0, 1.5);
+        (p.level[0].perturbation_depth, p.level[1].perturbation_depth) = (0, 0);
+        let m = p.memory().expect("valid");
+        let (mut whole, mut store) = (m.allocate(), m.allocate());
+        let mut one_go: Skin = Skin::new(&p, whole.buffers()).expect("its need");
+        let end = one_go.run();
+        assert!(end.finished && end.capacity_reached && end.roots < end.root_total, "{end:?}");
+        let mut skin: Skin = Skin::new(&p, store.buffers()).expect("its need");
+        while !skin.step(1).finished {}
+        assert_eq!(skin.progress(), end);
+        assert_eq!((skin.cells(), skin.vertices()), (one_go.cells(), one_go.vertices()));
+        assert_eq!(skin.step(1), end, "a stopped build stays stopped");
+        let mut height = alloc::vec![0.0f32; 128 * 128];
+        let layers = SkinLayers { height: Some(&mut height), ..SkinLayers::default() };
+        skin.render(&SkinRender::default(), layers).expect("what was built renders");
+        assert!(height.iter().any(|&h| h > 0.0));
     }
 }
