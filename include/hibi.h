@@ -454,6 +454,13 @@
 #define HIBI_MUD_NO_VERTEX UINT32_MAX
 
 /**
+ * `hibi_mud_cell_ring.hole_of` of a hole in a cell that wraps around a periodic lattice:
+ * that cell has no outline in the plane (it is counted in `hibi_mud_cell_counts`'s
+ * `wrapping`, or it is the whole plate less its islands), so there is no ring to name.
+ */
+#define HIBI_MUD_IN_WRAPPING_CELL 4294967294
+
+/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_MUD_LAYER_MASK 0
@@ -1094,7 +1101,8 @@ typedef struct hibi_mud_network_point {
  * One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
  * points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
  * outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
- * outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
+ * outer ring it lies in, or is `HIBI_MUD_IN_WRAPPING_CELL` when that cell wraps around a
+ * periodic lattice; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
  * lattice units (× element_size for cm), not pixels.
  */
 typedef struct hibi_glass_fragment_ring hibi_mud_cell_ring;

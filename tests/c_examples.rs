@@ -973,3 +973,18 @@ fn engine_example_is_clean_under_sanitizers() {
 fn engine_example_is_clean_under_valgrind() {
     check_engine(Linkage::Valgrind);
 }
+
+/// A property test's finding: the one closed crack of a periodic plate is an island in a cell
+/// that wraps around the torus; its outside is a hole in that cell, not an outer ring of
+/// negative area, and the statistics count both cells.
+#[test]
+fn c_mud_island_on_a_torus_is_a_hole_in_a_wrapping_cell() {
+    let output = regression("tests/c/mud_island.c");
+    assert_eq!(
+        output.trim(),
+        "rings 2, wrapping 0\n\
+         ring 0: hole in a wrapping cell, area negative\n\
+         ring 1: outer, area positive\n\
+         cells 2, mean area positive"
+    );
+}

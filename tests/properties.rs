@@ -36,7 +36,7 @@ use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
-    ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() }
 }
 
 /// Caller memory: `len` bytes aligned to 8.
@@ -79,17 +79,23 @@ prop_compose! {
         periodic in any::<bool>(),
         explicit in prop::bool::weighted(0.2),
         growth in any::<bool>(),
-        columns in 8u32..=14,
-        half_rows in 4u32..=7,
+        columns in 4u32..=18,
+        half_rows in 2u32..=9,
         seed in any::<u64>(),
-        mean in 1.005f32..1.05,
-        spread in 0.0f32..0.005,
-        shrink_ratio in 0.9990f32..0.99995,
+        mean in 1.001f32..1.3,
+        spread in 0.0f32..0.05,
+        shrink_ratio in 0.990f32..0.99995,
         direction in -3.2f32..3.2,
         anisotropy in 1.0f32..3.0,
         stiffness in 1.0f32..3.0,
-        target_shrink in 0.01f32..0.05,
+        target_shrink in 0.005f32..0.2,
         exponent in 0.0f32..1.0,
+        // Sizes, moduli and the explicit solver's steps about the paper's (an explicit run
+        // whose short step is unstable for them is refused, and the case is drawn again).
+        sizes in (0.5f32..2.0, 0.5f32..2.0, 0.5f32..2.0),
+        moduli in (3e5f32..3e6, 5e4f32..6e5, 1.0f32..3.0),
+        steps in (0.0005f32..0.002, 10f32..40.0, 0.5f32..2.0),
+        density in prop::option::weighted(0.2, 0.5f32..5.0),
     ) -> hibi_mud_params {
         let mut p = hibi_mud_params_default();
         p.topology = topology;
@@ -107,18 +113,30 @@ prop_compose! {
         p.stiffness_anisotropy_ratio = stiffness;
         p.target_shrink = target_shrink;
         p.break_stretch_size_exponent = exponent;
+        (p.layer_thickness, p.element_size, p.long_step) = sizes;
+        (p.young_modulus, p.shear_modulus, p.density) = moduli;
+        (p.short_step, p.damping_factor, p.displacement_tolerance) = (steps.0, steps.1, 1e-4 * steps.2);
+        p.target_crack_density = density.unwrap_or(0.0);
         p
     }
 }
 
-struct Mud(*mut hibi_mud);
+/// Whether the library takes `p` (some random sizes make an explicit short step unstable).
+fn mud_accepts(p: &hibi_mud_params) -> bool {
+    let mut size = 0;
+    // SAFETY: valid pointers.
+    unsafe { hibi_mud_memory_size(p, &mut size) == HIBI_OK }
+}
+
+/// A run through the C ABI, and whether its lattice is periodic.
+struct Mud(*mut hibi_mud, bool);
 
 impl Mud {
     fn new(p: &hibi_mud_params) -> Mud {
         let mut mud = core::ptr::null_mut();
         // SAFETY: valid pointers.
         assert_eq!(unsafe { hibi_mud_create(p, &mut mud) }, HIBI_OK);
-        Mud(mud)
+        Mud(mud, p.boundary == HIBI_MUD_PERIODIC)
     }
 
     fn step(&self, budget: u64) -> hibi_mud_progress {
@@ -182,13 +200,16 @@ fn mask_and_time_agree(mask: &[u8], time: &[f32], end: f32) {
 }
 
 /// The rings of a cell or fragment outline index points that exist; a hole names an outer
-/// ring and has a negative area, an outer ring a positive one.
-fn rings_are_consistent(rings: &[FragmentRing], points: usize) {
+/// ring (or, where `wrapping_cells` — mud on a periodic lattice —, a cell that wraps around
+/// it) and has a negative area, an outer ring a positive one.
+fn rings_are_consistent(rings: &[FragmentRing], points: usize, wrapping_cells: bool) {
     for (i, ring) in rings.iter().enumerate() {
         let end = ring.first_point as usize + ring.point_count as usize;
         assert!(ring.point_count >= 3 && end <= points, "ring {i}: {ring:?} of {points} points");
         if ring.hole_of == HIBI_GLASS_NOT_A_HOLE {
             assert!(ring.area > 0.0, "outer ring {i}: {ring:?}");
+        } else if ring.hole_of == HIBI_MUD_IN_WRAPPING_CELL {
+            assert!(wrapping_cells && ring.area < 0.0, "hole {i} in a wrapping cell: {ring:?}");
         } else {
             let outer = rings.get(ring.hole_of as usize).unwrap_or_else(|| panic!("ring {i}: {ring:?}"));
             assert!(ring.area < 0.0 && outer.hole_of == HIBI_GLASS_NOT_A_HOLE, "hole {i}: {ring:?} in {outer:?}");
@@ -252,10 +273,18 @@ fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_re
         assert_eq!(status, HIBI_OK);
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(ring_points.iter().all(|x| finite(&[x.x, x.y])));
-        rings_are_consistent(&rings, q);
+        rings_are_consistent(&rings, q, mud.1);
         let mut stats = hibi_mud_crack_statistics::default();
         assert_eq!(hibi_mud_statistics(mud.0, &mut stats), HIBI_OK);
         let s = stats;
+        // Every cell is counted: each outer ring, and a cell that wraps if a hole is in one.
+        let outer = rings.iter().filter(|x| x.hole_of == HIBI_GLASS_NOT_A_HOLE).count();
+        let wrapped = usize::from(rings.iter().any(|x| x.hole_of == HIBI_MUD_IN_WRAPPING_CELL) || wrapping > 0);
+        assert!(
+            s.cells as usize >= outer + wrapped,
+            "{} cells counted, {outer} outer rings, {wrapped} wrapping: {rings:?}",
+            s.cells
+        );
         assert!(finite(&[s.crack_density, s.mean_cell_area, s.cell_area_spread, s.mean_widest_junction_angle]));
         let pixels = (render.width * render.height) as usize;
         let mut mask = vec![0u8; pixels];
@@ -286,6 +315,7 @@ proptest! {
         budget in 0u64..5000,
         render in mud_render(),
     ) {
+        prop_assume!(mud_accepts(&p), "refused: {:?}", p);
         memory_is_exact(&p, hibi_mud_memory_size, hibi_mud_create_in);
         // Budget 1: each call does exactly one indivisible piece; the largest is the bound.
         let single = Mud::new(&p);
@@ -312,6 +342,13 @@ prop_compose! {
         wander in 0f32..1.5,
         max_cracks in 8u32..512,
         max_vertices in 64u32..8192,
+        // Table 1's fits, the ring threshold and radii, about the paper's.
+        counts in (0.03f32..0.12, 0f32..6.0, 0.02f32..0.1, 0f32..1.0, 30f32..120.0),
+        radii in (0.2f32..0.8, 5f32..30.0),
+        // The turn limit and delay, the sector S, the forces and the ring adherence.
+        turns in (0.1f32..1.0, 1f32..20.0, 0.3f32..0.5),
+        sector in (0.8f32..2.6, 10f32..100.0),
+        forces in (0f32..1000.0, 0f32..1000.0, 0f32..4.0),
     ) -> hibi_glass_params {
         let mut p = hibi_glass_params_default();
         (p.width, p.height) = (width, height);
@@ -322,6 +359,11 @@ prop_compose! {
         p.spread = spread;
         p.wander = wander;
         (p.max_cracks, p.max_vertices) = (max_cracks, max_vertices);
+        (p.large_slope, p.large_offset, p.ring_slope, p.ring_offset, p.ring_threshold) = counts;
+        (p.ring_radius_slope, p.ring_radius_offset) = radii;
+        (p.turn_limit, p.turn_delay, p.spread_ratio) = turns;
+        (p.sector_angle, p.sector_radius) = sector;
+        (p.tip_repulsion, p.crack_attraction, p.ring_adherence) = forces;
         p
     }
 }
@@ -341,7 +383,21 @@ fn glass_core(p: &hibi_glass_params) -> GlassParams {
         wander: p.wander,
         max_cracks: p.max_cracks,
         max_vertices: p.max_vertices,
-        ..GlassParams::default()
+        large_slope: p.large_slope,
+        large_offset: p.large_offset,
+        ring_slope: p.ring_slope,
+        ring_offset: p.ring_offset,
+        ring_threshold: p.ring_threshold,
+        ring_radius_slope: p.ring_radius_slope,
+        ring_radius_offset: p.ring_radius_offset,
+        turn_limit: p.turn_limit,
+        turn_delay: p.turn_delay,
+        spread_ratio: p.spread_ratio,
+        sector_angle: p.sector_angle,
+        sector_radius: p.sector_radius,
+        tip_repulsion: p.tip_repulsion,
+        crack_attraction: p.crack_attraction,
+        ring_adherence: p.ring_adherence,
     }
 }
 
@@ -443,7 +499,7 @@ fn glass_outputs_in_range(p: &hibi_glass_params, end: &GlassProgress, render: &h
         assert_eq!(status, HIBI_OK);
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(points.iter().all(|x| finite(&[x.x, x.y])));
-        rings_are_consistent(&rings, q);
+        rings_are_consistent(&rings, q, false);
         let pixels = (render.width * render.height) as usize;
         let mut mask = vec![0u8; pixels];
         let status = hibi_glass_render(glass, render, HIBI_GLASS_LAYER_MASK, mask.as_mut_ptr().cast(), pixels);
@@ -470,6 +526,11 @@ proptest! {
         let mut single_memory = params.memory().expect("valid").allocate();
         let mut single = Glass::new(&params, single_memory.buffers()).expect("valid");
         let piece = glass_run(&mut single, 1, u64::MAX);
+        // The largest piece, whatever the floats: the step loop's look at every crack and one
+        // tip update's queries and face walk, bounded by the plate's memory (tests/bounded.rs).
+        let m = params.memory().expect("valid");
+        let bound = 8 * (m.words + m.cracks + m.vertices + m.edges) as u64 + 64;
+        prop_assert!(piece <= bound, "a glass piece did {} work, over its bound {}", piece, bound);
         glass_outputs_in_range(&p, &single.progress(), &render);
         let mut memory = params.memory().expect("valid").allocate();
         let mut glass = Glass::new(&params, memory.buffers()).expect("valid");
@@ -642,6 +703,10 @@ proptest! {
         memory_is_exact(&p, hibi_skin_memory_size, hibi_skin_create_in);
         let single = Skin::new(&p);
         let (piece, end) = single.run(1, u64::MAX);
+        // One cell at a time at every level: a piece is one cell's outline vertices and the
+        // unit of its centre point.
+        let bound = hibi_core::skin::MAX_OUTLINE as u64 + 1;
+        prop_assert!(piece <= bound, "a skin piece did {} work, over its bound {}", piece, bound);
         let skin = Skin::new(&p);
         let (_, other) = skin.run(budget, piece);
         prop_assert_eq!((other.cells, other.capacity_reached), (end.cells, end.capacity_reached), "the budget changed the build");

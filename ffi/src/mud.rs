@@ -157,10 +157,18 @@ pub const HIBI_MUD_NO_VERTEX: u32 = u32::MAX;
 
 const _: () = assert!(HIBI_MUD_NO_VERTEX == NO_VERTEX);
 
+/// `hibi_mud_cell_ring.hole_of` of a hole in a cell that wraps around a periodic lattice:
+/// that cell has no outline in the plane (it is counted in `hibi_mud_cell_counts`'s
+/// `wrapping`, or it is the whole plate less its islands), so there is no ring to name.
+pub const HIBI_MUD_IN_WRAPPING_CELL: u32 = 0xFFFF_FFFE;
+
+const _: () = assert!(HIBI_MUD_IN_WRAPPING_CELL == hibi_core::mud::IN_WRAPPING_CELL);
+
 /// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
 /// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
 /// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
-/// outer ring it lies in; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
+/// outer ring it lies in, or is `HIBI_MUD_IN_WRAPPING_CELL` when that cell wraps around a
+/// periodic lattice; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
 /// lattice units (× element_size for cm), not pixels.
 pub type hibi_mud_cell_ring = FragmentRing;
 

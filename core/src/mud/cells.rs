@@ -12,7 +12,9 @@
 //!
 //! On a periodic lattice a ring is continuous and may reach past the domain (draw it
 //! wrapped). A region that no crack crosses in one direction wraps around the torus and has
-//! no outline in the plane: it is counted ([`CellCounts::wrapping`]) and not written.
+//! no outline in the plane: it is counted ([`CellCounts::wrapping`]) and not written. Its
+//! holes (the islands in it, such as the one closed crack of a plate that has no other) are
+//! written, with [`IN_WRAPPING_CELL`] for the cell they are in.
 
 use super::network::TracedCell;
 use super::{Boundary, Mud, MudError};
@@ -20,6 +22,11 @@ use crate::geom::shoelace;
 use crate::scalar::Scalar;
 
 pub use crate::glass::FragmentRing as CellRing;
+
+/// `hole_of` of a hole in a cell that wraps around a periodic lattice: that cell has no
+/// outline in the plane, so no ring to name (`HIBI_MUD_IN_WRAPPING_CELL` in C). An outer
+/// ring's `hole_of` is `u32::MAX`, as for glass fragments.
+pub const IN_WRAPPING_CELL: u32 = u32::MAX - 1;
 
 /// How many rings and points [`Mud::cells`] writes, and the regions it cannot.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -233,9 +240,9 @@ impl<S: Scalar> Mud<'_, S> {
     }
 
     /// Writes the cells of the traced network: one record per ring into `rings` (outer rings
-    /// with positive area, holes with negative area naming the ring of the cell they are in),
-    /// their points (lattice units) into `points`, and returns the counts. Nothing is written
-    /// if a buffer is shorter than [`Mud::cell_counts`] says.
+    /// with positive area, holes with negative area naming the ring of the cell they are in,
+    /// or [`IN_WRAPPING_CELL`]), their points (lattice units) into `points`, and returns the
+    /// counts. Nothing is written if a buffer is shorter than [`Mud::cell_counts`] says.
     pub fn cells(&self, rings: &mut [CellRing], points: &mut [[f32; 2]]) -> Result<CellCounts, MudError> {
         let counts = self.cell_counts();
         for (have, needed) in [(rings.len(), counts.rings), (points.len(), counts.points)] {
@@ -257,21 +264,19 @@ impl<S: Scalar> Mud<'_, S> {
             rings[r] = CellRing { area, first_point: first as u32, point_count: (p - first) as u32, hole_of: u32::MAX };
             r += 1;
         });
-        let rings = &mut rings[..r];
-        let points = &points[..p];
-        for i in 0..r {
-            if rings[i].area < 0.0 {
-                rings[i].hole_of = self.ring_around(rings, points, i);
+        for ring in &mut rings[..r] {
+            if ring.area < 0.0 {
+                ring.hole_of = self.ring_around(points[ring.first_point as usize]).unwrap_or(IN_WRAPPING_CELL);
             }
         }
         Ok(counts)
     }
 
-    /// The smallest outer ring around hole `hole` (tried at every periodic shift), or
-    /// `u32::MAX`.
-    fn ring_around(&self, rings: &[CellRing], points: &[[f32; 2]], hole: usize) -> u32 {
-        let outline = |ring: &CellRing| &points[ring.first_point as usize..][..ring.point_count as usize];
-        let q = outline(&rings[hole])[0];
+    /// The index (in [`Mud::for_each_ring`]'s order) of the smallest outer ring around the
+    /// point `q` of a hole, tried at every periodic shift; `None` when no ring closes around
+    /// it: the hole lies in a cell that wraps around a periodic lattice. The rings are walked
+    /// again, not read from a buffer, so that the statistics can ask too (holes are rare).
+    fn ring_around(&self, q: [f32; 2]) -> Option<u32> {
         let (_, deep) = self.factors();
         let [w, h] = self.lattice.extent().map(|e| e * deep.to_f32());
         let shifts: &[[f32; 2]] = match self.params.boundary {
@@ -288,25 +293,34 @@ impl<S: Scalar> Mud<'_, S> {
                 [1.0, 1.0],
             ],
         };
-        let mut best = (u32::MAX, f64::INFINITY);
-        for (j, candidate) in rings.iter().enumerate() {
-            if candidate.area <= 0.0 || candidate.area >= best.1 {
-                continue;
-            }
-            let ring = outline(candidate);
-            for s in shifts {
-                let p = [q[0] + s[0] * w, q[1] + s[1] * h];
-                let crossings = ring
-                    .iter()
-                    .zip(ring.iter().cycle().skip(1))
-                    .filter(|(a, b)| crate::geom::crosses_ray(**a, **b, p))
-                    .count();
-                if crossings % 2 == 1 && !ring.contains(&p) {
-                    best = (j as u32, candidate.area);
-                    break;
+        let mut best = (None, f64::INFINITY);
+        let mut j = 0;
+        self.for_each_ring(|start| {
+            let (area, _) = self.ring_shape(start);
+            if area > 0.0 && area < best.1 {
+                for s in shifts {
+                    let p = [q[0] + s[0] * w, q[1] + s[1] * h];
+                    let (mut crossings, mut on, mut previous, mut first) = (0usize, false, [0.0f32; 2], None);
+                    self.walk_ring(start, |a, _| {
+                        match first {
+                            Some(_) => crossings += usize::from(crate::geom::crosses_ray(previous, a, p)),
+                            None => first = Some(a),
+                        }
+                        on |= a == p;
+                        previous = a;
+                        true
+                    });
+                    if let Some(a) = first {
+                        crossings += usize::from(crate::geom::crosses_ray(previous, a, p));
+                    }
+                    if crossings % 2 == 1 && !on {
+                        best = (Some(j), area);
+                        break;
+                    }
                 }
             }
-        }
+            j += 1;
+        });
         best.0
     }
 
@@ -314,7 +328,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// holes), and the number of cells, wrapping ones included.
     pub(super) fn cell_areas(&self) -> (super::statistics::AreaSums, u32) {
         let (mut count, mut sum, mut sum_squares, mut holes) = (0usize, 0.0f64, 0.0f64, 0.0f64);
-        let mut wrapping_regions = 0;
+        let (mut wrapping_regions, mut in_wrapping) = (0, false);
         let wrapping = self.for_each_ring(|start| {
             let (area, _) = self.ring_shape(start);
             if area > 0.0 {
@@ -322,7 +336,16 @@ impl<S: Scalar> Mud<'_, S> {
                 sum += area;
                 sum_squares += area * area;
             } else {
-                holes += area;
+                // A hole in no outer ring is in a cell that wraps (which has no area here).
+                let mut q = None;
+                self.walk_ring(start, |p, _| {
+                    q = Some(p);
+                    false
+                });
+                match q.and_then(|q| self.ring_around(q)) {
+                    Some(_) => holes += area,
+                    None => in_wrapping = true,
+                }
             }
         });
         // Holes are rare (an island inside a cell): their cells' areas are corrected by
@@ -332,9 +355,9 @@ impl<S: Scalar> Mud<'_, S> {
             sum_squares += 2.0 * per * sum + count as f64 * per * per;
             sum += holes;
         }
-        // A region that wraps is bounded by wrapping boundaries only; with none at all the
-        // whole plate is one region.
-        if wrapping > 0 || count == 0 {
+        // A region that wraps is bounded by wrapping boundaries (and the holes in it) only;
+        // with none at all the whole plate, less its islands, is one region.
+        if wrapping > 0 || count == 0 || in_wrapping {
             wrapping_regions = if wrapping > 0 { (wrapping / 2).max(1) } else { 1 };
         }
         let sums = super::statistics::AreaSums { count, sum, sum_squares };

@@ -43,7 +43,7 @@ mod spacing;
 mod statistics;
 mod trace;
 
-pub use cells::{CellCounts, CellRing};
+pub use cells::{CellCounts, CellRing, IN_WRAPPING_CELL};
 pub use lattice::Lattice;
 pub use material::Material;
 pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
