@@ -123,7 +123,11 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
         for i in 0..r {
             let x: FragmentRing = rb.get(i);
             assert!(x.area.is_finite() && x.first_point as usize + x.point_count as usize <= p, "{x:?}");
-            assert!(x.hole_of == HIBI_GLASS_NOT_A_HOLE || (x.hole_of as usize) < r, "{x:?}");
+            // An outer ring of positive area; a hole of negative area in a ring, or in a cell that
+            // wraps around a periodic lattice.
+            let in_wrapping = x.hole_of == HIBI_MUD_IN_WRAPPING_CELL && x.area < 0.0;
+            let in_ring = (x.hole_of as usize) < r && x.area < 0.0;
+            assert!((x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0) || in_ring || in_wrapping, "{x:?}");
         }
         for i in 0..p {
             let x: hibi_vec2 = pb.get(i);
