@@ -17,9 +17,21 @@
  *   (hibi_*_memory_size / hibi_*_memory_align, then hibi_*_create_in); the memory stays the
  *   caller's and must outlive the object (destroy frees nothing then). hibi::Buffer is an
  *   aligned byte block for it and for scratch, if you have no allocator of your own.
- * - Outputs come two ways: std::vector helpers that size themselves with the C count calls
- *   (segments(), network(), cells(), fragments(), points(), outline(), render_*()), and the
- *   raw pointer + length calls for buffers you already own (render()).
+ * - Outputs go into the caller's memory, given as a hibi::Span<T> (a pointer and a count of
+ *   T, nothing more): every output has an overload taking one view per C buffer (segments,
+ *   network, cells, points, fragments, outline, render_*, shade, uniform/normal), which is
+ *   the one C call with the view's pointer and size and returns what it wrote (a count, or
+ *   a struct of counts). A Span comes from (T*, size), a std::vector<T>&, a T (&)[N], and
+ *   under C++20 from a std::span<T>; a Span<T> converts to a Span<const T>. A view that is
+ *   too short throws hibi::Error with HIBI_ERROR_BUFFER_TOO_SMALL, and the C call wrote
+ *   nothing into it. The count calls that size the views are members too (segment_count(),
+ *   network_counts(), cell_counts(), crack(i).points, fragment_counts(), cell(i).vertex_count;
+ *   a render writes width x height values, three floats a pixel for the skin's normals).
+ *   The std::vector helpers without a view (segments(), network(), ..., render_*()) are
+ *   conveniences built on those overloads: they size vectors with the count calls and pass
+ *   them as views. No C call hands out a pointer into an object (outputs are always copied
+ *   into memory the caller passes), so there are no read-only views of the library's memory.
+ *   render() takes a raw pointer and a length, as hibi_*_render does, for any layer.
  * - Threads: as in hibi.h. const members only read the object and may run concurrently on
  *   one object; step, impact, moves and destruction need it to themselves. The const calls
  *   that need working memory (Glass::fragment_counts, Glass::fragments) take a Scratch: one
@@ -38,7 +50,11 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <type_traits>
 #include <vector>
+#if __cplusplus >= 202002L
+#include <span>
+#endif
 
 #include "hibi.h"
 
@@ -105,6 +121,59 @@ private:
 /// Working memory of the const calls that need it (one per thread); from scratch().
 using Scratch = Buffer;
 
+/// A non-owning view of `size()` consecutive T in the caller's memory, where an output is
+/// written (or, as Span<const T>, an input read). Nothing but a pointer and a count: it
+/// neither allocates nor frees, and the memory must outlive the call it is passed to.
+template <class T>
+class Span {
+    // U* converts to T* without slicing: T is U, or const U (as std::span requires).
+    template <class U>
+    using compatible = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value, int>;
+
+public:
+    using element_type = T;
+    using value_type = std::remove_cv_t<T>;
+
+    constexpr Span() noexcept = default;
+    /// `size` T from `data` (which may be null only when `size` is 0).
+    constexpr Span(T *data, std::size_t size) noexcept : data_(data), size_(size) {}
+    /// A C array.
+    template <std::size_t N>
+    constexpr Span(T (&array)[N]) noexcept : data_(array), size_(N) {}
+    /// A vector's elements as they are (its size, not its capacity).
+    template <class U, class A, compatible<U> = 0>
+    Span(std::vector<U, A> &vector) noexcept : data_(vector.data()), size_(vector.size()) {}
+    /// A const vector, for a Span<const T>.
+    template <class U, class A, compatible<const U> = 0>
+    Span(const std::vector<U, A> &vector) noexcept : data_(vector.data()), size_(vector.size()) {}
+    /// Span<U> to Span<const U>.
+    template <class U, compatible<U> = 0>
+    constexpr Span(Span<U> other) noexcept : data_(other.data()), size_(other.size()) {}
+#if __cplusplus >= 202002L
+    /// A std::span (C++20).
+    template <class U, std::size_t E, compatible<U> = 0>
+    constexpr Span(std::span<U, E> span) noexcept : data_(span.data()), size_(span.size()) {}
+#endif
+
+    constexpr T *data() const noexcept { return data_; }
+    constexpr std::size_t size() const noexcept { return size_; }
+    constexpr bool empty() const noexcept { return size_ == 0; }
+    constexpr T *begin() const noexcept { return data_; }
+    constexpr T *end() const noexcept { return data_ + size_; }
+    constexpr T &operator[](std::size_t i) const noexcept { return data_[i]; }
+
+private:
+    T *data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
+/// How many rings and ring points a polygon query wrote or will write (Mud::cells,
+/// Glass::fragments).
+struct RingCounts {
+    std::size_t rings = 0;
+    std::size_t points = 0;
+};
+
 namespace detail {
 struct MudDelete {
     void operator()(hibi_mud *p) const noexcept { hibi_mud_destroy(p); }
@@ -140,14 +209,24 @@ public:
         check(hibi_rng_next_u32(handle_.get(), &value));
         return value;
     }
+    /// Fills `values` with uniform draws in [0, 1); returns values.size().
+    std::size_t uniform(Span<float> values) {
+        check(hibi_rng_uniform(handle_.get(), values.data(), values.size()));
+        return values.size();
+    }
     std::vector<float> uniform(std::size_t n) {
         std::vector<float> values(n);
-        check(hibi_rng_uniform(handle_.get(), values.data(), values.size()));
+        uniform(Span<float>(values));
         return values;
+    }
+    /// Fills `values` with standard normal draws; returns values.size().
+    std::size_t normal(Span<float> values) {
+        check(hibi_rng_normal(handle_.get(), values.data(), values.size()));
+        return values.size();
     }
     std::vector<float> normal(std::size_t n) {
         std::vector<float> values(n);
-        check(hibi_rng_normal(handle_.get(), values.data(), values.size()));
+        normal(Span<float>(values));
         return values;
     }
     std::uint32_t poisson(double mean) {
@@ -184,6 +263,19 @@ public:
     struct Cells {
         std::vector<hibi_mud_cell_ring> rings;
         std::vector<hibi_vec2> points;
+        std::size_t wrapping = 0;
+    };
+    /// How many vertices, edges and points the network has (hibi_mud_network_counts), or
+    /// were written.
+    struct NetworkCounts {
+        std::size_t vertices = 0;
+        std::size_t edges = 0;
+        std::size_t points = 0;
+    };
+    /// How many rings and points hibi_mud_cells will write, and the boundaries that wrap.
+    struct CellCounts {
+        std::size_t rings = 0;
+        std::size_t points = 0;
         std::size_t wrapping = 0;
     };
 
@@ -229,12 +321,20 @@ public:
         return progress;
     }
 
-    std::vector<hibi_mud_segment> segments() const {
-        std::size_t count = 0, written = 0;
+    std::size_t segment_count() const {
+        std::size_t count = 0;
         check(hibi_mud_segment_count(handle_.get(), &count));
-        std::vector<hibi_mud_segment> out(count);
+        return count;
+    }
+    /// Writes the crack segments into `out` (at least segment_count()); returns how many.
+    std::size_t segments(Span<hibi_mud_segment> out) const {
+        std::size_t written = 0;
         check(hibi_mud_segments(handle_.get(), out.data(), out.size(), &written));
-        out.resize(written);
+        return written;
+    }
+    std::vector<hibi_mud_segment> segments() const {
+        std::vector<hibi_mud_segment> out(segment_count());
+        out.resize(segments(Span<hibi_mud_segment>(out)));
         return out;
     }
     /// Crack density, cells, junctions and dead ends of the traced network.
@@ -243,35 +343,72 @@ public:
         check(hibi_mud_statistics(handle_.get(), &stats));
         return stats;
     }
+    NetworkCounts network_counts() const {
+        NetworkCounts counts;
+        check(hibi_mud_network_counts(handle_.get(), &counts.vertices, &counts.edges, &counts.points));
+        return counts;
+    }
+    /// Writes the network into the three views (each at least its network_counts() member);
+    /// returns how many of each.
+    NetworkCounts network(Span<hibi_mud_network_vertex> vertices, Span<hibi_mud_network_edge> edges,
+                          Span<hibi_mud_network_point> points) const {
+        NetworkCounts written;
+        check(hibi_mud_network(handle_.get(), vertices.data(), vertices.size(), edges.data(), edges.size(),
+                               points.data(), points.size(), &written.vertices, &written.edges, &written.points));
+        return written;
+    }
     Network network() const {
-        std::size_t v = 0, e = 0, p = 0;
-        check(hibi_mud_network_counts(handle_.get(), &v, &e, &p));
+        NetworkCounts counts = network_counts();
         Network net;
-        net.vertices.resize(v);
-        net.edges.resize(e);
-        net.points.resize(p);
-        check(hibi_mud_network(handle_.get(), net.vertices.data(), v, net.edges.data(), e, net.points.data(), p, &v,
-                               &e, &p));
-        net.vertices.resize(v);
-        net.edges.resize(e);
-        net.points.resize(p);
+        net.vertices.resize(counts.vertices);
+        net.edges.resize(counts.edges);
+        net.points.resize(counts.points);
+        counts = network(Span<hibi_mud_network_vertex>(net.vertices), Span<hibi_mud_network_edge>(net.edges),
+                         Span<hibi_mud_network_point>(net.points));
+        net.vertices.resize(counts.vertices);
+        net.edges.resize(counts.edges);
+        net.points.resize(counts.points);
         return net;
     }
+    CellCounts cell_counts() const {
+        CellCounts counts;
+        check(hibi_mud_cell_counts(handle_.get(), &counts.rings, &counts.points, &counts.wrapping));
+        return counts;
+    }
+    /// Writes the cells into the two views (at least cell_counts().rings and .points);
+    /// returns how many of each.
+    RingCounts cells(Span<hibi_mud_cell_ring> rings, Span<hibi_vec2> points) const {
+        RingCounts written;
+        check(hibi_mud_cells(handle_.get(), rings.data(), rings.size(), points.data(), points.size(), &written.rings,
+                             &written.points));
+        return written;
+    }
     Cells cells() const {
-        std::size_t r = 0, p = 0;
+        CellCounts counts = cell_counts();
         Cells out;
-        check(hibi_mud_cell_counts(handle_.get(), &r, &p, &out.wrapping));
-        out.rings.resize(r);
-        out.points.resize(p);
-        check(hibi_mud_cells(handle_.get(), out.rings.data(), r, out.points.data(), p, &r, &p));
-        out.rings.resize(r);
-        out.points.resize(p);
+        out.wrapping = counts.wrapping;
+        out.rings.resize(counts.rings);
+        out.points.resize(counts.points);
+        RingCounts written = cells(Span<hibi_mud_cell_ring>(out.rings), Span<hibi_vec2>(out.points));
+        out.rings.resize(written.rings);
+        out.points.resize(written.points);
         return out;
     }
 
     /// Draws `layer` into caller pixels (`len` values of the layer's type).
     void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
         check(hibi_mud_render(handle_.get(), &render, layer, pixels, len));
+    }
+    /// Draws a layer into `pixels` (at least params.width x params.height values); returns
+    /// how many it wrote (width x height).
+    std::size_t render_mask(const RenderParams &params, Span<std::uint8_t> pixels) const {
+        return draw(params, HIBI_MUD_LAYER_MASK, pixels);
+    }
+    std::size_t render_height(const RenderParams &params, Span<float> pixels) const {
+        return draw(params, HIBI_MUD_LAYER_HEIGHT, pixels);
+    }
+    std::size_t render_time(const RenderParams &params, Span<float> pixels) const {
+        return draw(params, HIBI_MUD_LAYER_TIME, pixels);
     }
     std::vector<std::uint8_t> render_mask(const RenderParams &params) const {
         return draw<std::uint8_t>(params, HIBI_MUD_LAYER_MASK);
@@ -288,9 +425,14 @@ public:
 private:
     explicit Mud(hibi_mud *raw) noexcept : handle_(raw) {}
     template <class T>
+    std::size_t draw(const RenderParams &params, std::uint32_t layer, Span<T> pixels) const {
+        render(params, layer, pixels.data(), pixels.size());
+        return static_cast<std::size_t>(params.width) * params.height;
+    }
+    template <class T>
     std::vector<T> draw(const RenderParams &params, std::uint32_t layer) const {
         std::vector<T> pixels(static_cast<std::size_t>(params.width) * params.height);
-        render(params, layer, pixels.data(), pixels.size());
+        draw(params, layer, Span<T>(pixels));
         return pixels;
     }
     std::unique_ptr<hibi_mud, detail::MudDelete> handle_;
@@ -363,11 +505,16 @@ public:
         check(hibi_glass_crack_info(handle_.get(), index, &info));
         return info;
     }
-    std::vector<hibi_glass_point> points(std::size_t index) const {
-        std::vector<hibi_glass_point> out(crack(index).points);
+    /// Writes crack `index`'s polyline into `out` (at least crack(index).points); returns
+    /// how many points.
+    std::size_t points(std::size_t index, Span<hibi_glass_point> out) const {
         std::size_t written = 0;
         check(hibi_glass_points(handle_.get(), index, out.data(), out.size(), &written));
-        out.resize(written);
+        return written;
+    }
+    std::vector<hibi_glass_point> points(std::size_t index) const {
+        std::vector<hibi_glass_point> out(crack(index).points);
+        out.resize(points(index, Span<hibi_glass_point>(out)));
         return out;
     }
 
@@ -383,21 +530,36 @@ public:
         check(hibi_glass_fragment_counts(handle_.get(), scratch.data(), scratch.size(), &rings, &points));
         return {rings, points};
     }
+    /// Writes the fragments into the two views (at least fragment_counts()); returns how
+    /// many rings and points.
+    RingCounts fragments(Scratch &scratch, Span<hibi_glass_fragment_ring> rings, Span<hibi_vec2> points) const {
+        RingCounts written;
+        check(hibi_glass_fragments(handle_.get(), scratch.data(), scratch.size(), rings.data(), rings.size(),
+                                   points.data(), points.size(), &written.rings, &written.points));
+        return written;
+    }
     Fragments fragments(Scratch &scratch) const {
         auto counts = fragment_counts(scratch);
         Fragments out;
         out.rings.resize(counts.first);
         out.points.resize(counts.second);
-        std::size_t r = 0, p = 0;
-        check(hibi_glass_fragments(handle_.get(), scratch.data(), scratch.size(), out.rings.data(), out.rings.size(),
-                                   out.points.data(), out.points.size(), &r, &p));
-        out.rings.resize(r);
-        out.points.resize(p);
+        RingCounts written =
+            fragments(scratch, Span<hibi_glass_fragment_ring>(out.rings), Span<hibi_vec2>(out.points));
+        out.rings.resize(written.rings);
+        out.points.resize(written.points);
         return out;
     }
 
     void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
         check(hibi_glass_render(handle_.get(), &render, layer, pixels, len));
+    }
+    /// Draws a layer into `pixels` (at least params.width x params.height values); returns
+    /// how many it wrote (width x height).
+    std::size_t render_mask(const RenderParams &params, Span<std::uint8_t> pixels) const {
+        return draw(params, HIBI_GLASS_LAYER_MASK, pixels);
+    }
+    std::size_t render_time(const RenderParams &params, Span<float> pixels) const {
+        return draw(params, HIBI_GLASS_LAYER_TIME, pixels);
     }
     std::vector<std::uint8_t> render_mask(const RenderParams &params) const {
         return draw<std::uint8_t>(params, HIBI_GLASS_LAYER_MASK);
@@ -412,9 +574,14 @@ public:
 private:
     explicit Glass(hibi_glass *raw) noexcept : handle_(raw) {}
     template <class T>
+    std::size_t draw(const RenderParams &params, std::uint32_t layer, Span<T> pixels) const {
+        render(params, layer, pixels.data(), pixels.size());
+        return static_cast<std::size_t>(params.width) * params.height;
+    }
+    template <class T>
     std::vector<T> draw(const RenderParams &params, std::uint32_t layer) const {
         std::vector<T> pixels(static_cast<std::size_t>(params.width) * params.height);
-        render(params, layer, pixels.data(), pixels.size());
+        draw(params, layer, Span<T>(pixels));
         return pixels;
     }
     std::unique_ptr<hibi_glass, detail::GlassDelete> handle_;
@@ -483,12 +650,17 @@ public:
         check(hibi_skin_cell_info(handle_.get(), index, &info));
         return info;
     }
+    /// Writes cell `index`'s outline, x, y pairs in pixels, into `xy` (at least
+    /// 2 x cell(index).vertex_count doubles); returns how many doubles.
+    std::size_t outline(std::size_t index, Span<double> xy) const {
+        std::size_t written = 0;
+        check(hibi_skin_outline(handle_.get(), index, xy.data(), xy.size(), &written));
+        return written;
+    }
     /// Cell `index`'s outline, x, y pairs in pixels.
     std::vector<double> outline(std::size_t index) const {
         std::vector<double> xy(2 * static_cast<std::size_t>(cell(index).vertex_count));
-        std::size_t written = 0;
-        check(hibi_skin_outline(handle_.get(), index, xy.data(), xy.size(), &written));
-        xy.resize(written);
+        xy.resize(outline(index, Span<double>(xy)));
         return xy;
     }
 
@@ -496,6 +668,17 @@ public:
     /// normal layer, three per pixel).
     void render(const RenderParams &render, std::uint32_t layer, void *pixels, std::size_t len) const {
         check(hibi_skin_render(handle_.get(), &render, layer, pixels, len));
+    }
+    /// Draws a layer into `out` (at least pixels() values, 3 x pixels() for the normals);
+    /// returns how many it wrote.
+    std::size_t render_height(const RenderParams &params, Span<float> out) const {
+        return draw(params, HIBI_SKIN_LAYER_HEIGHT, 1, out);
+    }
+    std::size_t render_normal(const RenderParams &params, Span<float> out) const {
+        return draw(params, HIBI_SKIN_LAYER_NORMAL, 3, out);
+    }
+    std::size_t render_cells(const RenderParams &params, Span<std::uint32_t> out) const {
+        return draw(params, HIBI_SKIN_LAYER_CELLS, 1, out);
     }
     std::vector<float> render_height(const RenderParams &params) const {
         return draw<float>(params, HIBI_SKIN_LAYER_HEIGHT, 1);
@@ -508,12 +691,19 @@ public:
     std::vector<std::uint32_t> render_cells(const RenderParams &params) const {
         return draw<std::uint32_t>(params, HIBI_SKIN_LAYER_CELLS, 1);
     }
-    /// 8-bit sRGB preview of a height and a normal map (three bytes per pixel).
-    static std::vector<std::uint8_t> shade(const std::vector<float> &height, const std::vector<float> &normal,
-                                           const ShadeParams &params) {
-        std::vector<std::uint8_t> rgb(3 * height.size());
+    /// 8-bit sRGB preview of a height and a normal map into `rgb` (three bytes per pixel, at
+    /// least 3 x height.size()); returns how many bytes it wrote.
+    static std::size_t shade(Span<const float> height, Span<const float> normal, const ShadeParams &params,
+                             Span<std::uint8_t> rgb) {
         check(hibi_skin_shade(height.data(), height.size(), normal.data(), normal.size(), &params, rgb.data(),
                               rgb.size()));
+        return 3 * height.size();
+    }
+    /// 8-bit sRGB preview of a height and a normal map (three bytes per pixel).
+    static std::vector<std::uint8_t> shade(Span<const float> height, Span<const float> normal,
+                                           const ShadeParams &params) {
+        std::vector<std::uint8_t> rgb(3 * height.size());
+        shade(height, normal, params, Span<std::uint8_t>(rgb));
         return rgb;
     }
 
@@ -524,9 +714,14 @@ private:
         : handle_(raw), width_(params.width), height_(params.height) {}
     /// The layer's raster over the skin's width x height, `per_pixel` values a pixel.
     template <class T>
+    std::size_t draw(const RenderParams &params, std::uint32_t layer, std::size_t per_pixel, Span<T> out) const {
+        render(params, layer, out.data(), out.size());
+        return per_pixel * pixels();
+    }
+    template <class T>
     std::vector<T> draw(const RenderParams &params, std::uint32_t layer, std::size_t per_pixel) const {
         std::vector<T> out(per_pixel * pixels());
-        render(params, layer, out.data(), out.size());
+        draw(params, layer, per_pixel, Span<T>(out));
         return out;
     }
     std::unique_ptr<hibi_skin, detail::SkinDelete> handle_;

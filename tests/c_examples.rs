@@ -61,12 +61,16 @@ enum Linkage {
     Callgrind,
 }
 
-/// The program `build_and_run_capturing` builds from `source` with `compiler` and `linkage`.
-fn program_path(compiler: &str, source: &str, linkage: Linkage) -> PathBuf {
+/// The program `build_and_run_capturing` builds from `source` with `compiler` and `linkage`
+/// (and a language standard other than the usual C99 or C++17 in the name: the wrapper is
+/// also built as C++20).
+fn program_path(compiler: &str, standard: &str, source: &str, linkage: Linkage) -> PathBuf {
     let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
     // Named by compiler too: the same source may be built by two compilers at once.
     let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
-    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{stem}_{by}_{linkage:?}"))
+    let std =
+        if ["c99", "c++17"].contains(&standard) { String::new() } else { format!("_{}", standard.replace('+', "p")) };
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{stem}_{by}_{linkage:?}{std}"))
 }
 
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
@@ -90,7 +94,7 @@ fn build_and_run_capturing(
 ) -> (String, String) {
     let root = workspace_root();
     let lib = library_dir();
-    let exe = program_path(compiler, source, linkage);
+    let exe = program_path(compiler, standard, source, linkage);
     let mut cc = Command::new(compiler);
     cc.arg(format!("-std={standard}"))
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
@@ -607,7 +611,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
     let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Callgrind, &[]);
     assert!(stderr.is_empty(), "{source} under Callgrind printed on stderr:\n{stderr}");
     assert_eq!(line(&stdout, "glass-render cracks:"), "glass-render cracks: some");
-    let counts = callgrind_counts(&program_path(&c_compiler(), source, Linkage::Callgrind));
+    let counts = callgrind_counts(&program_path(&c_compiler(), "c99", source, Linkage::Callgrind));
     let names: Vec<String> =
         CASES.iter().flat_map(|(case, ..)| ["twin", "extreme"].map(|k| format!("{case} {k}"))).collect();
     assert_eq!(
@@ -824,8 +828,11 @@ fn every_c_test_runs_under_the_sanitizers() {
 
 /// What `tests/cpp/wrapper.cpp` (issue 26: `include/hibi.hpp`) must print: every comparison
 /// of the wrapper with the C calls holds, errors carry the C status, message and argument,
-/// and renders of one object from four threads equal the lone render.
-fn check_wrapper(output: &str) {
+/// renders of one object from four threads equal the lone render, every output written
+/// through a `hibi::Span` view is the C call's, a view one element short throws status 3
+/// (`HIBI_ERROR_BUFFER_TOO_SMALL`) with nothing written, and built as `standard` C++20,
+/// `std::span`s convert to views.
+fn check_wrapper(output: &str, standard: &str) {
     let version = format!("hibi {}", env!("CARGO_PKG_VERSION"));
     assert_eq!(line(output, "hibi "), version);
     assert_eq!(line(output, "macros "), version.replace("hibi", "macros"));
@@ -842,17 +849,25 @@ fn check_wrapper(output: &str) {
         "mud mask as from C: yes",
         "mud height and time layers: yes",
         "mud short pixels: status 3",
+        "mud views as from C: segments yes, network yes, cells yes, mask yes, height yes, time yes, longer yes",
+        "mud short views: segments 3, network 3, cells 3, mask 3, height 3, time 3, untouched yes",
         "mud caller memory, same mask: yes",
         "glass: yes, every crack has points: yes",
         "glass crack past the end: status 1091",
         "glass from four threads equals the lone result: yes",
+        "glass views as from C: points yes, fragments yes, mask yes, time yes",
+        "glass short views: points 3, fragments 3, mask 3, time 3, untouched yes",
         "glass caller memory, same mask: yes",
         "glass second impact: yes",
         "skin built: yes, cells yes",
         "skin renders from four threads equal the lone render: yes",
+        "skin views as from C: outline yes, height yes, normal yes, cells yes, shade yes",
+        "skin short views: outline 3, height 3, normal 3, cells 3, shade 3, untouched yes",
         "skin cell map of level 9: status 1346",
         "skin caller memory, same preview: yes",
         "rng caller memory, same draws: yes",
+        "rng views as from C: uniform yes, normal yes",
+        if standard == "c++20" { "std::span views: yes" } else { "std::span views: not C++20" },
     ];
     for want in expected {
         let (prefix, _) = want.split_once(": ").unwrap();
@@ -865,17 +880,25 @@ fn check_wrapper(output: &str) {
 
 #[test]
 fn cpp_wrapper_links_static_library_with_gxx() {
-    check_wrapper(&build_and_run("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+    check_wrapper(&build_and_run("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static), "c++17");
 }
 
 #[test]
 fn cpp_wrapper_links_static_library_with_clangxx() {
-    check_wrapper(&build_and_run("clang++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static));
+    check_wrapper(&build_and_run("clang++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Static), "c++17");
+}
+
+/// The wrapper is C++17, and builds as C++20 too, where `std::span` converts to its views.
+#[test]
+fn cpp_wrapper_builds_as_cpp20_with_gxx_and_clangxx() {
+    for compiler in ["g++", "clang++"] {
+        check_wrapper(&build_and_run(compiler, "c++20", "tests/cpp/wrapper.cpp", Linkage::Static), "c++20");
+    }
 }
 
 #[test]
 fn cpp_wrapper_links_shared_library() {
-    check_wrapper(&build_and_run(&cpp_compiler(), "c++17", "tests/cpp/wrapper.cpp", Linkage::Shared));
+    check_wrapper(&build_and_run(&cpp_compiler(), "c++17", "tests/cpp/wrapper.cpp", Linkage::Shared), "c++17");
 }
 
 #[test]
@@ -884,7 +907,7 @@ fn cpp_wrapper_is_clean_under_sanitizers_with_gxx_and_clangxx() {
         let (stdout, stderr) =
             build_and_run_capturing(compiler, "c++17", "tests/cpp/wrapper.cpp", Linkage::Sanitized, &[]);
         assert!(stderr.is_empty(), "{compiler}: stderr:\n{stderr}");
-        check_wrapper(&stdout);
+        check_wrapper(&stdout, "c++17");
     }
 }
 
@@ -892,7 +915,7 @@ fn cpp_wrapper_is_clean_under_sanitizers_with_gxx_and_clangxx() {
 fn cpp_wrapper_is_clean_under_valgrind() {
     let (stdout, stderr) = build_and_run_capturing("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Valgrind, &[]);
     assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
-    check_wrapper(&stdout);
+    check_wrapper(&stdout, "c++17");
 }
 
 /// The glass plate `c_examples/engine.cpp` breaks, drawn by Rust: which of its 160 × 160

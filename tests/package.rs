@@ -4,7 +4,8 @@
 //! The shared library's SONAME, the header's version macros, the symbols the libraries
 //! export, and a program linking libhibi.a next to a second Rust static library
 //! (`tests/second_rust_lib/`) are checked here too. Both programs also run clean under
-//! AddressSanitizer + UndefinedBehaviorSanitizer and under Valgrind (issue 25 item 3).
+//! AddressSanitizer + UndefinedBehaviorSanitizer and under Valgrind (issue 25 item 3), and a
+//! fully static (`-static`) consumer links without a warning from glibc and runs.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -268,6 +269,51 @@ fn consumer_is_clean_under_sanitizers() {
 fn consumer_is_clean_under_valgrind() {
     let exe = consumer_static("pkg-config-valgrind", &[]);
     check_consumer(&clean_stdout(&mut valgrind(&exe)));
+}
+
+/// The undefined symbols of a library (what it needs from elsewhere), read with `readelf`.
+fn undefined_symbols(lib: &Path) -> Vec<String> {
+    let mut names: Vec<String> = stdout(Command::new("readelf").arg("-W").arg("--syms").arg(lib))
+        .lines()
+        .filter_map(|l| {
+            let fields: Vec<&str> = l.split_whitespace().collect();
+            (fields.len() >= 8 && fields[6] == "UND").then(|| fields[7].split('@').next().unwrap().to_owned())
+        })
+        .collect();
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// A fully static program (`c++ -static`, glibc's libc.a too) links the installed libhibi.a
+/// without a word from the linker: `ffi/install`'s garbage-collected partial link dropped
+/// the parts of std that reference glibc's getaddrinfo and getpwuid_r (which make glibc's
+/// linker warn that a static program needs the shared libraries at run time). It runs and
+/// prints what the other builds print.
+#[test]
+fn fully_static_program_links_without_warnings() {
+    let installed = undefined_symbols(&prefix().join("lib/libhibi.a"));
+    let cargo = undefined_symbols(&built_dir().join("libhibi.a"));
+    for name in ["getaddrinfo", "getpwuid_r"] {
+        assert!(cargo.iter().any(|s| s == name), "cargo's libhibi.a no longer references {name}: update the test");
+        assert!(!installed.iter().any(|s| s == name), "the installed libhibi.a references {name}");
+    }
+    println!("undefined symbols: cargo's libhibi.a {}, installed libhibi.a {}", cargo.len(), installed.len());
+    let dir = scratch_dir("fully-static");
+    let exe = dir.join("consumer");
+    let link = run(Command::new(cxx())
+        .args(["-static", "-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
+        .arg(prefix().join("include"))
+        .arg(workspace_root().join("tests/consumer/main.cpp"))
+        .arg(prefix().join("lib/libhibi.a"))
+        .arg("-lm")
+        .arg("-o")
+        .arg(&exe));
+    let warnings = String::from_utf8_lossy(&link.stderr);
+    assert!(link.stdout.is_empty() && warnings.is_empty(), "the -static link printed:\n{warnings}");
+    let headers = stdout(Command::new("readelf").arg("-lW").arg(&exe));
+    assert!(!headers.contains("INTERP") && !headers.contains("DYNAMIC"), "not a static executable:\n{headers}");
+    check_consumer(&clean_stdout(&mut Command::new(&exe)));
 }
 
 /// Configures and builds tests/consumer with CMake against the install; `extra` are more
