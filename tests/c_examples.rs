@@ -606,6 +606,8 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
         ("mud-render offset", 1.1, false),
         ("mud-render periodic offset", 1.1, false),
         ("glass-render line_width", 1.1, true),
+        ("skin-render stretch", 1.1, false),
+        ("skin-render periodic stretch", 1.1, false),
     ];
     let source = "tests/c/work_counts.c";
     let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Callgrind, &[]);

@@ -467,3 +467,50 @@ unsafe fn cracks_are_finite(glass: *mut hibi_glass) {
         }
     }
 }
+
+/// Finding 14 (a timeout, not a panic): a one-level skin of 33 × 33 pixels stretched
+/// 2.26·10¹¹ times along y, perturbed, has two cells whose perturbed shared edge reaches
+/// 6.6·10⁷ pixels above and below the surface; the render scanned every row the outline
+/// spans (2.5 s in release, 47 s in the fuzz build) to keep the 33 the surface has. A render
+/// now scans only the surface's rows (within two periods of the cell's centre on a periodic
+/// surface). Here the cells and maps are checked; `c_create_and_render_work_does_not_grow_
+/// with_extreme_floats` (`skin-render stretch`, `tests/c/work_counts.c`) counts the
+/// render's instructions against a moderate twin.
+#[test]
+fn a_cell_reaching_far_past_the_surface_renders_its_pixels_only() {
+    for periodic in [0, 1] {
+        let mut params = hibi_skin_params_default();
+        (params.layout, params.jitter, params.periodic) = (HIBI_SKIN_LAYOUT_SQUARE, 0, periodic);
+        (params.width, params.height, params.seed) = (33, 33, 6802178615612166738);
+        (params.jitter_ratio, params.levels) = (4.1723208e-8, 1);
+        let level = &mut params.level[0];
+        (level.spacing, level.perturbation, level.perturbation_decay, level.perturbation_depth) = (40.0, 0.1, 1.0, 2);
+        level.stretch = [1.0, 225833900000.0];
+        level.profile.segments = 1;
+        level.roundness = 0.2;
+        for (point, at) in level.profile.points.iter_mut().zip([[0.0, 4.0], [5.0, 4.0], [9.0, 3.0], [10.0, 0.0]]) {
+            *point = at;
+        }
+        let pixels = 33 * 33;
+        let (mut height, mut cells) = (vec![f32::NAN; pixels], vec![u32::MAX - 1; pixels]);
+        let render = hibi_skin_render_params { cell_level: 0 };
+        let mut skin = core::ptr::null_mut();
+        let mut progress = hibi_skin_progress::default();
+        // SAFETY: valid pointers, buffers of the lengths passed.
+        unsafe {
+            assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+            assert_eq!(hibi_skin_step(skin, u64::MAX, &mut progress), HIBI_OK);
+            let layer = HIBI_SKIN_LAYER_HEIGHT;
+            assert_eq!(hibi_skin_render(skin, &render, layer, height.as_mut_ptr().cast(), pixels), HIBI_OK);
+            let layer = HIBI_SKIN_LAYER_CELLS;
+            assert_eq!(hibi_skin_render(skin, &render, layer, cells.as_mut_ptr().cast(), pixels), HIBI_OK);
+            hibi_skin_destroy(skin);
+        }
+        assert!(progress.finished == 1 && progress.capacity_reached == 0, "{progress:?}");
+        assert!(height.iter().all(|h| h.is_finite()), "periodic {periodic}: a height not finite");
+        assert!(
+            cells.iter().all(|&c| (c as usize) < progress.cells as usize),
+            "periodic {periodic}: a pixel in no cell"
+        );
+    }
+}

@@ -199,6 +199,44 @@ static void glass_render(const char *name, const hibi_glass *glass, float line_w
     report(name, status, fnv(FNV_START, pixels, PIXELS));
 }
 
+/* A skin of one level whose cells a strong anisotropic stretch and a perturbation make reach
+ * far past the surface (the skin fuzz target's finding 14: 10^7 rows beyond a 33-row surface,
+ * each scanned): its height map is drawn on the surface's rows only. */
+#define SKIN_SIDE 33
+
+static void skin_render(const char *name, const hibi_skin_params *p) {
+    static float pixels[SKIN_SIDE * SKIN_SIDE];
+    hibi_skin_render_params r = hibi_skin_render_params_default();
+    hibi_skin *skin = NULL;
+    hibi_skin_progress progress;
+    hibi_status status;
+    if (hibi_skin_create(p, &skin) != HIBI_OK || hibi_skin_step(skin, UINT64_MAX, &progress) != HIBI_OK) {
+        printf("skin create or step failed\n");
+        exit(1);
+    }
+    memset(pixels, 0, sizeof pixels);
+    MEASURE(name, status, hibi_skin_render(skin, &r, HIBI_SKIN_LAYER_HEIGHT, pixels, SKIN_SIDE * SKIN_SIDE));
+    report(name, status, fnv(FNV_START, pixels, sizeof pixels));
+    hibi_skin_destroy(skin);
+}
+
+#define SKIN_RENDER(name, is_periodic, change)                 \
+    do {                                                       \
+        hibi_skin_params p_ = hibi_skin_params_default();      \
+        p_.layout = HIBI_SKIN_LAYOUT_SQUARE;                   \
+        p_.periodic = is_periodic;                             \
+        p_.width = SKIN_SIDE;                                  \
+        p_.height = SKIN_SIDE;                                 \
+        p_.seed = 6802178615612166738u;                        \
+        p_.jitter_ratio = 0.0f;                                \
+        p_.levels = 1;                                         \
+        p_.level[0].spacing = 40.0f;                           \
+        p_.level[0].perturbation = 0.1f;                       \
+        p_.level[0].perturbation_depth = 2;                    \
+        change;                                                \
+        skin_render(name, &p_);                                \
+    } while (0)
+
 int main(void) {
     hibi_mud *open, *periodic;
     hibi_glass *glass = NULL;
@@ -231,6 +269,12 @@ int main(void) {
     SKIN_CREATE("skin-create perturbation extreme", p_.level[0].perturbation = 1e30f);
     SKIN_CREATE("skin-create stretch twin", (p_.level[0].stretch[0] = p_.level[0].stretch[1] = 1e4f));
     SKIN_CREATE("skin-create stretch extreme", (p_.level[0].stretch[0] = p_.level[0].stretch[1] = 1e30f));
+
+    SKIN_RENDER("skin-render stretch twin", 0, (p_.level[0].stretch[0] = 1.0f, p_.level[0].stretch[1] = 1e3f));
+    SKIN_RENDER("skin-render stretch extreme", 0, (p_.level[0].stretch[0] = 1.0f, p_.level[0].stretch[1] = 1e30f));
+    SKIN_RENDER("skin-render periodic stretch twin", 1, (p_.level[0].stretch[0] = 1.0f, p_.level[0].stretch[1] = 2e10f));
+    SKIN_RENDER("skin-render periodic stretch extreme", 1,
+                (p_.level[0].stretch[0] = 1.0f, p_.level[0].stretch[1] = 1e30f));
 
     /* Strokes wider than the raster: 4 (width + height) pixels already cover all of it. */
     open = mud_run(HIBI_MUD_OPEN);

@@ -81,9 +81,12 @@ const _: () = assert!(super::MAX_OUTLINE <= 1 << EDGE_BITS);
 // A band's row (below HELD) fits above the column and the edge.
 const _: () = assert!((HELD as u64) < 1 << (64 - COLUMN_BITS - EDGE_BITS));
 
-/// Calls `visit(row, c1, c2)` for every run of pixels `c1..c2` (c1 < c2) of one row whose
-/// centres `outline` (fixed point of `shift` fractional bits) contains, in row order
-/// (columns and rows may lie outside the raster; the caller wraps or clips them). Its working
+/// Calls `visit(row, c1, c2)` for every run of pixels `c1..c2` (c1 < c2) of one row in
+/// `rows` (inclusive) whose centres `outline` (fixed point of `shift` fractional bits)
+/// contains, in row order (columns, and rows in the window, may lie outside the raster; the
+/// caller wraps or clips them). The work is bounded by the window's rows times the outline's
+/// edges, however far the outline reaches (a perturbed edge of a strongly stretched level can
+/// reach 10⁷ rows past a 33-row surface: the skin fuzz target's finding 14). Its working
 /// memory is `held`, [`HELD`] crossings whatever the outline's length (its contents on entry
 /// do not matter).
 ///
@@ -94,7 +97,13 @@ const _: () = assert!((HELD as u64) < 1 << (64 - COLUMN_BITS - EDGE_BITS));
 /// row with more crossings than that (an outline of over [`HELD`] edges) is taken in
 /// passes, each collecting the next crossings in order (by row, column and edge, which is
 /// unique) and drawing the runs of an even number of them.
-pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, held: &mut Held, mut visit: impl FnMut(i64, i64, i64)) {
+pub(super) fn for_each_span(
+    outline: &[[i64; 2]],
+    shift: u32,
+    rows: [i64; 2],
+    held: &mut Held,
+    mut visit: impl FnMut(i64, i64, i64),
+) {
     let n = outline.len();
     if n < 3 {
         return;
@@ -110,8 +119,11 @@ pub(super) fn for_each_span(outline: &[[i64; 2]], shift: u32, held: &mut Held, m
     }
     // Rows whose centre lies in [y0, y1]. (An arithmetic shift right by `shift` is the floor of
     // the division by the unit.)
-    let first = (y0 - half) >> shift;
-    let last = ((y1 - half) >> shift) + 1;
+    let first = ((y0 - half) >> shift).max(rows[0]);
+    let last = (((y1 - half) >> shift) + 1).min(rows[1]);
+    if first > last {
+        return;
+    }
     let rows = (last - first + 1) as usize;
     if rows <= DIRECT_ROWS {
         // Each row's first two crossings, in `held`, and how many it has.
@@ -279,7 +291,9 @@ fn floor(x: f64) -> i64 {
 /// fractional bits) contains, in row order; see [`for_each_span`].
 #[cfg(test)]
 fn for_each_pixel(outline: &[[i64; 2]], shift: u32, mut visit: impl FnMut(i64, i64)) {
-    for_each_span(outline, shift, &mut held(), |row, c1, c2| (c1..c2).for_each(|column| visit(column, row)));
+    for_each_span(outline, shift, [i64::MIN, i64::MAX], &mut held(), |row, c1, c2| {
+        (c1..c2).for_each(|column| visit(column, row))
+    });
 }
 
 #[cfg(test)]

@@ -549,10 +549,24 @@ impl<S: Scalar> Skin<'_, S> {
     /// one row whose centres lie in `cell`: unwrapped as the outline places them, and on the
     /// surface, where the run is contiguous (a run across the periodic seam comes in two
     /// pieces).
+    ///
+    /// The rows and columns scanned are bounded by the surface's size, whatever the outline's
+    /// reach: off a period, the surface's rows; on one, those within two periods of the cell's
+    /// centre (a cell of the periodic tessellation lies within about half a period of its
+    /// centre; only an edge perturbed past the period, which would overlap the cell's own
+    /// images, reaches beyond, and it is cut there).
     fn for_each_run(&self, cell: &SkinCell, held: &mut Held, mut visit: impl FnMut(i64, i64, i64, u32, u32)) {
         let (w, h) = (i64::from(self.params.width), i64::from(self.params.height));
         let periodic = self.params.periodic;
-        super::scan::for_each_span(self.outline(cell), self.fixed_point_bits(), held, |y, x0, x1| {
+        let bits = self.fixed_point_bits();
+        let centre = [cell.centre[0] >> bits, cell.centre[1] >> bits];
+        let (rows, columns) = if periodic {
+            ([centre[1] - 2 * h, centre[1] + 2 * h], [centre[0] - 2 * w, centre[0] + 2 * w])
+        } else {
+            ([0, h - 1], [0, w])
+        };
+        super::scan::for_each_span(self.outline(cell), bits, rows, held, |y, x0, x1| {
+            let (x0, x1) = (x0.max(columns[0]), x1.min(columns[1]));
             if periodic {
                 let wy = y.rem_euclid(h) as u32;
                 let mut x = x0;
