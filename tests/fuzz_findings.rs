@@ -514,3 +514,37 @@ fn a_cell_reaching_far_past_the_surface_renders_its_pixels_only() {
         );
     }
 }
+
+/// Finding 15: a periodic one-level skin stretched 10³⁰ times along x, its square lattice
+/// nearly unjittered: Voronoi vertices of nearly collinear centres lie far past `i64`'s
+/// fixed point, whose rounding saturated and then overflowed as each periodic image's
+/// offset was added (`HIBI_ERROR_PANIC` in a build with overflow checks, as the test
+/// command's debug profile builds hibi-core; in release the sum wrapped). Such a position
+/// now saturates, offset included, and the shared edges' keys take the offset off and put it
+/// back in two's complement, alike in every build.
+#[test]
+fn a_periodic_skin_stretched_past_the_fixed_point_builds_and_renders() {
+    let mut params = hibi_skin_params_default();
+    (params.layout, params.jitter, params.periodic) = (HIBI_SKIN_LAYOUT_SQUARE, HIBI_SPREAD_NORMAL, 1);
+    (params.width, params.height, params.seed) = (45, 46, 18404354334592713153);
+    (params.jitter_ratio, params.levels) = (1.4397879e-16, 1);
+    let level = &mut params.level[0];
+    (level.spacing, level.perturbation, level.perturbation_decay, level.perturbation_depth) =
+        (40.507813, 0.1, 1.0126953, 1);
+    level.stretch = [1e30, 1.0];
+    let pixels = 45 * 46;
+    let mut height = vec![f32::NAN; pixels];
+    let render = hibi_skin_render_params { cell_level: 0 };
+    let mut skin = core::ptr::null_mut();
+    let mut progress = hibi_skin_progress::default();
+    // SAFETY: valid pointers, a buffer of the length passed.
+    unsafe {
+        assert_eq!(hibi_skin_create(&params, &mut skin), HIBI_OK);
+        assert_eq!(hibi_skin_step(skin, u64::MAX, &mut progress), HIBI_OK);
+        let layer = HIBI_SKIN_LAYER_HEIGHT;
+        assert_eq!(hibi_skin_render(skin, &render, layer, height.as_mut_ptr().cast(), pixels), HIBI_OK);
+        hibi_skin_destroy(skin);
+    }
+    assert!(progress.finished == 1 && progress.cells > 0, "{progress:?}");
+    assert!(height.iter().all(|h| h.is_finite()), "a height not finite");
+}

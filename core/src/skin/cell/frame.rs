@@ -69,11 +69,17 @@ impl Frame {
     }
 
     /// A frame position relative to `reference`'s image, in fixed point (rounded to this
-    /// level's resolution).
+    /// level's resolution). A position past `i64`'s range (a Voronoi vertex of nearly
+    /// collinear centres, far off a degenerately stretched surface) saturates there, image
+    /// offset included (the skin fuzz target's finding 15).
     pub(super) fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
         let q = |k: usize| {
-            let world = at[k] * self.stretch[k] * self.own_unit;
-            (round_to_i64(world) << (self.shift - self.bits)) + i64::from(reference.image[k]) * self.world_period[k]
+            let world = round_to_i64(at[k] * self.stretch[k] * self.own_unit);
+            let offset = i64::from(reference.image[k]).saturating_mul(self.world_period[k]);
+            world
+                .checked_shl(self.shift - self.bits)
+                .filter(|w| w >> (self.shift - self.bits) == world)
+                .map_or(if world < 0 { i64::MIN } else { i64::MAX }, |w| w.saturating_add(offset))
         };
         [q(0), q(1)]
     }
@@ -81,7 +87,7 @@ impl Frame {
     /// A fixed-point point in the frame, relative to `reference`'s image.
     pub(super) fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
         let u = |k: usize| {
-            let local = p[k] - i64::from(reference.image[k]) * self.world_period[k];
+            let local = p[k].saturating_sub(i64::from(reference.image[k]).saturating_mul(self.world_period[k]));
             local as f64 * self.to_frame[k]
         };
         [u(0), u(1)]

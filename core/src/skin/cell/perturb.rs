@@ -115,7 +115,9 @@ pub(super) fn perturb(
             ^ ((offset[1] as u64 & 0xF) << 54);
         // The piece's own ends (an edge split at its parent's outline has several pieces).
         // (relative to `lo`'s image, the same for every periodic copy).
-        let local = |p: [i64; 2]| [0, 1].map(|k| p[k] - i64::from(lo.image[k]) * f.world_period[k]);
+        // (In two's complement, as `edge_key` takes the same offset off: finding 15.)
+        let local =
+            |p: [i64; 2]| [0, 1].map(|k| p[k].wrapping_sub(i64::from(lo.image[k]).wrapping_mul(f.world_period[k])));
         let ends = [local(from.fixed), local(to.fixed)]
             .as_flattened()
             .iter()
