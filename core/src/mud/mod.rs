@@ -437,9 +437,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
+            let left = budget.saturating_sub(work);
             work += match self.solver {
-                SolverState::Explicit(_) => self.explicit_step(),
-                SolverState::QuasiStatic(_) => self.quasi_static_step(),
+                SolverState::Explicit(_) => self.explicit_step(left),
+                SolverState::QuasiStatic(_) => self.quasi_static_step(left),
             };
             if work >= budget {
                 break;
