@@ -428,12 +428,26 @@ impl<'a, S: Scalar> Mud<'a, S> {
         Ok(mud)
     }
 
-    /// Advances the run by about `budget` units of work (one unit is one spring visited): it
-    /// does indivisible pieces (a short step of the explicit solver, a node relaxation or
-    /// break event of the quasi-static one) until their work reaches the budget, so a call on
-    /// an unfinished run does at least one piece and overruns the budget by at most one piece
-    /// (the network's tracing when the run ends is not counted; it is bounded by the
-    /// lattice's size). The run does not depend on the budgets.
+    /// Advances the run by about `budget` units of work (one unit is one spring or one node
+    /// visited): it does pieces until their work reaches the budget, so a call on an
+    /// unfinished run does at least one piece and overruns `max(budget, 1)` by less than one
+    /// piece. A piece is bounded by a row of the lattice or a node, not by its size:
+    ///
+    /// - explicit solver: a short step is resumed where the last call stopped, in the paper's
+    ///   order (the springs' limits once per long step, then the forces and breaks of Eq. 2
+    ///   and 5 row by row, direction by direction, the stability test of Eq. 3 and the move
+    ///   of Eq. 4 node by node). A piece is one row's springs in one direction and their
+    ///   rescan for breaks, at most 2·columns; the irregular lattice goes spring by spring and
+    ///   node by node and does not overrun. Stopped mid-step, the displacements are partly
+    ///   moved; the springs broken so far count in [`MudProgress::broken_springs`].
+    /// - quasi-static solver: a node's relaxation (its springs: 4 square, 6 hexagonal, at most
+    ///   16 irregular), a break event (1), or the refresh of the nodes
+    ///   a relaxation touched, node by node (each its springs).
+    ///
+    /// The call that ends the run also traces the network ([`Mud::trace`]), counted in the
+    /// same units and at most [`Mud::trace_work_bound`] (18 per spring slot), so that call may
+    /// do that much more. The run does not depend on the budgets: every budget gives the same
+    /// run bit for bit.
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
