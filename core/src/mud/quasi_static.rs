@@ -55,7 +55,8 @@ pub(super) struct Relaxation<'a, S> {
     /// Nodes relaxed since the tree was last brought up to date.
     touched: &'a mut [u32],
     touched_len: usize,
-    /// Touched nodes whose springs the refresh under way has brought up to date.
+    /// How far the refresh under way has come: touched nodes whose springs are up to date,
+    /// then (past `touched_len`) touched marks cleared.
     refreshed: usize,
 }
 
@@ -297,24 +298,20 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// Brings the break misfits of the springs at the touched nodes up to date in the tree,
-    /// node by node in the order they were relaxed, until the springs visited reach `budget`
-    /// (the refresh goes on where it stopped at the next call). Returns the springs visited.
-    ///
-    /// A spring between two touched nodes is skipped at its second node while its origin is
-    /// still to come; once a node is done it is no longer touched, so a spring whose origin
-    /// came first is computed again at its second node, to the value it already holds (no
-    /// displacement changes during a refresh), which leaves the tree as it was.
+    /// node by node in the order they were relaxed, then clears the nodes' touched marks,
+    /// until the work reaches `budget` (the refresh goes on where it stopped at the next
+    /// call). Returns the work: springs visited, and one per mark cleared.
     fn refresh_touched(&mut self, budget: u64) -> u64 {
         let lattice = self.lattice;
         let count = self.relaxation().touched_len;
         let mut t = self.relaxation().refreshed;
-        let mut visited = 0u64;
-        while t < count && visited < budget {
+        let mut work = 0u64;
+        while t < count && work < budget {
             let node = self.relaxation().touched[t] as usize;
             lattice.for_each_spring_at(node, |spring, other, _, sign| {
-                visited += 1;
-                // A spring between two touched nodes is brought up to date from its origin
-                // (the tree's result does not depend on the order of updates).
+                work += 1;
+                // A spring between two touched nodes is brought up to date once, from its
+                // origin (the tree's result does not depend on the order of updates).
                 let shared = sign < 0.0 && self.relaxation().flags[other] & TOUCHED != 0;
                 if shared || self.break_time[spring] != INTACT {
                     return;
@@ -326,16 +323,21 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     r.update(spring);
                 }
             });
-            self.relaxation().flags[node] &= !TOUCHED;
             t += 1;
         }
         let r = self.relaxation();
-        if t == count {
+        while t >= count && t < 2 * count && work < budget {
+            let node = r.touched[t - count] as usize;
+            r.flags[node] &= !TOUCHED;
+            work += 1;
+            t += 1;
+        }
+        if t == 2 * count {
             (r.touched_len, r.refreshed) = (0, 0);
         } else {
             r.refreshed = t;
         }
-        visited
+        work
     }
 
     /// One piece of quasi-static work: relax one queued node (its springs), refresh the
