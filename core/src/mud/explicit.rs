@@ -620,11 +620,16 @@ fn some_component_reaches<S: Scalar>(fx: &[S], fy: &[S], tolerance: S) -> bool {
         let fy = &fy[..fx.len()];
         let mut reaches = false;
         for i in 0..fx.len() {
-            let (x, y) = (fx[i], fy[i]);
-            reaches |= (x >= tolerance) | (-x >= tolerance) | (y >= tolerance) | (-y >= tolerance);
+            reaches |= component_reaches(fx[i], fy[i], tolerance);
         }
         reaches
     })
+}
+
+/// Whether a component of the force (x, y) is at least `tolerance` (> 0) in size.
+#[inline(always)]
+fn component_reaches<S: Scalar>(x: S, y: S, tolerance: S) -> bool {
+    (x >= tolerance) | (-x >= tolerance) | (y >= tolerance) | (-y >= tolerance)
 }
 
 /// Eq. 4, every node: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
@@ -835,8 +840,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
         while i < end {
             let block = end.min(i + 64);
             if some_component_reaches(&d.fx[i..block], &d.fy[i..block], tolerance) {
+                // The work ends at the first node that decides, wherever the pieces were cut.
+                #[allow(clippy::neg_cmp_op_on_partial_ord, reason = "a NaN tolerance is never met")]
+                let decides = |n: usize| !(S::ZERO < tolerance) || component_reaches(d.fx[n], d.fy[n], tolerance);
+                let first = (i..block).find(|&n| decides(n)).unwrap_or(block - 1);
                 d.phase = Phase::Move(0);
-                return (block - from) as u64;
+                return (first + 1 - from) as u64;
             }
             i = block;
         }

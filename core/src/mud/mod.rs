@@ -708,7 +708,7 @@ mod tests {
         displacement: vec::Vec<(u32, u32)>,
         network: std::string::String,
         cells: CellCounts,
-        progress: (u32, u32, u32, bool),
+        progress: (u32, u32, u32, bool, u64),
     }
 
     /// Runs `p` with `budget` per call (`None`: one `run()`), asserting each call's work is
@@ -756,12 +756,18 @@ mod tests {
                 .collect(),
             network: std::format!("{v:?} {e:?} {q:?}"),
             cells: mud.cell_counts(),
-            progress: (progress.broken_springs, progress.shrink.to_bits(), progress.time.to_bits(), progress.finished),
+            progress: (
+                progress.broken_springs,
+                progress.shrink.to_bits(),
+                progress.time.to_bits(),
+                progress.finished,
+                progress.work,
+            ),
         }
     }
 
     /// Frame budgets (issue 26 item 5): any budget gives the run of one call, bit for bit, and
-    /// each call does at most its budget and one piece bounded by a row (explicit) or a node's
+    /// the same work in total, and each call does at most its budget and one piece bounded by a row (explicit) or a node's
     /// springs (quasi-static), plus the tracing in the call that ends the run; the tracing is
     /// counted within its bound.
     #[test]
