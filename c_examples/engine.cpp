@@ -4,7 +4,10 @@
  * through *_create_in); each frame advances each of them by a bounded amount of work with
  * step(budget), a few frames of the break-time rasters (glass and mud) are written as PGM
  * files, and at the end the program reports the largest work any frame did against its
- * budget, and checks that the budgeted objects came out as one unbudgeted run of each.
+ * budget, and checks that the budgeted objects came out as one unbudgeted run of each. Mud
+ * runs twice: with the quasi-static solver (the default) and with the explicit one (the
+ * paper's loop, whose short steps are cut between rows of the lattice); a mud run's last
+ * frame also traces the crack network, reported apart.
  *
  *   c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/engine.cpp \
  *       target/release/libhibi.a -lpthread -ldl -lm -o engine && ./engine frames/
@@ -58,13 +61,19 @@ bool write_pgm(const std::string &path, const std::vector<float> &time, std::uin
     return std::fclose(file) == 0 && ok;
 }
 
-/// The largest work one frame did, from the work total each model's progress counts.
+/// The largest work one frame did, from the work total each model's progress counts (and
+/// apart, the work of the frame that finished).
 struct Budget {
     std::uint64_t per_frame;
     std::uint64_t largest = 0;
     std::uint64_t last_total = 0;
-    void frame(std::uint64_t total) {
-        largest = std::max(largest, total - last_total);
+    std::uint64_t finishing = 0;
+    void frame(std::uint64_t total, bool finished = false) {
+        if (finished) {
+            finishing = total - last_total;
+        } else {
+            largest = std::max(largest, total - last_total);
+        }
         last_total = total;
     }
 };
@@ -88,6 +97,13 @@ int main(int argc, char **argv) {
         mud_params.columns = 40;
         mud_params.rows = 40;
         mud_params.seed = 11;
+        // The explicit solver takes far more steps: a smaller lattice, at ten times the paper's
+        // short step (within its stability test).
+        hibi::Mud::Params explicit_params = mud_params;
+        explicit_params.solver = HIBI_MUD_EXPLICIT;
+        explicit_params.columns = 16;
+        explicit_params.rows = 16;
+        explicit_params.short_step = 0.01f;
         hibi::Skin::Params skin_params = hibi::Skin::preset("fig19a");
         skin_params.width = 96;
         skin_params.height = 96;
@@ -95,20 +111,25 @@ int main(int argc, char **argv) {
         // One arena for all three, sized from the C API's own figures.
         const std::size_t glass_bytes = hibi::Glass::memory_size(glass_params);
         const std::size_t mud_bytes = hibi::Mud::memory_size(mud_params);
+        const std::size_t explicit_bytes = hibi::Mud::memory_size(explicit_params);
         const std::size_t skin_bytes = hibi::Skin::memory_size(skin_params);
-        const std::size_t slack = hibi::Glass::memory_align() + hibi::Mud::memory_align() + hibi::Skin::memory_align();
-        Arena arena(glass_bytes + mud_bytes + skin_bytes + slack);
+        const std::size_t slack =
+            hibi::Glass::memory_align() + 2 * hibi::Mud::memory_align() + hibi::Skin::memory_align();
+        Arena arena(glass_bytes + mud_bytes + explicit_bytes + skin_bytes + slack);
         hibi::Glass glass = hibi::Glass::create_in(
             glass_params, arena.allocate(glass_bytes, hibi::Glass::memory_align()), glass_bytes);
         hibi::Mud mud =
             hibi::Mud::create_in(mud_params, arena.allocate(mud_bytes, hibi::Mud::memory_align()), mud_bytes);
+        hibi::Mud explicit_mud = hibi::Mud::create_in(
+            explicit_params, arena.allocate(explicit_bytes, hibi::Mud::memory_align()), explicit_bytes);
         hibi::Skin skin =
             hibi::Skin::create_in(skin_params, arena.allocate(skin_bytes, hibi::Skin::memory_align()), skin_bytes);
-        std::printf("arena: %zu bytes (glass %zu, mud %zu, skin %zu)\n", arena.used(), glass_bytes, mud_bytes,
-                    skin_bytes);
+        std::printf("arena: %zu bytes (glass %zu, mud %zu, explicit mud %zu, skin %zu)\n", arena.used(), glass_bytes,
+                    mud_bytes, explicit_bytes, skin_bytes);
 
         // The frame budgets, in each model's units of work.
         Budget mud_budget{20000};
+        Budget explicit_budget{20000};
         Budget skin_budget{1500};
         Budget glass_budget{5000};
         std::printf("budgets per frame: mud %llu, skin %llu, glass %llu\n",
@@ -124,10 +145,10 @@ int main(int argc, char **argv) {
         mud_render.height = 160;
         hibi::Skin::RenderParams skin_render = hibi::Skin::default_render();
 
-        bool glass_done = false, mud_done = false, skin_done = false;
-        unsigned frame = 0, glass_frames = 0, mud_frames = 0, skin_frames = 0, written = 0;
+        bool glass_done = false, mud_done = false, explicit_done = false, skin_done = false;
+        unsigned frame = 0, glass_frames = 0, mud_frames = 0, explicit_frames = 0, skin_frames = 0, written = 0;
         const unsigned stride = 6, max_written = 3;
-        while (!(glass_done && mud_done && skin_done)) {
+        while (!(glass_done && mud_done && explicit_done && skin_done)) {
             if (!glass_done) {
                 hibi::Glass::Progress p = glass.step(glass_budget.per_frame);
                 glass_budget.frame(p.work);
@@ -136,9 +157,15 @@ int main(int argc, char **argv) {
             }
             if (!mud_done) {
                 hibi::Mud::Progress p = mud.step(mud_budget.per_frame);
-                mud_budget.frame(p.work);
                 mud_done = p.finished != 0;
+                mud_budget.frame(p.work, mud_done);
                 mud_frames = frame + 1;
+            }
+            if (!explicit_done) {
+                hibi::Mud::Progress p = explicit_mud.step(explicit_budget.per_frame);
+                explicit_done = p.finished != 0;
+                explicit_budget.frame(p.work, explicit_done);
+                explicit_frames = frame + 1;
             }
             if (!skin_done) {
                 hibi::Skin::Progress p = skin.step(skin_budget.per_frame);
@@ -147,7 +174,7 @@ int main(int argc, char **argv) {
                 skin_frames = frame + 1;
             }
             // A few frames of the break as it happens, then the last one.
-            bool last = glass_done && mud_done && skin_done;
+            bool last = glass_done && mud_done && explicit_done && skin_done;
             if ((frame % stride == 0 && written < max_written) || last) {
                 char name[32];
                 std::snprintf(name, sizeof name, "%02u", written);
@@ -162,12 +189,17 @@ int main(int argc, char **argv) {
             }
             frame++;
         }
-        std::printf("frames: %u (glass done after %u, mud after %u, skin after %u)\n", frame, glass_frames,
-                    mud_frames, skin_frames);
+        std::printf("frames: %u (glass done after %u, mud after %u, explicit mud after %u, skin after %u)\n", frame,
+                    glass_frames, mud_frames, explicit_frames, skin_frames);
         std::printf("wrote %u frames of each break-time raster\n", written);
-        std::printf("mud: largest frame work %llu of budget %llu\n",
+        std::printf("mud: largest frame work %llu of budget %llu, last frame (tracing) %llu\n",
                     static_cast<unsigned long long>(mud_budget.largest),
-                    static_cast<unsigned long long>(mud_budget.per_frame));
+                    static_cast<unsigned long long>(mud_budget.per_frame),
+                    static_cast<unsigned long long>(mud_budget.finishing));
+        std::printf("explicit mud: largest frame work %llu of budget %llu, last frame (tracing) %llu\n",
+                    static_cast<unsigned long long>(explicit_budget.largest),
+                    static_cast<unsigned long long>(explicit_budget.per_frame),
+                    static_cast<unsigned long long>(explicit_budget.finishing));
         std::printf("skin: largest frame work %llu of budget %llu\n",
                     static_cast<unsigned long long>(skin_budget.largest),
                     static_cast<unsigned long long>(skin_budget.per_frame));
@@ -180,11 +212,15 @@ int main(int argc, char **argv) {
         whole_glass.run(UINT64_MAX);
         hibi::Mud whole_mud(mud_params);
         whole_mud.run(UINT64_MAX);
+        hibi::Mud whole_explicit(explicit_params);
+        whole_explicit.run(UINT64_MAX);
         hibi::Skin whole_skin(skin_params);
         whole_skin.run();
-        std::printf("budgeted = one go: glass %s, mud %s, skin %s\n",
+        std::printf("budgeted = one go: glass %s, mud %s, explicit mud %s, skin %s\n",
                     same(glass.render_time(glass_render), whole_glass.render_time(glass_render)) ? "yes" : "no",
                     same(mud.render_time(mud_render), whole_mud.render_time(mud_render)) ? "yes" : "no",
+                    same(explicit_mud.render_time(mud_render), whole_explicit.render_time(mud_render)) ? "yes"
+                                                                                                          : "no",
                     same(skin.render_height(skin_render), whole_skin.render_height(skin_render)) ? "yes" : "no");
         return 0;
     } catch (const hibi::Error &e) {

@@ -1812,11 +1812,16 @@ hibi_status hibi_mud_create_in(const struct hibi_mud_params *params,
 void hibi_mud_destroy(struct hibi_mud *mud);
 
 /**
- * Advances the run by about `budget` units of work (one unit: one spring visited): it does
- * indivisible pieces (an explicit short step, a quasi-static node relaxation or break event)
- * until their work reaches the budget, so a call on an unfinished run does at least one piece
- * and overruns the budget by at most one; the run does not depend on the budgets. Writes where it stands to `*progress` unless it
- * is NULL. Call until `progress.finished`.
+ * Advances the run by about `budget` units of work (one unit: one spring or node visited):
+ * it does pieces until their work reaches the budget, so a call on an unfinished run does at
+ * least one piece and does at most max(budget, 1) − 1 + one piece. The explicit solver's
+ * short steps are resumed where the last call stopped; its piece is one row of the lattice
+ * in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
+ * spring by spring and node by node: no overrun). The quasi-static solver's piece is one
+ * node's springs (4 square, 6 hexagonal, at most 16 irregular). The call that ends the run
+ * also traces the crack network, counted too: at most 18 units per spring slot (columns ×
+ * rows × 2 square, × 3 hexagonal and irregular). The run does not depend on the budgets.
+ * Writes where it stands to `*progress` unless it is NULL. Call until `progress.finished`.
  *
  * # Safety
  * `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.

@@ -307,8 +307,9 @@ public:
         return Mud(raw);
     }
 
-    /// Advances by about `budget` units of work (springs visited; overruns by at most one
-    /// indivisible piece, see hibi_mud_step).
+    /// Advances by about `budget` units of work (springs and nodes visited; overruns by less
+    /// than one piece, a row of the lattice or a node's springs, and the last call also
+    /// traces the network: see hibi_mud_step).
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_mud_step(handle_.get(), budget, &progress));

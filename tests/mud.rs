@@ -273,19 +273,18 @@ fn step_does_bounded_work_and_resumes_to_the_same_result() {
         let memory = p.memory().unwrap();
         let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
         let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-        // One indivisible piece is at most one pass over the springs.
-        let piece = mud.lattice().spring_count() as u64;
+        // One piece is a row's springs in one direction and their rescan for breaks
+        // (explicit) or one node's springs (quasi-static, hexagonal); the call that ends the
+        // run also traces the network.
+        let piece = if solver == Solver::Explicit { 2 * u64::from(p.columns) } else { 6 };
+        let ending = mud.trace_work_bound();
         let budget = 5_000;
         let mut before = 0;
         let mut calls = 0;
         loop {
             let progress = mud.step(budget);
-            assert!(
-                progress.work - before <= budget + piece,
-                "{solver:?}: {} > {}",
-                progress.work - before,
-                budget + piece
-            );
+            let bound = budget - 1 + piece + if progress.finished { ending } else { 0 };
+            assert!(progress.work - before <= bound, "{solver:?}: {} > {bound}", progress.work - before);
             before = progress.work;
             calls += 1;
             if progress.finished {
@@ -703,4 +702,50 @@ fn network_and_cells_refuse_short_buffers_and_write_nothing() {
     assert_eq!(mud.cells(&mut rings, &mut points[..c.points - 1]), Err(MudError::BufferTooSmall { needed: c.points }));
     assert!(rings.iter().all(|r| *r == sentinel_ring) && points.iter().all(|p| *p == [77.0; 2]));
     assert_eq!(mud.cells(&mut rings, &mut points), Ok(c));
+}
+
+/// The explicit solver's run, bit for bit, on every lattice and both drives and backends:
+/// every spring's break time and the traced segments, hashed (pinned before the short step
+/// became resumable, issue 26 item 5: stopping anywhere in a short step changes no bit).
+#[test]
+fn golden_explicit_runs() {
+    fn hash<S: Scalar>(name: &str, params: &MudParams) -> u64 {
+        let (_, segments, _) = run::<S>(params);
+        let memory = params.memory().unwrap();
+        let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
+        let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+        mud.run();
+        let springs = mud.lattice().spring_count();
+        let times: Vec<u8> = (0..springs)
+            .flat_map(|s| mud.spring_break_time(s).map_or(u32::MAX, f32::to_bits).to_le_bytes())
+            .chain(segments.to_le_bytes())
+            .collect();
+        let h = fnv1a64(&times);
+        println!("{name}: {h} ({} broken)", mud.progress().broken_springs);
+        h
+    }
+    use hibi_core::mud::Drive;
+    let explicit = MudParams { solver: Solver::Explicit, ..params(20) };
+    let square = MudParams { topology: Topology::Square, ..explicit };
+    let irregular = MudParams { topology: Topology::Irregular, ..explicit };
+    let (open, growth) = (Boundary::Open, Drive::Growth);
+    let cases = [
+        hash::<f32>("hex periodic shrink f32", &explicit),
+        hash::<f32>("hex open shrink f32", &MudParams { boundary: open, ..explicit }),
+        hash::<f32>("hex open growth f32", &MudParams { boundary: open, drive: growth, ..explicit }),
+        hash::<f32>("square open growth f32", &MudParams { boundary: open, drive: growth, rows: 16, ..square }),
+        hash::<f32>("square periodic shrink f32", &MudParams { rows: 18, ..square }),
+        hash::<f32>("irregular periodic shrink f32", &irregular),
+        hash::<f32>("irregular open growth f32", &MudParams { boundary: open, drive: growth, ..irregular }),
+    ];
+    let expected: [u64; 7] = [
+        12454092001312085556,
+        2711182118146359711,
+        17684844049900681505,
+        1063005523725258606,
+        12905387523669546347,
+        2654304470968482606,
+        16330958032564823092,
+    ];
+    assert_eq!(cases, expected);
 }

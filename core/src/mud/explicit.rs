@@ -22,6 +22,10 @@
 //! its break stretch adds +0 (or, wrapping, nothing), as the paper's loop skips it; the breaks
 //! are recorded afterwards in a scalar pass over the row. So every value is the same bit for
 //! bit on every build, and the same as with one pass per direction and a row of scratch.
+//!
+//! A short step can stop between rows and go on at the next call of [`Mud::step`] (frame
+//! budgets, issue 26 item 5): its [`Phase`] is kept in [`Dynamics`] and each phase runs in the
+//! same order whatever the cuts, so a budgeted run is the same bit for bit as one call.
 
 use super::irregular::Mesh;
 use super::lattice::Lattice;
@@ -51,6 +55,38 @@ pub(super) struct Dynamics<'a, S> {
     /// The irregular lattice's nodes each have their own mass, damping and force tolerance:
     /// per node, the four constants above in that order, then δF = k_min·δx.
     node_constants: &'a mut [S],
+    /// Where the short step under way stands: its next piece.
+    phase: Phase,
+    /// Springs the short step under way has broken so far (counted in `Mud::broken` as they
+    /// break; the crack density is tested once the short step is done).
+    newly_broken: u32,
+}
+
+/// Where a short step stands between calls of [`Mud::step`]: it is done phase by phase, and
+/// each phase item by item in the paper's order, so stopping between items changes nothing.
+/// Nothing a phase reads is changed between its pieces: the displacements change only in
+/// [`Phase::Move`], the misfit, the rest and deep factors and the time only after the short
+/// step, and the limits only by the breaks of the rows, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// The short step has not begun.
+    Start,
+    /// Setting the intact springs' limits (κ·l0)² for the long step's rest length, from
+    /// this spring on (once per long step).
+    Limits(usize),
+    /// Forces (Eq. 2) and breaks (Eq. 5) of the regular lattices, from row `row` of direction
+    /// `k` on.
+    Rows { k: usize, row: usize },
+    /// The irregular lattice's shear forces, from this node on.
+    Shear(usize),
+    /// The irregular lattice's springs, from this one on.
+    Springs(usize),
+    /// The quick half of the stability test (Eq. 3) of the regular lattices, from this node on.
+    Reaches(usize),
+    /// The exact stability test (Eq. 3), from this node on.
+    Below(usize),
+    /// The damped move (Eq. 4), from this node on.
+    Move(usize),
 }
 
 /// Constants per node of the irregular lattice's explicit run.
@@ -176,19 +212,9 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             inverse_damping: S::ONE / c,
             step_over_damping: tau / c,
             node_constants,
+            phase: Phase::Start,
+            newly_broken: 0,
         }
-    }
-
-    /// Sets every intact spring's limit (κ·l0)² for rest length `rest`, unless already set.
-    fn set_limits(&mut self, rest: S, break_stretch: &[S]) {
-        if self.limit_rest == Some(rest) {
-            return;
-        }
-        for (l, &kappa) in self.limit.iter_mut().zip(break_stretch.iter()) {
-            let limit = kappa * rest;
-            *l = if *l < S::ZERO { *l } else { limit * limit };
-        }
-        self.limit_rest = Some(rest);
     }
 }
 
@@ -598,11 +624,16 @@ fn some_component_reaches<S: Scalar>(fx: &[S], fy: &[S], tolerance: S) -> bool {
         let fy = &fy[..fx.len()];
         let mut reaches = false;
         for i in 0..fx.len() {
-            let (x, y) = (fx[i], fy[i]);
-            reaches |= (x >= tolerance) | (-x >= tolerance) | (y >= tolerance) | (-y >= tolerance);
+            reaches |= component_reaches(fx[i], fy[i], tolerance);
         }
         reaches
     })
+}
+
+/// Whether a component of the force (x, y) is at least `tolerance` (> 0) in size.
+#[inline(always)]
+fn component_reaches<S: Scalar>(x: S, y: S, tolerance: S) -> bool {
+    (x >= tolerance) | (-x >= tolerance) | (y >= tolerance) | (-y >= tolerance)
 }
 
 /// Eq. 4, every node: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
@@ -630,25 +661,290 @@ fn move_nodes<S: Scalar>(
     }
 }
 
-impl<S: Scalar> Mud<'_, S> {
-    /// One short step of the irregular lattice, spring by spring: Eq. 5 then Eq. 2 (the
-    /// shear spring first, then each intact spring in spring order), the stability test
-    /// (Eq. 3) and the exact damped move (Eq. 4) with each node's own constants. Returns
-    /// (springs newly broken, stable).
-    fn irregular_forces_and_move(&mut self) -> (u32, bool) {
+/// The end of a piece of `budget` items from `from`, at most `end`.
+fn piece_end(from: usize, budget: u64, end: usize) -> usize {
+    from.saturating_add(usize::try_from(budget).unwrap_or(usize::MAX)).min(end)
+}
+
+impl<'a, S: Scalar> Mud<'a, S> {
+    /// The short steps' work, from where the last call stopped, until it reaches `budget` (at
+    /// least 1) or its phase ends. Returns the work done: springs visited (limits, forces, the
+    /// rescan of a row for its breaks) and nodes visited (stability test, move). A piece
+    /// overruns `budget` by less than one row's springs in one direction and their rescan:
+    /// at most 2·columns − 1 (the phases over nodes or single springs do not overrun).
+    pub(super) fn explicit_step(&mut self, budget: u64) -> u64 {
+        let budget = budget.max(1);
+        loop {
+            let SolverState::Explicit(d) = &self.solver else { unreachable!("explicit step on another solver") };
+            let work = match d.phase {
+                Phase::Start => {
+                    self.begin_short_step();
+                    continue;
+                }
+                Phase::Limits(from) => self.set_limits(from, budget),
+                Phase::Rows { k, row } => self.rows(k, row, budget),
+                Phase::Shear(from) => self.irregular_shear(from, budget),
+                Phase::Springs(from) => self.irregular_springs(from, budget),
+                Phase::Reaches(from) => self.some_force_reaches(from, budget),
+                Phase::Below(from) => self.forces_below(from, budget),
+                Phase::Move(from) => self.move_from(from, budget),
+            };
+            // Only a row skipped (the last of an open lattice, in a direction to the next row)
+            // does no work: go on to the next.
+            if work > 0 || self.finished {
+                return work;
+            }
+        }
+    }
+
+    fn dynamics(&mut self) -> &mut Dynamics<'a, S> {
+        match &mut self.solver {
+            SolverState::Explicit(d) => d,
+            SolverState::QuasiStatic(_) => unreachable!("explicit step on another solver"),
+        }
+    }
+
+    /// Begins a short step: the irregular lattice's shear forces, or the regular lattices'
+    /// limits (when the long step changed the rest length) and rows.
+    fn begin_short_step(&mut self) {
+        let (rest, _) = self.factors();
+        let irregular = self.lattice.mesh().is_some();
+        let d = self.dynamics();
+        d.newly_broken = 0;
+        d.phase = match () {
+            _ if irregular => Phase::Shear(0),
+            _ if d.limit_rest == Some(rest) => Phase::Rows { k: 0, row: 0 },
+            _ => Phase::Limits(0),
+        };
+    }
+
+    /// Sets the intact springs' limits (κ·l0)² for the rest length now, from spring `from`.
+    fn set_limits(&mut self, from: usize, budget: u64) -> u64 {
+        let (rest, _) = self.factors();
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
+        let springs = d.limit.len();
+        let end = piece_end(from, budget, springs);
+        for (l, &kappa) in d.limit[from..end].iter_mut().zip(self.break_stretch[from..end].iter()) {
+            let limit = kappa * rest;
+            *l = if *l < S::ZERO { *l } else { limit * limit };
+        }
+        d.phase = if end == springs {
+            d.limit_rest = Some(rest);
+            Phase::Rows { k: 0, row: 0 }
+        } else {
+            Phase::Limits(end)
+        };
+        (end - from) as u64
+    }
+
+    /// Forces and breaks (Eq. 5 then Eq. 2) of the regular lattices, row by row from row `r`
+    /// of direction `k`, until the work reaches `budget` or the rows are done.
+    fn rows(&mut self, mut k: usize, mut r: usize, budget: u64) -> u64 {
         let (rest, deep) = self.factors();
         let time = (self.long_steps as f32).to_bits();
         let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
-        let Some(mesh) = self.lattice.mesh().copied() else { unreachable!("a regular lattice") };
+        let (ux, uy) = (&*self.ux, &*self.uy);
+        let m = &self.material;
+        let lattice = self.lattice;
+        let (nodes, columns, rows) = (lattice.node_count(), lattice.columns as usize, lattice.rows as usize);
+        let periodic = lattice.boundary == Boundary::Periodic;
+        let (fx, fy) = (&mut *d.fx, &mut *d.fy);
+        let mut breaks = Breaks { limit: &mut *d.limit, break_time: &mut *self.break_time, time, count: 0 };
+        let law = |k: usize| {
+            let v = lattice.direction_vector(k);
+            SpringLaw { rest, ex: S::from_f32(v[0]) * deep, ey: S::from_f32(v[1]) * deep, stiffness: m.stiffness[k] }
+        };
+        let mut chunk = Chunk::new();
+        // One row of direction k; returns the springs visited.
+        let mut row_of = |k: usize, law: &SpringLaw<S>, r: usize| -> u64 {
+            if k == 0 {
+                // Direction 0 (to the right, in the row) with the shear part of Eq. 2,
+                // −h·(x_i − X_i).
+                debug_assert_eq!(lattice.step(0, 0), (1, 0));
+                let len = columns - 1;
+                let a = r * columns;
+                let row = Row { a, b: a + 1, s: a, len, wrap: periodic.then_some((a + len, a, a + len)) };
+                let (over, wrap_over) =
+                    row_forces_summed(law, &row, (ux, uy), (breaks.limit, m.shear), (fx, fy), &mut chunk);
+                let mut work = (len + usize::from(periodic)) as u64;
+                if over {
+                    breaks.record_run(law, &row, (ux, uy));
+                    work += len as u64;
+                }
+                if wrap_over {
+                    breaks.record(a + len);
+                }
+                return work;
+            }
+            // The directions that join a row to the next.
+            let (di, dj) = lattice.step(k, r);
+            debug_assert_eq!(dj, 1);
+            let mut next = r + 1;
+            if next == rows {
+                if !periodic {
+                    return 0;
+                }
+                next = 0;
+            }
+            // The contiguous run: columns whose neighbour stays in the lattice; and the
+            // spring that wraps around the row's end.
+            let (lo, hi) = (usize::from(di < 0), columns - usize::from(di > 0));
+            let a = r * columns + lo;
+            let wrap = match di {
+                _ if !periodic => None,
+                1 => Some((r * columns + columns - 1, next * columns)),
+                -1 => Some((r * columns, next * columns + columns - 1)),
+                _ => None,
+            };
+            let row = Row {
+                a,
+                b: ((next * columns + lo) as i64 + di) as usize,
+                s: k * nodes + a,
+                len: hi - lo,
+                wrap: wrap.map(|(i, j)| (i, j, k * nodes + i)),
+            };
+            let (over, wrap_over) = row_forces_applied(law, &row, (ux, uy), breaks.limit, (fx, fy), &mut chunk);
+            let mut work = (row.len + usize::from(row.wrap.is_some())) as u64;
+            if over {
+                breaks.record_run(law, &row, (ux, uy));
+                work += row.len as u64;
+            }
+            if let (true, Some((_, _, w))) = (wrap_over, row.wrap) {
+                breaks.record(w);
+            }
+            work
+        };
+        let mut work = 0u64;
+        while k < lattice.directions() && work < budget {
+            let law = law(k);
+            while r < rows && work < budget {
+                work += row_of(k, &law, r);
+                r += 1;
+            }
+            if r == rows {
+                (k, r) = (k + 1, 0);
+            }
+        }
+        let count = breaks.count;
+        d.newly_broken += count;
+        d.phase = if k < lattice.directions() { Phase::Rows { k, row: r } } else { Phase::Reaches(0) };
+        self.broken += count;
+        work
+    }
+
+    /// The quick half of Eq. 3 from node `from`, in blocks of 64 nodes: a component of at
+    /// least δF decides at once that the lattice is not stable; only when there is none is
+    /// each |F_i| checked exactly.
+    fn some_force_reaches(&mut self, from: usize, budget: u64) -> u64 {
+        let tolerance = self.material.force_tolerance;
+        let d = self.dynamics();
+        let nodes = d.fx.len();
+        let end = piece_end(from, budget, nodes);
+        let mut i = from;
+        while i < end {
+            let block = end.min(i + 64);
+            if some_component_reaches(&d.fx[i..block], &d.fy[i..block], tolerance) {
+                // The work ends at the first node that decides, wherever the pieces were cut.
+                #[allow(clippy::neg_cmp_op_on_partial_ord, reason = "a NaN tolerance is never met")]
+                let decides = |n: usize| !(S::ZERO < tolerance) || component_reaches(d.fx[n], d.fy[n], tolerance);
+                let first = (i..block).find(|&n| decides(n)).unwrap_or(block - 1);
+                d.phase = Phase::Move(0);
+                return (first + 1 - from) as u64;
+            }
+            i = block;
+        }
+        d.phase = if end == nodes { Phase::Below(0) } else { Phase::Reaches(end) };
+        (end - from) as u64
+    }
+
+    /// Eq. 3 exactly from node `from`: stable when every |F_i| < δF (each node's own δF on
+    /// the irregular lattice). A stable lattice ends the short step with a long step.
+    fn forces_below(&mut self, from: usize, budget: u64) -> u64 {
+        let (tolerance, irregular) = (self.material.force_tolerance, self.lattice.mesh().is_some());
+        let d = self.dynamics();
+        let nodes = d.fx.len();
+        let end = piece_end(from, budget, nodes);
+        for n in from..end {
+            let tolerance = if irregular { d.node_constants[NODE_CONSTANTS * n + 4] } else { tolerance };
+            if !below(d.fx[n], d.fy[n], tolerance) {
+                d.phase = Phase::Move(0);
+                return (n + 1 - from) as u64;
+            }
+        }
+        if end < nodes {
+            d.phase = Phase::Below(end);
+        } else {
+            d.phase = Phase::Start;
+            let newly_broken = d.newly_broken;
+            self.after_short_step(newly_broken, true);
+        }
+        (end - from) as u64
+    }
+
+    /// Eq. 4 from node `from` (each node's own constants on the irregular lattice); the last
+    /// node ends the short step.
+    fn move_from(&mut self, from: usize, budget: u64) -> u64 {
+        let irregular = self.lattice.mesh().is_some();
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
         let (ux, uy) = (&mut *self.ux, &mut *self.uy);
+        let nodes = ux.len();
+        let end = piece_end(from, budget, nodes);
+        if irregular {
+            for node in from..end {
+                let [decay, drift, inverse_damping, step_over_damping] =
+                    [0, 1, 2, 3].map(|k| d.node_constants[NODE_CONSTANTS * node + k]);
+                let qx = d.vx[node] - d.fx[node] * inverse_damping;
+                let qy = d.vy[node] - d.fy[node] * inverse_damping;
+                d.vx[node] += qx * decay;
+                d.vy[node] += qy * decay;
+                ux[node] += qx * drift + d.fx[node] * step_over_damping;
+                uy[node] += qy * drift + d.fy[node] * step_over_damping;
+            }
+        } else {
+            let constants = [d.decay, d.drift, d.inverse_damping, d.step_over_damping];
+            let (vx, vy, fx, fy) = (&mut d.vx[from..end], &mut d.vy[from..end], &d.fx[from..end], &d.fy[from..end]);
+            move_nodes(constants, vx, vy, fx, fy, &mut ux[from..end], &mut uy[from..end]);
+        }
+        if end < nodes {
+            d.phase = Phase::Move(end);
+        } else {
+            d.phase = Phase::Start;
+            let newly_broken = d.newly_broken;
+            self.after_short_step(newly_broken, false);
+        }
+        (end - from) as u64
+    }
+
+    /// The irregular lattice's shear forces (Eq. 2's −h·u, h from each node's area) from
+    /// node `from`.
+    fn irregular_shear(&mut self, from: usize, budget: u64) -> u64 {
         let shear_per_area = S::from_f32(self.material.shear_per_area);
-        for node in 0..ux.len() {
+        let Some(mesh) = self.lattice.mesh().copied() else { unreachable!("a regular lattice") };
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
+        let (ux, uy) = (&*self.ux, &*self.uy);
+        let nodes = ux.len();
+        let end = piece_end(from, budget, nodes);
+        for node in from..end {
             let h = S::from_f32(mesh.area(node)) * shear_per_area;
             d.fx[node] = -(h * ux[node]);
             d.fy[node] = -(h * uy[node]);
         }
+        d.phase = if end == nodes { Phase::Springs(0) } else { Phase::Shear(end) };
+        (end - from) as u64
+    }
+
+    /// The irregular lattice's springs from spring `from`, in spring order: Eq. 5, then
+    /// Eq. 2 for each intact spring.
+    fn irregular_springs(&mut self, from: usize, budget: u64) -> u64 {
+        let (rest, deep) = self.factors();
+        let time = (self.long_steps as f32).to_bits();
+        let Some(mesh) = self.lattice.mesh().copied() else { unreachable!("a regular lattice") };
+        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
+        let (ux, uy) = (&*self.ux, &*self.uy);
+        let springs = self.break_time.len();
+        let end = piece_end(from, budget, springs);
         let mut newly_broken = 0;
-        for spring in 0..self.break_time.len() {
+        for spring in from..end {
             let Some((a, b)) = mesh.ends(spring) else { continue };
             if self.break_time[spring] != super::INTACT {
                 continue;
@@ -672,121 +968,15 @@ impl<S: Scalar> Mud<'_, S> {
             d.fx[b] -= pull * dx;
             d.fy[b] -= pull * dy;
         }
-        let constants = &d.node_constants;
-        let stable = (0..ux.len()).all(|n| below(d.fx[n], d.fy[n], constants[NODE_CONSTANTS * n + 4]));
-        if !stable {
-            for node in 0..ux.len() {
-                let [decay, drift, inverse_damping, step_over_damping] =
-                    [0, 1, 2, 3].map(|k| d.node_constants[NODE_CONSTANTS * node + k]);
-                let qx = d.vx[node] - d.fx[node] * inverse_damping;
-                let qy = d.vy[node] - d.fy[node] * inverse_damping;
-                d.vx[node] += qx * decay;
-                d.vy[node] += qy * decay;
-                ux[node] += qx * drift + d.fx[node] * step_over_damping;
-                uy[node] += qy * drift + d.fy[node] * step_over_damping;
-            }
-        }
-        (newly_broken, stable)
-    }
-
-    /// One short step: forces and breaks, then either a long step (stable) or a move.
-    /// Returns the work done (spring slots visited).
-    pub(super) fn explicit_step(&mut self) -> u64 {
-        if self.lattice.mesh().is_some() {
-            let (newly_broken, stable) = self.irregular_forces_and_move();
-            self.after_short_step(newly_broken, stable);
-            return self.lattice.spring_count() as u64;
-        }
-        let (rest, deep) = self.factors();
-        let time = (self.long_steps as f32).to_bits();
-        let SolverState::Explicit(d) = &mut self.solver else { unreachable!("explicit step on another solver") };
-        d.set_limits(rest, self.break_stretch);
-        let (ux, uy) = (&mut *self.ux, &mut *self.uy);
-        let m = &self.material;
-        let lattice = self.lattice;
-        let (nodes, columns, rows) = (lattice.node_count(), lattice.columns as usize, lattice.rows as usize);
-        let periodic = lattice.boundary == Boundary::Periodic;
-        let (fx, fy) = (&mut *d.fx, &mut *d.fy);
-        let mut breaks = Breaks { limit: &mut *d.limit, break_time: &mut *self.break_time, time, count: 0 };
-        let law = |k: usize| {
-            let v = lattice.direction_vector(k);
-            SpringLaw { rest, ex: S::from_f32(v[0]) * deep, ey: S::from_f32(v[1]) * deep, stiffness: m.stiffness[k] }
-        };
-        let mut chunk = Chunk::new();
-
-        // Direction 0 (to the right, in the row) with the shear part of Eq. 2, −h·(x_i − X_i).
-        debug_assert_eq!(lattice.step(0, 0), (1, 0));
-        let law0 = law(0);
-        let len = columns - 1;
-        for r in 0..rows {
-            let a = r * columns;
-            let row = Row { a, b: a + 1, s: a, len, wrap: periodic.then_some((a + len, a, a + len)) };
-            let (over, wrap_over) =
-                row_forces_summed(&law0, &row, (ux, uy), (breaks.limit, m.shear), (fx, fy), &mut chunk);
-            if over {
-                breaks.record_run(&law0, &row, (ux, uy));
-            }
-            if wrap_over {
-                breaks.record(a + len);
-            }
-        }
-
-        // Eq. 5 then Eq. 2 for the directions that join a row to the next, row by row.
-        for k in 1..lattice.directions() {
-            let law = law(k);
-            for r in 0..rows {
-                let (di, dj) = lattice.step(k, r);
-                debug_assert_eq!(dj, 1);
-                let mut next = r + 1;
-                if next == rows {
-                    if !periodic {
-                        continue;
-                    }
-                    next = 0;
-                }
-                // The contiguous run: columns whose neighbour stays in the lattice; and the
-                // spring that wraps around the row's end.
-                let (lo, hi) = (usize::from(di < 0), columns - usize::from(di > 0));
-                let a = r * columns + lo;
-                let wrap = match di {
-                    _ if !periodic => None,
-                    1 => Some((r * columns + columns - 1, next * columns)),
-                    -1 => Some((r * columns, next * columns + columns - 1)),
-                    _ => None,
-                };
-                let row = Row {
-                    a,
-                    b: ((next * columns + lo) as i64 + di) as usize,
-                    s: k * nodes + a,
-                    len: hi - lo,
-                    wrap: wrap.map(|(i, j)| (i, j, k * nodes + i)),
-                };
-                let (over, wrap_over) = row_forces_applied(&law, &row, (ux, uy), breaks.limit, (fx, fy), &mut chunk);
-                if over {
-                    breaks.record_run(&law, &row, (ux, uy));
-                }
-                if let (true, Some((_, _, w))) = (wrap_over, row.wrap) {
-                    breaks.record(w);
-                }
-            }
-        }
-        let newly_broken = breaks.count;
-        // Eq. 3: stable when every |F_i| < δF. A component of at least δF decides at once;
-        // only when there is none is each |F_i| checked exactly.
-        let tolerance = m.force_tolerance;
-        let stable = !some_component_reaches(fx, fy, tolerance)
-            && fx.iter().zip(fy.iter()).all(|(&x, &y)| below(x, y, tolerance));
-        if !stable {
-            let constants = [d.decay, d.drift, d.inverse_damping, d.step_over_damping];
-            move_nodes(constants, d.vx, d.vy, d.fx, d.fy, ux, uy);
-        }
-        self.after_short_step(newly_broken, stable);
-        lattice.spring_count() as u64
-    }
-
-    /// Counts the springs a short step broke, and takes a long step (Eq. 1) if it was stable.
-    fn after_short_step(&mut self, newly_broken: u32, stable: bool) {
+        d.newly_broken += newly_broken;
+        d.phase = if end == springs { Phase::Below(0) } else { Phase::Springs(end) };
         self.broken += newly_broken;
+        (end - from) as u64
+    }
+
+    /// Ends a short step that broke `newly_broken` springs (already counted): tests the crack
+    /// density, and takes a long step (Eq. 1) if the lattice was stable.
+    fn after_short_step(&mut self, newly_broken: u32, stable: bool) {
         if newly_broken > 0 && self.density_reached() {
             self.finished = true;
         }

@@ -428,25 +428,40 @@ impl<'a, S: Scalar> Mud<'a, S> {
         Ok(mud)
     }
 
-    /// Advances the run by about `budget` units of work (one unit is one spring visited): it
-    /// does indivisible pieces (a short step of the explicit solver, a node relaxation or
-    /// break event of the quasi-static one) until their work reaches the budget, so a call on
-    /// an unfinished run does at least one piece and overruns the budget by at most one piece
-    /// (the network's tracing when the run ends is not counted; it is bounded by the
-    /// lattice's size). The run does not depend on the budgets.
+    /// Advances the run by about `budget` units of work (one unit is one spring or one node
+    /// visited): it does pieces until their work reaches the budget, so a call on an
+    /// unfinished run does at least one piece and overruns `max(budget, 1)` by less than one
+    /// piece. A piece is bounded by a row of the lattice or a node, not by its size:
+    ///
+    /// - explicit solver: a short step is resumed where the last call stopped, in the paper's
+    ///   order (the springs' limits once per long step, then the forces and breaks of Eq. 2
+    ///   and 5 row by row, direction by direction, the stability test of Eq. 3 and the move
+    ///   of Eq. 4 node by node). A piece is one row's springs in one direction and their
+    ///   rescan for breaks, at most 2·columns; the irregular lattice goes spring by spring and
+    ///   node by node and does not overrun. Stopped mid-step, the displacements are partly
+    ///   moved; the springs broken so far count in [`MudProgress::broken_springs`].
+    /// - quasi-static solver: a node's relaxation (its springs: 4 square, 6 hexagonal, at most
+    ///   16 irregular), a break event (1), or the refresh of the nodes
+    ///   a relaxation touched, node by node (each its springs).
+    ///
+    /// The call that ends the run also traces the network ([`Mud::trace`]), counted in the
+    /// same units and at most [`Mud::trace_work_bound`] (18 per spring slot), so that call may
+    /// do that much more. The run does not depend on the budgets: every budget gives the same
+    /// run bit for bit.
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
+            let left = budget.saturating_sub(work);
             work += match self.solver {
-                SolverState::Explicit(_) => self.explicit_step(),
-                SolverState::QuasiStatic(_) => self.quasi_static_step(),
+                SolverState::Explicit(_) => self.explicit_step(left),
+                SolverState::QuasiStatic(_) => self.quasi_static_step(left),
             };
             if work >= budget {
                 break;
             }
         }
         if self.finished && self.traced_broken != self.broken {
-            self.trace();
+            work += self.trace_counted();
         }
         self.work += work;
         self.progress()
@@ -682,6 +697,110 @@ mod tests {
             assert!(quasi_static.memory().is_ok());
             // Nor is the 1-D spacing prediction, which does not depend on τ.
             assert!(MudParams { short_step: 0.02, topology, ..explicit }.predicted_spacing(0.02).is_some());
+        }
+    }
+
+    /// What a run leaves, to compare runs bit for bit: break times, displacements, the
+    /// traced network and cells.
+    #[derive(Debug, PartialEq)]
+    struct Outcome {
+        break_time: vec::Vec<u32>,
+        displacement: vec::Vec<(u32, u32)>,
+        network: std::string::String,
+        cells: CellCounts,
+        progress: (u32, u32, u32, bool, u64),
+    }
+
+    /// Runs `p` with `budget` per call (`None`: one `run()`), asserting each call's work is
+    /// within the budget and one piece (and, in the call that ends the run, the tracing).
+    fn outcome(p: &MudParams, budget: Option<u64>) -> Outcome {
+        let m = p.memory().unwrap();
+        let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        let mut mud = Mud::new(p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+        let piece = match (p.solver, p.topology) {
+            // A row's springs in one direction and their rescan for breaks.
+            (Solver::Explicit, Topology::Square | Topology::Hexagonal) => 2 * u64::from(p.columns),
+            // Spring by spring, node by node: no overrun.
+            (Solver::Explicit, Topology::Irregular) => 1,
+            // One node's springs.
+            (Solver::QuasiStatic, Topology::Square) => 4,
+            (Solver::QuasiStatic, Topology::Hexagonal) => 6,
+            (Solver::QuasiStatic, Topology::Irregular) => irregular::MAX_DEGREE as u64,
+        };
+        let trace = mud.trace_work_bound();
+        let progress = match budget {
+            None => mud.run(),
+            Some(budget) => loop {
+                let before = mud.progress().work;
+                let progress = mud.step(budget);
+                let work = progress.work - before;
+                let bound = budget.max(1) - 1 + piece + if progress.finished { trace } else { 0 };
+                assert!(work <= bound, "{p:?}: budget {budget}: {work} > {bound}");
+                if progress.finished {
+                    break progress;
+                }
+            },
+        };
+        let counts = mud.network_counts();
+        let mut v = vec![NetworkVertex::default(); counts.vertices];
+        let mut e = vec![NetworkEdge::default(); counts.edges];
+        let mut q = vec![NetworkPoint::default(); counts.points];
+        mud.network(&mut v, &mut e, &mut q).unwrap();
+        Outcome {
+            break_time: mud.break_time.to_vec(),
+            displacement: (0..mud.lattice.node_count())
+                .map(|n| {
+                    let (x, y) = mud.displacement(n);
+                    (x.to_bits(), y.to_bits())
+                })
+                .collect(),
+            network: std::format!("{v:?} {e:?} {q:?}"),
+            cells: mud.cell_counts(),
+            progress: (
+                progress.broken_springs,
+                progress.shrink.to_bits(),
+                progress.time.to_bits(),
+                progress.finished,
+                progress.work,
+            ),
+        }
+    }
+
+    /// Frame budgets (issue 26 item 5): any budget gives the run of one call, bit for bit, and
+    /// the same work in total, and each call does at most its budget and one piece bounded by a row (explicit) or a node's
+    /// springs (quasi-static), plus the tracing in the call that ends the run; the tracing is
+    /// counted within its bound.
+    #[test]
+    fn budgets_change_no_bit_and_bound_each_call() {
+        use Boundary::{Open, Periodic};
+        use Topology::{Hexagonal, Irregular, Square};
+        let small = MudParams { columns: 10, rows: 8, target_shrink: 0.03, ..MudParams::default() };
+        let cases = [
+            (Hexagonal, Periodic, Solver::Explicit, Drive::Shrink),
+            (Hexagonal, Open, Solver::Explicit, Drive::Growth),
+            (Square, Open, Solver::Explicit, Drive::Shrink),
+            (Square, Periodic, Solver::Explicit, Drive::Growth),
+            (Irregular, Periodic, Solver::Explicit, Drive::Shrink),
+            (Irregular, Open, Solver::Explicit, Drive::Growth),
+            (Hexagonal, Open, Solver::QuasiStatic, Drive::Shrink),
+            (Hexagonal, Periodic, Solver::QuasiStatic, Drive::Growth),
+            (Square, Periodic, Solver::QuasiStatic, Drive::Shrink),
+            (Irregular, Open, Solver::QuasiStatic, Drive::Shrink),
+            (Irregular, Periodic, Solver::QuasiStatic, Drive::Growth),
+        ];
+        for (topology, boundary, solver, drive) in cases {
+            let p = MudParams { topology, boundary, solver, drive, ..small };
+            let whole = outcome(&p, None);
+            assert!(whole.progress.0 > 0, "{p:?}: nothing broke");
+            for budget in [1, 7, 1000] {
+                assert!(outcome(&p, Some(budget)) == whole, "{p:?}: budget {budget} changed the run");
+            }
+            // The tracing is counted within its bound.
+            let m = p.memory().unwrap();
+            let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+            let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+            mud.run();
+            assert!(mud.trace_counted() <= mud.trace_work_bound());
         }
     }
 }

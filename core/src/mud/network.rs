@@ -238,9 +238,27 @@ impl<S: Scalar> Mud<'_, S> {
     /// Traces the network of the cracks as they stand (see the module docs). [`Mud::step`]
     /// traces when the run ends; call this to see the network of an unfinished run. The
     /// network, the cells and the rasters describe the state last traced. Work: a few passes
-    /// over the springs and mesh cells.
+    /// over the springs and mesh cells, at most [`Mud::trace_work_bound`] units as
+    /// [`Mud::step`] counts them.
     pub fn trace(&mut self) {
+        self.trace_counted();
+    }
+
+    /// The most work [`Mud::trace`] is counted as: 18 units per spring slot (see
+    /// [`Mud::step`]).
+    pub fn trace_work_bound(&self) -> u64 {
+        18 * self.lattice.spring_count() as u64
+    }
+
+    /// [`Mud::trace`], returning its work in the units of [`Mud::step`]'s budget: the
+    /// passes' lengths in spring slots (the springs twice, each spring from both its nodes,
+    /// the mesh cells' sides five times) and each mesh cell taken off the stack (its sides),
+    /// at most [`Mud::trace_work_bound`]: the sides are at most twice the springs, and each
+    /// of the two stacking passes takes a cell at most once.
+    pub(super) fn trace_counted(&mut self) -> u64 {
         let cells = self.lattice.cell_count();
+        let corners: u64 = if self.lattice.topology == super::Topology::Square { 4 } else { 3 };
+        let mut taken = 0u64;
         // Break times are ≥ 0 (−0 at the very start, whose sign bit is cleared here).
         for (cut, &time) in self.trace.iter_mut().zip(self.break_time.iter()) {
             *cut = if time == INTACT { INTACT } else { time & !BRANCH };
@@ -250,6 +268,7 @@ impl<S: Scalar> Mud<'_, S> {
         let mut top = self.stack_single_cuts(0..cells, usize::MAX, 0, false);
         while top > 0 {
             top -= 1;
+            taken += 1;
             let cell = self.stack[top] as usize;
             let Some(c) = self.lattice.cell(cell) else { continue };
             let sides = &c.sides[..c.corners];
@@ -311,6 +330,7 @@ impl<S: Scalar> Mud<'_, S> {
         top = self.stack_single_cuts(0..cells, usize::MAX, top, true);
         while top > 0 {
             top -= 1;
+            taken += 1;
             let cell = self.stack[top] as usize;
             let Some(c) = self.lattice.cell(cell) else { continue };
             let mut separating = c.sides[..c.corners].iter().map(|&s| s as usize).filter(|&s| self.separates(s));
@@ -339,6 +359,8 @@ impl<S: Scalar> Mud<'_, S> {
         // 6. The cells' rings: where each one starts (see `cells`).
         self.find_ring_starts();
         self.traced_broken = self.broken;
+        let springs = self.lattice.spring_count() as u64;
+        4 * springs + (5 * cells as u64 + taken) * corners
     }
 
     /// The spring of triangle `cell` other than `spring` that has node `node`, if `cell` is

@@ -55,6 +55,9 @@ pub(super) struct Relaxation<'a, S> {
     /// Nodes relaxed since the tree was last brought up to date.
     touched: &'a mut [u32],
     touched_len: usize,
+    /// How far the refresh under way has come: touched nodes whose springs are up to date,
+    /// then (past `touched_len`) touched marks cleared.
+    refreshed: usize,
 }
 
 /// The node is in the queue.
@@ -71,7 +74,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         let flags = take(words, nodes);
         let touched = take(words, nodes);
         flags.fill(0);
-        Relaxation { break_misfit, tree, leaves, queue, flags, head: 0, len: 0, touched, touched_len: 0 }
+        Relaxation { break_misfit, tree, leaves, queue, flags, head: 0, len: 0, touched, touched_len: 0, refreshed: 0 }
     }
 
     /// The better of two tree entries.
@@ -294,13 +297,19 @@ impl<'a, S: Scalar> Mud<'a, S> {
         visited
     }
 
-    /// Brings the break misfits of the springs at every touched node up to date in the tree.
-    fn refresh_touched(&mut self) {
+    /// Brings the break misfits of the springs at the touched nodes up to date in the tree,
+    /// node by node in the order they were relaxed, then clears the nodes' touched marks,
+    /// until the work reaches `budget` (the refresh goes on where it stopped at the next
+    /// call). Returns the work: springs visited, and one per mark cleared.
+    fn refresh_touched(&mut self, budget: u64) -> u64 {
         let lattice = self.lattice;
         let count = self.relaxation().touched_len;
-        for t in 0..count {
+        let mut t = self.relaxation().refreshed;
+        let mut work = 0u64;
+        while t < count && work < budget {
             let node = self.relaxation().touched[t] as usize;
             lattice.for_each_spring_at(node, |spring, other, _, sign| {
+                work += 1;
                 // A spring between two touched nodes is brought up to date once, from its
                 // origin (the tree's result does not depend on the order of updates).
                 let shared = sign < 0.0 && self.relaxation().flags[other] & TOUCHED != 0;
@@ -314,22 +323,36 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     r.update(spring);
                 }
             });
+            t += 1;
         }
-        for t in 0..count {
-            let node = self.relaxation().touched[t] as usize;
-            self.relaxation().flags[node] &= !TOUCHED;
+        let r = self.relaxation();
+        while t >= count && t < 2 * count && work < budget {
+            let node = r.touched[t - count] as usize;
+            r.flags[node] &= !TOUCHED;
+            work += 1;
+            t += 1;
         }
-        self.relaxation().touched_len = 0;
+        if t == 2 * count {
+            (r.touched_len, r.refreshed) = (0, 0);
+        } else {
+            r.refreshed = t;
+        }
+        work
     }
 
-    /// One piece of quasi-static work: relax one queued node, or break the next spring
-    /// (jumping the misfit to it). Returns the work done (springs visited).
-    pub(super) fn quasi_static_step(&mut self) -> u64 {
+    /// One piece of quasi-static work: relax one queued node (its springs), refresh the
+    /// touched nodes' springs until the work reaches `budget` (at least one node's), or
+    /// break the next spring (jumping the misfit to it; one unit). Returns the work done
+    /// (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
+    pub(super) fn quasi_static_step(&mut self, budget: u64) -> u64 {
         if let Some(node) = self.relaxation().pop() {
             return self.relax(node);
         }
         if self.relaxation().touched_len > 0 {
-            self.refresh_touched();
+            let work = self.refresh_touched(budget.max(1));
+            if work > 0 {
+                return work;
+            }
         }
         let r = self.relaxation();
         let next = r.tree[1];
