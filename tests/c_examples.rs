@@ -640,7 +640,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
 #[test]
 fn c_work_counts_prints_every_case() {
     let output = regression("tests/c/work_counts.c");
-    assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 38, "{output}");
+    assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 42, "{output}");
 }
 
 /// Defect 1: a huge ring count formula is bounded by `max_cracks` (it ran for minutes).

@@ -8,6 +8,21 @@ pub(super) const fn pixel_centre(i: i64, shift: u32) -> i64 {
     (2 * i + 1) << (shift - 1)
 }
 
+/// The farthest an outline vertex is taken to lie from the origin, per axis (fixed point). A
+/// vertex beyond it (only a degenerate stretch puts one there: a Voronoi vertex of nearly
+/// collinear centres or a periodic box that saturated at `i64`'s range, the skin fuzz
+/// target's finding 15) is scanned as if there, so that the scan's sums and differences
+/// (of two vertices, or of a vertex and a pixel centre: at most 6·2⁶⁰) stay within `i64`,
+/// alike in every build. Real outlines lie within it: a surface of at most 2¹⁵ px in at most
+/// 44 fractional bits is 2⁵⁹, and a periodic box reaches five periods (5·2⁵⁹ < 3·2⁶⁰).
+const REACH: i64 = 3 << 60;
+
+/// `v` within [`REACH`] on both axes.
+#[inline]
+fn within_reach(v: [i64; 2]) -> [i64; 2] {
+    [v[0].clamp(-REACH, REACH), v[1].clamp(-REACH, REACH)]
+}
+
 /// Whether the edge a→b crosses the horizontal through `p` to the right of `p` (half-open in
 /// y, strict in x), exactly.
 fn crosses(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
@@ -112,7 +127,8 @@ pub(super) fn for_each_span(
     debug_assert!(n <= super::MAX_OUTLINE);
     let half = 1i64 << (shift - 1);
     let (mut y0, mut y1, mut x0) = (i64::MAX, i64::MIN, i64::MAX);
-    for v in outline {
+    for &v in outline {
+        let v = within_reach(v);
         y0 = y0.min(v[1]);
         y1 = y1.max(v[1]);
         x0 = x0.min(v[0]);
@@ -213,8 +229,9 @@ fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut pu
     let half = unit / 2;
     // 2^−shift: scaling by it is exact, like dividing by `unit`.
     let to_pixels = 1.0 / unit as f64;
-    let mut a = outline[outline.len() - 1];
+    let mut a = within_reach(outline[outline.len() - 1]);
     for (edge, &b) in outline.iter().enumerate() {
+        let b = within_reach(b);
         // The edge a→b (in any order: the caller sorts the crossings by row).
         let a = core::mem::replace(&mut a, b);
         let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
