@@ -461,6 +461,12 @@
 #define HIBI_MUD_IN_WRAPPING_CELL 4294967294
 
 /**
+ * The most work one piece of a mud run's network tracing does, in `hibi_mud_step`'s units:
+ * a call that traces does at most max(budget, 1) − 1 + this.
+ */
+#define HIBI_MUD_TRACE_PIECE 64
+
+/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_MUD_LAYER_MASK 0
@@ -1818,10 +1824,13 @@ void hibi_mud_destroy(struct hibi_mud *mud);
  * short steps are resumed where the last call stopped; its piece is one row of the lattice
  * in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
  * spring by spring and node by node: no overrun). The quasi-static solver's piece is one
- * node's springs (4 square, 6 hexagonal, at most 16 irregular). The call that ends the run
- * also traces the crack network, counted too: at most 18 units per spring slot (columns ×
- * rows × 2 square, × 3 hexagonal and irregular). The run does not depend on the budgets.
- * Writes where it stands to `*progress` unless it is NULL. Call until `progress.finished`.
+ * node's springs (4 square, 6 hexagonal, at most 16 irregular). When the physics ends, the
+ * crack network is traced within the same budgets, in pieces of at most
+ * `HIBI_MUD_TRACE_PIECE` units (its walks along cracks and cell boundaries resume where they
+ * stopped), and the run is finished when the trace is done; until then the network, the
+ * cells, the statistics and the rasters show no crack. The run does not depend on the
+ * budgets. Writes where it stands to `*progress` unless it is NULL. Call until
+ * `progress.finished`.
  *
  * # Safety
  * `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.

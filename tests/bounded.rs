@@ -27,18 +27,12 @@ const BUDGET: u64 = 20_000;
 const CALLS: usize = 40;
 
 /// Steps `step` up to [`CALLS`] times with `budget`; asserts each call's work is within
-/// `budget` plus `piece`, and the call that finishes within `ending` more (mud's tracing of
-/// the network). Returns the work done and whether the run finished.
-fn bounded(
-    name: &str,
-    budget: u64,
-    (piece, ending): (u64, u64),
-    mut step: impl FnMut(u64) -> (u64, bool),
-) -> (u64, bool) {
+/// `budget` less one plus `piece` (mud's tracing of the network included). Returns the work
+/// done and whether the run finished.
+fn bounded(name: &str, budget: u64, piece: u64, mut step: impl FnMut(u64) -> (u64, bool)) -> (u64, bool) {
     let (mut total, mut finished) = (0, false);
     for _ in 0..CALLS {
         let (work, done) = step(budget);
-        let piece = if done { piece + ending } else { piece };
         assert!(
             work <= budget.saturating_sub(1) + piece,
             "{name}: a call with budget {budget} did {work} work (piece bound {piece})"
@@ -85,16 +79,16 @@ fn mud_case(name: &str, params: &MudParams, budget: u64) -> (u64, bool) {
     assert_eq!((memory.scalars, memory.words), (base.scalars, base.words), "{name}: the memory follows the size only");
     let mut store = memory.allocate();
     let mut mud = Mud::<f32>::new(params, store.buffers()).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-    // One piece: a row's springs in one direction and their rescan for breaks (explicit), or
-    // one node's springs (quasi-static, 6 on the hexagonal lattice); the call that ends the
-    // run also traces the network.
+    // One piece: a row's springs in one direction and their rescan for breaks (explicit),
+    // one node's springs (quasi-static, 6 on the hexagonal lattice), or a piece of the
+    // network's tracing; no call does more.
     let piece = match params.solver {
         Solver::Explicit => 2 * u64::from(params.columns),
         Solver::QuasiStatic => 6,
-    };
-    let ending = mud.trace_work_bound();
+    }
+    .max(hibi_core::mud::TRACE_PIECE);
     let mut work = 0;
-    let result = bounded(name, budget, (piece, ending), |b| {
+    let result = bounded(name, budget, piece, |b| {
         let progress = mud.step(b);
         let done = progress.work - work;
         work = progress.work;
@@ -185,7 +179,7 @@ fn glass_case(name: &str, params: &GlassParams, budget: u64) -> (u64, bool) {
     // One piece: the step loop's look at every crack, and one tip update's queries, which
     // examine grid cells and entries (the grid words) a bounded number of times.
     let piece = 8 * (memory.words + memory.cracks + memory.vertices + memory.edges) as u64 + 64;
-    let result = bounded(name, budget, (piece, 0), |b| {
+    let result = bounded(name, budget, piece, |b| {
         let before = glass.progress().work;
         let progress = glass.step(b);
         assert!(progress.cracks as usize <= memory.cracks && progress.vertices as usize <= memory.vertices);
@@ -265,7 +259,7 @@ fn skin_case(name: &str, params: &SkinParams, budget: u64) -> (u64, bool) {
     // level-0 centre point (the step checks its budget before each cell).
     let piece = hibi_core::skin::MAX_OUTLINE as u64 + 1;
     let mut work = 0;
-    let result = bounded(name, budget, (piece, 0), |b| {
+    let result = bounded(name, budget, piece, |b| {
         let progress = skin.step(b);
         let done = progress.work - work;
         work = progress.work;

@@ -164,6 +164,12 @@ pub const HIBI_MUD_IN_WRAPPING_CELL: u32 = 0xFFFF_FFFE;
 
 const _: () = assert!(HIBI_MUD_IN_WRAPPING_CELL == hibi_core::mud::IN_WRAPPING_CELL);
 
+/// The most work one piece of a mud run's network tracing does, in `hibi_mud_step`'s units:
+/// a call that traces does at most max(budget, 1) − 1 + this.
+pub const HIBI_MUD_TRACE_PIECE: u64 = 64;
+
+const _: () = assert!(HIBI_MUD_TRACE_PIECE == hibi_core::mud::TRACE_PIECE);
+
 /// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
 /// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
 /// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
@@ -273,10 +279,13 @@ impl Object for hibi_mud {
 /// short steps are resumed where the last call stopped; its piece is one row of the lattice
 /// in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
 /// spring by spring and node by node: no overrun). The quasi-static solver's piece is one
-/// node's springs (4 square, 6 hexagonal, at most 16 irregular). The call that ends the run
-/// also traces the crack network, counted too: at most 18 units per spring slot (columns ×
-/// rows × 2 square, × 3 hexagonal and irregular). The run does not depend on the budgets.
-/// Writes where it stands to `*progress` unless it is NULL. Call until `progress.finished`.
+/// node's springs (4 square, 6 hexagonal, at most 16 irregular). When the physics ends, the
+/// crack network is traced within the same budgets, in pieces of at most
+/// `HIBI_MUD_TRACE_PIECE` units (its walks along cracks and cell boundaries resume where they
+/// stopped), and the run is finished when the trace is done; until then the network, the
+/// cells, the statistics and the rasters show no crack. The run does not depend on the
+/// budgets. Writes where it stands to `*progress` unless it is NULL. Call until
+/// `progress.finished`.
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.

@@ -48,6 +48,37 @@ enum At {
     Border { c: TracedCell, i: usize },
 }
 
+/// Where the search for ring starts stands, as the trace keeps it between calls.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct RingCursor {
+    /// The mesh cell whose separating sides are next.
+    cell: usize,
+    /// Its side the walk under way started from, or the next side to look at.
+    side: usize,
+    /// The walk under way from that side.
+    walk: Option<RingWalk>,
+}
+
+impl RingCursor {
+    /// The search's start.
+    pub(super) const START: RingCursor = RingCursor { cell: 0, side: 0, walk: None };
+}
+
+/// A ring walk under way: where it is, its steps, and the lowest key it has entered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct RingWalk {
+    at: RingAt,
+    step: usize,
+    lowest: usize,
+}
+
+/// [`At`] by mesh cell index (the cell as the network sees it is worked out again).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum RingAt {
+    Inside { cell: usize, k: usize, wrap: [i32; 2] },
+    Border { cell: usize, i: usize },
+}
+
 /// How a ring walk ended.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum RingEnd {
@@ -78,111 +109,211 @@ const WRAPS: u32 = 4;
 const WALKED: u32 = 8;
 
 impl<S: Scalar> Mud<'_, S> {
+    /// The key a ring walk from `start` ends at.
+    fn start_key(start: &At) -> usize {
+        match *start {
+            At::Inside { c, k, .. } => key(c.index, k),
+            At::Border { c, i } => border_key(c.index, i),
+        }
+    }
+
+    /// The most steps a ring walk takes (more cannot happen on a consistent trace).
+    fn ring_step_bound(&self) -> usize {
+        8 * self.lattice.cell_count() + 16
+    }
+
     /// Walks the ring from `start`, calling `visit(point, key)` with every point and the key
     /// of each mesh cell it enters (`usize::MAX` for other points); stops if `visit` returns
     /// false.
     fn walk_ring(&self, start: At, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
-        let start_key = match start {
-            At::Inside { c, k, .. } => key(c.index, k),
-            At::Border { c, i } => border_key(c.index, i),
-        };
+        let start_key = Self::start_key(&start);
         let mut at = start;
-        let bound = 8 * self.lattice.cell_count() + 16;
-        for step in 0..bound {
-            let moved = step > 0;
-            at = match at {
-                At::Inside { c, k, wrap } => {
-                    // The first separating side clockwise from k bounds this corner's region.
-                    let n = c.sides();
-                    let j = (1..n).map(|d| (k + n - d) % n).find(|&j| c.separating[j]).unwrap_or(k);
-                    if c.separating_count() >= 3 && !visit(c.centroid(), usize::MAX) {
-                        return RingEnd::Stopped;
-                    }
-                    match self.across(&c, j, wrap) {
-                        Some((next, side, wrap)) => {
-                            if !visit(self.crack_point(&c, j), key(next.index, side)) {
-                                return RingEnd::Stopped;
-                            }
-                            if key(next.index, side) == start_key {
-                                return RingEnd::Closed(wrap);
-                            }
-                            At::Inside { c: next, k: side, wrap }
+        for step in 0..self.ring_step_bound() {
+            match self.ring_step(at, start_key, step > 0, &mut visit) {
+                Ok(next) => at = next,
+                Err(end) => return end,
+            }
+        }
+        RingEnd::Broken
+    }
+
+    /// One step of a ring walk from `at` (`moved`: not the walk's first): to the next mesh
+    /// cell the ring enters or the next border corner, visiting the points on the way (at
+    /// most one of them with a mesh cell's key). `Err` when the walk ends.
+    fn ring_step(
+        &self,
+        at: At,
+        start_key: usize,
+        moved: bool,
+        visit: &mut impl FnMut([f32; 2], usize) -> bool,
+    ) -> Result<At, RingEnd> {
+        Ok(match at {
+            At::Inside { c, k, wrap } => {
+                // The first separating side clockwise from k bounds this corner's region.
+                let n = c.sides();
+                let j = (1..n).map(|d| (k + n - d) % n).find(|&j| c.separating[j]).unwrap_or(k);
+                if c.separating_count() >= 3 && !visit(c.centroid(), usize::MAX) {
+                    return Err(RingEnd::Stopped);
+                }
+                match self.across(&c, j, wrap) {
+                    Some((next, side, wrap)) => {
+                        if !visit(self.crack_point(&c, j), key(next.index, side)) {
+                            return Err(RingEnd::Stopped);
                         }
-                        None => {
-                            let i = (j + 1) % n;
-                            if !visit(self.crack_point(&c, j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
-                                return RingEnd::Stopped;
+                        if key(next.index, side) == start_key {
+                            return Err(RingEnd::Closed(wrap));
+                        }
+                        At::Inside { c: next, k: side, wrap }
+                    }
+                    None => {
+                        let i = (j + 1) % n;
+                        if !visit(self.crack_point(&c, j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
+                            return Err(RingEnd::Stopped);
+                        }
+                        At::Border { c, i }
+                    }
+                }
+            }
+            At::Border { c, i } => {
+                // The side leaving corner i counter-clockwise: on the border, or turn about
+                // the corner into the next mesh cell.
+                match self.across(&c, i, [0, 0]) {
+                    Some((next, side, _)) => At::Border { c: next, i: (side + 1) % next.sides() },
+                    None => {
+                        if moved && border_key(c.index, i) == start_key {
+                            return Err(RingEnd::Closed([0, 0]));
+                        }
+                        if c.separating[i] {
+                            if !visit(self.crack_point(&c, i), key(c.index, i)) {
+                                return Err(RingEnd::Stopped);
+                            }
+                            if key(c.index, i) == start_key {
+                                return Err(RingEnd::Closed([0, 0]));
+                            }
+                            At::Inside { c, k: i, wrap: [0, 0] }
+                        } else {
+                            let i = (i + 1) % c.sides();
+                            if !visit(c.corner[i], usize::MAX) {
+                                return Err(RingEnd::Stopped);
                             }
                             At::Border { c, i }
                         }
                     }
                 }
-                At::Border { c, i } => {
-                    // The side leaving corner i counter-clockwise: on the border, or turn about
-                    // the corner into the next mesh cell.
-                    match self.across(&c, i, [0, 0]) {
-                        Some((next, side, _)) => At::Border { c: next, i: (side + 1) % next.sides() },
-                        None => {
-                            if moved && border_key(c.index, i) == start_key {
-                                return RingEnd::Closed([0, 0]);
-                            }
-                            if c.separating[i] {
-                                if !visit(self.crack_point(&c, i), key(c.index, i)) {
-                                    return RingEnd::Stopped;
-                                }
-                                if key(c.index, i) == start_key {
-                                    return RingEnd::Closed([0, 0]);
-                                }
-                                At::Inside { c, k: i, wrap: [0, 0] }
-                            } else {
-                                let i = (i + 1) % c.sides();
-                                if !visit(c.corner[i], usize::MAX) {
-                                    return RingEnd::Stopped;
-                                }
-                                At::Border { c, i }
-                            }
-                        }
-                    }
-                }
-            };
-        }
-        RingEnd::Broken
+            }
+        })
     }
 
     /// Finds where each ring starts (its lowest key) and whether it wraps, walking each ring
-    /// once: part of [`Mud::trace`].
-    pub(super) fn find_ring_starts(&mut self) {
-        let starts = core::mem::take(&mut self.ring_starts);
-        starts.fill(0);
-        for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.cut_cell(cell) else { continue };
-            for k in (0..c.sides()).filter(|&k| c.separating[k]) {
-                if starts[cell] & 1 << (WALKED + k as u32) != 0 {
-                    continue;
+    /// once, from `cursor` until the work reaches `budget` (at least one item): part of the
+    /// trace ([`Mud::trace`]). An item is a mesh cell (its sides) or one step of a ring walk
+    /// (1); a walk stopped by the budget goes on from its step in the next call. Returns the
+    /// work and the cursor to go on from (`None`: done). The ring-start words were cleared
+    /// when the vertices were numbered.
+    pub(super) fn find_ring_starts(&mut self, mut cursor: RingCursor, budget: u64) -> (u64, Option<RingCursor>) {
+        let cells = self.lattice.cell_count();
+        let corners = self.lattice.sides_per_cell() as u64;
+        let mut work = 0u64;
+        while work < budget {
+            let Some(walk) = cursor.walk else {
+                // The next separating side of this cell, from `side` on, not walked yet.
+                if cursor.cell >= cells {
+                    return (work, None);
                 }
-                let mut lowest = key(cell, k);
-                let end = self.walk_ring(At::Inside { c, k, wrap: [0, 0] }, |_, entered| {
-                    if entered != usize::MAX {
-                        starts[entered / 4] |= 1 << (WALKED + (entered % 4) as u32);
-                        lowest = lowest.min(entered);
+                if cursor.side == 0 {
+                    work += corners;
+                }
+                let next_cell = RingCursor { cell: cursor.cell + 1, side: 0, walk: None };
+                let Some(c) = self.cut_cell(cursor.cell) else {
+                    cursor = next_cell;
+                    continue;
+                };
+                let walked = self.ring_starts[cursor.cell];
+                let unwalked = |k: usize| c.separating[k] && walked & 1 << (WALKED + k as u32) == 0;
+                cursor = match (cursor.side..c.sides()).find(|&k| unwalked(k)) {
+                    Some(k) => {
+                        let at = RingAt::Inside { cell: cursor.cell, k, wrap: [0, 0] };
+                        let walk = RingWalk { at, step: 0, lowest: key(cursor.cell, k) };
+                        RingCursor { side: k, walk: Some(walk), ..cursor }
+                    }
+                    None => next_cell,
+                };
+                continue;
+            };
+            // Go on with the walk from side `cursor.side` of `cursor.cell`.
+            let start_key = key(cursor.cell, cursor.side);
+            let after = RingCursor { side: cursor.side + 1, walk: None, ..cursor };
+            let Some(mut at) = self.ring_at(walk.at) else {
+                cursor = after;
+                continue;
+            };
+            let (mut step, mut lowest) = (walk.step, walk.lowest);
+            let end = loop {
+                if step >= self.ring_step_bound() {
+                    break Some(RingEnd::Broken);
+                }
+                if work >= budget {
+                    break None;
+                }
+                let mut entered = usize::MAX;
+                let next = self.ring_step(at, start_key, step > 0, &mut |_, k| {
+                    if k != usize::MAX {
+                        entered = k;
                     }
                     true
                 });
-                let bit = match end {
-                    RingEnd::Closed([0, 0]) => STARTS,
-                    RingEnd::Closed(_) => WRAPS,
-                    RingEnd::Stopped | RingEnd::Broken => continue,
-                };
-                starts[lowest / 4] |= 1 << (bit + (lowest % 4) as u32);
+                step += 1;
+                work += 1;
+                if entered != usize::MAX {
+                    self.ring_starts[entered / 4] |= 1 << (WALKED + (entered % 4) as u32);
+                    lowest = lowest.min(entered);
+                }
+                match next {
+                    Ok(next) => at = next,
+                    Err(end) => break Some(end),
+                }
+            };
+            let Some(end) = end else {
+                cursor.walk = Some(RingWalk { at: Self::ring_at_of(&at), step, lowest });
+                break;
+            };
+            let bit = match end {
+                RingEnd::Closed([0, 0]) => Some(STARTS),
+                RingEnd::Closed(_) => Some(WRAPS),
+                RingEnd::Stopped | RingEnd::Broken => None,
+            };
+            if let Some(bit) = bit {
+                self.ring_starts[lowest / 4] |= 1 << (bit + (lowest % 4) as u32);
             }
+            cursor = after;
         }
-        self.ring_starts = starts;
+        (work, Some(cursor))
+    }
+
+    /// A ring walk's place as the trace keeps it.
+    fn ring_at_of(at: &At) -> RingAt {
+        match *at {
+            At::Inside { c, k, wrap } => RingAt::Inside { cell: c.index, k, wrap },
+            At::Border { c, i } => RingAt::Border { cell: c.index, i },
+        }
+    }
+
+    /// The ring walk's place `at`, with its mesh cell as the network sees it.
+    fn ring_at(&self, at: RingAt) -> Option<At> {
+        Some(match at {
+            RingAt::Inside { cell, k, wrap } => At::Inside { c: self.traced_cell(cell, wrap)?, k, wrap },
+            RingAt::Border { cell, i } => At::Border { c: self.traced_cell(cell, [0, 0])?, i },
+        })
     }
 
     /// Calls `ring(start)` with the start of every ring that closes in the plane, in a fixed
     /// order (by the lowest mesh cell and side it enters), and returns the number of rings
     /// that wrap around a periodic lattice.
     fn for_each_ring(&self, mut ring: impl FnMut(At)) -> usize {
+        // A trace under way has no cells to show yet.
+        if self.is_tracing() {
+            return 0;
+        }
         let mut wrapping = 0;
         let mut border_touched = false;
         for cell in 0..self.lattice.cell_count() {

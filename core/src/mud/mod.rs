@@ -46,7 +46,7 @@ mod trace;
 pub use cells::{CellCounts, CellRing, IN_WRAPPING_CELL};
 pub use lattice::Lattice;
 pub use material::Material;
-pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
+pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex, TRACE_PIECE};
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
 pub use render::{BEVEL, MudLayers, MudRender};
@@ -285,6 +285,10 @@ pub struct Mud<'a, S: Scalar = f32> {
     vertex_total: u32,
     /// Springs broken when the network was last traced.
     traced_broken: u32,
+    /// The trace under way, if one is.
+    tracing: Option<network::TracePass>,
+    /// The top of the tracing's stack (in `stack`), while a trace is under way.
+    trace_top: usize,
     /// The faces of the broken springs, summed (the irregular lattice's crack length).
     broken_face: f32,
     solver: SolverState<'a, S>,
@@ -414,6 +418,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
             ring_starts,
             vertex_total: 0,
             traced_broken: 0,
+            tracing: None,
+            trace_top: 0,
             broken_face: 0.0,
             solver,
             long_steps: 0,
@@ -444,10 +450,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
     ///   16 irregular), a break event (1), or the refresh of the nodes
     ///   a relaxation touched, node by node (each its springs).
     ///
-    /// The call that ends the run also traces the network ([`Mud::trace`]), counted in the
-    /// same units and at most [`Mud::trace_work_bound`] (18 per spring slot), so that call may
-    /// do that much more. The run does not depend on the budgets: every budget gives the same
-    /// run bit for bit.
+    /// When the physics ends, the network is traced ([`Mud::trace`]) in the same way, in
+    /// pieces of at most [`TRACE_PIECE`] units, within the same budgets: a call does both
+    /// while its budget lasts, and the run is finished when the trace is done. Meanwhile
+    /// ([`Mud::is_tracing`]) the outputs that read the network describe no crack. The run
+    /// does not depend on the budgets: every budget gives the same run bit for bit.
     pub fn step(&mut self, budget: u64) -> MudProgress {
         let mut work = 0u64;
         while !self.finished {
@@ -460,8 +467,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 break;
             }
         }
-        if self.finished && self.traced_broken != self.broken {
-            work += self.trace_counted();
+        if self.finished && self.tracing.is_none() && self.traced_broken != self.broken {
+            self.tracing = Some(network::TracePass::Breaks(0));
+        }
+        if self.tracing.is_some() && work < budget.max(1) {
+            work += self.trace_step(budget.saturating_sub(work));
         }
         self.work += work;
         self.progress()
@@ -479,7 +489,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             time: self.time_now(),
             broken_springs: self.broken,
             crack_density: self.crack_density(),
-            finished: self.finished,
+            finished: self.finished && self.tracing.is_none() && self.traced_broken == self.broken,
             work: self.work,
         }
     }
@@ -712,7 +722,7 @@ mod tests {
     }
 
     /// Runs `p` with `budget` per call (`None`: one `run()`), asserting each call's work is
-    /// within the budget and one piece (and, in the call that ends the run, the tracing).
+    /// within the budget and one piece, and that a trace under way shows no network.
     fn outcome(p: &MudParams, budget: Option<u64>) -> Outcome {
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
@@ -727,20 +737,33 @@ mod tests {
             (Solver::QuasiStatic, Topology::Hexagonal) => 6,
             (Solver::QuasiStatic, Topology::Irregular) => irregular::MAX_DEGREE as u64,
         };
-        let trace = mud.trace_work_bound();
+        let piece = piece.max(TRACE_PIECE);
+        let mut traced_in = 0;
         let progress = match budget {
             None => mud.run(),
             Some(budget) => loop {
                 let before = mud.progress().work;
                 let progress = mud.step(budget);
                 let work = progress.work - before;
-                let bound = budget.max(1) - 1 + piece + if progress.finished { trace } else { 0 };
+                let bound = budget.max(1) - 1 + piece;
                 assert!(work <= bound, "{p:?}: budget {budget}: {work} > {bound}");
+                if mud.is_tracing() {
+                    // Not finished, and no half-traced network shows.
+                    traced_in += 1;
+                    assert!(!progress.finished, "{p:?}");
+                    assert_eq!(mud.network_counts(), NetworkCounts::default(), "{p:?}");
+                    assert_eq!(mud.cell_counts(), CellCounts::default(), "{p:?}");
+                    assert_eq!(mud.statistics().junctions, 0, "{p:?}");
+                }
                 if progress.finished {
                     break progress;
                 }
             },
         };
+        // A small budget spreads the trace over calls.
+        if budget == Some(1) {
+            assert!(traced_in > 100, "{p:?}: traced in {traced_in} calls");
+        }
         let counts = mud.network_counts();
         let mut v = vec![NetworkVertex::default(); counts.vertices];
         let mut e = vec![NetworkEdge::default(); counts.edges];
@@ -767,9 +790,9 @@ mod tests {
     }
 
     /// Frame budgets (issue 26 item 5): any budget gives the run of one call, bit for bit, and
-    /// the same work in total, and each call does at most its budget and one piece bounded by a row (explicit) or a node's
-    /// springs (quasi-static), plus the tracing in the call that ends the run; the tracing is
-    /// counted within its bound.
+    /// the same work in total, and each call does at most its budget and one piece bounded by
+    /// a row (explicit), a node's springs (quasi-static) or [`TRACE_PIECE`] (the tracing, which
+    /// shows nothing while under way).
     #[test]
     fn budgets_change_no_bit_and_bound_each_call() {
         use Boundary::{Open, Periodic};
@@ -795,12 +818,14 @@ mod tests {
             for budget in [1, 7, 1000] {
                 assert!(outcome(&p, Some(budget)) == whole, "{p:?}: budget {budget} changed the run");
             }
-            // The tracing is counted within its bound.
+            // Tracing again in one call finds the network the budgeted trace found.
             let m = p.memory().unwrap();
             let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
             let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
-            mud.run();
-            assert!(mud.trace_counted() <= mud.trace_work_bound());
+            while !mud.step(3).finished {}
+            let before = mud.network_counts();
+            mud.trace();
+            assert_eq!(mud.network_counts(), before, "{p:?}");
         }
     }
 }

@@ -62,6 +62,7 @@
 //! cut springs on the plate's border; its edges are the chains of points between vertices.
 //! The opening (width) at a point is the separation |x_j − x_i − l·e_ij| of its spring.
 
+use super::cells::RingCursor;
 use super::lattice::Cell;
 use super::{INTACT, Mud};
 use crate::scalar::Scalar;
@@ -178,6 +179,46 @@ impl TracedCell {
     }
 }
 
+/// The most work one piece of the tracing does ([`Mud::step`]'s units): a node whose
+/// springs are all cut, at most 16, counted four times (the arc of them left uncut is chosen
+/// by turning about the node). A tip that joins a crack one node away does at most 3 + 3·16.
+pub const TRACE_PIECE: u64 = 4 * super::irregular::MAX_DEGREE as u64;
+
+/// Where a trace under way stands: the pass, and the item it goes on with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum TracePass {
+    /// Break times into the trace, by spring.
+    Breaks(usize),
+    /// Rule 1: stacking the mesh cells with one cut side, by cell.
+    StackTips(usize),
+    /// Rule 1: continuing the stacked tips.
+    Continue,
+    /// Rule 1: closing dead ends that have not opened, by cell, and the walk along one.
+    DeadEnds(usize, Option<DeadEndWalk>),
+    /// Rule 2, by node.
+    Nodes(usize),
+    /// Rule 3: stacking the mesh cells with one separating side, by cell.
+    StackBranches(usize),
+    /// Rule 3: pruning the stacked branches.
+    Prune,
+    /// Vertex numbering, by cell.
+    Number(usize),
+    /// Crack points, by spring.
+    Offsets(usize),
+    /// The cells' ring starts.
+    Rings(super::cells::RingCursor),
+}
+
+/// A walk along a dead-end crack, where it stands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum DeadEndWalk {
+    /// Checking whether the crack has opened: spring `spring` of mesh cell `at` is next,
+    /// `steps` springs from the tip.
+    Check { at: usize, spring: usize, steps: usize },
+    /// Closing it: mesh cell `at`'s cut spring is next.
+    Close { at: usize },
+}
+
 /// Where a walk along the network ends: a vertex, and the side of its cell it arrived by.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Arrival {
@@ -235,132 +276,243 @@ impl<S: Scalar> Mud<'_, S> {
         c.sides[..c.corners].iter().filter(|&&s| counted(s)).count()
     }
 
-    /// Traces the network of the cracks as they stand (see the module docs). [`Mud::step`]
-    /// traces when the run ends; call this to see the network of an unfinished run. The
-    /// network, the cells and the rasters describe the state last traced. Work: a few passes
-    /// over the springs and mesh cells, at most [`Mud::trace_work_bound`] units as
-    /// [`Mud::step`] counts them.
+    /// Traces the network of the cracks as they stand (see the module docs), in one call.
+    /// [`Mud::step`] traces when the run ends, in pieces within its budgets; call this to see
+    /// the network of an unfinished run (a trace under way starts again). The network, the
+    /// cells, the statistics and the rasters describe the state last traced.
     pub fn trace(&mut self) {
-        self.trace_counted();
+        self.tracing = Some(TracePass::Breaks(0));
+        self.trace_step(u64::MAX);
     }
 
-    /// The most work [`Mud::trace`] is counted as: 18 units per spring slot (see
-    /// [`Mud::step`]).
-    pub fn trace_work_bound(&self) -> u64 {
-        18 * self.lattice.spring_count() as u64
+    /// Whether a trace is under way: between the [`Mud::step`] call in which the run's
+    /// physics ended and the one that finished tracing. The outputs that read the network
+    /// (network, cells, statistics, rasters) describe no crack meanwhile.
+    pub fn is_tracing(&self) -> bool {
+        self.tracing.is_some()
     }
 
-    /// [`Mud::trace`], returning its work in the units of [`Mud::step`]'s budget: the
-    /// passes' lengths in spring slots (the springs twice, each spring from both its nodes,
-    /// the mesh cells' sides five times) and each mesh cell taken off the stack (its sides),
-    /// at most [`Mud::trace_work_bound`]: the sides are at most twice the springs, and each
-    /// of the two stacking passes takes a cell at most once.
-    pub(super) fn trace_counted(&mut self) -> u64 {
-        let cells = self.lattice.cell_count();
-        let corners: u64 = if self.lattice.topology == super::Topology::Square { 4 } else { 3 };
-        let mut taken = 0u64;
-        // Break times are ≥ 0 (−0 at the very start, whose sign bit is cleared here).
-        for (cut, &time) in self.trace.iter_mut().zip(self.break_time.iter()) {
-            *cut = if time == INTACT { INTACT } else { time & !BRANCH };
-        }
-        // 1. Tips continue across separated sides. Counts only grow, so a mesh cell reaches
-        //    one cut side at most once and the stack holds each cell at most once.
-        let mut top = self.stack_single_cuts(0..cells, usize::MAX, 0, false);
-        while top > 0 {
-            top -= 1;
-            taken += 1;
-            let cell = self.stack[top] as usize;
-            let Some(c) = self.lattice.cell(cell) else { continue };
-            let sides = &c.sides[..c.corners];
-            if sides.iter().filter(|&&s| self.is_cut(s as usize)).count() != 1 {
-                continue;
+    /// Goes on with the trace under way, piece by piece, until the pieces' work reaches
+    /// `max(budget, 1)` or the trace is done; returns the work, in the units of
+    /// [`Mud::step`]'s budget. A piece is one item of one of the passes below, each at most
+    /// [`TRACE_PIECE`] units: a spring (1; its crack point, 1 + 2·4 along the crack), a mesh
+    /// cell (its sides), a cell taken off a stack (its sides; twice more if a crack goes on
+    /// from it; the springs turned about if it joins a crack one node away), a node (its
+    /// springs; four times if all are cut), or one step of a walk along a dead-end crack or a
+    /// cell's boundary (1). The walks are resumed where they stopped, so no piece depends on
+    /// a crack's length. The trace does not depend on the budgets.
+    pub(super) fn trace_step(&mut self, budget: u64) -> u64 {
+        let budget = budget.max(1);
+        let mut work = 0u64;
+        while let Some(pass) = self.tracing {
+            if work >= budget {
+                break;
             }
-            let Some(tip) = sides.iter().map(|&s| s as usize).find(|&s| self.is_cut(s)) else { continue };
-            let mut best: Option<(f32, usize)> = None;
-            for &s in sides {
-                let s = s as usize;
-                if !self.is_cut(s) {
-                    let ratio = self.separation_ratio(s);
-                    if best.is_none_or(|(b, _)| ratio > b) {
-                        best = Some((ratio, s));
+            let (done, next) = self.trace_pass(pass, budget - work);
+            work += done;
+            self.tracing = next;
+            if next.is_none() {
+                self.traced_broken = self.broken;
+            }
+        }
+        work
+    }
+
+    /// Does items of `pass` until their work reaches `budget` or the pass ends; returns the
+    /// work and where the trace stands then (`None`: done).
+    fn trace_pass(&mut self, pass: TracePass, budget: u64) -> (u64, Option<TracePass>) {
+        let cells = self.lattice.cell_count();
+        let springs = self.lattice.spring_count();
+        let corners = self.lattice.sides_per_cell() as u64;
+        let mut work = 0u64;
+        // Items `from..end` one by one, each costing what `item` returns, until the budget.
+        macro_rules! items {
+            ($from:expr, $end:expr, $item:expr) => {{
+                let mut at = $from;
+                while at < $end && work < budget {
+                    work += $item(&mut *self, at);
+                    at += 1;
+                }
+                at
+            }};
+        }
+        let next = match pass {
+            TracePass::Breaks(from) => {
+                // Break times are ≥ 0 (−0 at the very start, whose sign bit is cleared here).
+                let at = items!(from, springs, |m: &mut Self, s: usize| {
+                    let time = m.break_time[s];
+                    m.trace[s] = if time == INTACT { INTACT } else { time & !BRANCH };
+                    1
+                });
+                if at < springs { TracePass::Breaks(at) } else { TracePass::StackTips(0) }
+            }
+            // 1. Tips continue across separated sides. Counts only grow, so a mesh cell
+            //    reaches one cut side at most once and the stack holds each cell at most once.
+            TracePass::StackTips(from) => {
+                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                    m.trace_top = m.stack_single_cuts(cell..cell + 1, usize::MAX, m.trace_top, false);
+                    corners
+                });
+                if at < cells { TracePass::StackTips(at) } else { TracePass::Continue }
+            }
+            TracePass::Continue => {
+                while self.trace_top > 0 && work < budget {
+                    work += corners + self.continue_tip();
+                }
+                if self.trace_top > 0 { TracePass::Continue } else { TracePass::DeadEnds(0, None) }
+            }
+            //    Dead-end cracks that have not opened are closed (the tips left after the rules
+            //    above; closing one leaves its junction with two or more cut sides: no new tip).
+            TracePass::DeadEnds(mut cell, mut walk) => {
+                while cell < cells && work < budget {
+                    match walk {
+                        None => {
+                            work += corners;
+                            walk = self.dead_end_start(cell);
+                        }
+                        Some(w) => {
+                            work += 1;
+                            walk = self.dead_end_walk(cell, w);
+                        }
+                    }
+                    if walk.is_none() {
+                        cell += 1;
                     }
                 }
+                if cell < cells { TracePass::DeadEnds(cell, walk) } else { TracePass::Nodes(0) }
             }
-            let Some((ratio, spring)) = best else { continue };
-            if ratio <= 1.0 {
-                // The tip stops here, unless it is one node from another crack. Cutting around
-                // that node gives every mesh cell on the way two or more cut sides: no new tip.
-                self.join_across_node(cell, tip);
-                continue;
+            // 2. A node whose springs are all cut is not a cell of its own (see the module
+            //    docs).
+            TracePass::Nodes(from) => {
+                let nodes = self.lattice.node_count();
+                let at = items!(from, nodes, |m: &mut Self, node: usize| m.separate_node(node));
+                if at < nodes { TracePass::Nodes(at) } else { TracePass::StackBranches(0) }
             }
-            self.trace[spring] = self.trace[tip];
-            top = self.stack_single_cuts(self.neighbours_across(spring), cell, top, false);
-        }
-        //    Dead-end cracks that have not opened are closed (the tips left after the rules
-        //    above; closing one leaves its junction with two or more cut sides: no new tip).
-        for cell in 0..cells {
-            if self.cuts_in(cell, false) == 1 && self.dead_end_is_closed(cell) {
-                self.close_dead_end(cell);
+            // 3. Branches: counts only fall, so again each cell is stacked at most once.
+            TracePass::StackBranches(from) => {
+                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                    m.trace_top = m.stack_single_cuts(cell..cell + 1, usize::MAX, m.trace_top, true);
+                    corners
+                });
+                if at < cells { TracePass::StackBranches(at) } else { TracePass::Prune }
             }
-        }
-        // 2. A node whose springs are all cut is not a cell of its own. On the triangle
-        //    meshes, where two or more cracks leave the ring around it, the crack passes it on
-        //    one side: the arc of its springs between two cracks that has separated least is
-        //    no longer cut (the node stays with that side). Otherwise (a closed ring, or one
-        //    crack in) it stays joined, for the cells, to the neighbour it is least separated
-        //    from (that spring no longer separates, and the pruning below takes back what
-        //    then ends inside a cell).
-        for node in 0..self.lattice.node_count() {
-            let mut least: Option<(f32, usize)> = None;
-            let mut all_cut = true;
-            self.lattice.for_each_spring_at(node, |spring, _, _, _| {
-                all_cut &= self.is_cut(spring);
-                let ratio = self.separation_ratio(spring);
-                if least.is_none_or(|(r, _)| ratio < r) {
-                    least = Some((ratio, spring));
+            TracePass::Prune => {
+                while self.trace_top > 0 && work < budget {
+                    work += corners + self.prune_branch();
                 }
-            });
-            if let (true, Some((_, spring))) = (all_cut, least)
-                && !self.close_least_separated_arc(node, spring)
-            {
-                self.trace[spring] |= BRANCH;
+                if self.trace_top > 0 { TracePass::Prune } else { TracePass::Number(0) }
+            }
+            // 4. Vertex numbering: each cell's first vertex index (its centroid if cracks end
+            //    or meet there, then the cut sides of it on the border), so vertices are
+            //    numbered in cell order. The cells' ring starts are cleared on the way.
+            TracePass::Number(from) => {
+                if from == 0 {
+                    self.vertex_total = 0;
+                }
+                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                    m.stack[cell] = m.vertex_total;
+                    m.vertex_total += m.vertices_in(cell) as u32;
+                    m.ring_starts[cell] = 0;
+                    corners
+                });
+                if at < cells { TracePass::Number(at) } else { TracePass::Offsets(0) }
+            }
+            // 5. Where each crack point lies (the vertices are numbered: walks can end).
+            TracePass::Offsets(from) => {
+                let at = items!(from, springs, |m: &mut Self, spring: usize| {
+                    m.crack_offset[spring] = 0;
+                    if !m.is_cut(spring) {
+                        return 1;
+                    }
+                    let pack = |v: f32| (libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0) as i16 as u16) as u32;
+                    let [x, y] = m.smoothing_offset(spring);
+                    m.crack_offset[spring] = pack(x) | pack(y) << 16;
+                    1 + 2 * SMOOTHING as u64
+                });
+                if at < springs { TracePass::Offsets(at) } else { TracePass::Rings(RingCursor::START) }
+            }
+            // 6. The cells' rings: where each one starts (see `cells`).
+            TracePass::Rings(cursor) => {
+                let (done, cursor) = self.find_ring_starts(cursor, budget);
+                work += done;
+                match cursor {
+                    Some(c) => TracePass::Rings(c),
+                    None => return (work, None),
+                }
+            }
+        };
+        (work, Some(next))
+    }
+
+    /// Rule 1 for the cell on top of the stack: if it still holds a tip, the tip continues
+    /// across its most separated intact side if that has separated by more than it can
+    /// bridge, or else joins a crack one node away. Returns the work beyond the cell's sides.
+    fn continue_tip(&mut self) -> u64 {
+        self.trace_top -= 1;
+        let cell = self.stack[self.trace_top] as usize;
+        let Some(c) = self.lattice.cell(cell) else { return 0 };
+        let sides = &c.sides[..c.corners];
+        if sides.iter().filter(|&&s| self.is_cut(s as usize)).count() != 1 {
+            return 0;
+        }
+        let Some(tip) = sides.iter().map(|&s| s as usize).find(|&s| self.is_cut(s)) else { return 0 };
+        let mut best: Option<(f32, usize)> = None;
+        for &s in sides {
+            let s = s as usize;
+            if !self.is_cut(s) {
+                let ratio = self.separation_ratio(s);
+                if best.is_none_or(|(b, _)| ratio > b) {
+                    best = Some((ratio, s));
+                }
             }
         }
-        // 3. Branches: counts only fall, so again each cell is stacked at most once.
-        top = self.stack_single_cuts(0..cells, usize::MAX, top, true);
-        while top > 0 {
-            top -= 1;
-            taken += 1;
-            let cell = self.stack[top] as usize;
-            let Some(c) = self.lattice.cell(cell) else { continue };
-            let mut separating = c.sides[..c.corners].iter().map(|&s| s as usize).filter(|&s| self.separates(s));
-            let (Some(spring), None) = (separating.next(), separating.next()) else { continue };
+        let Some((ratio, spring)) = best else { return 0 };
+        if ratio <= 1.0 {
+            // The tip stops here, unless it is one node from another crack. Cutting around
+            // that node gives every mesh cell on the way two or more cut sides: no new tip.
+            return self.join_across_node(cell, tip);
+        }
+        self.trace[spring] = self.trace[tip];
+        self.trace_top = self.stack_single_cuts(self.neighbours_across(spring), cell, self.trace_top, false);
+        2 * c.corners as u64
+    }
+
+    /// Rule 3 for the cell on top of the stack: if one side of it still separates, that side
+    /// is a branch, and the cells across it are stacked. Returns the work beyond its sides.
+    fn prune_branch(&mut self) -> u64 {
+        self.trace_top -= 1;
+        let cell = self.stack[self.trace_top] as usize;
+        let Some(c) = self.lattice.cell(cell) else { return 0 };
+        let mut separating = c.sides[..c.corners].iter().map(|&s| s as usize).filter(|&s| self.separates(s));
+        let (Some(spring), None) = (separating.next(), separating.next()) else { return 0 };
+        self.trace[spring] |= BRANCH;
+        self.trace_top = self.stack_single_cuts(self.neighbours_across(spring), cell, self.trace_top, true);
+        2 * c.corners as u64
+    }
+
+    /// Rule 2 for `node`: if all its springs are cut, on the triangle meshes where two or
+    /// more cracks leave the ring around it, the crack passes it on one side: the arc of its
+    /// springs between two cracks that has separated least is no longer cut (the node stays
+    /// with that side). Otherwise (a closed ring, or one crack in) it stays joined, for the
+    /// cells, to the neighbour it is least separated from (that spring no longer separates,
+    /// and the pruning of rule 3 takes back what then ends inside a cell). Returns the work:
+    /// its springs, four times if all are cut.
+    fn separate_node(&mut self, node: usize) -> u64 {
+        let mut least: Option<(f32, usize)> = None;
+        let (mut all_cut, mut count) = (true, 0u64);
+        self.lattice.for_each_spring_at(node, |spring, _, _, _| {
+            all_cut &= self.is_cut(spring);
+            count += 1;
+            let ratio = self.separation_ratio(spring);
+            if least.is_none_or(|(r, _)| ratio < r) {
+                least = Some((ratio, spring));
+            }
+        });
+        let (true, Some((_, spring))) = (all_cut, least) else { return count.max(1) };
+        if !self.close_least_separated_arc(node, spring) {
             self.trace[spring] |= BRANCH;
-            top = self.stack_single_cuts(self.neighbours_across(spring), cell, top, true);
         }
-        // 4. Vertex numbering: each cell's first vertex index (its centroid if cracks end or
-        //    meet there, then the cut sides of it on the border), so vertices are numbered
-        //    in cell order.
-        let mut next = 0u32;
-        for cell in 0..cells {
-            self.stack[cell] = next;
-            next += self.vertices_in(cell) as u32;
-        }
-        self.vertex_total = next;
-        // 5. Where each crack point lies (the vertices are numbered: walks can end).
-        for spring in 0..self.lattice.spring_count() {
-            self.crack_offset[spring] = 0;
-            if self.is_cut(spring) {
-                let pack = |v: f32| (libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0) as i16 as u16) as u32;
-                let [x, y] = self.smoothing_offset(spring);
-                self.crack_offset[spring] = pack(x) | pack(y) << 16;
-            }
-        }
-        // 6. The cells' rings: where each one starts (see `cells`).
-        self.find_ring_starts();
-        self.traced_broken = self.broken;
-        let springs = self.lattice.spring_count() as u64;
-        4 * springs + (5 * cells as u64 + taken) * corners
+        4 * count
     }
 
     /// The spring of triangle `cell` other than `spring` that has node `node`, if `cell` is
@@ -379,10 +531,11 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// How many springs at `node` must be cut, starting with `first` (a side of tip cell
     /// `cell`) and turning around the node, to reach a spring at it that is cut; `None` if
-    /// the turn comes back to `cell` or reaches the border first.
-    fn turns_to_crack(&self, cell: usize, first: usize, node: usize) -> Option<usize> {
+    /// the turn comes back to `cell` or reaches the border first. Adds the turns to `work`.
+    fn turns_to_crack(&self, cell: usize, first: usize, node: usize, work: &mut u64) -> Option<usize> {
         let (mut at, mut spring) = (cell, first);
         for turns in 1..=super::irregular::MAX_DEGREE {
+            *work += 1;
             let next = self.neighbours_across(spring).find(|&n| n != at)?;
             if next == cell {
                 return None;
@@ -449,17 +602,19 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// Rule 1, a tip one node from another crack: if the node of triangle `cell` opposite
     /// its cut side `tip` has a cut spring, cuts the springs at that node from the tip to it,
-    /// the shorter way round (see the module docs).
-    fn join_across_node(&mut self, cell: usize, tip: usize) {
-        let Some(c) = self.lattice.cell(cell) else { return };
+    /// the shorter way round (see the module docs). Returns the work: the springs turned
+    /// about, both ways, and those cut.
+    fn join_across_node(&mut self, cell: usize, tip: usize) -> u64 {
+        let Some(c) = self.lattice.cell(cell) else { return 0 };
         if c.corners != 3 {
-            return;
+            return 0;
         }
-        let Some(k) = c.sides[..3].iter().position(|&s| s as usize == tip) else { return };
+        let Some(k) = c.sides[..3].iter().position(|&s| s as usize == tip) else { return 0 };
         let node = c.nodes[(k + 2) % 3] as usize;
         // The two sides at the node, each the first spring of one way round.
         let ways = [c.sides[(k + 1) % 3] as usize, c.sides[(k + 2) % 3] as usize];
-        let turns = ways.map(|first| self.turns_to_crack(cell, first, node));
+        let mut work = 0u64;
+        let turns = ways.map(|first| self.turns_to_crack(cell, first, node, &mut work));
         let first = match turns {
             [Some(a), Some(b)] if a == b => {
                 if self.separation_ratio(ways[1]) > self.separation_ratio(ways[0]) {
@@ -471,70 +626,67 @@ impl<S: Scalar> Mud<'_, S> {
             [Some(a), Some(b)] => ways[usize::from(b < a)],
             [Some(_), None] => ways[0],
             [None, Some(_)] => ways[1],
-            [None, None] => return,
+            [None, None] => return work,
         };
         let time = self.trace[tip];
         let (mut at, mut spring) = (cell, first);
         for _ in 0..super::irregular::MAX_DEGREE {
             self.trace[spring] = time;
-            let Some(next) = self.neighbours_across(spring).find(|&n| n != at) else { return };
-            let Some(side) = self.other_side_at(next, spring, node) else { return };
+            work += 1;
+            let Some(next) = self.neighbours_across(spring).find(|&n| n != at) else { break };
+            let Some(side) = self.other_side_at(next, spring, node) else { break };
             if self.is_cut(side) {
-                return;
+                break;
             }
             (at, spring) = (next, side);
         }
+        work
     }
 
-    /// Walks the crack from tip cell `tip` to its junction, its other tip or the border,
-    /// calling `visit` with each of its springs until it returns false; returns how the walk
-    /// ended: `Some(true)` at a junction or another tip, `Some(false)` at the border, `None`
-    /// if `visit` stopped it.
-    fn walk_dead_end(&self, tip: usize, mut visit: impl FnMut(usize) -> bool) -> Option<bool> {
-        let c = self.lattice.cell(tip)?;
-        let mut spring = c.sides[..c.corners].iter().map(|&s| s as usize).find(|&s| self.is_cut(s))?;
-        let mut at = tip;
-        for _ in 0..=self.lattice.cell_count() {
-            if !visit(spring) {
-                return None;
-            }
-            let Some(next) = self.neighbours_across(spring).find(|&n| n != at) else { return Some(false) };
-            let n = self.lattice.cell(next)?;
-            let mut cut = n.sides[..n.corners].iter().map(|&s| s as usize).filter(|&s| s != spring && self.is_cut(s));
-            match (cut.next(), cut.next()) {
-                (Some(other), None) => (at, spring) = (next, other),
-                _ => return Some(true),
-            }
+    /// The dead-end pass at mesh cell `cell`: if it holds a tip, the walk along its crack
+    /// that decides whether the crack has opened begins there.
+    fn dead_end_start(&self, cell: usize) -> Option<DeadEndWalk> {
+        if self.cuts_in(cell, false) != 1 {
+            return None;
         }
-        None
+        let c = self.lattice.cell(cell)?;
+        let spring = c.sides[..c.corners].iter().map(|&s| s as usize).find(|&s| self.is_cut(s))?;
+        Some(DeadEndWalk::Check { at: cell, spring, steps: 0 })
     }
 
-    /// Whether the dead-end crack from tip cell `tip` has not opened (see the module docs):
-    /// it ends at a junction or another tip, and no spring on it has separated by more than
-    /// it can bridge.
-    fn dead_end_is_closed(&self, tip: usize) -> bool {
-        self.walk_dead_end(tip, |spring| self.separation_ratio(spring) <= 1.0) == Some(true)
-    }
-
-    /// Closes the dead-end crack from tip cell `tip`: its springs are no longer cut.
-    fn close_dead_end(&mut self, tip: usize) {
-        // How many springs the crack has, then un-cut them from the tip on: each step leaves
-        // the rest a dead-end crack from the cell beyond, which the same walk follows.
-        let mut count = 0usize;
-        self.walk_dead_end(tip, |_| {
-            count += 1;
-            true
-        });
-        let mut at = tip;
-        for _ in 0..count {
-            let Some(c) = self.lattice.cell(at) else { return };
-            let Some(spring) = c.sides[..c.corners].iter().map(|&s| s as usize).find(|&s| self.is_cut(s)) else {
-                return;
-            };
-            let next = self.neighbours_across(spring).find(|&n| n != at);
-            self.trace[spring] = INTACT;
-            let Some(next) = next else { return };
-            at = next;
+    /// One step of the walk along the dead-end crack from tip cell `tip` (one spring):
+    ///
+    /// - checking: the crack from the tip to its junction (or its other tip) has not opened
+    ///   if no spring on it has separated by more than it can bridge; a spring that has, the
+    ///   border, or a walk longer than the mesh ends the check with the crack kept;
+    /// - closing: each spring from the tip on is no longer cut, which leaves the rest a
+    ///   dead-end crack from the cell beyond, up to the junction or the other tip.
+    ///
+    /// Returns the walk's next step, `None` when it is over.
+    fn dead_end_walk(&mut self, tip: usize, walk: DeadEndWalk) -> Option<DeadEndWalk> {
+        match walk {
+            DeadEndWalk::Check { at, spring, steps } => {
+                if steps > self.lattice.cell_count() || self.separation_ratio(spring) > 1.0 {
+                    return None;
+                }
+                let next = self.neighbours_across(spring).find(|&n| n != at)?;
+                let n = self.lattice.cell(next)?;
+                let mut cut =
+                    n.sides[..n.corners].iter().map(|&s| s as usize).filter(|&s| s != spring && self.is_cut(s));
+                match (cut.next(), cut.next()) {
+                    (Some(other), None) => Some(DeadEndWalk::Check { at: next, spring: other, steps: steps + 1 }),
+                    // A junction or the other tip: the crack has not opened.
+                    _ => Some(DeadEndWalk::Close { at: tip }),
+                }
+            }
+            DeadEndWalk::Close { at } => {
+                let c = self.lattice.cell(at)?;
+                let spring = c.sides[..c.corners].iter().map(|&s| s as usize).find(|&s| self.is_cut(s))?;
+                let next = self.neighbours_across(spring).find(|&n| n != at);
+                self.trace[spring] = INTACT;
+                let next = next?;
+                (self.cuts_in(next, false) == 1).then_some(DeadEndWalk::Close { at: next })
+            }
         }
     }
 
@@ -755,6 +907,10 @@ impl<S: Scalar> Mud<'_, S> {
     /// the vertex and side it starts from, then the closed cracks by their lowest spring.
     /// `points` calls its argument with the edge's points in order.
     fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint)))) {
+        // A trace under way has no network to show yet.
+        if self.is_tracing() {
+            return;
+        }
         for cell in 0..self.lattice.cell_count() {
             let Some(c) = self.cut_cell(cell) else { continue };
             let centroid = Self::centroid_is_vertex(&c);
@@ -836,6 +992,10 @@ impl<S: Scalar> Mud<'_, S> {
     /// crack's point `reach` lattice units further along it (or its far end, if nearer): the
     /// crack's course, not the mesh cell's own geometry.
     pub(super) fn for_each_junction(&self, reach: f32, mut arms: impl FnMut(&[[f32; 2]])) {
+        // A trace under way has no network to show yet.
+        if self.is_tracing() {
+            return;
+        }
         for cell in 0..self.lattice.cell_count() {
             let Some(c) = self.cut_cell(cell) else { continue };
             if c.cut_count() < 3 {
@@ -862,6 +1022,10 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// Calls `visit` with every vertex, in index order.
     pub(super) fn for_each_vertex(&self, mut visit: impl FnMut(NetworkVertex)) {
+        // A trace under way has no network to show yet.
+        if self.is_tracing() {
+            return;
+        }
         for cell in 0..self.lattice.cell_count() {
             let Some(c) = self.cut_cell(cell) else { continue };
             if Self::centroid_is_vertex(&c) {
@@ -875,7 +1039,8 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// How many vertices, edges and points [`Mud::network`] writes.
     pub fn network_counts(&self) -> NetworkCounts {
-        let mut counts = NetworkCounts { vertices: self.vertex_total as usize, ..NetworkCounts::default() };
+        let vertices = if self.is_tracing() { 0 } else { self.vertex_total as usize };
+        let mut counts = NetworkCounts { vertices, ..NetworkCounts::default() };
         self.for_each_edge(|_, _, points| {
             counts.edges += 1;
             points(&mut |_| counts.points += 1);
@@ -920,6 +1085,10 @@ impl<S: Scalar> Mud<'_, S> {
     /// Calls `emit(start, end)` for every straight piece of the traced network (Fig. 5's rule
     /// on the cut springs), cell by cell: what the rasters draw.
     pub(super) fn for_each_network_piece(&self, mut emit: impl FnMut(NetworkPoint, NetworkPoint)) {
+        // A trace under way has no network to show yet.
+        if self.is_tracing() {
+            return;
+        }
         for cell in 0..self.lattice.cell_count() {
             let Some(c) = self.cut_cell(cell) else { continue };
             let (mut cut, mut n) = ([0usize; 4], 0);
