@@ -308,8 +308,9 @@ public:
     }
 
     /// Advances by about `budget` units of work (springs and nodes visited; overruns by less
-    /// than one piece, a row of the lattice or a node's springs, and the last call also
-    /// traces the network: see hibi_mud_step).
+    /// than one piece: a row of the lattice, a node's springs, or a piece of the network's
+    /// tracing, at most HIBI_MUD_TRACE_PIECE units, which runs within the same budgets: see
+    /// hibi_mud_step).
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_mud_step(handle_.get(), budget, &progress));
@@ -484,7 +485,9 @@ public:
         check(hibi_glass_impact(handle_.get(), x, y, &counts));
         return counts;
     }
-    /// Advances growth by about `budget` units of work.
+    /// Advances growth by `budget` units of work (grid cells and entries examined, cracks
+    /// looked at, face-walk steps; overruns by less than HIBI_GLASS_STEP_PIECE units: see
+    /// hibi_glass_step).
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_glass_step(handle_.get(), budget, &progress));

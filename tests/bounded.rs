@@ -176,9 +176,9 @@ fn glass_case(name: &str, params: &GlassParams, budget: u64) -> (u64, bool) {
     );
     let mut store = memory.allocate();
     let mut glass = Glass::new(params, store.buffers()).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-    // One piece: the step loop's look at every crack, and one tip update's queries, which
-    // examine grid cells and entries (the grid words) a bounded number of times.
-    let piece = 8 * (memory.words + memory.cracks + memory.vertices + memory.edges) as u64 + 64;
+    // One piece: a grid cell or entry a query examines, a crack looked at, or a step of a face
+    // walk (two in lockstep), whatever the floats.
+    let piece = hibi_core::glass::STEP_PIECE;
     let result = bounded(name, budget, piece, |b| {
         let before = glass.progress().work;
         let progress = glass.step(b);

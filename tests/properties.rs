@@ -18,7 +18,8 @@
 //!   glass fragment rings' points and `hole_of`; glass cracks' kind, end and impact;
 //! - every `step(budget)` call's work is bounded by its budget plus one indivisible piece
 //!   (mud: a row of a short step, a node's relaxation, a break event or a piece of the
-//!   network's tracing; glass: one tip update's queries;
+//!   network's tracing; glass: a cell or entry of a query, a crack looked at or a step of a
+//!   face walk, at most `HIBI_GLASS_STEP_PIECE` units;
 //!   skin: one cell at any level). The largest piece is measured by a run with budget 1,
 //!   whose calls each do exactly one piece; the run under test must then end in the same
 //!   state (the models do not depend on the budgets), so its pieces are the same ones;
@@ -537,11 +538,9 @@ proptest! {
         let mut single_memory = params.memory().expect("valid").allocate();
         let mut single = Glass::new(&params, single_memory.buffers()).expect("valid");
         let piece = glass_run(&mut single, 1, u64::MAX);
-        // The largest piece, whatever the floats: the step loop's look at every crack and one
-        // tip update's queries and face walk, bounded by the plate's memory (tests/bounded.rs).
-        let m = params.memory().expect("valid");
-        let bound = 8 * (m.words + m.cracks + m.vertices + m.edges) as u64 + 64;
-        prop_assert!(piece <= bound, "a glass piece did {} work, over its bound {}", piece, bound);
+        // The largest piece, whatever the floats: a grid cell or entry a query examines, a
+        // crack looked at, a step of a face walk (two in lockstep).
+        prop_assert!(piece <= HIBI_GLASS_STEP_PIECE, "a glass piece did {} work, over {}", piece, HIBI_GLASS_STEP_PIECE);
         glass_outputs_in_range(&p, &single.progress(), &render);
         let mut memory = params.memory().expect("valid").allocate();
         let mut glass = Glass::new(&params, memory.buffers()).expect("valid");

@@ -261,10 +261,18 @@ pub unsafe extern "C" fn hibi_glass_impact(
     guard(|| unsafe { update(glass, c"glass", (counts, c"counts"), impact) })
 }
 
-/// Advances growth by about `budget` units of work (at least one; a unit is a grid cell,
-/// segment or tip a query examines, a crack the step loop looks at, or a half-edge a face walk
-/// passes when a crack closes a cycle; a call overruns by at most one tip update's queries and
-/// one face walk, and the plate does not depend on the budgets); writes where
+/// The most work one piece of glass growth does, in `hibi_glass_step`'s units: a call does at
+/// most max(budget, 1) − 1 + this.
+pub const HIBI_GLASS_STEP_PIECE: u64 = 2;
+
+const _: () = assert!(HIBI_GLASS_STEP_PIECE == hibi_core::glass::STEP_PIECE);
+
+/// Advances growth by `budget` units of work (at least one; a unit is a grid cell, segment or
+/// tip a query examines, a crack looked at by the step loop, the filing of the tips, the check
+/// at the end of a time step or stop condition 2, or a step of a face walk of stop condition 2
+/// when a crack closes a cycle). The budget is checked before every unit, and every query and
+/// face walk resumes where it stopped, so a call does at most max(budget, 1) − 1 +
+/// `HIBI_GLASS_STEP_PIECE` units, and the plate does not depend on the budgets; writes where
 /// it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes
 /// nothing) once a capacity has run out; the plate then stays as it was drawn, usable.
 ///

@@ -89,30 +89,22 @@ pub(super) struct FaceShape {
     pub(super) edges: usize,
 }
 
-/// The shape of the face left of `start` (None if the walk is broken); `visit` is called
-/// with each half-edge of the walk, as by [`walk_face`].
-pub(super) fn face_shape<G: PlaneGraph>(g: &G, start: HalfEdge, mut visit: impl FnMut(HalfEdge)) -> Option<FaceShape> {
-    let mut shape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2], edges: 0 };
-    let closed = walk_face(g, start, |h| {
-        visit(h);
-        shape.edges += 1;
-        let (u, w) = g.ends(h);
-        let (a, b) = (g.point(u), g.point(w));
-        shape.area += 0.5 * shoelace(a, b);
-        shape.min = [shape.min[0].min(a[0]), shape.min[1].min(a[1])];
-        shape.max = [shape.max[0].max(a[0]), shape.max[1].max(a[1])];
-    });
-    closed.then_some(shape)
-}
+impl FaceShape {
+    /// Nothing walked yet.
+    const EMPTY: FaceShape = FaceShape { area: 0.0, min: [f32::INFINITY; 2], max: [f32::NEG_INFINITY; 2], edges: 0 };
 
-/// Whether `p` lies inside the face left of `start` (crossing number).
-pub(super) fn face_contains<G: PlaneGraph>(g: &G, start: HalfEdge, p: [f32; 2]) -> bool {
-    let mut inside = false;
-    walk_face(g, start, |h| {
-        let (u, w) = g.ends(h);
-        inside ^= crosses_ray(g.point(u), g.point(w), p);
-    });
-    inside
+    /// Adds the step of a walk from point `a` to point `b`.
+    fn add(&mut self, a: [f32; 2], b: [f32; 2]) {
+        self.edges += 1;
+        self.area += 0.5 * shoelace(a, b);
+        self.min = [self.min[0].min(a[0]), self.min[1].min(a[1])];
+        self.max = [self.max[0].max(a[0]), self.max[1].max(a[1])];
+    }
+
+    /// Whether `p` lies in the box.
+    fn holds(&self, p: [f32; 2]) -> bool {
+        p[0] >= self.min[0] && p[0] <= self.max[0] && p[1] >= self.min[1] && p[1] <= self.max[1]
+    }
 }
 
 /// The cracks alone, as grown so far.
@@ -193,86 +185,184 @@ impl Glass<'_> {
         if c.last_segment == NONE { c.start_vertex } else { self.edges[c.last_segment as usize].to }
     }
 
-    /// Stop condition 2 (paper §4.2.3): the new half-edge `h` closed a cycle, splitting a face
-    /// in two. The region it closed is the smaller of the two (walked in step, the one that
-    /// closes first) if that one is bounded, else the other; every crack growing inside it
-    /// stops.
+    /// Goes on with stop condition 2 (paper §4.2.3) until it is over (true) or the work
+    /// reaches `deadline` (false; the next call goes on from there), one unit per step of a
+    /// walk or crack looked at. The new half-edge `h` closed a cycle, splitting a face in two.
+    /// The region it closed is the smaller of the two (walked in step, the one that closes
+    /// first) if that one is bounded, else the other; every crack growing inside it stops.
     ///
     /// When the split face was itself already enclosed, both halves are new regions; only the
     /// smaller one counts as closed, so that a later impact inside an enclosed fragment keeps
     /// growing after its first cycle.
-    pub(super) fn enclose(&mut self, h: HalfEdge) {
-        let (first, second, steps) = {
-            let g = self.crack_graph();
-            let (mut a, mut b) = (h, h ^ 1);
-            let mut steps = 0;
-            loop {
-                a = next_around_face(&g, a);
-                b = next_around_face(&g, b);
-                steps += 1;
-                if a == h || steps > g.half_edge_bound() {
-                    break (h, h ^ 1, steps);
-                }
-                if b == h ^ 1 {
-                    break (h ^ 1, h, steps);
-                }
+    pub(super) fn go_on_enclosure(&mut self, e: &mut Enclosure, deadline: u64) -> bool {
+        loop {
+            if self.clock.work >= deadline {
+                return false;
             }
-        };
-        let g = CrackGraph { vertices: &self.vertices[..self.vertex_count], edges: &self.edges[..self.edge_count] };
-        // Work (Glass::step's budget): the walks in lockstep, the faces measured, the marking
-        // walk (done by the walk that measures the face, still counted as one, so that a
-        // budget means what it did), the cracks looked at and the crossing-number walks.
-        let mut work = 2 * steps;
-        // The first of the two faces that is bounded, its vertices marked by the walk that
-        // measures it (a fresh mark per walk, so only the chosen face's vertices carry it).
-        let mut found = None;
-        for s in [first, second] {
-            self.walk.mark = self.walk.mark.wrapping_add(1);
-            if self.walk.mark == 0 {
-                self.walk.marks.fill(0);
-                self.walk.mark = 1;
-            }
-            let (marks, mark) = (&mut *self.walk.marks, self.walk.mark);
-            let f = face_shape(&g, s, |h| marks[g.ends(h).0 as usize] = mark);
-            work += f.map_or(g.half_edge_bound(), |f| f.edges);
-            if let Some(f) = f.filter(|f| f.area > 0.0) {
-                found = Some((s, f));
-                break;
+            match e.walk {
+                Walk::Lockstep => {
+                    // The two faces in step, two units a step.
+                    self.clock.work += 2;
+                    let g = self.crack_graph();
+                    e.a = next_around_face(&g, e.a);
+                    e.b = next_around_face(&g, e.b);
+                    e.steps += 1;
+                    if e.a == e.h || e.steps > g.half_edge_bound() {
+                        e.faces = [e.h, e.h ^ 1];
+                    } else if e.b == e.h ^ 1 {
+                        e.faces = [e.h ^ 1, e.h];
+                    } else {
+                        continue;
+                    }
+                    e.which = 0;
+                    self.begin_measure(e);
+                }
+                Walk::Measure => {
+                    // The first of the two faces that is bounded, its vertices marked by the
+                    // walk that measures it (a fresh mark per walk, so only the chosen face's
+                    // vertices carry it).
+                    self.clock.work += 1;
+                    let g = self.crack_graph();
+                    let (u, w) = g.ends(e.at);
+                    e.shape.add(g.point(u), g.point(w));
+                    e.at = next_around_face(&g, e.at);
+                    let (closed, broken) = (e.at == e.faces[e.which], e.shape.edges > g.half_edge_bound());
+                    self.walk.marks[u as usize] = self.walk.mark;
+                    if closed && e.shape.area > 0.0 {
+                        e.walk = Walk::Cracks;
+                        e.crack = 0;
+                        e.testing = false;
+                        let v = self.crack_graph().ends(e.faces[e.which]).0;
+                        e.piece = self.component(v);
+                    } else if closed || broken {
+                        if e.which == 1 {
+                            return true;
+                        }
+                        e.which = 1;
+                        self.begin_measure(e);
+                    }
+                }
+                Walk::Cracks if e.crack == self.crack_count => return true,
+                Walk::Cracks if !e.testing => {
+                    self.clock.work += 1;
+                    let i = e.crack;
+                    e.crack += 1;
+                    if !self.cracks[i].growing {
+                        continue;
+                    }
+                    let tip = self.tip_vertex(i);
+                    // A tip of this piece is inside when the walk passed it (its dangling crack
+                    // lies in the face); a tip of another piece (a ring crack not yet joined)
+                    // by the crossing rule, tested when it lies in the face's box.
+                    if self.walk.marks[tip as usize] == self.walk.mark {
+                        self.enclosed(i);
+                    } else if self.component(tip) != e.piece && e.shape.holds(self.vertices[tip as usize].at) {
+                        e.crack = i;
+                        e.testing = true;
+                        e.at = e.faces[e.which];
+                        e.steps = 0;
+                        e.inside = false;
+                    }
+                }
+                Walk::Cracks => {
+                    // The crossing number of the tip of crack `e.crack`, a step a unit.
+                    self.clock.work += 1;
+                    let g = self.crack_graph();
+                    let p = g.point(self.tip_vertex(e.crack));
+                    let (u, w) = g.ends(e.at);
+                    e.inside ^= crosses_ray(g.point(u), g.point(w), p);
+                    e.at = next_around_face(&g, e.at);
+                    e.steps += 1;
+                    if e.at == e.faces[e.which] || e.steps > g.half_edge_bound() {
+                        if e.inside {
+                            self.enclosed(e.crack);
+                        }
+                        e.testing = false;
+                        e.crack += 1;
+                    }
+                }
             }
         }
-        let Some((start, shape)) = found else {
-            self.clock.work += work as u64;
-            return;
-        };
-        work += shape.edges + self.crack_count;
-        let mark = self.walk.mark;
-        let v = g.ends(start).0;
-        let piece = self.component(v);
-        for i in 0..self.crack_count {
-            if !self.cracks[i].growing {
-                continue;
-            }
-            let tip = self.tip_vertex(i);
-            // A tip of this piece is inside when the walk passed it (its dangling crack lies in
-            // the face); a tip of another piece (a ring crack not yet joined) by the crossing rule.
-            let inside = if self.walk.marks[tip as usize] == mark {
-                true
-            } else if self.component(tip) == piece {
-                false
-            } else {
-                let p = self.vertices[tip as usize].at;
-                let in_box =
-                    p[0] >= shape.min[0] && p[0] <= shape.max[0] && p[1] >= shape.min[1] && p[1] <= shape.max[1];
-                work += usize::from(in_box) * shape.edges;
-                in_box && face_contains(&self.crack_graph(), start, p)
-            };
-            if inside {
-                let c = &mut self.cracks[i];
-                c.growing = false;
-                c.end = CrackEnd::Enclosed;
-            }
+    }
+
+    /// Starts the walk that measures and marks face `e.which` of the two.
+    fn begin_measure(&mut self, e: &mut Enclosure) {
+        self.walk.mark = self.walk.mark.wrapping_add(1);
+        if self.walk.mark == 0 {
+            self.walk.marks.fill(0);
+            self.walk.mark = 1;
         }
-        self.clock.work += work as u64;
+        e.walk = Walk::Measure;
+        e.at = e.faces[e.which];
+        e.shape = FaceShape::EMPTY;
+    }
+
+    /// Stops crack `i`: a region closed around its tip.
+    fn enclosed(&mut self, i: usize) {
+        let c = &mut self.cracks[i];
+        c.growing = false;
+        c.end = CrackEnd::Enclosed;
+    }
+}
+
+/// Which walk of stop condition 2 is under way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Walk {
+    /// The two faces beside the new edge, walked in step until one closes.
+    Lockstep,
+    /// Measuring (and marking) one of them.
+    Measure,
+    /// Looking at each growing crack, and walking the face for a tip's crossing number.
+    Cracks,
+}
+
+/// Where stop condition 2 stands, between the calls of [`Glass::step`] that carry it out.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Enclosure {
+    walk: Walk,
+    /// The new half-edge, and the two walks in step from it and its twin.
+    h: HalfEdge,
+    a: HalfEdge,
+    b: HalfEdge,
+    /// Steps of the walk under way (in step, or of a crossing-number walk).
+    steps: usize,
+    /// The two faces, the smaller first, and which of them is being measured or was chosen.
+    faces: [HalfEdge; 2],
+    which: usize,
+    /// The half-edge the walk under way is at.
+    at: HalfEdge,
+    /// The measured face.
+    shape: FaceShape,
+    /// The connected piece of the network the face belongs to.
+    piece: u32,
+    /// The next crack to look at; a crossing-number walk is under way for it (`testing`), with
+    /// the parity so far (`inside`).
+    crack: usize,
+    testing: bool,
+    inside: bool,
+}
+
+impl Enclosure {
+    /// Nothing under way.
+    pub(super) const IDLE: Enclosure = Enclosure::new(NONE);
+
+    /// Stop condition 2 for the new half-edge `h`, not yet started.
+    pub(super) const fn new(h: HalfEdge) -> Enclosure {
+        Enclosure {
+            walk: Walk::Lockstep,
+            h,
+            a: h,
+            b: h ^ 1,
+            steps: 0,
+            faces: [h, h ^ 1],
+            which: 0,
+            at: h,
+            shape: FaceShape::EMPTY,
+            piece: NONE,
+            crack: 0,
+            testing: false,
+            inside: false,
+        }
     }
 }
 

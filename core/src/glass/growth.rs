@@ -1,6 +1,16 @@
 //! Growth by the sector rule (Agui et al. §4.2.2, Eqs. 12–19) and the stop rules (§4.2.3).
+//!
+//! A time step is done in phases ([`Phase`]), and a tip's update in stages ([`Stage`]): F1's
+//! scan of the tips in its sector, F2's scan of the segments there, the move planned (the
+//! forces summed, F3 drawn, the turn), the scan of the segments along the move, the move made,
+//! and stop condition 2's face walks when it closed a cycle. [`Glass::step`] may stop between
+//! any two units of work of these (frame budgets, issue 26 item 5); what an update has summed
+//! so far is kept in [`Update`], and nothing it reads changes until it is over, so a budgeted
+//! run is the same bit for bit as one call.
 
+use super::faces::{Enclosure, HalfEdge};
 use super::grid::NONE;
+use super::scan::{Filed, Scan};
 use super::{CrackEnd, CrackKind, Edge, Glass, GlassProgress, wrap};
 use crate::geom::{Intersection, Point, Segment};
 
@@ -43,7 +53,13 @@ fn span_of(a: [f32; 2], z: [f32; 2]) -> [f32; 4] {
     [lx, ly, hx, hy]
 }
 
+/// The most work one piece of growth does, in [`Glass::step`]'s units: a step of the two face
+/// walks of stop condition 2 in lockstep (2); every other piece is one unit. A call does at
+/// most max(budget, 1) − 1 + this.
+pub const STEP_PIECE: u64 = 2;
+
 /// What a step ran into.
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Hit {
     /// Nothing: the tip moves the whole step.
     Nothing,
@@ -53,79 +69,212 @@ enum Hit {
     Crack { edge: u32, at: [f32; 2], along: f32 },
 }
 
+/// What the time step under way is doing ([`Glass::step`] resumes it between any two units of
+/// work).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Phase {
+    /// Taking the tips of the last time step out of the tip grid, one a unit.
+    Unfile,
+    /// Filing the growing tips where they start this time step, one crack a unit.
+    File,
+    /// Advancing the cracks in order (`Clock::cursor`), each by its updates.
+    Advance,
+    /// An update of the crack at the cursor is under way: [`Update::stage`].
+    Update,
+    /// The time step is over: looking for a large or ring crack of the impact still growing,
+    /// one crack a unit.
+    Settle,
+}
+
+/// Where the update of a tip under way stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Stage {
+    /// F1: the tips in its sector.
+    Tips,
+    /// F2: the segments in its sector.
+    Segments,
+    /// The move: the segments along it.
+    Path,
+    /// Stop condition 2: the walks around the faces its stop split (faces.rs).
+    Enclose,
+}
+
+/// The F2 entries of an update: past this many cracks in S, the rest each pull on their own.
+const NEAR: usize = 16;
+
+/// The state of one tip update (Eqs. 12–17) between the calls of [`Glass::step`] that carry it
+/// out: what it set out from, the forces summed so far, and the move.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Update {
+    pub(super) stage: Stage,
+    /// The scan of the grid under way.
+    scan: Scan,
+    /// What is left of the crack's time step, and what of it is done \[px\].
+    left: f32,
+    done: f32,
+    ring: bool,
+    /// The crack's course (Eq. 13) and its direction, the sector's boundary rays and box.
+    course: f32,
+    direction: [f32; 2],
+    rays: [[f32; 2]; 2],
+    bounds: [f32; 4],
+    /// F1 + F2 so far.
+    force: [f32; 2],
+    /// F2: per crack in S, its nearest point's distance and normal; `count` of them.
+    near: [(u32, f32, [f32; 2]); NEAR],
+    count: usize,
+    /// F2 of the cracks past NEAR.
+    extra: [f32; 2],
+    /// The move: its heading and length, where it ends, and the first crack or edge it meets.
+    heading: f32,
+    length: f32,
+    next: [f32; 2],
+    hit: (Hit, f32),
+    found: (u32, f32, [f32; 2]),
+    /// The move stopped the tip (on a crack or the edge, or by running out of capacity).
+    pub(super) stopped: bool,
+    /// The face walks of stop condition 2.
+    pub(super) enclosure: Enclosure,
+}
+
+impl Update {
+    /// No update under way.
+    pub(super) const IDLE: Update = Update {
+        stage: Stage::Tips,
+        scan: Scan::new(Filed::Tips, (0, 0, 0, 0)),
+        left: 0.0,
+        done: 0.0,
+        ring: false,
+        course: 0.0,
+        direction: [0.0; 2],
+        rays: [[0.0; 2]; 2],
+        bounds: [0.0; 4],
+        force: [0.0; 2],
+        near: [(NONE, 0.0, [0.0; 2]); NEAR],
+        count: 0,
+        extra: [0.0; 2],
+        heading: 0.0,
+        length: 0.0,
+        next: [0.0; 2],
+        hit: (Hit::Nothing, 1.0),
+        found: (NONE, 1.0, [0.0; 2]),
+        stopped: false,
+        enclosure: Enclosure::IDLE,
+    };
+}
+
 impl Glass<'_> {
     /// Grows every crack of the current impact to its end.
     pub fn run(&mut self) -> GlassProgress {
         self.step(u64::MAX)
     }
 
-    /// Advances growth by about `budget` units of work (at least one). A unit is a grid cell
-    /// or a grid entry (a segment or a tip) examined by a distance or crossing query, a crack
-    /// looked at by the step loop, or a half-edge passed by a face walk of stop condition 2.
-    /// The budget is checked before every update of a tip, so a call overruns it by at most
-    /// one update's queries and one face walk, whatever the parameters (speeds, forces, plate
-    /// size); generation resumes exactly where it stopped, so the result does not depend on
-    /// the budgets. A time step moves every growing tip once, in crack order, each by |v|
-    /// in updates of at most 10 px.
+    /// Advances growth by `budget` units of work (at least one). A unit is a grid cell or a
+    /// grid entry (a segment or a tip) examined by a distance or crossing query, a crack looked
+    /// at (by the step loop, the filing of the tips, the check at the end of a time step and
+    /// stop condition 2), or a step of a face walk of stop condition 2. The budget is checked
+    /// before every unit, and the rest of an update (its forces summed, its move made) is a
+    /// few units, so a call overruns it by less than [`STEP_PIECE`] units, whatever the
+    /// parameters (speeds, forces, sector, plate size); generation resumes exactly where it
+    /// stopped, so the result does not depend on the budgets. A time step moves every growing
+    /// tip once, in crack order, each by |v| in updates of at most 10 px.
     pub fn step(&mut self, budget: u64) -> GlassProgress {
-        let start = self.clock.work;
-        while !self.clock.finished && self.clock.work - start < budget.max(1) {
-            if self.clock.cursor == 0 && !self.clock.stepping {
-                self.clock.work += self.crack_count as u64 + 1;
-                if !self.rebuild_tips() {
-                    self.finish();
-                    break;
-                }
-                self.clock.stepping = true;
-            }
-            if self.clock.cursor < self.crack_count {
-                self.clock.work += 1;
-                let c = self.cracks[self.clock.cursor];
-                if c.growing && self.clock.time >= c.wake {
-                    if self.update(self.clock.cursor) {
-                        self.clock.cursor += 1;
+        let deadline = self.clock.work.saturating_add(budget.max(1));
+        while !self.clock.finished && self.clock.work < deadline {
+            match self.clock.phase {
+                Phase::Unfile => self.unfile_tip(),
+                Phase::File => self.file_tip(),
+                Phase::Advance => {
+                    if self.clock.cursor < self.crack_count {
+                        self.clock.work += 1;
+                        let c = self.cracks[self.clock.cursor];
+                        if c.growing && self.clock.time >= c.wake {
+                            let update = self.begin_update(self.clock.cursor);
+                            self.go_on_update(update, deadline);
+                        } else {
+                            self.clock.cursor += 1;
+                        }
+                    } else {
+                        self.clock.cursor = 0;
+                        self.clock.time += 1;
+                        self.clock.phase = Phase::Settle;
+                        self.clock.done = 0;
                     }
-                    if self.clock.capacity_reached {
-                        self.finish();
-                    }
-                } else {
-                    self.clock.cursor += 1;
                 }
-                continue;
-            }
-            self.clock.cursor = 0;
-            self.clock.stepping = false;
-            self.clock.time += 1;
-            self.clock.work += self.crack_count as u64;
-            // Generation ends when every large and ring crack of this impact has stopped.
-            let impact = self.impacts - 1;
-            let driving = self.cracks[..self.crack_count]
-                .iter()
-                .any(|c| c.growing && c.impact == impact && c.kind != CrackKind::Radial);
-            if !driving || self.clock.time >= self.clock.time_limit {
-                self.finish();
+                Phase::Update => self.go_on_update(self.clock.update, deadline),
+                Phase::Settle => self.settle(),
             }
         }
         self.progress()
     }
 
-    /// Puts every growing tip into the tip grid; false if it is full.
-    fn rebuild_tips(&mut self) -> bool {
-        self.index.tips.clear();
-        for i in 0..self.crack_count {
-            let c = &mut self.cracks[i];
-            c.before = c.tip;
-            c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
-            let c = self.cracks[i];
-            if c.growing {
-                let (cx, cy, _, _) = self.index.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
-                if !self.index.tips.insert(cy * self.index.grid.columns + cx, i as u32) {
-                    self.clock.capacity_reached = true;
-                    return false;
-                }
+    /// One unit of taking the last time step's tips out of the tip grid: the cell of the next
+    /// filed tip is emptied (a tip was filed where its crack's `before` is). Then filing.
+    fn unfile_tip(&mut self) {
+        let k = self.clock.done;
+        if k < self.index.tips.used {
+            self.clock.work += 1;
+            let crack = self.index.tips.entries[k][0] as usize;
+            let at = self.cracks[crack].before;
+            let (cx, cy, _, _) = self.index.grid.span(at[0], at[1], at[0], at[1]);
+            self.index.tips.heads[cy * self.index.grid.columns + cx] = NONE;
+            self.clock.done += 1;
+        } else {
+            self.index.tips.used = 0;
+            self.clock.phase = Phase::File;
+            self.clock.done = 0;
+        }
+    }
+
+    /// One unit of filing the tips: the next crack's tip and direction at the start of the
+    /// time step are kept (what other tips' F1 sees), and its tip is filed if it grows. Then
+    /// the cracks advance; the plate finishes if the tip grid is full.
+    fn file_tip(&mut self) {
+        let i = self.clock.done;
+        if i == self.crack_count {
+            self.clock.phase = Phase::Advance;
+            self.clock.done = 0;
+            return;
+        }
+        self.clock.work += 1;
+        let c = &mut self.cracks[i];
+        c.before = c.tip;
+        c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
+        let c = self.cracks[i];
+        if c.growing {
+            let (cx, cy, _, _) = self.index.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
+            if !self.index.tips.insert(cy * self.index.grid.columns + cx, i as u32) {
+                self.clock.capacity_reached = true;
+                self.finish();
+                return;
             }
         }
-        true
+        self.clock.done += 1;
+    }
+
+    /// One unit of the check at the end of a time step: generation ends when every large and
+    /// ring crack of this impact has stopped (or at the time limit); else the next time step
+    /// begins.
+    fn settle(&mut self) {
+        let impact = self.impacts - 1;
+        let i = self.clock.done;
+        if i < self.crack_count {
+            self.clock.work += 1;
+            let c = &self.cracks[i];
+            if c.growing && c.impact == impact && c.kind != CrackKind::Radial {
+                // A crack still drives growth: the next time step, unless time is up.
+                self.clock.done = self.crack_count + 1;
+            } else {
+                self.clock.done += 1;
+            }
+            return;
+        }
+        if i == self.crack_count || self.clock.time >= self.clock.time_limit {
+            self.finish();
+        } else {
+            self.clock.phase = Phase::Unfile;
+            self.clock.done = 0;
+        }
     }
 
     /// Whether `point` lies in the sector S ahead of a tip at `w` heading `direction`
@@ -160,58 +309,6 @@ impl Glass<'_> {
             }
         }
         bounds
-    }
-
-    /// Calls `visit` once with every segment filed in the grid cells covering the box
-    /// [x0, x1] × [y0, y1] (a segment in several cells is visited once, by its stamp).
-    fn segments_near(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, visit: impl FnMut(&Self, u32)) {
-        let cells = self.index.grid.span(x0, y0, x1, y1);
-        self.segments_in(cells, None, visit);
-    }
-
-    /// As [`Self::segments_near`], over the cell range `cells` (as [`Grid::span`] gives it),
-    /// skipping the cells that `sector` finds wholly outside the sector S of a tip
-    /// ([`SectorCells::outside`]). No point of theirs is in S.
-    ///
-    /// [`Grid::span`]: super::grid::Grid::span
-    fn segments_in(
-        &mut self,
-        cells: (usize, usize, usize, usize),
-        sector: Option<SectorCells>,
-        mut visit: impl FnMut(&Self, u32),
-    ) {
-        self.index.stamp = self.index.stamp.wrapping_add(1);
-        if self.index.stamp == 0 {
-            self.index.stamps.fill(0);
-            self.index.stamp = 1;
-        }
-        let (cx0, cy0, cx1, cy1) = cells;
-        // One unit per cell looked at, whether skipped or not: a wide sector (B) spans many.
-        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..cy1 + 1 {
-            let row = sector.map(|s| s.row(cy));
-            for cx in cx0..cx1 + 1 {
-                let mut entry = self.index.segments.heads[cy * self.index.grid.columns + cx];
-                if entry == NONE {
-                    continue; // an empty cell: nothing to test it for
-                }
-                if let (Some(s), Some(row)) = (sector, row)
-                    && s.outside(row, cx)
-                {
-                    continue;
-                }
-                while entry != NONE {
-                    work += 1;
-                    let [e, next] = self.index.segments.entries[entry as usize];
-                    if self.index.stamps[e as usize] != self.index.stamp {
-                        self.index.stamps[e as usize] = self.index.stamp;
-                        visit(self, e);
-                    }
-                    entry = next;
-                }
-            }
-        }
-        self.clock.work += work;
     }
 
     /// The cell tests for the sector S of a tip at `w` whose wedge's boundary rays are `rays`
@@ -294,130 +391,212 @@ impl Glass<'_> {
         Some((e, distance))
     }
 
-    /// The sum F1 + F2 + F3 on crack `i`'s tip heading `heading` (its course for a ring
-    /// crack, with the ring's pull along it added).
-    fn force(&mut self, i: usize, heading: f32) -> ([f32; 2], (f32, f32)) {
+    /// Starts an update of crack `i` (Eqs. 12–17): its course (Eq. 13, θ_w, the direction of
+    /// v(t); a ring crack's v runs along its circle, rule 5), the sector S ahead of it, and the
+    /// scan of the tips in S.
+    fn begin_update(&mut self, i: usize) -> Update {
         let c = self.cracks[i];
-        let p = self.params;
-        let w = c.tip;
-        let direction = [libm::cosf(heading), libm::sinf(heading)];
-        let mut f = [0.0f32; 2];
-        let [x0, y0, x1, y1] = self.sector_box(w, direction);
-        // F1: away from every other tip in S, |F1| = k1/r². Cells wholly outside S (by more
-        // than SLACK, which covers the rounding of `in_sector`'s cosine) hold no tip in it.
+        let left = if c.left > 0.0 { c.left } else { c.speed };
+        let ring = matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise);
+        let course = if ring { Self::ring_course(&c) } else { c.heading };
+        let direction = [libm::cosf(course), libm::sinf(course)];
+        let bounds = self.sector_box(c.tip, direction);
+        let [x0, y0, x1, y1] = bounds;
         let cells = self.index.grid.span(x0, y0, x1, y1);
-        let (cx0, cy0, cx1, cy1) = cells;
-        let rays = self.wedge(direction);
-        let tip_cells = self.sector_cells(w, rays, SLACK);
-        let far = p.sector_radius + SLACK;
-        let mut work = ((cx1 - cx0 + 1) * (cy1 - cy0 + 1)) as u64;
-        for cy in cy0..cy1 + 1 {
-            let row = tip_cells.row(cy);
-            for cx in cx0..cx1 + 1 {
-                let mut entry = self.index.tips.heads[cy * self.index.grid.columns + cx];
-                if entry == NONE || tip_cells.outside(row, cx) {
-                    continue;
-                }
-                while entry != NONE {
-                    work += 1;
-                    let [j, next] = self.index.tips.entries[entry as usize];
-                    entry = next;
-                    if j as usize == i {
-                        continue;
-                    }
-                    let other = &self.cracks[j as usize];
-                    let e = [other.before[0] - w[0], other.before[1] - w[1]];
-                    // Only a tip growing towards this one pushes it (two tips closing in turn
-                    // apart); one running away from it, as the radial cracks of an impact do,
-                    // does not. Tested first, with the distance bound, as they are cheaper
-                    // than `in_sector`'s root (the same offset, so the same outcome).
-                    if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0
-                        || e[0] * e[0] + e[1] * e[1] > far * far
-                    {
-                        continue;
-                    }
-                    if let Some((e, r)) = self.in_sector(w, direction, other.before) {
-                        let k = p.tip_repulsion / (r * r * r);
-                        f[0] -= k * e[0];
-                        f[1] -= k * e[1];
-                    }
-                }
-            }
+        let scan = self.start_scan(Filed::Tips, cells);
+        Update {
+            stage: Stage::Tips,
+            scan,
+            left,
+            done: c.speed - left,
+            ring,
+            course,
+            direction,
+            rays: self.wedge(direction),
+            bounds,
+            ..Update::IDLE
         }
-        self.clock.work += work;
-        // F2: for every crack in S, one pull along its normal at its nearest point in S (to
-        // cross it at a right angle), |F2| = k2/d² with d that shortest distance. A crack's
-        // pieces are folded into one entry per crack (the nearest); past NEAR cracks the rest
-        // each pull on their own.
-        const NEAR: usize = 16;
-        let mut near = [(NONE, f32::INFINITY, [0.0f32; 2]); NEAR];
-        let mut count = 0usize;
+    }
+
+    /// Goes on with update `u` of the crack at the cursor until it is over or the work reaches
+    /// `deadline` (then it is kept in the clock, and the next call goes on from there): its
+    /// scans stop between any two cells or entries, its face walks between any two steps.
+    fn go_on_update(&mut self, mut u: Update, deadline: u64) {
+        let i = self.clock.cursor;
+        let over = loop {
+            match u.stage {
+                Stage::Tips => {
+                    if !self.sum_tips(i, &mut u, deadline) {
+                        break false;
+                    }
+                    let [x0, y0, x1, y1] = u.bounds;
+                    u.scan = self.start_scan(Filed::Segments, self.index.grid.span(x0, y0, x1, y1));
+                    u.stage = Stage::Segments;
+                }
+                Stage::Segments => {
+                    if !self.sum_segments(i, &mut u, deadline) {
+                        break false;
+                    }
+                    self.plan_move(i, &mut u);
+                    u.stage = Stage::Path;
+                }
+                Stage::Path => {
+                    if !self.trace_path(i, &mut u, deadline) {
+                        break false;
+                    }
+                    match self.make_move(i, &mut u) {
+                        Some(h) => {
+                            u.enclosure = Enclosure::new(h);
+                            u.stage = Stage::Enclose;
+                        }
+                        None => break true,
+                    }
+                }
+                Stage::Enclose => break self.go_on_enclosure(&mut u.enclosure, deadline),
+            }
+        };
+        if over {
+            self.end_update(i, &u);
+        } else {
+            self.clock.update = u;
+            self.clock.phase = Phase::Update;
+        }
+    }
+
+    /// F1, from where the scan stopped: away from every other tip in S, |F1| = k1/r². Cells
+    /// wholly outside S (by more than SLACK, which covers the rounding of `in_sector`'s cosine)
+    /// hold no tip in it. True when every tip in S has pushed.
+    fn sum_tips(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
+        let p = self.params;
+        let w = self.cracks[i].tip;
+        let direction = u.direction;
+        let cells = self.sector_cells(w, u.rays, SLACK);
+        let far = p.sector_radius + SLACK;
+        let force = &mut u.force;
+        let outside = cells.test();
+        self.go_on(
+            &mut u.scan,
+            deadline,
+            outside,
+            #[inline(always)]
+            |glass, j| {
+                if j as usize == i {
+                    return;
+                }
+                let other = &glass.cracks[j as usize];
+                let e = [other.before[0] - w[0], other.before[1] - w[1]];
+                // Only a tip growing towards this one pushes it (two tips closing in turn apart);
+                // one running away from it, as the radial cracks of an impact do, does not. Tested
+                // first, with the distance bound, as they are cheaper than `in_sector`'s root (the
+                // same offset, so the same outcome).
+                if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0
+                    || e[0] * e[0] + e[1] * e[1] > far * far
+                {
+                    return;
+                }
+                if let Some((e, r)) = glass.in_sector(w, direction, other.before) {
+                    let k = p.tip_repulsion / (r * r * r);
+                    force[0] -= k * e[0];
+                    force[1] -= k * e[1];
+                }
+            },
+        )
+    }
+
+    /// F2, from where the scan stopped: for every crack in S, one pull along its normal at its
+    /// nearest point in S (to cross it at a right angle), |F2| = k2/d² with d that shortest
+    /// distance. A crack's pieces are folded into one entry per crack (the nearest); past NEAR
+    /// cracks the rest each pull on their own. True when every segment in S has been seen.
+    fn sum_segments(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
+        let p = self.params;
+        let w = self.cracks[i].tip;
+        let (direction, rays) = (u.direction, u.rays);
+        let [x0, y0, x1, y1] = u.bounds;
         let crack = i as u32;
-        let mut extra = [0.0f32; 2];
         let now = self.clock.time as f32;
         let radius = p.sector_radius;
-        let sector = self.sector_cells(w, rays, 0.0);
-        self.segments_in(cells, Some(sector), |glass, e| {
-            let edge = &glass.edges[e as usize];
-            let owner = edge.crack;
-            // Not its own crack, nor pieces other tips grew earlier in this time step (all
-            // tips move at once).
-            if owner == crack || edge.time[0] >= now {
-                return;
-            }
-            let (a, z) = glass.edge_points(e);
-            // Outside the sector's box: no point of it is in the sector.
-            let [lx, ly, hx, hy] = span_of(a, z);
-            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
-                return;
-            }
-            // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
-            // than B from the tip (it has no point in S), or farther than its crack's nearest
-            // point found so far (it would not replace it). The box's distance is a lower
-            // bound on the segment's (up to rounding, which SLACK covers many times over).
-            let gap = |lo: f32, hi: f32, at: f32| {
-                if at < lo {
-                    lo - at
-                } else if at > hi {
-                    at - hi
-                } else {
-                    0.0
+        let cells = self.sector_cells(w, rays, 0.0);
+        let (near, count, extra) = (&mut u.near, &mut u.count, &mut u.extra);
+        let outside = cells.test();
+        self.go_on(
+            &mut u.scan,
+            deadline,
+            outside,
+            #[inline(always)]
+            |glass, e| {
+                let edge = &glass.edges[e as usize];
+                let owner = edge.crack;
+                // Not its own crack, nor pieces other tips grew earlier in this time step (all
+                // tips move at once).
+                if owner == crack || edge.time[0] >= now {
+                    return;
                 }
-            };
-            let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
-            let box_distance2 = gx * gx + gy * gy;
-            // The bound against B first (no bound below is larger), so that a far segment
-            // skips the search for its crack's entry.
-            let far = radius + SLACK;
-            if box_distance2 > far * far {
-                return;
-            }
-            let slot = near[..count].iter().position(|n| n.0 == owner);
-            let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
-            if box_distance2 > bound * bound {
-                return;
-            }
-            let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };
-            let normal = glass.normal_towards(a, z, v, d);
-            // Only a crack the tip is closing in on can be met; one it runs alongside or away
-            // from (a neighbour from the same impact, diverging) does not pull.
-            if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
-                return;
-            }
-            match slot.map(|k| &mut near[k]) {
-                Some(n) if d < n.1 => *n = (owner, d, normal),
-                Some(_) => {}
-                None if count < NEAR => {
-                    near[count] = (owner, d, normal);
-                    count += 1;
+                let (a, z) = glass.edge_points(e);
+                // Outside the sector's box: no point of it is in the sector.
+                let [lx, ly, hx, hy] = span_of(a, z);
+                if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
+                    return;
                 }
-                None => {
-                    let k = p.crack_attraction / (d * d);
-                    extra[0] += k * normal[0];
-                    extra[1] += k * normal[1];
+                // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
+                // than B from the tip (it has no point in S), or farther than its crack's nearest
+                // point found so far (it would not replace it). The box's distance is a lower
+                // bound on the segment's (up to rounding, which SLACK covers many times over).
+                let gap = |lo: f32, hi: f32, at: f32| {
+                    if at < lo {
+                        lo - at
+                    } else if at > hi {
+                        at - hi
+                    } else {
+                        0.0
+                    }
+                };
+                let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
+                let box_distance2 = gx * gx + gy * gy;
+                // The bound against B first (no bound below is larger), so that a far segment
+                // skips the search for its crack's entry.
+                let far = radius + SLACK;
+                if box_distance2 > far * far {
+                    return;
                 }
-            }
-        });
+                let slot = near[..*count].iter().position(|n| n.0 == owner);
+                let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
+                if box_distance2 > bound * bound {
+                    return;
+                }
+                let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };
+                let normal = glass.normal_towards(a, z, v, d);
+                // Only a crack the tip is closing in on can be met; one it runs alongside or away
+                // from (a neighbour from the same impact, diverging) does not pull.
+                if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
+                    return;
+                }
+                match slot.map(|k| &mut near[k]) {
+                    Some(n) if d < n.1 => *n = (owner, d, normal),
+                    Some(_) => {}
+                    None if *count < NEAR => {
+                        near[*count] = (owner, d, normal);
+                        *count += 1;
+                    }
+                    None => {
+                        let k = p.crack_attraction / (d * d);
+                        extra[0] += k * normal[0];
+                        extra[1] += k * normal[1];
+                    }
+                }
+            },
+        )
+    }
+
+    /// The sum F1 + F2 + F3 on the tip and the move it makes (Eqs. 12–16): the cracks' F2
+    /// summed, the plate's edges' F2 and a ring crack's pull along its circle added, the
+    /// update's length, F3 drawn, the turn; then the plate's edge the move would leave by, and
+    /// the scan of the segments along it.
+    fn plan_move(&mut self, i: usize, u: &mut Update) {
+        let p = self.params;
+        let c = self.cracks[i];
+        let w = c.tip;
+        let (direction, rays) = (u.direction, u.rays);
+        let mut f = u.force;
         // The nearest crack or edge closed in on: its distance, and the cosine between the
         // tip's heading and its normal (1 head-on, near 0 alongside).
         let mut nearest = (f32::INFINITY, 1.0f32);
@@ -426,14 +605,14 @@ impl Glass<'_> {
                 nearest = (d, normal[0] * direction[0] + normal[1] * direction[1]);
             }
         };
-        for &(_, d, normal) in &near[..count] {
+        for &(_, d, normal) in &u.near[..u.count] {
             closer(d, normal);
             let k = p.crack_attraction / (d * d);
             f[0] += k * normal[0];
             f[1] += k * normal[1];
         }
-        f[0] += extra[0];
-        f[1] += extra[1];
+        f[0] += u.extra[0];
+        f[1] += u.extra[1];
         // F2 for the plate's edges; one farther than B (and SLACK) from the tip has no point
         // in S (its nearest point's offset across it is exactly the tip's, so its distance is
         // at least that).
@@ -453,12 +632,80 @@ impl Glass<'_> {
                 f[1] += k * normal[1];
             }
         }
+        let ring = u.ring;
         // Rule 5: a ring crack's course runs along its circle; it pulls with ring_adherence.
-        if matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise) {
+        if ring {
             f[0] += p.ring_adherence * direction[0];
             f[1] += p.ring_adherence * direction[1];
         }
-        (f, nearest)
+        let course = u.course;
+        let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
+        let planned = full.min(u.left);
+        // Near a crack, an update covers a quarter of the distance to it, and at least
+        // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
+        // coming in at a shallow angle needs more turns before it arrives; a radial crack
+        // heading at it nearly squarely is not slowed.
+        let (gap, squareness) = nearest;
+        let least = MIN_UPDATE * squareness.max(MIN_SQUARENESS);
+        let length =
+            if !ring && squareness >= SQUARE { planned } else { (APPROACH_SHARE * gap).max(least).min(planned) };
+        // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
+        // per 10 px (scaled by the square root of the update's length, so that the random
+        // turning per unit length does not depend on how a step is cut, and for a radial crack
+        // by weight(t), so that young cracks wander little, rule 3), around the direction
+        // the crack started in (a radial crack keeps its course on the whole: adjacent large
+        // cracks stay at nearly equal angles) or, for a ring crack, around its course.
+        let age = c.age as f32 + u.done / c.speed;
+        let weight = 1.0 - libm::expf(-age / p.turn_delay);
+        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
+        let mean = if ring { course } else { c.start_heading };
+        let angle = mean + spread * self.forces.normal_f32();
+        f[0] += libm::cosf(angle);
+        f[1] += libm::sinf(angle);
+        // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
+        let turn = wrap(libm::atan2f(f[1], f[0]) - course);
+        // Forces of FLT_MAX can meet as inf − inf: a force with no direction turns the tip
+        // nowhere (fuzzing found NaN vertices from `tip_repulsion` = `crack_attraction` = FLT_MAX).
+        let turn = if turn.is_nan() { 0.0 } else { turn };
+        let difference = turn.clamp(-p.turn_limit, p.turn_limit);
+        let mut heading = wrap(course + difference * weight);
+        if ring {
+            // Rule 5: a ring crack never turns outwards of the chord of its circle (about the
+            // impact, through its tip) that this update spans, so that it turns at least as
+            // much as the arc it runs along, right up to where it meets a crack.
+            let (angle, r, sense) = Self::ring_frame(&c);
+            let chord = angle + sense * (core::f32::consts::FRAC_PI_2 + libm::asinf((0.5 * length / r).min(1.0)));
+            if sense * wrap(heading - chord) < 0.0 {
+                heading = wrap(chord);
+            }
+        }
+        // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
+        let next = [w[0] + length * libm::cosf(heading), w[1] + length * libm::sinf(heading)];
+        // The plate's edge: where the move leaves [0, W] × [0, H], the crossed coordinate exact.
+        let mut hit = (Hit::Nothing, 1.0f32);
+        for (axis, limit) in [(0usize, 0.0f32), (0, p.width), (1, 0.0), (1, p.height)] {
+            let (from, to) = (w[axis], next[axis]);
+            let outside = if limit == 0.0 { to < 0.0 } else { to > limit };
+            if outside && from != to {
+                let t = (limit - from) / (to - from);
+                if t < hit.1 {
+                    let other = 1 - axis;
+                    let mut at = [0.0; 2];
+                    at[axis] = limit;
+                    at[other] = w[other] + (next[other] - w[other]) * t;
+                    hit = (Hit::Edge(at), t);
+                }
+            }
+        }
+        let (x0, x1) = (w[0].min(next[0]), w[0].max(next[0]));
+        let (y0, y1) = (w[1].min(next[1]), w[1].max(next[1]));
+        u.heading = heading;
+        u.length = length;
+        u.next = next;
+        u.hit = hit;
+        u.found = (NONE, hit.1, [0.0; 2]);
+        u.bounds = [x0, y0, x1, y1];
+        u.scan = self.start_scan(Filed::Segments, self.index.grid.span(x0, y0, x1, y1));
     }
 
     /// The unit normal of segment `a`–`z` pointing from the tip towards it; `v` is the offset
@@ -509,115 +756,106 @@ impl Glass<'_> {
         angle + sense * (core::f32::consts::FRAC_PI_2 + half + pull)
     }
 
-    /// One update of crack `i` (Eqs. 12–17); true when its time step is complete (or it
-    /// stopped). A time step moves the tip |v|·dt with dt = 1 in updates of at most
-    /// UPDATE_LENGTH; an update is cut shorter while a crack or edge the tip is closing in on
-    /// lies in S (APPROACH_SHARE of its distance, at least MIN_UPDATE scaled by how squarely the
-    /// tip heads at it, down to MIN_SQUARENESS of it), so that F2 can turn the tip to meet it
-    /// at a right angle (rule 8), unless a radial crack already heads at it within 20° of
-    /// square (SQUARE). The tip stops exactly on a crack or the edge.
-    fn update(&mut self, i: usize) -> bool {
-        let p = self.params;
-        let c = self.cracks[i];
-        let left = if c.left > 0.0 { c.left } else { c.speed };
-        let done = c.speed - left;
-        // Eq. 13: θ_w, the direction of v(t); a ring crack's v runs along its circle (rule 5).
-        let ring = matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise);
-        let course = if ring { Self::ring_course(&c) } else { c.heading };
-        let (mut f, closing) = self.force(i, course);
-        let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
-        let planned = full.min(left);
-        // Near a crack, an update covers a quarter of the distance to it, and at least
-        // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
-        // coming in at a shallow angle needs more turns before it arrives; a radial crack
-        // heading at it nearly squarely is not slowed.
-        let (gap, squareness) = closing;
-        let least = MIN_UPDATE * squareness.max(MIN_SQUARENESS);
-        let length =
-            if !ring && squareness >= SQUARE { planned } else { (APPROACH_SHARE * gap).max(least).min(planned) };
-        // F3: a unit force whose direction is a normal draw, with standard deviation `wander`
-        // per 10 px (scaled by the square root of the update's length, so that the random
-        // turning per unit length does not depend on how a step is cut, and for a radial crack
-        // by weight(t), so that young cracks wander little, rule 3), around the direction
-        // the crack started in (a radial crack keeps its course on the whole: adjacent large
-        // cracks stay at nearly equal angles) or, for a ring crack, around its course.
-        let age = c.age as f32 + done / c.speed;
-        let weight = 1.0 - libm::expf(-age / p.turn_delay);
-        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
-        let mean = if ring { course } else { c.start_heading };
-        let angle = mean + spread * self.forces.normal_f32();
-        f[0] += libm::cosf(angle);
-        f[1] += libm::sinf(angle);
-        // Eqs. 12–15: turn towards F, at most θ_th, weighted by 1 − exp(−t/T).
-        let turn = wrap(libm::atan2f(f[1], f[0]) - course);
-        // Forces of FLT_MAX can meet as inf − inf: a force with no direction turns the tip
-        // nowhere (fuzzing found NaN vertices from `tip_repulsion` = `crack_attraction` = FLT_MAX).
-        let turn = if turn.is_nan() { 0.0 } else { turn };
-        let difference = turn.clamp(-p.turn_limit, p.turn_limit);
-        let mut heading = wrap(course + difference * weight);
-        if ring {
-            // Rule 5: a ring crack never turns outwards of the chord of its circle (about the
-            // impact, through its tip) that this update spans, so that it turns at least as
-            // much as the arc it runs along, right up to where it meets a crack.
-            let (angle, r, sense) = Self::ring_frame(&c);
-            let chord = angle + sense * (core::f32::consts::FRAC_PI_2 + libm::asinf((0.5 * length / r).min(1.0)));
-            if sense * wrap(heading - chord) < 0.0 {
-                heading = wrap(chord);
-            }
-        }
-        // Eqs. 16–17: w(t + dt) = w(t) + v(t + dt)·dt.
-        let stopped = self.move_tip(i, heading, length, done);
-        let left = left - length;
-        let c = &mut self.cracks[i];
-        if stopped || left <= 1e-3 * c.speed {
-            c.left = 0.0;
-            c.age += 1;
-            true
-        } else {
-            c.left = left;
-            false
-        }
+    /// The first crack the move meets, from where the scan of the segments along it stopped:
+    /// the nearest crossing (or overlap) past the tip, nearer than the plate's edge. True when
+    /// every segment along the move has been seen.
+    fn trace_path(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
+        let own_last = self.cracks[i].last_segment;
+        let w = self.cracks[i].tip;
+        let path = Segment::new(Point::new(w[0], w[1]), Point::new(u.next[0], u.next[1]));
+        let [x0, y0, x1, y1] = u.bounds;
+        let found = &mut u.found;
+        self.go_on(
+            &mut u.scan,
+            deadline,
+            |_, _| false,
+            #[inline(always)]
+            |glass, e| {
+                if e == own_last {
+                    return;
+                }
+                let (a, z) = glass.edge_points(e);
+                // Boxes apart: no meeting.
+                let [lx, ly, hx, hy] = span_of(a, z);
+                if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
+                    return;
+                }
+                let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
+                let (t, at) = match path.intersect(other) {
+                    Intersection::None => return,
+                    Intersection::Point { point, along_first, .. } => (along_first, point),
+                    Intersection::Overlap { start, .. } => (path.closest_parameter(start), start),
+                };
+                if t > 0.0 && t < found.1 {
+                    *found = (e, t, [at.x, at.y]);
+                }
+            },
+        )
     }
 
-    /// Moves crack `i`'s tip `length` along `heading` (`done` of its step already covered),
-    /// stopping exactly on a crack or the edge; true when it stopped.
-    fn move_tip(&mut self, i: usize, heading: f32, length: f32, done: f32) -> bool {
+    /// Makes the move (Eqs. 16–17): the tip goes to where it ends, stopping exactly on a
+    /// crack or the edge it met. The half-edge of the new segment when it closed a cycle (stop
+    /// condition 2 walks its faces next).
+    fn make_move(&mut self, i: usize, u: &mut Update) -> Option<HalfEdge> {
         let c = self.cracks[i];
-        let w = c.tip;
-        let next = [w[0] + length * libm::cosf(heading), w[1] + length * libm::sinf(heading)];
+        let (hit, along) = if u.found.0 == NONE {
+            u.hit
+        } else {
+            let (edge, at) = (u.found.0, u.found.2);
+            let (a, z) = self.edge_points(edge);
+            let along = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]))
+                .closest_parameter(Point::new(at[0], at[1]));
+            (Hit::Crack { edge, at, along }, u.found.1)
+        };
         let tip_vertex = if c.last_segment == NONE { c.start_vertex } else { self.edges[c.last_segment as usize].to };
-        let (hit, along) = self.first_hit(i, w, next);
-        let time = self.clock.time as f32 + done / c.speed;
+        let time = self.clock.time as f32 + u.done / c.speed;
+        u.stopped = true;
         let (end, stop) = match hit {
-            Hit::Nothing => (self.add_vertex(next), CrackEnd::Growing),
+            Hit::Nothing => (self.add_vertex(u.next), CrackEnd::Growing),
             Hit::Edge(at) => (self.add_vertex(at), CrackEnd::Edge),
             Hit::Crack { edge, at, along } => (self.meeting_vertex(edge, at, along), CrackEnd::Crack),
         };
         if end == NONE {
-            return true; // capacity reached; the caller finishes
+            return None; // capacity reached; the step loop finishes
         }
         if end == tip_vertex {
             // Met a crack exactly at its own tip (a rounding tie): it stops there.
             let c = &mut self.cracks[i];
             c.growing = false;
             c.end = CrackEnd::Crack;
-            return true;
+            return None;
         }
-        let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along * length / c.speed]);
-        let Some(e) = self.add_edge(segment) else { return true };
+        let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along * u.length / c.speed]);
+        let e = self.add_edge(segment)?;
         let closes_cycle = self.join(tip_vertex, end);
         let c = &mut self.cracks[i];
         c.tip = self.vertices[end as usize].at;
-        c.heading = heading;
-        let stopped = stop != CrackEnd::Growing;
-        if stopped {
+        c.heading = u.heading;
+        u.stopped = stop != CrackEnd::Growing;
+        if u.stopped {
             c.growing = false;
             c.end = stop;
         }
-        if closes_cycle {
-            self.enclose(2 * e);
+        closes_cycle.then_some(2 * e)
+    }
+
+    /// Ends the update of crack `i`: its time step is complete when it stopped or has moved
+    /// |v|; then the step loop goes on (or finishes, when the plate's capacity ran out).
+    fn end_update(&mut self, i: usize, u: &Update) {
+        let stopped = u.stopped || !self.cracks[i].growing;
+        let left = u.left - u.length;
+        let c = &mut self.cracks[i];
+        if stopped || left <= 1e-3 * c.speed {
+            c.left = 0.0;
+            c.age += 1;
+            self.clock.cursor += 1;
+        } else {
+            c.left = left;
         }
-        stopped || !self.cracks[i].growing
+        self.clock.phase = Phase::Advance;
+        if self.clock.capacity_reached {
+            self.finish();
+        }
     }
 
     /// The vertex where a tip meets edge `e` at point `at` (parameter `along` on the edge): one
@@ -635,64 +873,6 @@ impl Glass<'_> {
             return NONE;
         }
         v
-    }
-
-    /// The first crack or edge the step from `w` to `next` meets, and where along the step
-    /// (1 when it meets nothing).
-    fn first_hit(&mut self, i: usize, w: [f32; 2], next: [f32; 2]) -> (Hit, f32) {
-        let p = self.params;
-        let own_last = self.cracks[i].last_segment;
-        let path = Segment::new(Point::new(w[0], w[1]), Point::new(next[0], next[1]));
-        // The plate's edge: where the step leaves [0, W] × [0, H], the crossed coordinate exact.
-        let mut best = (Hit::Nothing, 1.0f32);
-        for (axis, limit) in [(0usize, 0.0f32), (0, p.width), (1, 0.0), (1, p.height)] {
-            let (from, to) = (w[axis], next[axis]);
-            let outside = if limit == 0.0 { to < 0.0 } else { to > limit };
-            if outside && from != to {
-                let t = (limit - from) / (to - from);
-                if t < best.1 {
-                    let other = 1 - axis;
-                    let mut at = [0.0; 2];
-                    at[axis] = limit;
-                    at[other] = w[other] + (next[other] - w[other]) * t;
-                    best = (Hit::Edge(at), t);
-                }
-            }
-        }
-        let (x0, x1) = (w[0].min(next[0]), w[0].max(next[0]));
-        let (y0, y1) = (w[1].min(next[1]), w[1].max(next[1]));
-        let mut found = (NONE, best.1, [0.0f32; 2]);
-        self.segments_near(x0, y0, x1, y1, |glass, e| {
-            if e == own_last {
-                return;
-            }
-            let (a, z) = glass.edge_points(e);
-            // Boxes apart: no meeting.
-            let [lx, ly, hx, hy] = span_of(a, z);
-            if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
-                return;
-            }
-            let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
-            let (t, at) = match path.intersect(other) {
-                Intersection::None => return,
-                Intersection::Point { point, along_first, .. } => (along_first, point),
-                Intersection::Overlap { start, .. } => (path.closest_parameter(start), start),
-            };
-            if t > 0.0 && t < found.1 {
-                found = (e, t, [at.x, at.y]);
-            }
-        });
-        if found.0 != NONE {
-            let along = found.1;
-            let edge = found.0;
-            let t_other = {
-                let (a, z) = self.edge_points(edge);
-                Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]))
-                    .closest_parameter(Point::new(found.2[0], found.2[1]))
-            };
-            return (Hit::Crack { edge, at: found.2, along: t_other }, along);
-        }
-        best
     }
 
     /// Splits edge `e` at vertex `v` (a point on it at parameter `along`), so that the crack
@@ -819,6 +999,24 @@ impl SectorCells {
         let by = ay + self.cell;
         let ny = nearest_to_zero(ay, by);
         SectorRow { ny2: ny * ny, right_y: [right[0] * ay, right[0] * by], left_y: [left[0] * ay, left[0] * by] }
+    }
+
+    /// The test of a scan's cells (whether cell (cx, cy) lies outside the sector by more than
+    /// the margin), forming each row's share once for a row's cells in turn.
+    #[inline(always)]
+    fn test(self) -> impl FnMut(usize, usize) -> bool {
+        let mut row: Option<(usize, SectorRow)> = None;
+        move |cx, cy| {
+            let share = match row {
+                Some((y, share)) if y == cy => share,
+                _ => {
+                    let share = self.row(cy);
+                    row = Some((cy, share));
+                    share
+                }
+            };
+            self.outside(share, cx)
+        }
     }
 
     /// Whether cell `cx` of `row` lies outside the sector by more than the margin: its nearest

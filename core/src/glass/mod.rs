@@ -35,6 +35,7 @@ pub use params::{GlassParamError, GlassParams};
 pub use presets::{PRESETS, preset};
 
 use grid::{Buckets, Grid, NONE};
+use growth::{Phase, Update};
 
 use crate::rng::{Rng, Stream};
 
@@ -386,11 +387,16 @@ struct Clock {
     time_limit: u32,
     finished: bool,
     capacity_reached: bool,
-    /// Units of work done so far (grid cells and entries examined, cracks looked at): what
-    /// [`Glass::step`]'s budget counts.
+    /// Units of work done so far (grid cells and entries examined, cracks looked at, face
+    /// walks' steps): what [`Glass::step`]'s budget counts.
     work: u64,
-    /// A time step is under way (its tips' positions were filed).
-    stepping: bool,
+    /// What the time step under way is doing, and how far along it is ([`Glass::step`] stops
+    /// between any two units of work and resumes here).
+    phase: Phase,
+    /// How far along `phase` is: tips unfiled, cracks filed, cracks checked.
+    done: usize,
+    /// The update of the tip under way.
+    update: Update,
 }
 
 /// Scratch of the walks around faces of the crack network.
@@ -480,7 +486,9 @@ impl<'a> Glass<'a> {
                 finished: false,
                 capacity_reached: false,
                 work: 0,
-                stepping: false,
+                phase: Phase::Unfile,
+                done: 0,
+                update: Update::IDLE,
             },
             walk: FaceWalk { marks, mark: 0, roots },
             sector: Sector {
@@ -518,7 +526,8 @@ impl<'a> Glass<'a> {
         self.impacts += 1;
         self.clock.time = 0;
         self.clock.cursor = 0;
-        self.clock.stepping = false;
+        self.clock.phase = Phase::Unfile;
+        self.clock.done = 0;
         self.clock.finished = false;
         // Long enough to cross the plate twice at the slowest speed Rand can draw.
         let slowest = p.large_speed.min(p.radial_speed).min(p.ring_speed) * (1.0 - p.spread_ratio);
@@ -671,8 +680,10 @@ mod fragments;
 mod growth;
 mod output;
 mod render;
+mod scan;
 
 pub use fragments::FragmentRing;
 use fragments::FragmentScratch;
+pub use growth::STEP_PIECE;
 pub use output::CrackPoint;
 pub use render::{GlassLayers, GlassRender};

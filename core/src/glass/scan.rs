@@ -1,0 +1,131 @@
+//! A resumable walk over the items filed in a range of grid cells: the queries of a tip update
+//! (its sector's tips and segments, the segments along its move) look at one cell or one entry
+//! per unit of work, and stop between any two when [`Glass::step`]'s budget is spent, to go on
+//! from there at the next call.
+
+use super::Glass;
+use super::grid::NONE;
+
+/// Which of the plate's grids a scan reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Filed {
+    /// The growing tips of the time step, by crack.
+    Tips,
+    /// The crack segments, by edge; each is visited once per scan, however many cells it is in.
+    Segments,
+}
+
+/// Where a scan of the cells `cells` (inclusive, as [`super::grid::Grid::span`] gives them)
+/// stands: the cell at (`cx`, `cy`), and the next entry of its list to visit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Scan {
+    filed: Filed,
+    cells: (usize, usize, usize, usize),
+    cx: usize,
+    cy: usize,
+    /// The cell has been looked at (and `entry` is the next of its entries, NONE past the last).
+    entered: bool,
+    entry: u32,
+}
+
+impl Scan {
+    /// A scan of `filed` over `cells`, not yet started.
+    pub(super) const fn new(filed: Filed, cells: (usize, usize, usize, usize)) -> Scan {
+        Scan { filed, cells, cx: cells.0, cy: cells.1, entered: false, entry: NONE }
+    }
+}
+
+impl Glass<'_> {
+    /// Starts a scan of `filed` over `cells`: a segment scan takes a fresh stamp, so that it
+    /// visits each segment once.
+    pub(super) fn start_scan(&mut self, filed: Filed, cells: (usize, usize, usize, usize)) -> Scan {
+        if filed == Filed::Segments {
+            self.index.stamp = self.index.stamp.wrapping_add(1);
+            if self.index.stamp == 0 {
+                self.index.stamps.fill(0);
+                self.index.stamp = 1;
+            }
+        }
+        Scan::new(filed, cells)
+    }
+
+    /// Goes on with `scan` until it has visited every entry of its cells (true) or the work
+    /// reaches `deadline` (false; the next call goes on from there). One unit per cell looked
+    /// at and per entry passed: a cell for which `skip(cx, cy)` holds (one wholly
+    /// outside a tip's sector) or that is empty is passed over after its unit; `visit` gets
+    /// every item of the others (a segment once per scan).
+    #[inline(always)]
+    pub(super) fn go_on(
+        &mut self,
+        scan: &mut Scan,
+        deadline: u64,
+        skip: impl FnMut(usize, usize) -> bool,
+        visit: impl FnMut(&Self, u32),
+    ) -> bool {
+        match scan.filed {
+            Filed::Tips => self.go_on_in::<false>(scan, deadline, skip, visit),
+            Filed::Segments => self.go_on_in::<true>(scan, deadline, skip, visit),
+        }
+    }
+
+    /// [`Self::go_on`] over the segments (`SEGMENTS`) or the tips.
+    #[inline(always)]
+    fn go_on_in<const SEGMENTS: bool>(
+        &mut self,
+        scan: &mut Scan,
+        deadline: u64,
+        mut skip: impl FnMut(usize, usize) -> bool,
+        mut visit: impl FnMut(&Self, u32),
+    ) -> bool {
+        let (cx0, _, cx1, cy1) = scan.cells;
+        if cx0 > cx1 {
+            return true; // no cells (a range the grid's span never gives)
+        }
+        let columns = self.index.grid.columns;
+        let mut work = self.clock.work;
+        let (mut cx, mut cy, mut entered, mut entry) = (scan.cx, scan.cy, scan.entered, scan.entry);
+        let over = 'scan: loop {
+            if entered {
+                // The entries of the cell looked at, a unit each.
+                while entry != NONE {
+                    if work >= deadline {
+                        break 'scan false;
+                    }
+                    work += 1;
+                    let buckets = if SEGMENTS { &self.index.segments } else { &self.index.tips };
+                    let [item, next] = buckets.entries[entry as usize];
+                    entry = next;
+                    if SEGMENTS {
+                        if self.index.stamps[item as usize] == self.index.stamp {
+                            continue;
+                        }
+                        self.index.stamps[item as usize] = self.index.stamp;
+                    }
+                    visit(self, item);
+                }
+                entered = false;
+                if cx < cx1 {
+                    cx += 1;
+                } else {
+                    cx = cx0;
+                    cy += 1;
+                }
+            }
+            if cy > cy1 {
+                break true;
+            }
+            // The next cell, a unit.
+            if work >= deadline {
+                break false;
+            }
+            work += 1;
+            let heads = if SEGMENTS { &self.index.segments.heads } else { &self.index.tips.heads };
+            let head = heads[cy * columns + cx];
+            entered = true;
+            entry = if head == NONE || skip(cx, cy) { NONE } else { head };
+        };
+        (scan.cx, scan.cy, scan.entered, scan.entry) = (cx, cy, entered, entry);
+        self.clock.work = work;
+        over
+    }
+}
