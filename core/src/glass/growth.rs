@@ -478,7 +478,7 @@ impl Glass<'_> {
             &mut u.scan,
             deadline,
             outside,
-            #[inline(always)]
+            #[cfg_attr(target_pointer_width = "64", inline(always))]
             |glass, j| {
                 if j as usize == i {
                     return;
@@ -522,7 +522,7 @@ impl Glass<'_> {
             &mut u.scan,
             deadline,
             outside,
-            #[inline(always)]
+            #[cfg_attr(target_pointer_width = "64", inline(always))]
             |glass, e| {
                 let edge = &glass.edges[e as usize];
                 let owner = edge.crack;
@@ -769,7 +769,7 @@ impl Glass<'_> {
             &mut u.scan,
             deadline,
             |_, _| false,
-            #[inline(always)]
+            #[cfg_attr(target_pointer_width = "64", inline(always))]
             |glass, e| {
                 if e == own_last {
                     return;
@@ -1003,7 +1003,7 @@ impl SectorCells {
 
     /// The test of a scan's cells (whether cell (cx, cy) lies outside the sector by more than
     /// the margin), forming each row's share once for a row's cells in turn.
-    #[inline(always)]
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     fn test(self) -> impl FnMut(usize, usize) -> bool {
         let mut row: Option<(usize, SectorRow)> = None;
         move |cx, cy| {
