@@ -1,7 +1,7 @@
 /*
- * engine.cpp: hibi in a game loop, from C++17 through include/hibi.hpp (issue 26). A glass
- * impact, a mud run and a skin live in memory from the engine's own allocator (an arena,
- * through *_create_in); each frame advances each of them by a bounded amount of work with
+ * engine.cpp: hibi in a game loop, from C++17 through include/hibi.hpp. A glass impact, a
+ * mud run and a skin live in memory from the engine's own allocator (an arena, through
+ * *_create_in); each frame advances each of them by a bounded amount of work with
  * step(budget), a few frames of the break-time rasters (glass and mud) are written as PGM
  * files, and at the end the program reports the largest work any frame did against its
  * budget, and checks that the budgeted objects came out as one unbudgeted run of each. Mud

@@ -1,13 +1,13 @@
-//! Time is bounded by what the caller asked (issue 25 item 6), measured as work, not time.
+//! Time is bounded by what the caller asked, measured as work, not time.
 //!
-//! The extreme values of issue 25's defects and more (glass ring counts of 1e30, a mud
-//! `shrink_ratio` just below 1, `break_stretch_mean` 1e30, speeds of 1e30 and 1e-30, huge
-//! perturbations, `u64::MAX` budgets) are valid parameters: for each, the memory (what
-//! creation lays out and fills) is the same as for ordinary values of those fields, every
-//! step call's work (the models' own `work` counters, in the units of the budget) stays within
-//! its budget plus one indivisible piece bounded by the model's size and capacities, and a
-//! render of a fixed size completes. NaN and infinity in every float field, and the
-//! out-of-range ends, are refused through the C ABI with the field's status, nothing written.
+//! Extreme values (glass ring counts of 1e30, a mud `shrink_ratio` just below 1,
+//! `break_stretch_mean` 1e30, speeds of 1e30 and 1e-30, huge perturbations, `u64::MAX`
+//! budgets) are valid parameters: for each, the memory (what creation lays out and fills) is
+//! the same as for ordinary values of those fields, every step call's work (the models' own
+//! `work` counters, in the units of the budget) stays within its budget plus one indivisible
+//! piece bounded by the model's size and capacities, and a render of a fixed size completes.
+//! NaN and infinity in every float field, and the out-of-range ends, are refused through the C
+//! ABI with the field's status, nothing written.
 //!
 //! Create and render report no work count: `tests/c_examples.rs`
 //! (`c_create_and_render_work_does_not_grow_with_extreme_floats`) counts their instructions
@@ -202,9 +202,9 @@ fn glass_extremes_step_within_their_budgets() {
     }
 }
 
-/// The defect's case: a ring count of 1e30 (R = floor(a·M + b)) is a plate that runs out of
-/// capacity, not a loop over 1e30 ring start points; with a `u64::MAX` budget the run ends
-/// within the capacities' work.
+/// A ring count of 1e30 (R = floor(a·M + b)) is a plate that runs out of capacity, not a loop
+/// over 1e30 ring start points; with a `u64::MAX` budget the run ends within the capacities'
+/// work.
 #[test]
 fn glass_ring_count_1e30_ends_within_the_capacities() {
     for set in [|p: &mut GlassParams| p.ring_slope = 1e30, |p: &mut GlassParams| p.ring_offset = 1e30] {

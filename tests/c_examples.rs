@@ -3,11 +3,11 @@
 //! engine does, run, and print exactly what hibi's Rust API computes. A third build links the
 //! static library under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer, a
 //! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
-//! programs in `tests/c/` (issue 25) run under the sanitizers and under Valgrind; one of them,
+//! programs in `tests/c/` run under the sanitizers and under Valgrind; one of them,
 //! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
 //! `tests/c/work_counts.c` also runs under Callgrind, which counts the instructions of create
-//! and render calls with extreme float values (issue 25 item 6).
-//! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` (issue 26) against the C
+//! and render calls with extreme float values, whose cost the sizes and capacities bound.
+//! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` against the C
 //! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind.
 
 use std::path::{Path, PathBuf};
@@ -502,8 +502,8 @@ fn skin_example_is_clean_under_valgrind() {
     check_skin(Linkage::Valgrind);
 }
 
-/// Issue 25's C regression programs in `tests/c/`, statically linked under the sanitizers:
-/// what they printed, after checking that they printed nothing on stderr.
+/// The C regression programs in `tests/c/`, statically linked under the sanitizers: what they
+/// printed, after checking that they printed nothing on stderr.
 fn regression(source: &str) -> String {
     let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Sanitized, &[]);
     assert!(stderr.is_empty(), "{source} printed on stderr:\n{stderr}");
@@ -574,13 +574,13 @@ fn callgrind_counts(exe: &Path) -> std::collections::BTreeMap<String, u64> {
     counts
 }
 
-/// Issue 25 item 6 for the calls that report no work: each case of `tests/c/work_counts.c`
-/// calls create or render with an extreme float value and, as its twin, with a moderate value
-/// of the same sizes and capacities that already saturates what the value can change;
-/// Callgrind counts each call's instructions. The extreme may cost at most `factor` times its
-/// twin (plus 10,000 instructions), and where `same` the two results are equal (the value
-/// cannot matter past the twin's). Two cases cost more: a glass `radial_mean` of 10000 (the
-/// most that is valid) is a Poisson draw of that mean, one uniform per unit of the mean
+/// Time bounded by sizes and capacities for the calls that report no work: each case of
+/// `tests/c/work_counts.c` calls create or render with an extreme float value and, as its twin,
+/// with a moderate value of the same sizes and capacities that already saturates what the value
+/// can change; Callgrind counts each call's instructions. The extreme may cost at most `factor`
+/// times its twin (plus 10,000 instructions), and where `same` the two results are equal (the
+/// value cannot matter past the twin's). Two cases cost more: a glass `radial_mean` of 10000
+/// (the most that is valid) is a Poisson draw of that mean, one uniform per unit of the mean
 /// (Knuth's method), so creation is bounded by the validation's cap rather than by the
 /// capacities (about 17 times the twin with mean 100); a mud `anisotropy_direction` of 1e30
 /// costs libm's argument reduction of the huge angle in creation (about 1.7 times).
@@ -643,7 +643,8 @@ fn c_work_counts_prints_every_case() {
     assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 42, "{output}");
 }
 
-/// Defect 1: a huge ring count formula is bounded by `max_cracks` (it ran for minutes).
+/// A huge ring count formula is bounded by `max_cracks`: creation takes under a second, not
+/// minutes.
 #[test]
 fn c_glass_create_is_bounded_by_the_capacities() {
     let output = regression("tests/c/glass_ring_counts.c");
@@ -655,7 +656,7 @@ fn c_glass_create_is_bounded_by_the_capacities() {
     }
 }
 
-/// Defect 2: out of capacity, every output still works, and no panic message reaches stderr.
+/// Out of capacity, every output still works, and no panic message reaches stderr.
 #[test]
 fn c_glass_plate_out_of_capacity_stays_usable() {
     let output = regression("tests/c/glass_capacity.c");
@@ -670,8 +671,8 @@ fn c_glass_plate_out_of_capacity_stays_usable() {
     }
 }
 
-/// Defect 4: `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends
-/// both solvers alike: at the target shrink, uncracked, at a positive time.
+/// `shrink_ratio` 1 is refused by name; an unreachable `break_stretch_mean` ends both solvers
+/// alike: at the target shrink, uncracked, at a positive time.
 #[test]
 fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
     let output = regression("tests/c/mud_shrink.c");
@@ -695,8 +696,8 @@ fn c_mud_solvers_agree_on_the_ends_of_the_shrink_range() {
     }
 }
 
-/// Defect 5: refusals name the field or argument the caller wrote, and the `*_written`
-/// counts are required everywhere while the optional outputs are skipped.
+/// Refusals name the field or argument the caller wrote, and the `*_written` counts are
+/// required everywhere while the optional outputs are skipped.
 #[test]
 fn c_refusals_name_what_the_caller_wrote() {
     let output = regression("tests/c/messages.c");
@@ -771,7 +772,7 @@ fn bad_input_table() -> (Vec<(String, String)>, Vec<String>) {
     (rows, unreachable)
 }
 
-/// Deliverable 4 of issue 25: each row of docs/bad-input.md gets the status it names from
+/// Each row of docs/bad-input.md gets the status it names from
 /// tests/c/bad_input.c (run under the sanitizers), no failing call wrote its output, the
 /// program has no case the table lacks, and every status the header declares is reached by
 /// a row or listed as unreachable (and then reached by none).
@@ -828,12 +829,12 @@ fn every_c_test_runs_under_the_sanitizers() {
     }
 }
 
-/// What `tests/cpp/wrapper.cpp` (issue 26: `include/hibi.hpp`) must print: every comparison
-/// of the wrapper with the C calls holds, errors carry the C status, message and argument,
-/// renders of one object from four threads equal the lone render, every output written
-/// through a `hibi::Span` view is the C call's, a view one element short throws status 3
-/// (`HIBI_ERROR_BUFFER_TOO_SMALL`) with nothing written, and built as `standard` C++20,
-/// `std::span`s convert to views.
+/// What `tests/cpp/wrapper.cpp` (the C++17 wrapper `include/hibi.hpp`) must print: every
+/// comparison of the wrapper with the C calls holds, errors carry the C status, message and
+/// argument, renders of one object from four threads equal the lone render, every output
+/// written through a `hibi::Span` view is the C call's, a view one element short throws
+/// status 3 (`HIBI_ERROR_BUFFER_TOO_SMALL`) with nothing written, and built as `standard`
+/// C++20, `std::span`s convert to views.
 fn check_wrapper(output: &str, standard: &str) {
     let version = format!("hibi {}", env!("CARGO_PKG_VERSION"));
     assert_eq!(line(output, "hibi "), version);
@@ -942,12 +943,11 @@ fn number_after(line: &str, prefix: &str) -> u64 {
     rest.split([' ', ',', ')']).next().unwrap().parse().unwrap_or_else(|_| panic!("not a number: {line:?}"))
 }
 
-/// Issue 26 item 5: the game loop spreads each model over several frames within its budget
-/// (mud's step stops once its work reaches the budget, so a frame overruns it by less than
-/// one indivisible piece; skin's, which checks its budget before each cell, by at most one
-/// cell's outline and one unit: 2 049), writes four frames of each break-time raster, the
-/// last glass frame cracked where Rust's plate is, and the budgeted objects equal unbudgeted
-/// runs.
+/// The game loop spreads each model over several frames within its budget (mud's step stops
+/// once its work reaches the budget, so a frame overruns it by less than one indivisible piece;
+/// skin's, which checks its budget before each cell, by at most one cell's outline and one
+/// unit: 2 049), writes four frames of each break-time raster, the last glass frame cracked
+/// where Rust's plate is, and the budgeted objects equal unbudgeted runs.
 fn check_engine(linkage: Linkage) {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("engine_{linkage:?}"));
     let _ = std::fs::remove_dir_all(&dir);

@@ -1,6 +1,6 @@
-//! Regression tests for what fuzzing the C ABI found (issue 25 item 2; `docs/fuzzing.md`
-//! lists each finding). Each case is the smallest input found that reached
-//! `HIBI_ERROR_PANIC`, called through the C ABI as the fuzz target called it.
+//! Regression tests for what fuzzing the C ABI found (`docs/fuzzing.md` lists each finding).
+//! Each case is the smallest input found that reached `HIBI_ERROR_PANIC`, called through the C
+//! ABI as the fuzz target called it.
 
 use hibi::*;
 

@@ -1,4 +1,4 @@
-//! Model B against the paper's facts (Agui et al.) and the issue's acceptance list.
+//! Model B against the paper's facts (Agui et al.) and hibi's own acceptance criteria.
 
 use hibi_core::glass::{
     CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, STEP_PIECE,
@@ -88,9 +88,9 @@ fn running_out_of_capacity_is_reported_not_a_panic() {
     assert!(with_plate(&p, |g| g.progress()).capacity_reached);
 }
 
-/// Issue 25 defect 2: a plate that ran out of capacity (down to two vertices: the impact
-/// point and one more) stays usable: its fragments cover the plate after every step, whatever
-/// the budgets, and the ring loop of an impact stops at the capacities (defect 1).
+/// A plate that ran out of capacity (down to two vertices: the impact point and one more)
+/// stays usable: its fragments cover the plate after every step, whatever the budgets, and
+/// the ring loop of an impact stops at the capacities.
 #[test]
 fn a_plate_out_of_capacity_stays_usable_down_to_two_vertices() {
     let fragments = |g: &mut Glass| {
@@ -378,7 +378,8 @@ fn enclosed_cracks_stop_inside_regions_bounded_by_cracks_alone() {
 }
 
 // ---------------------------------------------------------------------------------------
-// The paper's geometry (issue 23), measured from the polylines as a user sees them.
+// The paper's geometry (its growth rules and figures), measured from the polylines as a user
+// sees them.
 
 /// One plate's cracks: kind, end, ring (centre, radius) and points.
 struct Plate {
@@ -654,8 +655,8 @@ fn tips_meet_cracks_at_right_angles() {
         e[CrackEnd::Edge as usize]
     );
     assert!(all.len() > 20 * PLATES as usize, "only {} meetings", all.len());
-    assert!(median >= 60.0, "median meeting angle {median:.1} deg (issue 23 asks >= 60)");
-    assert!(square >= 0.5, "{:.1} % of meetings within 60-90 deg (issue 23 asks >= 50 %)", 100.0 * square);
+    assert!(median >= 60.0, "median meeting angle {median:.1} deg (rule 8: meetings near a right angle; at least 60)");
+    assert!(square >= 0.5, "{:.1} % of meetings within 60-90 deg (rule 8: at least 50 %)", 100.0 * square);
 }
 
 /// Of the growing tips farther than 60 px from the impact at the end of each time step (seeds
@@ -752,7 +753,7 @@ fn radial_cracks_turn_like_the_papers_fig_5() {
         "{PLATES} plates: {} turns; 1st percentile {p1:.1} deg, 99th {p99:.1} deg, mean {mean:.2} deg",
         turns.len()
     );
-    assert!(p1 < -18.0 && p99 > 18.0, "1st/99th percentiles {p1:.1} / {p99:.1} deg (issue 23: beyond -18 / 18)");
+    assert!(p1 < -18.0 && p99 > 18.0, "1st/99th percentiles {p1:.1} / {p99:.1} deg (Fig. 5's spread: beyond -18 / 18)");
     assert!(mean.abs() <= 2.0, "mean turn {mean:.2} deg");
 }
 

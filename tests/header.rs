@@ -78,8 +78,8 @@ fn header_is_warning_free_in_c99_c11_and_cpp17_with_gcc_and_clang() {
 }
 
 /// Every `HIBI_*` constant the header, the C++ wrapper, the examples and the docs cite is one
-/// `include/hibi.h` defines (issue 25 defect 6: the header cited a `HIBI_GLASS_LARGE` it did
-/// not define). A name followed by `*` is a family (`HIBI_MUD_LAYER_*`), not a constant.
+/// `include/hibi.h` defines (a name cited but not defined, such as a `HIBI_GLASS_LARGE` in the
+/// header, fails here). A name followed by `*` is a family (`HIBI_MUD_LAYER_*`), not a constant.
 #[test]
 fn every_cited_constant_is_defined() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

@@ -1,18 +1,18 @@
-//! Memory that follows the work (issue 24 item 3): each model's memory need is a function of
-//! its parameters, the one `new` (Rust) and `*_create_in` (C) check, and it is exact: one
-//! element (one byte) less is refused with a clear status, the need itself suffices to build
-//! and render. A 64×64 one-level skin needs 8.4 KiB (8 608 bytes of arrays, `cargo test
-//! --release --test memory -- --nocapture`), and a render nothing more: cells, vertices and
-//! their wedges only for the centre points that can reach the surface, its vertices bounded by
-//! the planar Delaunay graph's edges and by the faces of the divided surface, a neighbour
-//! window of the centre points within twice the covering radius (25 of them at jitter 0.5),
-//! clip buffers for a clipped outline among them, and of the per-level records only what
-//! level 0 reads; not the 12 960 bytes with a whole level record (profile table, shared edges,
-//! edge grid and edge scratch, 6.4 KB), the 19 296 of a fixed 81-point window, the 110 KB it
-//! needed at first, nor the 434 KB of fixed capacities before that. Most of it (4.7 KB) does
-//! not grow with the image: the level's profile table (2.1 KB), the window (1.2 KB) and two
-//! clip buffers (1.4 KB). A finer level adds its division (edge grid and crossing scratch), and
-//! a level that keeps edges for its cells' neighbours its shared edges.
+//! Memory that follows the work: each model's memory need is a function of its parameters, the
+//! one `new` (Rust) and `*_create_in` (C) check, and it is exact: one element (one byte) less
+//! is refused with a clear status, the need itself suffices to build and render. A 64×64
+//! one-level skin needs 8.4 KiB (8 608 bytes of arrays, `cargo test --release --test
+//! memory -- --nocapture`), and a render nothing more: cells, vertices and their wedges only
+//! for the centre points that can reach the surface, its vertices bounded by the planar
+//! Delaunay graph's edges and by the faces of the divided surface, a neighbour window of the
+//! centre points within twice the covering radius (25 of them at jitter 0.5), clip buffers for
+//! a clipped outline among them, and of the per-level records only what level 0 reads; not the
+//! 12 960 bytes with a whole level record (profile table, shared edges, edge grid and edge
+//! scratch, 6.4 KB), the 19 296 of a fixed 81-point window, the 110 KB it needed at first, nor
+//! the 434 KB of fixed capacities before that. Most of it (4.7 KB) does not grow with the
+//! image: the level's profile table (2.1 KB), the window (1.2 KB) and two clip buffers
+//! (1.4 KB). A finer level adds its division (edge grid and crossing scratch), and a level that
+//! keeps edges for its cells' neighbours its shared edges.
 use core::ffi::c_void;
 
 use hibi::*;

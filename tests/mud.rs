@@ -1,4 +1,4 @@
-//! Model A against the paper's claims (Hirota et al.), the issue's acceptance list, and the
+//! Model A against the paper's claims (Hirota et al.), hibi's own acceptance criteria, and the
 //! golden snapshots. These run the model at size; hibi-core is optimised in every profile.
 
 use hibi_core::mud::{Boundary, CrackStatistics, Mud, MudBuffers, MudLayers, MudParams, MudRender, Solver, Topology};
@@ -57,9 +57,9 @@ fn solver_means(seeds: u64, topology: Topology, size: u32) -> ((f32, f32), (f32,
     (density, area)
 }
 
-/// Measured on the traced network (issue 21). With the quasi-static node updates
-/// over-relaxed (1.2) the mean cell areas were 19 % apart; plain Gauss–Seidel brings them
-/// within 15 % (see `quasi_static.rs`).
+/// Measured on the traced network. With the quasi-static node updates over-relaxed (1.2) the
+/// mean cell areas were 19 % apart; plain Gauss–Seidel brings them within 15 % (see
+/// `quasi_static.rs`).
 #[test]
 fn explicit_and_quasi_static_agree_over_eight_seeds() {
     // The irregular lattice's explicit run goes spring by spring, about ten times slower
@@ -428,9 +428,9 @@ fn the_network_is_one_connected_thing() {
             100.0 * dead
         );
         assert!(share >= 0.90, "{topology:?} seed {seed}: {share}");
-        // Issue 21: at most 10 %. The separation rule alone left 12-15 % on the hexagonal
+        // At most 10 % dead ends. The separation rule alone leaves 12-15 % on the hexagonal
         // lattice and 25-27 % on the irregular one: tips one node short of another crack,
-        // and dead ends that had not opened (see network.rs, rule 1).
+        // and dead ends that have not opened (see network.rs, rule 1).
         assert!(dead <= 0.10, "{topology:?} seed {seed}: {dead}");
         // Every edge joins its vertices: its first and last points are theirs.
         for e in &n.edges {
@@ -705,8 +705,8 @@ fn network_and_cells_refuse_short_buffers_and_write_nothing() {
 }
 
 /// The explicit solver's run, bit for bit, on every lattice and both drives and backends:
-/// every spring's break time and the traced segments, hashed (pinned before the short step
-/// became resumable, issue 26 item 5: stopping anywhere in a short step changes no bit).
+/// every spring's break time and the traced segments, hashed (the same under any frame
+/// budget: stopping anywhere in a short step changes no bit).
 #[test]
 fn golden_explicit_runs() {
     fn hash<S: Scalar>(name: &str, params: &MudParams) -> u64 {

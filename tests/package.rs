@@ -1,11 +1,11 @@
-//! Packaging (issue 26): `ffi/install` lays out the C library, its headers, a pkg-config file
-//! and a CMake package under a prefix; an out-of-tree C++ program (`tests/consumer/`) builds
-//! against the install through pkg-config and through CMake, shared and static, and runs.
-//! The shared library's SONAME, the header's version macros, the symbols the libraries
-//! export, and a program linking libhibi.a next to a second Rust static library
-//! (`tests/second_rust_lib/`) are checked here too. Both programs also run clean under
-//! AddressSanitizer + UndefinedBehaviorSanitizer and under Valgrind (issue 25 item 3), and a
-//! fully static (`-static`) consumer links without a warning from glibc and runs.
+//! Packaging: `ffi/install` lays out the C library, its headers, a pkg-config file and a CMake
+//! package under a prefix; an out-of-tree C++ program (`tests/consumer/`) builds against the
+//! install through pkg-config and through CMake, shared and static, and runs. The shared
+//! library's SONAME, the header's version macros, the symbols the libraries export, and a
+//! program linking libhibi.a next to a second Rust static library (`tests/second_rust_lib/`)
+//! are checked here too. Both programs also run clean under AddressSanitizer +
+//! UndefinedBehaviorSanitizer and under Valgrind, and a fully static (`-static`) consumer
+//! links without a warning from glibc and runs.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

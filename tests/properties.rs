@@ -1,5 +1,5 @@
-//! Property tests (issue 25 item 5) over random valid parameters of small size, through the
-//! C ABI as a C caller drives it, for each model:
+//! Property tests over random valid parameters of small size, through the C ABI as a C caller
+//! drives it, for each model:
 //!
 //! - no NaN or infinity in any output (mud segments, network and cells; glass polylines and
 //!   fragments; skin cells and outlines; every float raster, except the break-time layers'

@@ -1,4 +1,4 @@
-//! Model C against the paper (Ishii et al.) and the acceptance list.
+//! Model C against the paper (Ishii et al.) and hibi's own acceptance criteria.
 
 use hibi_core::Scalar;
 use hibi_core::skin::{

@@ -1,12 +1,12 @@
-//! Stack (issue 24 item 2): every model's scratch that grows with its parameters lives in
-//! caller memory (a skin render's fixed 2 KiB of crossing slots is on the stack), and no public
-//! function needs more than 16 KiB of stack. A thread with a 32 KiB stack runs every model end
-//! to end (create, step, run, every output, render, on both backends; an overflow aborts the
-//! test process); the same calls on a larger thread are each measured on their own: the stack
-//! is painted below the call, and the deepest painted word it overwrote gives its peak, which
-//! must stay within 16 KiB. The golden scenes, whose harness adds frames of its own (about
-//! 13 KB in release), run in a thread of 64 KiB and must match. The README gives the figures
-//! (in release: `cargo test --release --test stack -- --nocapture`).
+//! Stack: every model's scratch that grows with its parameters lives in caller memory (a skin
+//! render's fixed 2 KiB of crossing slots is on the stack), and no public function needs more
+//! than 16 KiB of stack. A thread with a 32 KiB stack runs every model end to end (create,
+//! step, run, every output, render, on both backends; an overflow aborts the test process); the
+//! same calls on a larger thread are each measured on their own: the stack is painted below the
+//! call, and the deepest painted word it overwrote gives its peak, which must stay within
+//! 16 KiB. The golden scenes, whose harness adds frames of its own (about 13 KB in release),
+//! run in a thread of 64 KiB and must match. The README gives the figures (in release: `cargo
+//! test --release --test stack -- --nocapture`).
 
 use std::hint::black_box;
 

@@ -332,8 +332,8 @@ mod tests {
         assert!(outside.is_err());
     }
 
-    /// Issue 25 defect 2: a panic caught at the C boundary prints nothing on the host's
-    /// stderr, while a panic outside hibi's guards still reaches the previous hook.
+    /// A panic caught at the C boundary prints nothing on the host's stderr, while a panic
+    /// outside hibi's guards still reaches the previous hook.
     #[test]
     fn a_caught_panic_prints_nothing() {
         let exe = std::env::current_exe().expect("the test binary");

@@ -709,8 +709,8 @@ mod tests {
             let mut rgb = vec![1u8; 3 * pixels];
             let (hc, nc) = (height.as_ptr(), normal.as_ptr());
             let r = rgb.as_mut_ptr();
-            // A normal buffer one value short of the heights' pixels (issue 25: this shaded one
-            // pixel fewer and said OK).
+            // A normal buffer one value short of the heights' pixels is refused (not shaded one
+            // pixel fewer with OK).
             assert_eq!(
                 hibi_skin_shade(hc, pixels, nc, 3 * pixels - 1, &light, r, 3 * pixels),
                 HIBI_ERROR_BUFFER_TOO_SMALL

@@ -1,9 +1,9 @@
 /*
- * Issue 25, the bad-input table (docs/bad-input.md): one case per row, each printed as
+ * The bad-input table (docs/bad-input.md): one case per row, each printed as
  * "<row>: status <n>" and, where the call has an output, whether the output was left
  * untouched. tests/c_examples.rs reads the table, runs this program, and checks every row's
- * status against the constant the table names, and that every status include/hibi.h
- * declares is reached here (or listed in the table as unreachable).
+ * status against the constant the table names, and that every status include/hibi.h declares
+ * is reached here (or listed in the table as unreachable).
  */
 #include <float.h>
 #include <math.h>
@@ -380,8 +380,8 @@ static void calls_and_buffers(void) {
         memset(rgb, 0xA5, sizeof rgb);
         shade = hibi_skin_shade_params_default();
         row_kept("shade-short-rgb", hibi_skin_shade(height, 2, normal, 6, &shade, rgb, 5), rgb[0] == 0xA5);
-        /* Issue 25 defect 3: five floats are one whole normal, not two; the call used to
-         * return HIBI_OK with the second pixel unwritten. No byte of rgb may change. */
+        /* Five floats are one whole normal, not two: the call must refuse, not return
+         * HIBI_OK with the second pixel unwritten. No byte of rgb may change. */
         row_kept("shade-short-normal", hibi_skin_shade(height, 2, normal, 5, &shade, rgb, 6),
                  rgb[0] == 0xA5 && rgb[1] == 0xA5 && rgb[2] == 0xA5 && rgb[3] == 0xA5 && rgb[4] == 0xA5 &&
                      rgb[5] == 0xA5);

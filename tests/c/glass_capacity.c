@@ -1,7 +1,7 @@
 /*
- * Issue 25 defect 2: after hibi_glass_step reports HIBI_ERROR_GLASS_CAPACITY, the plate stays
- * usable: fragments, cracks, points and the render all work (no HIBI_ERROR_PANIC), and
- * nothing is printed on stderr (the test checks).
+ * After hibi_glass_step reports HIBI_ERROR_GLASS_CAPACITY, the plate stays usable: fragments,
+ * cracks, points and the render all work (no HIBI_ERROR_PANIC), and nothing is printed on
+ * stderr (the test checks).
  */
 #include <stdio.h>
 #include <stdlib.h>

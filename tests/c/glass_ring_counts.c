@@ -1,5 +1,5 @@
 /*
- * Issue 25 defect 1: hibi_glass_create must not run for minutes when the ring count formula
+ * hibi_glass_create must not run for minutes when the ring count formula
  * R = floor(ring_slope * M + ring_offset) is huge. Creation looks at no more than
  * max_cracks ring start points; a larger R counts as running out of capacity.
  */

@@ -1,7 +1,7 @@
 /*
- * Issue 25 defect 5: every refusal names what the caller wrote. The mud scale errors name
- * their fields, a bad glass layer names the glass constants, a huge but valid light is a
- * light, hibi_error_argument() names a refused pointer argument, and the *_written counts are
+ * Every refusal names what the caller wrote. The mud scale errors name their fields, a bad
+ * glass layer names the glass constants, a huge but valid light is a light,
+ * hibi_error_argument() names a refused pointer argument, and the *_written counts are
  * required everywhere (the optional outputs are skipped when NULL).
  */
 #include <stdio.h>

@@ -1,10 +1,10 @@
 /*
- * A property test's finding (issue 25 item 5): on a periodic lattice whose only crack is one
- * closed loop, the region around the island wraps around the torus and has no outline, yet
- * its boundary (the island's, walked from outside) was written as a ring with a negative
- * area and hole_of = HIBI_GLASS_NOT_A_HOLE, the mark of an outer ring; and the statistics
- * counted one cell, of mean area zero less its island. The ring is now a hole in a wrapping
- * cell (HIBI_MUD_IN_WRAPPING_CELL), and the statistics count two cells.
+ * A case the property tests found: on a periodic lattice whose only crack is one closed
+ * loop, the region around the island wraps around the torus and has no outline. Its boundary
+ * (the island's, walked from outside) must be a hole in a wrapping cell
+ * (HIBI_MUD_IN_WRAPPING_CELL), not a ring with a negative area and hole_of =
+ * HIBI_GLASS_NOT_A_HOLE, the mark of an outer ring; and the statistics must count two cells,
+ * not one of mean area zero less its island.
  */
 #include <stdio.h>
 

@@ -1,7 +1,7 @@
 /*
- * Issue 25 defect 4: shrink_ratio = 1 (nothing ever shrinks) is refused by name, and a
- * break_stretch_mean no spring reaches ends both solvers the same way: at the target
- * shrink, uncracked, at a positive time.
+ * shrink_ratio = 1 (nothing ever shrinks) is refused by name, and a break_stretch_mean no
+ * spring reaches ends both solvers the same way: at the target shrink, uncracked, at a
+ * positive time.
  */
 #include <stdio.h>
 

@@ -1,6 +1,6 @@
 /*
- * Issue 25 item 6: create and render take time bounded by sizes and capacities whatever the
- * float fields hold, measured as work. hibi reports no work count for create or render, so
+ * Create and render take time bounded by sizes and capacities whatever the float fields
+ * hold, measured as work. hibi reports no work count for create or render, so
  * tests/c_examples.rs runs this program under Callgrind (`--collect-atstart=no`) and counts
  * the instructions of each measured call: collection is on only inside the call, and each
  * call's count is dumped under its case's name. Each case is a pair: the call with an
@@ -243,7 +243,7 @@ int main(void) {
     hibi_glass_params gp = glass_base();
     hibi_glass_progress progress;
 
-    /* Ring and large-crack counts (defect 1): beyond max_cracks either way. */
+    /* Ring and large-crack counts: beyond max_cracks either way. */
     GLASS_CREATE("glass-create ring_slope twin", p_.ring_slope = 1e4f);
     GLASS_CREATE("glass-create ring_slope extreme", p_.ring_slope = 1e30f);
     GLASS_CREATE("glass-create ring_offset twin", p_.ring_offset = 1e4f);

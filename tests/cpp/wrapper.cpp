@@ -1,7 +1,7 @@
 /*
- * wrapper.cpp: include/hibi.hpp against the C API it wraps (issue 26). Each line it prints
- * is checked by tests/c_examples.rs; "yes" lines compare the wrapper's result with the raw C
- * calls or with a second way of computing it.
+ * wrapper.cpp: include/hibi.hpp against the C API it wraps. Each line it prints is checked
+ * by tests/c_examples.rs; "yes" lines compare the wrapper's result with the raw C calls or
+ * with a second way of computing it.
  */
 #include <algorithm>
 #include <cstdint>
@@ -398,8 +398,8 @@ void skin() {
     std::vector<std::uint32_t> map = skin.render_cells(render);
     std::vector<std::uint8_t> rgb = hibi::Skin::shade(height, normal, hibi::Skin::default_shade());
 
-    // Issue 26 item 4: concurrent renders of one skin from four threads (const calls that
-    // only read the skin; each thread its own maps) equal the lone render.
+    // Concurrent renders of one skin from four threads (const calls that only read the skin;
+    // each thread its own maps) equal the lone render.
     std::vector<int> equal(4, 0);
     std::vector<std::thread> threads;
     for (int t = 0; t < 4; t++) {

@@ -4,9 +4,9 @@
 //! scan of the tips in its sector, F2's scan of the segments there, the move planned (the
 //! forces summed, F3 drawn, the turn), the scan of the segments along the move, the move made,
 //! and stop condition 2's face walks when it closed a cycle. [`Glass::step`] may stop between
-//! any two units of work of these (frame budgets, issue 26 item 5); what an update has summed
-//! so far is kept in [`Update`], and nothing it reads changes until it is over, so a budgeted
-//! run is the same bit for bit as one call.
+//! any two units of work of these (frame budgets); what an update has summed so far is kept in
+//! [`Update`], and nothing it reads changes until it is over, so a budgeted run is the same
+//! bit for bit as one call.
 
 use super::faces::{Enclosure, HalfEdge};
 use super::grid::NONE;

@@ -24,8 +24,8 @@
 //! bit on every build, and the same as with one pass per direction and a row of scratch.
 //!
 //! A short step can stop between rows and go on at the next call of [`Mud::step`] (frame
-//! budgets, issue 26 item 5): its [`Phase`] is kept in [`Dynamics`] and each phase runs in the
-//! same order whatever the cuts, so a budgeted run is the same bit for bit as one call.
+//! budgets): its [`Phase`] is kept in [`Dynamics`] and each phase runs in the same order
+//! whatever the cuts, so a budgeted run is the same bit for bit as one call.
 
 use super::irregular::Mesh;
 use super::lattice::Lattice;

@@ -789,10 +789,10 @@ mod tests {
         }
     }
 
-    /// Frame budgets (issue 26 item 5): any budget gives the run of one call, bit for bit, and
-    /// the same work in total, and each call does at most its budget and one piece bounded by
-    /// a row (explicit), a node's springs (quasi-static) or [`TRACE_PIECE`] (the tracing, which
-    /// shows nothing while under way).
+    /// Frame budgets: any budget gives the run of one call, bit for bit, and the same work in
+    /// total, and each call does at most its budget and one piece bounded by a row (explicit),
+    /// a node's springs (quasi-static) or [`TRACE_PIECE`] (the tracing, which shows nothing
+    /// while under way).
     #[test]
     fn budgets_change_no_bit_and_bound_each_call() {
         use Boundary::{Open, Periodic};

@@ -213,7 +213,7 @@ impl<'p> Nearby<'p> {
         let reach = f.reach * length;
         // (Plus the stay-inside test's slack, and a few units for rounding to fixed point.)
         // Saturating: a huge perturbation ratio (1e30) reaches past i64 (`as` saturates), and
-        // the box then takes in every edge (issue 25 item 6 found the overflow).
+        // the box then takes in every edge instead of overflowing.
         let widen = |k: usize| ((reach * f.from_frame[k]) as i64).saturating_add(f.inside_slack() + 16);
         let (wx, wy) = (widen(0), widen(1));
         let low = [x[0].min(y[0]).saturating_sub(wx), x[1].min(y[1]).saturating_sub(wy)];

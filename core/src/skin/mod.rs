@@ -608,7 +608,7 @@ impl SkinParams {
         for l in 0..levels {
             let lattice = Lattice::new(self, l);
             // A tiny stretch puts up to i64::MAX centre points across an axis: more than any
-            // memory holds, and more than the products below could count (issue 25 fuzzing).
+            // memory holds, and more than the products below could count.
             if lattice.count.iter().any(|&c| c > i64::from(i32::MAX)) {
                 return Err(SkinParamError::Capacity);
             }
