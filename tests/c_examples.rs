@@ -4,7 +4,7 @@
 //! static library under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer, a
 //! fourth runs under Valgrind (`--error-exitcode=1 --leak-check=full`). The C regression
 //! programs in `tests/c/` run under the sanitizers and under Valgrind; one of them,
-//! `bad_input.c`, is the table in `docs/bad-input.md`, checked row by row against the header.
+//! `bad_input.c`, is the table in `docs/src/bad-input.md`, checked row by row against the header.
 //! `tests/c/work_counts.c` also runs under Callgrind, which counts the instructions of create
 //! and render calls with extreme float values, whose cost the sizes and capacities bound.
 //! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` against the C
@@ -12,40 +12,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
 
 use hibi_core::Rng;
-use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, workspace_root};
-
-/// The native libraries a Rust static library needs on Linux
-/// (`rustc --print native-static-libs`).
-const NATIVE_STATIC_LIBS: &[&str] = &["-lgcc_s", "-lutil", "-lrt", "-lpthread", "-lm", "-ldl", "-lc"];
-
-/// Builds libhibi.a and libhibi.so in this test's profile, once, in a target directory of its
-/// own (so it never waits on the lock of the build that runs the tests).
-fn library_dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let target = workspace_root().join("target/c-link");
-        let mut cargo = Command::new(env!("CARGO"));
-        cargo.args(["build", "-p", "hibi-ffi", "--target-dir"]).arg(&target);
-        let profile = if cfg!(debug_assertions) { "debug" } else { "release" };
-        if profile == "release" {
-            cargo.arg("--release");
-        }
-        let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
-        assert!(status.success(), "cargo build -p hibi-ffi failed");
-        let dir = target.join(profile);
-        // The shared library's SONAME is libhibi.so.MAJOR (ffi/build.rs): programs linked to
-        // it look for that name, which the install step (ffi/install) lays out as a symlink.
-        let soname = dir.join(concat!("libhibi.so.", env!("CARGO_PKG_VERSION_MAJOR")));
-        match std::os::unix::fs::symlink("libhibi.so", &soname) {
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
-            made => made.expect("symlink libhibi.so.MAJOR"),
-        }
-        dir
-    })
-}
+use hibi_tests::{ASAN_OPTIONS, NATIVE_STATIC_LIBS, SANITIZE_FLAGS, VALGRIND, c_library_dir, workspace_root};
 
 #[derive(Clone, Copy, Debug)]
 enum Linkage {
@@ -93,9 +62,9 @@ fn build_and_run_capturing(
     args: &[&str],
 ) -> (String, String) {
     let root = workspace_root();
-    let lib = library_dir();
+    let lib = c_library_dir();
     let exe = program_path(compiler, standard, source, linkage);
-    let mut cc = Command::new(compiler);
+    let mut cc = hibi_tests::tool(compiler);
     cc.arg(format!("-std={standard}"))
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
         .arg(root.join("include"))
@@ -123,7 +92,7 @@ fn build_and_run_capturing(
     // libhibi.so; the program must load the one it was linked with (its rpath).
     let mut command = match linkage {
         Linkage::Valgrind => {
-            let mut valgrind = Command::new(VALGRIND[0]);
+            let mut valgrind = hibi_tests::tool(VALGRIND[0]);
             valgrind.args(&VALGRIND[1..]).arg(&exe);
             valgrind
         }
@@ -131,7 +100,7 @@ fn build_and_run_capturing(
             for old in callgrind_dumps(&exe) {
                 std::fs::remove_file(old).expect("remove an old Callgrind dump");
             }
-            let mut callgrind = Command::new("valgrind");
+            let mut callgrind = hibi_tests::tool("valgrind");
             callgrind
                 .args(["-q", "--tool=callgrind", "--collect-atstart=no"])
                 .arg(format!("--callgrind-out-file={}", exe.with_extension("callgrind").display()))
@@ -754,10 +723,11 @@ fn header_statuses() -> Vec<(String, u32)> {
     statuses
 }
 
-/// The rows of `docs/bad-input.md`: (row, status constant) for each case, and the constants
+/// The rows of `docs/src/bad-input.md`: (row, status constant) for each case, and the constants
 /// listed as unreachable.
 fn bad_input_table() -> (Vec<(String, String)>, Vec<String>) {
-    let doc = std::fs::read_to_string(workspace_root().join("docs/bad-input.md")).expect("read docs/bad-input.md");
+    let doc =
+        std::fs::read_to_string(workspace_root().join("docs/src/bad-input.md")).expect("read docs/src/bad-input.md");
     let (mut rows, mut unreachable) = (Vec::new(), Vec::new());
     for l in doc.lines().filter(|l| l.starts_with("| `")) {
         let cells: Vec<&str> = l.trim_matches('|').split(" | ").map(str::trim).collect();
@@ -772,7 +742,7 @@ fn bad_input_table() -> (Vec<(String, String)>, Vec<String>) {
     (rows, unreachable)
 }
 
-/// Each row of docs/bad-input.md gets the status it names from
+/// Each row of docs/src/bad-input.md gets the status it names from
 /// tests/c/bad_input.c (run under the sanitizers), no failing call wrote its output, the
 /// program has no case the table lacks, and every status the header declares is reached by
 /// a row or listed as unreachable (and then reached by none).
@@ -783,7 +753,7 @@ fn c_bad_input_table() {
         statuses
             .iter()
             .find(|(n, _)| n == name)
-            .unwrap_or_else(|| panic!("docs/bad-input.md names {name}, which include/hibi.h does not declare"))
+            .unwrap_or_else(|| panic!("docs/src/bad-input.md names {name}, which include/hibi.h does not declare"))
             .1
     };
     let (rows, unreachable) = bad_input_table();
@@ -807,7 +777,7 @@ fn c_bad_input_table() {
         assert_eq!(status, value(constant), "row {row}: status {status}, the table says {constant}");
     }
     let undocumented: Vec<&String> = got.keys().filter(|row| !seen.contains(row)).collect();
-    assert!(undocumented.is_empty(), "cases not in docs/bad-input.md: {undocumented:?}");
+    assert!(undocumented.is_empty(), "cases not in docs/src/bad-input.md: {undocumented:?}");
     let reached: std::collections::BTreeSet<u32> = got.values().copied().collect();
     let missing: Vec<&str> = statuses
         .iter()

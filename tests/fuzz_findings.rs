@@ -1,4 +1,4 @@
-//! Regression tests for what fuzzing the C ABI found (`docs/fuzzing.md` lists each finding).
+//! Regression tests for what fuzzing the C ABI found (`docs/src/fuzzing.md` lists each finding).
 //! Each case is the smallest input found that reached `HIBI_ERROR_PANIC`, called through the C
 //! ABI as the fuzz target called it.
 

@@ -62,7 +62,7 @@ fn header_is_warning_free_in_c99_c11_and_cpp17_with_gcc_and_clang() {
         ("clang", "c11", &c),
         ("clang++", "c++17", &cpp),
     ] {
-        let output = std::process::Command::new(compiler)
+        let output = hibi_tests::tool(compiler)
             .arg(format!("-std={standard}"))
             .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-fsyntax-only", "-I"])
             .arg(root.join("include"))

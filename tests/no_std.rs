@@ -21,7 +21,7 @@ fn core_builds_without_std_or_alloc() {
         String::from_utf8_lossy(&output.stderr)
     );
     let lib = root.join("target/no-std-check/debug/libhibi_no_std_check.a");
-    let symbols = Command::new("nm").arg("-C").arg(&lib).output().expect("run nm");
+    let symbols = hibi_tests::tool("nm").arg("-C").arg(&lib).output().expect("run nm");
     let symbols = String::from_utf8_lossy(&symbols.stdout);
     assert!(symbols.contains("T hibi_no_std_probe"), "the probe is not in {}", lib.display());
     for forbidden in ["__rust_alloc", "__rdl_alloc", "std::"] {

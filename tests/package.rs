@@ -97,7 +97,7 @@ fn install_lays_out_libraries_headers_and_package_files() {
 /// later library of the same major version.
 #[test]
 fn shared_library_soname_is_the_major_version() {
-    let dynamic = stdout(Command::new("readelf").arg("-d").arg(prefix().join(format!("lib/libhibi.so.{VERSION}"))));
+    let dynamic = stdout(hibi_tests::tool("readelf").arg("-d").arg(prefix().join(format!("lib/libhibi.so.{VERSION}"))));
     let soname: Vec<&str> = dynamic.lines().filter(|l| l.contains("(SONAME)")).collect();
     assert_eq!(soname.len(), 1, "{dynamic}");
     assert!(soname[0].ends_with(&format!("Library soname: [libhibi.so.{MAJOR}]")), "{}", soname[0]);
@@ -123,7 +123,7 @@ fn header_version_macros_are_the_package_version() {
 /// bitcode (`.llvmbc`, in cargo's release archive) to the system's LLVM plugin, which may be
 /// older than rustc's LLVM and then reports "no symbols".
 fn defined_globals(lib: &Path, dynamic: bool) -> Vec<String> {
-    let mut readelf = Command::new("readelf");
+    let mut readelf = hibi_tests::tool("readelf");
     readelf.arg("-W").arg(if dynamic { "--dyn-syms" } else { "--syms" });
     let mut names: Vec<String> = stdout(readelf.arg(lib))
         .lines()
@@ -169,7 +169,7 @@ fn check_consumer(output: &str) {
 
 /// The libhibi the program at `exe` needs at run time, if any (its DT_NEEDED entries).
 fn needs_libhibi(exe: &Path) -> Option<String> {
-    let dynamic = stdout(Command::new("readelf").arg("-d").arg(exe));
+    let dynamic = stdout(hibi_tests::tool("readelf").arg("-d").arg(exe));
     dynamic.lines().find(|l| l.contains("(NEEDED)") && l.contains("libhibi")).map(|l| {
         let start = l.find('[').unwrap() + 1;
         l[start..l.len() - 1].to_owned()
@@ -178,7 +178,7 @@ fn needs_libhibi(exe: &Path) -> Option<String> {
 
 fn pkg_config(args: &[&str]) -> Vec<String> {
     let pc = prefix().join("lib/pkgconfig");
-    let output = stdout(Command::new("pkg-config").args(args).arg("hibi").env("PKG_CONFIG_PATH", pc));
+    let output = stdout(hibi_tests::tool("pkg-config").args(args).arg("hibi").env("PKG_CONFIG_PATH", pc));
     output.split_whitespace().map(str::to_owned).collect()
 }
 
@@ -192,7 +192,7 @@ fn consumer_builds_with_pkg_config_shared() {
     let dir = scratch_dir("pkg-config-shared");
     let exe = dir.join("consumer");
     let libdir = pkg_config(&["--variable=libdir"]).concat();
-    run(Command::new(cxx())
+    run(hibi_tests::tool(cxx())
         .args(["-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror"])
         .args(pkg_config(&["--cflags"]))
         .arg(workspace_root().join("tests/consumer/main.cpp"))
@@ -214,7 +214,7 @@ fn consumer_static(name: &str, flags: &[&str]) -> PathBuf {
     // `--static` adds for it.
     let private: Vec<String> =
         pkg_config(&["--static", "--libs-only-l"]).into_iter().filter(|l| l != "-lhibi").collect();
-    run(Command::new(cxx())
+    run(hibi_tests::tool(cxx())
         .args(["-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror"])
         .args(flags)
         .args(pkg_config(&["--cflags"]))
@@ -229,7 +229,7 @@ fn consumer_static(name: &str, flags: &[&str]) -> PathBuf {
 
 /// `program` under Valgrind (quiet, any error or leak a failing status).
 fn valgrind(program: &Path) -> Command {
-    let mut command = Command::new(VALGRIND[0]);
+    let mut command = hibi_tests::tool(VALGRIND[0]);
     command.args(&VALGRIND[1..]).arg(program);
     command
 }
@@ -273,7 +273,7 @@ fn consumer_is_clean_under_valgrind() {
 
 /// The undefined symbols of a library (what it needs from elsewhere), read with `readelf`.
 fn undefined_symbols(lib: &Path) -> Vec<String> {
-    let mut names: Vec<String> = stdout(Command::new("readelf").arg("-W").arg("--syms").arg(lib))
+    let mut names: Vec<String> = stdout(hibi_tests::tool("readelf").arg("-W").arg("--syms").arg(lib))
         .lines()
         .filter_map(|l| {
             let fields: Vec<&str> = l.split_whitespace().collect();
@@ -301,7 +301,7 @@ fn fully_static_program_links_without_warnings() {
     println!("undefined symbols: cargo's libhibi.a {}, installed libhibi.a {}", cargo.len(), installed.len());
     let dir = scratch_dir("fully-static");
     let exe = dir.join("consumer");
-    let link = run(Command::new(cxx())
+    let link = run(hibi_tests::tool(cxx())
         .args(["-static", "-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
         .arg(prefix().join("include"))
         .arg(workspace_root().join("tests/consumer/main.cpp"))
@@ -311,7 +311,7 @@ fn fully_static_program_links_without_warnings() {
         .arg(&exe));
     let warnings = String::from_utf8_lossy(&link.stderr);
     assert!(link.stdout.is_empty() && warnings.is_empty(), "the -static link printed:\n{warnings}");
-    let headers = stdout(Command::new("readelf").arg("-lW").arg(&exe));
+    let headers = stdout(hibi_tests::tool("readelf").arg("-lW").arg(&exe));
     assert!(!headers.contains("INTERP") && !headers.contains("DYNAMIC"), "not a static executable:\n{headers}");
     check_consumer(&clean_stdout(&mut Command::new(&exe)));
 }
@@ -320,7 +320,7 @@ fn fully_static_program_links_without_warnings() {
 /// `-D` settings. Returns the configure step's output when it fails, else the program.
 fn cmake_consumer(name: &str, extra: &[&str]) -> Result<PathBuf, String> {
     let build = scratch_dir(name);
-    let configure = Command::new("cmake")
+    let configure = hibi_tests::tool("cmake")
         .arg("-S")
         .arg(workspace_root().join("tests/consumer"))
         .arg("-B")
@@ -333,7 +333,7 @@ fn cmake_consumer(name: &str, extra: &[&str]) -> Result<PathBuf, String> {
     if !configure.status.success() {
         return Err(String::from_utf8_lossy(&configure.stderr).into_owned());
     }
-    run(Command::new("cmake").arg("--build").arg(&build));
+    run(hibi_tests::tool("cmake").arg("--build").arg(&build));
     Ok(build.join("consumer"))
 }
 
@@ -383,7 +383,7 @@ fn second_rust_lib_programs(name: &str, flags: &[&str]) -> Vec<(&'static str, Pa
     .into_iter()
     .map(|(order, first, then)| {
         let exe = dir.join(order);
-        run(Command::new(&cc)
+        run(hibi_tests::tool(&cc)
             .args(["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror"])
             .args(flags)
             .arg("-I")

@@ -1,5 +1,5 @@
 /*
- * The bad-input table (docs/bad-input.md): one case per row, each printed as
+ * The bad-input table (docs/src/bad-input.md): one case per row, each printed as
  * "<row>: status <n>" and, where the call has an output, whether the output was left
  * untouched. tests/c_examples.rs reads the table, runs this program, and checks every row's
  * status against the constant the table names, and that every status include/hibi.h declares

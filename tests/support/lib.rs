@@ -62,3 +62,71 @@ pub fn on_four_threads<T: Send>(call: impl Fn() -> T + Sync) -> Vec<T> {
         threads.into_iter().map(|t| t.join().expect("no panic")).collect()
     })
 }
+
+/// A command for an external tool the tests need (a compiler, `cmake`, `valgrind`, ...). When
+/// the tool is not installed the test fails at once, naming it and the Debian package that
+/// provides it (`./test` installs them), instead of failing to spawn deep inside the test.
+pub fn tool(program: impl AsRef<std::ffi::OsStr>) -> std::process::Command {
+    let program = program.as_ref();
+    let found = if Path::new(program).components().count() > 1 {
+        Path::new(program).is_file()
+    } else {
+        std::env::var_os("PATH")
+            .map(|path| std::env::split_paths(&path).any(|dir| dir.join(program).is_file()))
+            .unwrap_or(false)
+    };
+    if !found {
+        let name = program.to_string_lossy();
+        let package = match name.rsplit('/').next().unwrap_or(&name) {
+            "cc" | "gcc" => "gcc",
+            "c++" | "g++" => "g++",
+            "clang" | "clang++" => "clang",
+            "nm" | "readelf" | "ld" | "objcopy" | "ar" => "binutils",
+            other => other,
+        };
+        panic!("`{name}` is not installed: install the Debian package `{package}` (`./test` installs what is missing)");
+    }
+    std::process::Command::new(program)
+}
+
+/// The native libraries a Rust static library needs on Linux
+/// (`rustc --print native-static-libs`).
+pub const NATIVE_STATIC_LIBS: &[&str] = &["-lgcc_s", "-lutil", "-lrt", "-lpthread", "-lm", "-ldl", "-lc"];
+
+/// Builds libhibi.a and libhibi.so in this test's profile, once, in a target directory of its
+/// own (so it never waits on the lock of the build that runs the tests).
+pub fn c_library_dir() -> &'static Path {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let target = workspace_root().join("target/c-link");
+        let mut cargo = std::process::Command::new(env!("CARGO"));
+        cargo.args(["build", "-p", "hibi-ffi", "--target-dir"]).arg(&target);
+        let profile = if cfg!(debug_assertions) { "debug" } else { "release" };
+        if profile == "release" {
+            cargo.arg("--release");
+        }
+        let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
+        assert!(status.success(), "cargo build -p hibi-ffi failed");
+        let dir = target.join(profile);
+        // The shared library's SONAME is libhibi.so.MAJOR (ffi/build.rs): programs linked to
+        // it look for that name, which the install step (ffi/install) lays out as a symlink.
+        let soname = dir.join(concat!("libhibi.so.", env!("CARGO_PKG_VERSION_MAJOR")));
+        match std::os::unix::fs::symlink("libhibi.so", &soname) {
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            made => made.expect("symlink libhibi.so.MAJOR"),
+        }
+        dir
+    })
+}
+
+/// The Rust blocks of the README and the guide, run as doctests (`tests/docs.rs` checks that
+/// every page with a Rust block is here).
+#[cfg(doctest)]
+mod guide {
+    #[doc = include_str!("../../README.md")]
+    struct Readme;
+    #[doc = include_str!("../../docs/src/getting-started.md")]
+    struct GettingStarted;
+    #[doc = include_str!("../../docs/src/rust.md")]
+    struct RustApi;
+}

@@ -1,5 +1,5 @@
 //! Model B: a glass plate hit by a ball (Agui, Moriyama, Nagao, Nakajima, "Representation of
-//! cracks in plate glass by CG"; `docs/models.md`, Model B).
+//! cracks in plate glass by CG"; `docs/src/models/papers.md`, Model B).
 //!
 //! An impact starts M radial cracks at the impact point (N of them large) and R ring start
 //! points, each growing a counter-clockwise and a clockwise crack. Every step each growing

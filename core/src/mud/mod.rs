@@ -1,5 +1,5 @@
 //! Model A: drying mud (Hirota, Hoshino, Kaneko, "Generation of Crack Patterns Based on a
-//! Physical Model"; `docs/models.md`, Model A).
+//! Physical Model"; `docs/src/models/papers.md`, Model A).
 //!
 //! A surface layer of nodes joined by springs sits on a deep layer that never cracks; each
 //! surface node is tied to its deep node by a shear spring. The surface shrinks (or the deep

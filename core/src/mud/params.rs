@@ -81,7 +81,7 @@ pub struct MudParams {
     pub seed: u64,
 
     /// H: thickness of the surface layer \[cm\]. Not given by the paper: 1 cm, with W = 1 cm,
-    /// gives the closed polygonal cells of its figures (`docs/models.md`, Model A, Defaults).
+    /// gives the closed polygonal cells of its figures (`docs/src/models/papers.md`, Model A, Defaults).
     pub layer_thickness: f32,
     /// W: element size, the lattice spacing \[cm\]. Not given by the paper: 1 cm (see H).
     pub element_size: f32,

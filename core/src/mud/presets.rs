@@ -3,7 +3,7 @@
 //! The paper prints no parameters for its figures beyond its defaults (E = 1.0e6,
 //! G = 2.0e5, κ̄ = 1.02, σ = 0.001, γ = 0.9999, τ = 0.001, δx = 0.0001, α = 20) and what the
 //! captions and text say each figure varies; the values below are ours where it is silent,
-//! chosen so that each preset shows what its figure shows (`docs/models.md`, Model A). Every
+//! chosen so that each preset shows what its figure shows (`docs/src/models/papers.md`, Model A). Every
 //! preset runs the quasi-static solver on a periodic (tileable) lattice whose domain is about
 //! square: a hexagonal lattice of `c` columns has ⌈c/(√3/2)⌉ rows, rounded to an even number.
 //!
@@ -27,7 +27,7 @@ pub const PRESETS: [&str; 10] =
     ["fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b", "fig9a", "fig9b", "fig9c", "fig10"];
 
 /// Nodes per row of the figures' lattices: a 96 cm plate at W = 1 cm. Cells end about 20 cm²,
-/// four to five spacings across (`docs/models.md`, Model A, Defaults), so a few hundred of
+/// four to five spacings across (`docs/src/models/papers.md`, Model A, Defaults), so a few hundred of
 /// them: enough for a pattern, few enough to read at a few hundred pixels.
 const COLUMNS: u32 = 96;
 

@@ -1,5 +1,5 @@
 //! Model C: skin surface texture from hierarchical Voronoi cells (Ishii, Yasuda, Yokoi,
-//! Toriwaki, "Human skin rendering based on the surface microstructures"; `docs/models.md`,
+//! Toriwaki, "Human skin rendering based on the surface microstructures"; `docs/src/models/papers.md`,
 //! Model C).
 //!
 //! Furrows form a net; the ridges they enclose rise from their base polygon's edges towards

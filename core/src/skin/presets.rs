@@ -1,5 +1,5 @@
 //! The paper's Table 1 settings (Ishii et al. §5, Fig. 13–19) as named presets, in our best
-//! reading of the table's scan, which lost its decimal points (`docs/models.md`, Model C).
+//! reading of the table's scan, which lost its decimal points (`docs/src/models/papers.md`, Model C).
 //! Every row uses a triangular lattice with uniform jitter, stretch (1, 1), no perturbation,
 //! jitter 0.5 and roundness 0.2 unless it says otherwise. The spacing is ours (the paper does
 //! not print it): 40 px at level 1 on the paper's 400 × 400 images, a third of that at each
