@@ -290,14 +290,17 @@ fn show_default(field: &Field, value: &str, defines: &BTreeMap<String, String>) 
 
 /// The paper's symbol a field's doc starts with ("H, surface layer thickness ..."), if any.
 fn symbol(doc: &str) -> (String, String) {
-    if let Some((head, rest)) = doc.split_once(", ") {
-        if !head.is_empty() && head.chars().count() <= 8 && !head.contains(' ') && !head.starts_with('`') {
-            let mut rest = rest.to_string();
-            if let Some(first) = rest.get(..1) {
-                rest = first.to_uppercase() + &rest[1..];
-            }
-            return (head.to_string(), rest);
+    if let Some((head, rest)) = doc.split_once(", ")
+        && !head.is_empty()
+        && head.chars().count() <= 8
+        && !head.contains(' ')
+        && !head.starts_with('`')
+    {
+        let mut rest = rest.to_string();
+        if let Some(first) = rest.get(..1) {
+            rest = first.to_uppercase() + &rest[1..];
         }
+        return (head.to_string(), rest);
     }
     (String::new(), doc.to_string())
 }
