@@ -392,6 +392,30 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
+/// A command as HTML for a `<pre>` that does not wrap by itself: a line may break before
+/// each option after the first (so `hibi MODEL --preset NAME` stays on one line, and an
+/// option stays with its value) and after a `;`, never inside `--an-option`.
+fn command_html(command: &str) -> String {
+    let one = |command: &str| {
+        let mut options = 0;
+        let words: Vec<String> = command
+            .split(' ')
+            .map(|word| {
+                let shown = escape(word);
+                if word.starts_with("--") {
+                    options += 1;
+                    if options > 1 {
+                        return format!("<wbr>{shown}");
+                    }
+                }
+                shown
+            })
+            .collect();
+        words.join(" ")
+    };
+    command.split("; ").map(one).collect::<Vec<_>>().join("; <wbr>")
+}
+
 /// One card as HTML.
 fn card_html(card: &Card, width: u32) -> String {
     let mut h = String::new();
@@ -411,7 +435,7 @@ fn card_html(card: &Card, width: u32) -> String {
     if !card.summary.is_empty() {
         writeln!(h, "<br><span class=\"summary\">{}</span>", escape(&card.summary)).unwrap();
     }
-    writeln!(h, "<code>{}</code>", escape(&card.command)).unwrap();
+    writeln!(h, "<pre class=\"command\"><code>{}</code></pre>", command_html(&card.command)).unwrap();
     if !card.parameters.is_empty() {
         writeln!(h, "<details><summary>parameters</summary><table>").unwrap();
         for (option, value, changed) in &card.parameters {
@@ -457,7 +481,11 @@ fn index(g: &Gallery, a: &GalleryArgs) -> String {
          figure{margin:0} figure img{max-width:100%;height:auto;display:block;image-rendering:auto}\n\
          .frames{display:grid;grid-template-columns:repeat(6,1fr);gap:2px;margin-top:2px}\n\
          figcaption{font-size:13px;margin-top:.4em}\n\
-         code{display:block;font-size:12px;background:#f4f4f4;padding:.3em .5em;margin:.4em 0;overflow-wrap:anywhere}\n\
+         code{font:.9em ui-monospace,SFMono-Regular,Menlo,Consolas,monospace;background:#f4f4f4;\
+         padding:.05em .3em;border-radius:3px}\n\
+         pre.command{font-size:12px;background:#f4f4f4;padding:.3em .5em;margin:.4em 0;\
+         white-space:pre;overflow-x:auto}\n\
+         pre.command code{font-size:inherit;padding:0;background:none}\n\
          .summary{color:#555} table{font-size:12px;border-collapse:collapse} td{padding:0 .6em 0 0}\n\
          tr.changed td{font-weight:bold} .wide figure img{max-width:100%}\n\
          </style></head><body>\n<h1>hibi gallery</h1>\n",
@@ -510,5 +538,13 @@ mod tests {
         assert_eq!(quoted("0,3 5,3"), "'0,3 5,3'");
         assert_eq!(quoted("2=13.5"), "2=13.5");
         assert_eq!(escape("<a & \"b\">"), "&lt;a &amp; &quot;b&quot;&gt;");
+        assert_eq!(
+            command_html("hibi skin --preset fig13a --size 160x160 --light -0.5,0.6,0.62"),
+            "hibi skin --preset fig13a <wbr>--size 160x160 <wbr>--light -0.5,0.6,0.62"
+        );
+        assert_eq!(
+            command_html("hibi mud --preset fig6b; hibi mud --preset fig6a"),
+            "hibi mud --preset fig6b; <wbr>hibi mud --preset fig6a"
+        );
     }
 }
