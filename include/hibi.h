@@ -793,6 +793,11 @@ typedef struct hibi_glass_fragment_ring {
    * (`HIBI_GLASS_NOT_A_HOLE` in C).
    */
   uint32_t hole_of;
+  /**
+   * Always 0: the struct has no padding, so every byte a call writes is defined (an
+   * output can be hashed or compared as bytes).
+   */
+  uint32_t reserved;
 } hibi_glass_fragment_ring;
 
 /**
@@ -975,6 +980,11 @@ typedef struct hibi_mud_progress {
    * 1 when the run reached its end, else 0.
    */
   uint32_t finished;
+  /**
+   * Always 0: the struct has no padding, so every byte a call writes is defined (an
+   * output can be hashed or compared as bytes).
+   */
+  uint32_t reserved;
 } hibi_mud_progress;
 
 /**
@@ -1290,6 +1300,11 @@ typedef struct hibi_skin_progress {
    */
   uint32_t capacity_reached;
   /**
+   * Always 0: the struct has no padding, so every byte a call writes is defined (an
+   * output can be hashed or compared as bytes).
+   */
+  uint32_t reserved;
+  /**
    * Work done since the build began (units of the step budget).
    */
   uint64_t work;
@@ -1398,7 +1413,8 @@ typedef struct hibi_skin_cell {
 #define HIBI_ERROR_POISSON_MEAN 256
 
 /**
- * `hibi_rng_rand`: x is not finite or z is outside [0, 1).
+ * `hibi_rng_rand`: x is not finite, z is outside [0, 1), or (1 + z)·|x| exceeds FLT_MAX (the
+ * range would reach infinity).
  */
 #define HIBI_ERROR_RAND_ARGUMENT 257
 

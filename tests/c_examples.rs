@@ -28,6 +28,8 @@ enum Linkage {
     /// Static, run under Callgrind with collection off until the program turns it on; the
     /// counts go to [`callgrind_counts`].
     Callgrind,
+    /// Static, run under Valgrind with its heap summary on stderr (any error fails the run).
+    HeapCount,
 }
 
 /// The program `build_and_run_capturing` builds from `source` with `compiler` and `linkage`
@@ -72,7 +74,7 @@ fn build_and_run_capturing(
         .arg("-o")
         .arg(&exe);
     match linkage {
-        Linkage::Static | Linkage::Valgrind | Linkage::Callgrind => {
+        Linkage::Static | Linkage::Valgrind | Linkage::Callgrind | Linkage::HeapCount => {
             cc.arg(lib.join("libhibi.a")).args(NATIVE_STATIC_LIBS);
         }
         Linkage::Sanitized => {
@@ -106,6 +108,11 @@ fn build_and_run_capturing(
                 .arg(format!("--callgrind-out-file={}", exe.with_extension("callgrind").display()))
                 .arg(&exe);
             callgrind
+        }
+        Linkage::HeapCount => {
+            let mut valgrind = hibi_tests::tool("valgrind");
+            valgrind.args(["--error-exitcode=1", "--leak-check=full"]).arg(&exe);
+            valgrind
         }
         Linkage::Sanitized => {
             let mut sanitized = Command::new(&exe);
@@ -993,4 +1000,44 @@ fn c_mud_island_on_a_torus_is_a_hole_in_a_wrapping_cell() {
          ring 1: outer, area positive\n\
          cells 2, mean area positive"
     );
+}
+
+/// Outputs are defined to the byte: `hibi_rng_rand` refuses a range past `FLT_MAX` rather
+/// than drawing infinity; destroying NULL leaves `hibi_error_argument()` empty; the progress
+/// records and the fragment and cell rings have no padding (their `reserved` words are 0).
+#[test]
+fn c_outputs_are_defined_to_the_byte() {
+    let output = regression("tests/c/outputs_defined.c");
+    let expected = [
+        "rand FLT_MAX, z 0.9: status 257, out untouched: yes",
+        "rand -FLT_MAX, z 0.5: status 257, out untouched: yes",
+        "rand FLT_MAX / 2, z 0.9: status 0, finite: yes",
+        "rand FLT_MAX, z 0: status 0, finite: yes",
+        "after a NULL out: [out]",
+        "after hibi_mud_destroy(NULL): []",
+        "after the other destroys of NULL: []",
+        "mud progress: status 0, size 32, reserved 0: yes",
+        "mud cells: status 0, rings yes, reserved 0 in every ring: yes",
+        "glass fragments: status 0, rings yes, reserved 0 in every ring: yes",
+        "skin progress: status 0, size 32, reserved 0: yes",
+    ];
+    assert_eq!(output.lines().collect::<Vec<_>>(), expected, "{output}");
+}
+
+/// From `*_create_in` to `*_destroy`, nothing allocates: Valgrind's heap summary of a program
+/// that drives every model in its own static memory counts 0 allocations.
+#[test]
+fn c_caller_memory_path_allocates_nothing() {
+    let source = "tests/c/caller_memory.c";
+    assert_eq!(
+        regression("tests/c/caller_memory.c"),
+        "rng: status 0\nmud: status 0, cracks yes\nglass: status 0, fragments yes\nskin: status 0\n"
+    );
+    let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::HeapCount, &[]);
+    assert!(stdout.starts_with("rng: status 0"), "{stdout}");
+    let summary = stderr
+        .lines()
+        .find(|l| l.contains("total heap usage:"))
+        .unwrap_or_else(|| panic!("no heap summary:\n{stderr}"));
+    assert!(summary.contains("total heap usage: 0 allocs, 0 frees"), "{summary}");
 }

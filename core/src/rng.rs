@@ -82,7 +82,7 @@ impl RngError {
     pub const fn message(self) -> &'static core::ffi::CStr {
         match self {
             RngError::PoissonMean => c"poisson mean must be finite and within [0, 1e6]",
-            RngError::RandArgument => c"Rand(x): x must be finite and z within [0, 1)",
+            RngError::RandArgument => c"Rand(x): x must be finite, z within [0, 1), and (1 + z) * |x| at most FLT_MAX",
         }
     }
 }
@@ -211,6 +211,10 @@ impl Rng {
             return Err(RngError::RandArgument);
         }
         let (x, z) = (f64::from(x), f64::from(z));
+        // The range's far end must be an `f32`: (1 + z)·x past `f32::MAX` would draw infinity.
+        if (1.0 + z) * x.abs() > f64::from(f32::MAX) {
+            return Err(RngError::RandArgument);
+        }
         let value = match spread {
             Spread::Uniform => x * (1.0 - z + 2.0 * z * self.uniform_f64()),
             Spread::Normal => loop {
@@ -363,5 +367,10 @@ mod tests {
         assert_eq!(rng.rand(1.0, 1.0, Spread::Uniform), Err(RngError::RandArgument));
         assert_eq!(rng.rand(1.0, -0.1, Spread::Normal), Err(RngError::RandArgument));
         assert_eq!(rng.rand(f32::NAN, 0.3, Spread::Normal), Err(RngError::RandArgument));
+        // Finite arguments whose range reaches past f32::MAX: refused, not drawn as infinity.
+        assert_eq!(rng.rand(f32::MAX, 0.9, Spread::Uniform), Err(RngError::RandArgument));
+        assert_eq!(rng.rand(-f32::MAX, 0.5, Spread::Normal), Err(RngError::RandArgument));
+        assert!(rng.rand(f32::MAX, 0.0, Spread::Uniform).is_ok_and(f32::is_finite));
+        assert!(rng.rand(f32::MAX / 2.0, 0.9, Spread::Uniform).is_ok_and(f32::is_finite));
     }
 }

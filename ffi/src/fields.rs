@@ -79,13 +79,13 @@ enumeration!(
 /// the C struct also carries the marker its `_default` function sets: `from_core` sets it;
 /// check it before `to_core`.
 macro_rules! convert {
-    ($c:ident <=> $core:ident $(, cookie: $cookie:ident)? { $($field:ident),+ $(,)? }) => {
+    ($c:ident <=> $core:ident $(, cookie: $cookie:ident)? $(, reserved: $reserved:ident)? { $($field:ident),+ $(,)? }) => {
         impl $crate::fields::Field<$core> for $c {
             fn to_core(&self) -> Option<$core> {
                 Some($core { $($field: $crate::fields::Field::to_core(&self.$field)?),+ })
             }
             fn from_core(p: &$core) -> Self {
-                $c { $(cookie: $cookie,)? $($field: $crate::fields::Field::from_core(&p.$field)),+ }
+                $c { $(cookie: $cookie,)? $($reserved: 0,)? $($field: $crate::fields::Field::from_core(&p.$field)),+ }
             }
         }
     };

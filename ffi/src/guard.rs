@@ -12,7 +12,7 @@ use core::cell::Cell;
 use core::ffi::{CStr, c_char};
 use core::mem::{align_of, size_of};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::Once;
+use std::sync::{Once, OnceLock};
 
 use crate::status::{
     HIBI_ERROR_MISALIGNED, HIBI_ERROR_NULL_POINTER, HIBI_ERROR_PANIC, HIBI_ERROR_SIZE_OVERFLOW, HIBI_OK, hibi_status,
@@ -71,20 +71,33 @@ std::thread_local! {
     static GUARDED: Cell<u32> = const { Cell::new(0) };
 }
 
-/// Installs, once per process, the hook that keeps panics inside a guard silent.
+/// A panic hook, as `std::panic::take_hook` hands it over.
+type Hook = Box<dyn Fn(&std::panic::PanicHookInfo<'_>) + Sync + Send + 'static>;
+
+/// The hook installed before hibi's, which gets every panic outside a guard.
+static PREVIOUS: OnceLock<Hook> = OnceLock::new();
+
+/// hibi's hook: silent inside a guard, the previous hook's outside.
+fn silent_hook(info: &std::panic::PanicHookInfo<'_>) {
+    // `try_with`: a panic while the thread's locals are being torn down is not ours.
+    if GUARDED.try_with(Cell::get).unwrap_or(0) == 0
+        && let Some(previous) = PREVIOUS.get()
+    {
+        previous(info);
+    }
+}
+
+/// Installs, once per process, the hook that keeps panics inside a guard silent. It allocates
+/// nothing: the hook is a plain function (a zero-sized box), and the previous hook is kept in
+/// a static rather than captured in a boxed closure.
 fn install_silent_hook() {
     static INSTALL: Once = Once::new();
     if std::thread::panicking() {
         return; // the hook cannot be swapped now (a call from a host's unwinding); later
     }
     INSTALL.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            // `try_with`: a panic while the thread's locals are being torn down is not ours.
-            if GUARDED.try_with(Cell::get).unwrap_or(0) == 0 {
-                previous(info);
-            }
-        }));
+        let _ = PREVIOUS.set(std::panic::take_hook());
+        std::panic::set_hook(Box::new(silent_hook));
     });
 }
 

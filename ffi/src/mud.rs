@@ -123,6 +123,9 @@ pub struct hibi_mud_progress {
     pub work: u64,
     /// 1 when the run reached its end, else 0.
     pub finished: u32,
+    /// Always 0: the struct has no padding, so every byte a call writes is defined (an
+    /// output can be hashed or compared as bytes).
+    pub reserved: u32,
 }
 
 /// Crack statistics of the traced network: density, the cells it encloses, and its vertices.
@@ -227,7 +230,7 @@ convert!(hibi_mud_params <=> MudParams, cookie: PARAMS_COOKIE {
     break_stretch_spread, break_stretch_size_exponent, anisotropy_direction, anisotropy_ratio,
     stiffness_anisotropy_ratio, target_shrink, target_crack_density,
 });
-convert!(hibi_mud_progress <=> MudProgress { shrink, time, broken_springs, crack_density, work, finished });
+convert!(hibi_mud_progress <=> MudProgress, reserved: reserved { shrink, time, broken_springs, crack_density, work, finished });
 convert!(hibi_mud_crack_statistics <=> CrackStatistics {
     crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
     mean_widest_junction_angle,
@@ -642,7 +645,7 @@ mod tests {
     const VERTEX: NetworkVertex = NetworkVertex { at: [-7.0; 2], degree: 77, on_border: 77 };
     const EDGE: NetworkEdge = NetworkEdge { from: 77, to: 77, first_point: 77, point_count: 77 };
     const POINT: NetworkPoint = NetworkPoint { at: [-7.0; 2], width: -7.0, time: -7.0 };
-    const RING: CellRing = CellRing { area: -7.0, first_point: 77, point_count: 77, hole_of: 77 };
+    const RING: CellRing = CellRing { area: -7.0, first_point: 77, point_count: 77, hole_of: 77, reserved: 77 };
     const VEC: hibi_vec2 = hibi_vec2 { x: -7.0, y: -7.0 };
 
     #[test]

@@ -249,13 +249,17 @@ pub(crate) unsafe fn scratch<A>(
 }
 
 /// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is
-/// ignored.
+/// ignored (nothing is put on record for `hibi_error_argument`). A misaligned pointer is left
+/// alone and named by `name`, the C argument.
 ///
 /// # Safety
 /// `ptr` must be NULL or a live object made by [`create`] or [`create_in`], not used afterwards.
-pub(crate) unsafe fn destroy<T: Object>(ptr: *mut T) {
+pub(crate) unsafe fn destroy<T: Object>(ptr: *mut T, name: &'static CStr) {
+    if ptr.is_null() {
+        return;
+    }
     // SAFETY: the caller's contract.
-    if let Ok(live) = unsafe { object(ptr, c"ptr") } {
+    if let Ok(live) = unsafe { object(ptr, name) } {
         let origin = live.origin();
         // SAFETY: a live object at the start of its block; dropped once, then its block freed
         // with the layout it was allocated with.
@@ -388,7 +392,12 @@ macro_rules! lifecycle {
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $destroy($arg: *mut $object) {
             // SAFETY: the caller's contract, passed on.
-            $crate::guard::guard(|| unsafe { $crate::object::destroy($arg) })
+            const NAME: &core::ffi::CStr =
+                match core::ffi::CStr::from_bytes_with_nul(concat!(stringify!($arg), "\0").as_bytes()) {
+                    Ok(name) => name,
+                    Err(_) => c"",
+                };
+            $crate::guard::guard(|| unsafe { $crate::object::destroy($arg, NAME) })
         }
 
         /// Every preset comes with the cookie and converts back to the core's; an unknown or

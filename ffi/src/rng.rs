@@ -87,7 +87,7 @@ pub unsafe extern "C" fn hibi_rng_create_in(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn hibi_rng_destroy(rng: *mut hibi_rng) {
     // SAFETY: the caller's contract, passed on.
-    guard(|| unsafe { object::destroy(rng) })
+    guard(|| unsafe { object::destroy(rng, c"rng") })
 }
 
 /// The next 32 raw bits of the stream.

@@ -164,6 +164,9 @@ pub struct hibi_skin_progress {
     pub finished: u32,
     /// 1 when a cell outgrew its capacity (the build then stopped; what was built is usable).
     pub capacity_reached: u32,
+    /// Always 0: the struct has no padding, so every byte a call writes is defined (an
+    /// output can be hashed or compared as bytes).
+    pub reserved: u32,
     /// Work done since the build began (units of the step budget).
     pub work: u64,
 }
@@ -208,7 +211,7 @@ convert!(hibi_skin_level <=> LevelParams {
 convert!(hibi_skin_params <=> SkinParams, cookie: PARAMS_COOKIE {
     layout, jitter, periodic, width, height, seed, jitter_ratio, levels, level,
 });
-convert!(hibi_skin_progress <=> SkinProgress { cells, roots, root_total, finished, capacity_reached, work });
+convert!(hibi_skin_progress <=> SkinProgress, reserved: reserved { cells, roots, root_total, finished, capacity_reached, work });
 convert!(hibi_skin_shade_params <=> ShadeParams { light, ridge, furrow, ambient, specular });
 
 lifecycle!(

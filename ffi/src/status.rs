@@ -39,7 +39,8 @@ pub const HIBI_ERROR_SIZE_OVERFLOW: hibi_status = 6;
 pub const HIBI_ERROR_PANIC: hibi_status = 7;
 /// `hibi_rng_poisson`: the mean is negative, not finite, or above 1e6.
 pub const HIBI_ERROR_POISSON_MEAN: hibi_status = 256;
-/// `hibi_rng_rand`: x is not finite or z is outside [0, 1).
+/// `hibi_rng_rand`: x is not finite, z is outside [0, 1), or (1 + z)·|x| exceeds FLT_MAX (the
+/// range would reach infinity).
 pub const HIBI_ERROR_RAND_ARGUMENT: hibi_status = 257;
 
 /// Mud parameters: the struct did not come from `hibi_mud_params_default` (its cookie is wrong).

@@ -226,6 +226,8 @@ static void calls_and_buffers(void) {
     row_kept("rand-spread-ratio-inf", hibi_rng_rand(rng, 40.0f, INFINITY, HIBI_SPREAD_NORMAL, &values[0]),
              values[0] == KEPT);
     row_kept("rand-mean-nan", hibi_rng_rand(rng, NAN, 0.3f, HIBI_SPREAD_UNIFORM, &values[0]), values[0] == KEPT);
+    row_kept("rand-range-past-flt-max", hibi_rng_rand(rng, FLT_MAX, 0.9f, HIBI_SPREAD_UNIFORM, &values[0]),
+             values[0] == KEPT);
 
     /* Objects: indices and states. */
     {

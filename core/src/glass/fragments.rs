@@ -31,6 +31,9 @@ pub struct FragmentRing {
     /// For a hole, the index of the outer ring it lies in; `u32::MAX` otherwise
     /// (`HIBI_GLASS_NOT_A_HOLE` in C).
     pub hole_of: u32,
+    /// Always 0: the struct has no padding, so every byte a call writes is defined (an
+    /// output can be hashed or compared as bytes).
+    pub reserved: u32,
 }
 
 /// Caller words the fragment walk works in, sized for the plate's vertex capacity.
@@ -325,8 +328,13 @@ impl Glass<'_> {
         }
         let (mut r, mut p) = (0, 0);
         self.for_each_ring(scratch, |g, ring| {
-            rings[r] =
-                FragmentRing { area: ring.area, first_point: p as u32, point_count: ring.points as u32, hole_of: NONE };
+            rings[r] = FragmentRing {
+                area: ring.area,
+                first_point: p as u32,
+                point_count: ring.points as u32,
+                hole_of: NONE,
+                reserved: 0,
+            };
             walk_face(g, ring.start, |h| {
                 points[p] = g.point(g.ends(h).0);
                 p += 1;

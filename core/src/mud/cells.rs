@@ -392,7 +392,13 @@ impl<S: Scalar> Mud<'_, S> {
             let ring = &points[first..p];
             let twice: f64 = ring.iter().zip(ring.iter().cycle().skip(1)).map(|(a, b)| shoelace(*a, *b)).sum();
             let area = 0.5 * twice;
-            rings[r] = CellRing { area, first_point: first as u32, point_count: (p - first) as u32, hole_of: u32::MAX };
+            rings[r] = CellRing {
+                area,
+                first_point: first as u32,
+                point_count: (p - first) as u32,
+                hole_of: u32::MAX,
+                reserved: 0,
+            };
             r += 1;
         });
         for ring in &mut rings[..r] {
