@@ -119,6 +119,7 @@ fn run_mud(a: &MudArgs) -> Result<(), Failure> {
     let progress = Progress::run("mud", a.output.quiet);
     let run = mud::simulate(&params, &[render], &progress);
     progress.finish();
+    let run = run?;
     let written = write_cracks(&run.maps[0], &a.output, &a.animation, &path)?;
     if !a.output.quiet {
         eprintln!("hibi: wrote {written}: {}", run.summary());

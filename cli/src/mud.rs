@@ -1,7 +1,8 @@
 //! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
 
 use hibi_core::mud::{
-    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudLayers, MudParamError, MudParams, MudRender, Solver, Topology,
+    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayers, MudParamError, MudParams, MudRender,
+    Solver, Topology,
 };
 
 use crate::Failure;
@@ -177,12 +178,17 @@ fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
 }
 
 /// Runs `params` to its end, reporting to `progress`, and draws the maps of every view. The
-/// parameters and views must have passed [`check`].
-pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> MudRun {
+/// parameters and views must have passed [`check`]. Fails, naming the options, when the
+/// explicit solver's short step fails its stability test on an irregular lattice (known only
+/// once the lattice is built).
+pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> Result<MudRun, Failure> {
     let memory = params.memory().expect("checked parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words })
-        .expect("memory of the size asked for");
+    let mut mud = match Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }) {
+        Ok(mud) => mud,
+        Err(MudError::Param(e)) => return Err(Failure::invalid("mud", option(e), e.to_string())),
+        Err(e) => return Err(Failure::Runtime(e.to_string())),
+    };
     loop {
         let p = mud.step(2_000_000);
         progress.set_fraction(fraction(params, p.shrink, p.crack_density));
@@ -211,7 +217,7 @@ pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) ->
         })
         .collect();
     let statistics = mud.statistics();
-    MudRun { maps, statistics, shrink: mud.progress().shrink }
+    Ok(MudRun { maps, statistics, shrink: mud.progress().shrink })
 }
 
 /// Every parameter as (option, value), in the order of `--help`.

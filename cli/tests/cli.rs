@@ -120,10 +120,27 @@ fn growth_is_an_animated_png_or_a_numbered_sequence() {
 
 #[test]
 fn bad_options_are_usage_errors_naming_the_option() {
-    let cases: [(&[&str], &str); 14] = [
+    let cases: [(&[&str], &str); 15] = [
         (&["mud", "--size", "0x10"], "--size"),
         (&["mud", "--rows", "5"], "--rows"),
         (&["mud", "--young-modulus", "-1"], "--young-modulus"),
+        // Known only once the irregular lattice is built: still a usage error, no panic.
+        (
+            &[
+                "mud",
+                "--topology",
+                "irregular",
+                "--solver",
+                "explicit",
+                "--short-step",
+                "0.0102",
+                "--columns",
+                "16",
+                "--rows",
+                "16",
+            ],
+            "--short-step",
+        ),
         (&["mud", "--bogus"], "--bogus"),
         (&["mud", "--preset", "fig99"], "--preset"),
         (&["mud", "--layer", "time", "--frames", "3"], "--layer"),
