@@ -6,8 +6,8 @@ use hibi::*;
 
 /// Finding 1: a skin level whose stretch is tiny (`FLT_MIN`) asks for about 1e39 centre
 /// points across an axis. Its lattice count saturated at `i64::MAX`, and sizing the memory
-/// overflowed (a panic in `hibi_skin_memory_size` and `hibi_skin_create`). It is now a
-/// surface too large for memory, on every level, periodic or not.
+/// overflowed (a panic in `hibi_skin_memory_size` and `hibi_skin_create`). It is refused by
+/// the field's name, `HIBI_ERROR_SKIN_STRETCH`, on every level, periodic or not.
 #[test]
 fn a_tiny_skin_stretch_is_too_large_not_a_panic() {
     for periodic in [0, 1] {
@@ -22,12 +22,12 @@ fn a_tiny_skin_stretch_is_too_large_not_a_panic() {
                 let mut size = usize::MAX;
                 // SAFETY: valid pointers.
                 let status = unsafe { hibi_skin_memory_size(&params, &mut size) };
-                assert_eq!(status, HIBI_ERROR_SKIN_CAPACITY_PARAMS, "periodic {periodic}, level {level}, axis {axis}");
+                assert_eq!(status, HIBI_ERROR_SKIN_STRETCH, "periodic {periodic}, level {level}, axis {axis}");
                 assert_eq!(size, usize::MAX, "nothing written");
                 let mut skin = core::ptr::null_mut();
                 // SAFETY: valid pointers.
                 let status = unsafe { hibi_skin_create(&params, &mut skin) };
-                assert_eq!(status, HIBI_ERROR_SKIN_CAPACITY_PARAMS);
+                assert_eq!(status, HIBI_ERROR_SKIN_STRETCH);
                 assert!(skin.is_null());
             }
         }

@@ -469,10 +469,11 @@ static void parameters(void) {
     SKIN("skin-width-zero", p_.width = 0);
     SKIN("skin-jitter-ratio-nan", p_.jitter_ratio = NAN);
     SKIN("skin-levels-5", p_.levels = 5);
-    SKIN("skin-spacing-below-the-next", p_.level[1].spacing = 0.5f);
+    SKIN("skin-spacing-below-one-pixel", p_.level[1].spacing = 0.5f);
     SKIN("skin-perturbation-decay-negative", p_.level[0].perturbation_decay = -1.0f);
     SKIN("skin-perturbation-depth-6", p_.level[0].perturbation_depth = 6);
     SKIN("skin-stretch-zero", p_.level[1].stretch[0] = 0.0f);
+    SKIN("skin-stretch-tiny", p_.level[0].stretch[0] = 1e-30f);
     SKIN("skin-profile-no-segments", p_.level[0].profile.segments = 0);
     SKIN("skin-profile-point-inf", p_.level[0].profile.points[1][0] = INFINITY);
     SKIN("skin-roundness-1.5", p_.level[1].roundness = 1.5f);

@@ -608,9 +608,11 @@ impl SkinParams {
         for l in 0..levels {
             let lattice = Lattice::new(self, l);
             // A tiny stretch puts up to i64::MAX centre points across an axis: more than any
-            // memory holds, and more than the products below could count.
+            // memory holds, and more than the products below could count. Named as the stretch
+            // when one below 1 is what packs them (a spacing is at least 1 px).
             if lattice.count.iter().any(|&c| c > i64::from(i32::MAX)) {
-                return Err(SkinParamError::Capacity);
+                let squeezed = self.level[..=l].iter().any(|v| v.stretch.iter().any(|&s| s < 1.0));
+                return Err(if squeezed { SkinParamError::Stretch } else { SkinParamError::Capacity });
             }
             let (sites, level_vertices) = if l == 0 {
                 self.level0_need(&lattice, layout.outline[0]).ok_or(SkinParamError::Capacity)?

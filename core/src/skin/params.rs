@@ -169,8 +169,9 @@ crate::error::error_list! {
         Perturbation => c"skin: a level's perturbation and perturbation_decay must be finite and >= 0",
         /// A level's `perturbation_depth` is above [`MAX_PERTURBATION_DEPTH`].
         PerturbationDepth => c"skin: a level's perturbation_depth must be <= 5",
-        /// A level's `stretch` is not finite and positive.
-        Stretch => c"skin: a level's stretch must be finite and > 0",
+        /// A level's `stretch` is not finite and positive, or so small that the level's centre
+        /// points across the surface outnumber 2^31.
+        Stretch => c"skin: a level's stretch must be finite and > 0, and not so small that its centre points across the surface outnumber 2^31",
         /// A level's profile has 0 or more than [`MAX_SEGMENTS`] segments.
         ProfileSegments => c"skin: a profile must have 1..=4 Bezier segments",
         /// A profile point is not finite, does not start at x' = 0, or its x' decreases (x'(t)
