@@ -312,7 +312,8 @@
 #define HIBI_ERROR_MUD_SHORT_STEP_STABILITY 538
 
 /**
- * Glass parameters: width and height must be finite and >= 1.
+ * Glass parameters: width and height must be finite and within [1, 65536] px (positions
+ * are f32: on a wider plate a crack tip's shortest moves round away).
  */
 #define HIBI_ERROR_GLASS_SIZE 1024
 
@@ -1595,6 +1596,13 @@ struct hibi_glass_params hibi_glass_params_default(void);
 hibi_status hibi_glass_params_preset(const char *name, struct hibi_glass_params *out);
 
 /**
+ * The name of preset `index` (`"fig14a"` … `"fig16d"`), a static NUL-terminated string for
+ * `hibi_glass_params_preset`, or NULL past the last: list them by counting up from 0
+ * until NULL.
+ */
+const char *hibi_glass_preset_name(size_t index);
+
+/**
  * Checks `params` and writes the bytes a plate needs in caller memory (for
  * `hibi_glass_create_in`). Every parameter error is reported here.
  *
@@ -1789,6 +1797,13 @@ struct hibi_mud_params hibi_mud_params_default(void);
  * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
  */
 hibi_status hibi_mud_params_preset(const char *name, struct hibi_mud_params *out);
+
+/**
+ * The name of preset `index` (`"fig6a"` … `"fig10"`), a static NUL-terminated string for
+ * `hibi_mud_params_preset`, or NULL past the last: list them by counting up from 0
+ * until NULL.
+ */
+const char *hibi_mud_preset_name(size_t index);
 
 /**
  * Checks `params` and writes the bytes a run needs in caller memory (for
@@ -2086,6 +2101,13 @@ struct hibi_skin_params hibi_skin_params_default(void);
  * `name` must be NULL or a NUL-terminated string; `out` NULL or writable.
  */
 hibi_status hibi_skin_params_preset(const char *name, struct hibi_skin_params *out);
+
+/**
+ * The name of preset `index` (`"fig13a"` … `"fig19f"`), a static NUL-terminated string for
+ * `hibi_skin_params_preset`, or NULL past the last: list them by counting up from 0
+ * until NULL.
+ */
+const char *hibi_skin_preset_name(size_t index);
 
 /**
  * Checks `params` and writes the bytes a skin needs in caller memory (for

@@ -1041,3 +1041,17 @@ fn c_caller_memory_path_allocates_nothing() {
         .unwrap_or_else(|| panic!("no heap summary:\n{stderr}"));
     assert!(summary.contains("total heap usage: 0 allocs, 0 frees"), "{summary}");
 }
+
+/// C lists every model's presets, the core's names in the core's order, each accepted by
+/// `hibi_*_params_preset`.
+#[test]
+fn c_lists_the_presets() {
+    let output = regression("tests/c/presets.c");
+    let expected = format!(
+        "mud: {}\nglass: {}\nskin: {}\npast the end: NULL\n",
+        hibi_core::mud::PRESETS.join(" "),
+        hibi_core::glass::PRESETS.join(" "),
+        hibi_core::skin::PRESETS.join(" ")
+    );
+    assert_eq!(output, expected);
+}

@@ -198,7 +198,8 @@ lifecycle!(
     hibi_glass_params <=> GlassParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED, HIBI_ERROR_GLASS_ENUM, HIBI_ERROR_GLASS_UNKNOWN_PRESET),
     presets "`\"fig14a\"` … `\"fig16d\"`" in hibi_core::glass::PRESETS,
-    hibi_glass_params_default, hibi_glass_params_preset, hibi_glass_memory_size, hibi_glass_memory_align,
+    hibi_glass_params_default, hibi_glass_params_preset, hibi_glass_preset_name, hibi_glass_memory_size,
+    hibi_glass_memory_align,
     hibi_glass_create, hibi_glass_create_in, hibi_glass_destroy,
 );
 

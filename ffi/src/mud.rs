@@ -242,7 +242,7 @@ lifecycle!(
     hibi_mud_params <=> MudParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_UNKNOWN_PRESET),
     presets "`\"fig6a\"` … `\"fig10\"`" in hibi_core::mud::PRESETS,
-    hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_memory_size, hibi_mud_memory_align,
+    hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_preset_name, hibi_mud_memory_size, hibi_mud_memory_align,
     hibi_mud_create, hibi_mud_create_in, hibi_mud_destroy,
     only create: "One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's \
         explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` \

@@ -284,7 +284,7 @@ macro_rules! lifecycle {
         $params:ident <=> $core:ident, cookie $cookie:ident,
         errors ($not_initialised:ident, $bad_enum:ident, $unknown:ident),
         presets $presets:literal in $list:path,
-        $default:ident, $preset:ident, $memory_size:ident, $memory_align:ident,
+        $default:ident, $preset:ident, $preset_name:ident, $memory_size:ident, $memory_align:ident,
         $create:ident, $create_in:ident, $destroy:ident
         $(, only create: $only_create:literal)? $(,)?
     ) => {
@@ -331,6 +331,21 @@ macro_rules! lifecycle {
             // SAFETY: the caller's contract, passed on.
             $crate::guard::guard(|| unsafe {
                 $crate::guard::write_preset(name, out, preset, to_c, $crate::status::$unknown)
+            })
+        }
+
+        /// The presets' names, NUL-terminated, for C.
+        static PRESET_NAMES: [[u8; $crate::object::PRESET_NAME_BYTES]; $list.len()] =
+            $crate::object::nul_terminated($list);
+
+        #[doc = concat!(" The name of preset `index` (", $presets, "), a static NUL-terminated string for")]
+        #[doc = concat!(" `", stringify!($preset), "`, or NULL past the last: list them by counting up from 0")]
+        /// until NULL.
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $preset_name(index: usize) -> *const c_char {
+            $crate::guard::guard(|| match PRESET_NAMES.get(index) {
+                Some(name) => name.as_ptr().cast::<c_char>(),
+                None => core::ptr::null(),
             })
         }
 
@@ -426,6 +441,46 @@ macro_rules! lifecycle {
             }
             assert_eq!(from_c(&$default()), Ok(<$core>::default()));
         }
+
+        /// The preset names C lists are the core's, in its order, each accepted by
+        #[doc = concat!(" `", stringify!($preset), "`; NULL follows the last.")]
+        #[cfg(test)]
+        #[test]
+        fn preset_names_list_every_preset_then_null() {
+            let mut p = $default();
+            for (i, name) in $list.iter().enumerate() {
+                let listed = $preset_name(i);
+                assert!(!listed.is_null(), "{name}");
+                // SAFETY: a static NUL-terminated string.
+                let listed = unsafe { core::ffi::CStr::from_ptr(listed) };
+                assert_eq!(listed.to_str(), Ok(*name));
+                // SAFETY: valid pointers.
+                assert_eq!(unsafe { $preset(listed.as_ptr(), &mut p) }, $crate::status::HIBI_OK, "{name}");
+            }
+            assert!($preset_name($list.len()).is_null());
+            assert!($preset_name(usize::MAX).is_null());
+        }
     };
 }
 pub(crate) use lifecycle;
+
+/// Room for a preset's name and its NUL (a longer name fails to compile).
+pub(crate) const PRESET_NAME_BYTES: usize = 16;
+
+/// The names of `list`, each NUL-terminated in [`PRESET_NAME_BYTES`] bytes.
+pub(crate) const fn nul_terminated<const N: usize>(list: [&str; N]) -> [[u8; PRESET_NAME_BYTES]; N] {
+    let mut out = [[0u8; PRESET_NAME_BYTES]; N];
+    let mut i = 0;
+    while i < N {
+        let bytes = list[i].as_bytes();
+        assert!(bytes.len() < PRESET_NAME_BYTES, "a preset name too long for PRESET_NAME_BYTES");
+        let mut j = 0;
+        while j < bytes.len() {
+            assert!(bytes[j] != 0, "a NUL inside a preset name");
+            out[i][j] = bytes[j];
+            j += 1;
+        }
+        i += 1;
+    }
+    out
+}

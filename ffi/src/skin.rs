@@ -219,7 +219,8 @@ lifecycle!(
     hibi_skin_params <=> SkinParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_SKIN_PARAMS_NOT_INITIALISED, HIBI_ERROR_SKIN_ENUM, HIBI_ERROR_SKIN_UNKNOWN_PRESET),
     presets "`\"fig13a\"` … `\"fig19f\"`" in hibi_core::skin::PRESETS,
-    hibi_skin_params_default, hibi_skin_params_preset, hibi_skin_memory_size, hibi_skin_memory_align,
+    hibi_skin_params_default, hibi_skin_params_preset, hibi_skin_preset_name, hibi_skin_memory_size,
+    hibi_skin_memory_align,
     hibi_skin_create, hibi_skin_create_in, hibi_skin_destroy,
 );
 
