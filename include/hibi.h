@@ -22,6 +22,13 @@
  * non-const pointer (step, impact, destroy) need the object to themselves. The read-only
  * calls that need working memory (hibi_glass_fragment_counts, hibi_glass_fragments) take
  * a caller scratch of hibi_glass_scratch_size bytes: one per thread.
+ *
+ * Language: C99 or later, or C++ (the header needs <stdint.h>, and closes its extern "C"
+ * block with a // comment, which C89 rejects).
+ *
+ * Stack: no call takes more than 16 KiB of the calling thread's stack. A thread you create
+ * for hibi needs 24 KiB: glibc keeps a thread's TLS in the same block (a 16 KiB thread
+ * overflows, an 18 KiB one is enough; tests/c/thread_stack.c runs every model on 24 KiB).
  */
 
 #ifndef HIBI_H

@@ -1055,3 +1055,43 @@ fn c_lists_the_presets() {
     );
     assert_eq!(output, expected);
 }
+
+/// Model B at the ends of its ranges (`tests/c/glass_extremes.c`): plates wider than 65536 px
+/// are refused by name, nothing created (at width 1e20 the fragments once covered 2.5·10⁶ of
+/// the plate's 6.4·10²² px²); radial cracks of 1e8 to 1e30 px a step leave fragments that cover
+/// the plate for seeds 1 to 10 (seed 1 once missed 2 618 of 409 600 px²); large cracks of 1e-30
+/// to 1e-5 px a step finish at the time limit of 32 768 steps within 1e9 units (they once ran
+/// without end).
+#[test]
+fn c_glass_extremes_finish_and_their_fragments_cover_the_plate() {
+    let output = regression("tests/c/glass_extremes.c");
+    let mut expected = Vec::new();
+    for width in ["1e+15", "1e+20"] {
+        expected.push(format!(
+            "width {width}: status 1024 and 1024, glass: width and height must be finite and within [1, 65536], \
+             nothing created: yes"
+        ));
+    }
+    expected.push("width 65536: status 0, finished 1, areas sum to the plate: yes".to_owned());
+    for speed in ["1e+08", "1e+10", "1e+20", "1e+30"] {
+        for seed in 1..=10 {
+            expected.push(format!("radial_speed {speed} seed {seed}: status 0, finished 1, areas sum to the plate: yes"));
+        }
+    }
+    for speed in ["1e-30", "1e-20", "1e-06", "1e-05"] {
+        expected.push(format!(
+            "large_speed {speed}: status 0, finished 1, time 32768, work within 1e9: yes, areas sum to the plate: yes"
+        ));
+    }
+    assert_eq!(output.lines().collect::<Vec<_>>(), expected, "{output}");
+}
+
+/// Every model's heaviest calls run on a thread of 24 KiB, the size the header promises is
+/// enough (the program's sanitizer build gets a larger thread for the instrumentation's own
+/// frames; its plain static build below runs on the 24 KiB).
+#[test]
+fn c_every_model_runs_on_a_24_kib_thread() {
+    let expected = "every model on a 24 KiB thread: status 0\n";
+    assert_eq!(regression("tests/c/thread_stack.c"), expected);
+    assert_eq!(build_and_run(&c_compiler(), "c99", "tests/c/thread_stack.c", Linkage::Static), expected);
+}
