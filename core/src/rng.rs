@@ -8,8 +8,8 @@
 //! The distributions are written here, from bits, so that they are the same on every
 //! platform: uniform `f32`/`f64` from the top bits of the generator, the standard normal by
 //! Marsaglia's polar method over `libm`, Poisson by Knuth's product method applied to
-//! small-mean pieces (exact for any mean up to [`POISSON_MAX_MEAN`]), and the papers'
-//! `Rand(x)`.
+//! small-mean pieces up to a mean of [`POISSON_PIECES_MAX_MEAN`] and by Hörmann's transformed
+//! rejection (PTRS) above it, up to [`POISSON_MAX_MEAN`], and the papers' `Rand(x)`.
 
 use crate::enumeration::enumeration;
 use rand_core::{Rng as _, SeedableRng};
@@ -61,8 +61,19 @@ enumeration! {
     }
 }
 
-/// Largest mean [`Rng::poisson`] accepts. The cost is proportional to the mean.
+/// Largest mean [`Rng::poisson`] accepts.
 pub const POISSON_MAX_MEAN: f64 = 1.0e6;
+
+/// Up to this mean [`Rng::poisson`] sums Knuth draws of small-mean pieces (a cost in
+/// proportion to the mean: about 1.1 uniform draws per unit of mean); above it, one
+/// transformed rejection (a few uniform draws, whatever the mean). Glass's radial counts
+/// (`radial_mean` ≤ 10 000) always take the first way.
+pub const POISSON_PIECES_MAX_MEAN: f64 = 1.0e4;
+
+/// The transformed rejection's tries before it gives up and returns the mean rounded down:
+/// each try is accepted with probability above 0.9, so that happens with probability below
+/// 10⁻²⁵⁶ (never, in practice), and a call's time stays bounded.
+const PTRS_TRIES: u32 = 256;
 
 /// Knuth's product method stays exact in `f64` for means up to about 700 (exp(−λ) must not
 /// underflow); pieces of this mean keep every product far from the bottom of `f64`'s range.
@@ -171,12 +182,17 @@ impl Rng {
 
     /// A Poisson draw with the given mean (the paper's `Poisson_Rand`).
     ///
-    /// Exact: a Poisson variable of mean λ is the sum of independent Poisson variables whose
-    /// means add up to λ, so λ is cut into pieces of mean ≤ 8, each drawn by Knuth's product
-    /// method (count the uniforms whose running product stays above e^(−piece)).
+    /// Exact: up to [`POISSON_PIECES_MAX_MEAN`], a Poisson variable of mean λ is the sum of
+    /// independent Poisson variables whose means add up to λ, so λ is cut into pieces of mean
+    /// ≤ 8, each drawn by Knuth's product method (count the uniforms whose running product
+    /// stays above e^(−piece)); above it, by transformed rejection (PTRS), a few uniform draws
+    /// whatever the mean, so a call's time is bounded (at most 10 000 pieces' worth).
     pub fn poisson(&mut self, mean: f64) -> Result<u32, RngError> {
         if !mean.is_finite() || !(0.0..=POISSON_MAX_MEAN).contains(&mean) {
             return Err(RngError::PoissonMean);
+        }
+        if mean > POISSON_PIECES_MAX_MEAN {
+            return Ok(self.poisson_ptrs(mean));
         }
         let full_pieces = libm::floor(mean / POISSON_PIECE) as u32;
         let rest = mean - f64::from(full_pieces) * POISSON_PIECE;
@@ -192,6 +208,38 @@ impl Rng {
     }
 
     /// Knuth's method for a small mean λ, given `limit` = e^(−λ).
+    /// A Poisson draw by W. Hörmann's transformed rejection with squeeze, PTRS ("The
+    /// transformed rejection method for generating Poisson random variables", Insurance:
+    /// Mathematics and Economics 12, 1993), exact for a mean of 10 or more: a candidate
+    /// k = ⌊(2a/u_s + b)·U + μ + 0.43⌋ from U uniform in [−½, ½), accepted outright in the
+    /// squeeze (u_s ≥ 0.07, V ≤ v_r), else when log(V·α/(a/u_s² + b)) ≤ −μ + k·log μ − log k!.
+    fn poisson_ptrs(&mut self, mean: f64) -> u32 {
+        let smu = libm::sqrt(mean);
+        let b = 0.931 + 2.53 * smu;
+        let a = -0.059 + 0.02483 * b;
+        let inv_alpha = 1.1239 + 1.1328 / (b - 3.4);
+        let v_r = 0.9277 - 3.6224 / (b - 2.0);
+        let log_mean = libm::log(mean);
+        for _ in 0..PTRS_TRIES {
+            let u = self.uniform_f64() - 0.5;
+            // V in (0, 1]: its logarithm is finite.
+            let v = 1.0 - self.uniform_f64();
+            let us = 0.5 - libm::fabs(u);
+            let k = libm::floor((2.0 * a / us + b) * u + mean + 0.43);
+            if us >= 0.07 && v <= v_r {
+                return k as u32;
+            }
+            if k < 0.0 || (us < 0.013 && v > us) {
+                continue;
+            }
+            let accept = libm::log(v) + libm::log(inv_alpha) - libm::log(a / (us * us) + b);
+            if accept <= -mean + k * log_mean - libm::lgamma(k + 1.0) {
+                return k as u32;
+            }
+        }
+        libm::floor(mean) as u32
+    }
+
     fn poisson_knuth(&mut self, limit: f64) -> u32 {
         let mut product = 1.0;
         let mut count = 0u32;
@@ -330,6 +378,57 @@ mod tests {
         let mut rng = Rng::new(5, Stream::RadialCount);
         let sample = moments(n, || f64::from(rng.poisson(mean).unwrap()));
         assert_moments(n, sample, mean, mean, mean * (1.0 + 3.0 * mean));
+    }
+
+    #[test]
+    fn poisson_above_ten_thousand_is_exact_in_mean_and_variance() {
+        for mean in [10_000.5, 1e5, POISSON_MAX_MEAN] {
+            let n = 20_000;
+            let mut rng = Rng::new(5, Stream::RadialCount);
+            let sample = moments(n, || f64::from(rng.poisson(mean).unwrap()));
+            assert_moments(n, sample, mean, mean, mean * (1.0 + 3.0 * mean));
+        }
+    }
+
+    /// The transformed rejection against the exact distribution: at a mean of 30 (it is exact
+    /// from 10 up), a chi-square test over the values with an expected count of at least 50.
+    #[test]
+    fn transformed_rejection_matches_the_poisson_probabilities() {
+        let (mean, n) = (30.0f64, 200_000u32);
+        let mut rng = Rng::new(7, Stream::RadialCount);
+        let mut counts = [0u32; 80];
+        for _ in 0..n {
+            counts[(rng.poisson_ptrs(mean) as usize).min(79)] += 1;
+        }
+        let (mut chi2, mut bins, mut p) = (0.0, 0, libm::exp(-mean));
+        for (k, &seen) in counts.iter().enumerate().take(79) {
+            if k > 0 {
+                p *= mean / k as f64;
+            }
+            let expected = p * f64::from(n);
+            if expected >= 50.0 {
+                chi2 += (f64::from(seen) - expected).powi(2) / expected;
+                bins += 1;
+            }
+        }
+        // About 37 bins: the 0.999 quantile of chi-square with 36 degrees of freedom is 67.98.
+        assert!(bins > 30, "{bins} bins");
+        assert!(chi2 < 68.0, "chi-square {chi2:.1} over {bins} bins");
+    }
+
+    /// A draw's work does not grow with the mean: a Poisson draw of mean 1e6 takes the stream
+    /// a few words on, where the pieces would take over a million.
+    #[test]
+    fn a_large_poisson_draw_takes_a_bounded_number_of_words() {
+        for seed in 0..50 {
+            let mut drawn = Rng::new(seed, Stream::RadialCount);
+            drawn.poisson(POISSON_MAX_MEAN).unwrap();
+            let next = drawn.next_u32();
+            let mut walker = Rng::new(seed, Stream::RadialCount);
+            let words = (0..=4 * PTRS_TRIES).find(|_| walker.next_u32() == next);
+            // Each try reads four words (two f64); the first tries almost always accept.
+            assert!(words.is_some_and(|w| w <= 4 * PTRS_TRIES), "seed {seed}: {words:?}");
+        }
     }
 
     #[test]
