@@ -1,6 +1,8 @@
 //! Property tests over random valid parameters of small size, through the C ABI as a C caller
 //! drives it, for each model:
 //!
+//! - glass fragments cover the plate: their signed ring areas sum to width × height (within
+//!   10⁻⁴, in f64);
 //! - no NaN or infinity in any output (mud segments, network and cells; glass polylines and
 //!   fragments; skin cells and outlines; every float raster, except the break-time layers'
 //!   documented +infinity where no crack is);
@@ -512,6 +514,14 @@ fn glass_outputs_in_range(p: &hibi_glass_params, end: &GlassProgress, render: &h
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(points.iter().all(|x| finite(&[x.x, x.y])));
         rings_are_consistent(&rings, q, false);
+        // The fragments cover the plate: outer rings add their area, holes take theirs off.
+        let covered: f64 = rings.iter().map(|x| x.area).sum();
+        let plate = f64::from(p.width) * f64::from(p.height);
+        assert!(
+            ((covered - plate) / plate).abs() <= 1e-4,
+            "fragments cover {covered} of a {plate} plate ({} rings)",
+            rings.len()
+        );
         let pixels = (render.width * render.height) as usize;
         let mut mask = vec![0u8; pixels];
         let status = hibi_glass_render(glass, render, HIBI_GLASS_LAYER_MASK, mask.as_mut_ptr().cast(), pixels);
