@@ -1057,11 +1057,11 @@ fn c_lists_the_presets() {
 }
 
 /// Model B at the ends of its ranges (`tests/c/glass_extremes.c`): plates wider than 65536 px
-/// are refused by name, nothing created (at width 1e20 the fragments once covered 2.5·10⁶ of
-/// the plate's 6.4·10²² px²); radial cracks of 1e8 to 1e30 px a step leave fragments that cover
-/// the plate for seeds 1 to 10 (seed 1 once missed 2 618 of 409 600 px²); large cracks of 1e-30
-/// to 1e-5 px a step finish at the time limit of 32 768 steps within 1e9 units (they once ran
-/// without end).
+/// (1e15, 1e20) are refused by name, nothing created, and the fragments of a 65536 px plate
+/// cover it; radial cracks of 1e8 to 1e30 px a step leave fragments whose signed areas add up
+/// to the plate's, relative error at most 1e-4, for seeds 1 to 10; large cracks of 1e-30 to
+/// 1e-5 px a step finish at the time limit of 32 768 steps within 1e9 units, their fragments
+/// covering the plate.
 #[test]
 fn c_glass_extremes_finish_and_their_fragments_cover_the_plate() {
     let output = regression("tests/c/glass_extremes.c");
@@ -1075,7 +1075,8 @@ fn c_glass_extremes_finish_and_their_fragments_cover_the_plate() {
     expected.push("width 65536: status 0, finished 1, areas sum to the plate: yes".to_owned());
     for speed in ["1e+08", "1e+10", "1e+20", "1e+30"] {
         for seed in 1..=10 {
-            expected.push(format!("radial_speed {speed} seed {seed}: status 0, finished 1, areas sum to the plate: yes"));
+            expected
+                .push(format!("radial_speed {speed} seed {seed}: status 0, finished 1, areas sum to the plate: yes"));
         }
     }
     for speed in ["1e-30", "1e-20", "1e-06", "1e-05"] {

@@ -852,10 +852,9 @@ fn step_budgets_bound_the_work() {
         let mut memory = m.allocate();
         let mut g = Glass::new(&p, memory.buffers()).unwrap();
         let mut worst = 0;
-        // Budgets 1 to 200 in turn, to the end of generation (but for a plate whose large
-        // cracks crawl at 1e-30 px a step: its time limit is astronomic, so 2 000 calls).
-        let calls = if p.large_speed < 1e-20 { 2000 } else { usize::MAX };
-        for budget in (1..=200).cycle().take(calls) {
+        // Budgets 1 to 200 in turn, to the end of generation: every case ends within 200 000
+        // calls (2·10⁷ units), the plate whose large cracks crawl at 1e-30 px a step included.
+        for budget in (1..=200).cycle().take(200_000) {
             let before = g.progress().work;
             let progress = g.step(budget);
             let did = g.progress().work - before;
@@ -866,7 +865,7 @@ fn step_budgets_bound_the_work() {
             }
         }
         println!("{what}: most work past the budget in one call {worst} units, {} in all", g.progress().work);
-        assert!(g.progress().finished || calls == 2000, "{what}");
+        assert!(g.progress().finished, "{what}: not finished after 200 000 calls");
     }
     // Budgets do not change the result.
     let hash = |budget: u64| {
@@ -882,4 +881,127 @@ fn step_budgets_bound_the_work() {
     };
     assert_eq!(hash(1), hash(u64::MAX));
     assert_eq!(hash(37), hash(u64::MAX));
+}
+
+/// The sum of a plate's fragment rings' signed areas (outer rings positive, holes negative), in
+/// f64, and the plate's area W·H.
+fn fragment_area(g: &Glass) -> (f64, f64) {
+    let p = g.params();
+    (fragments_of(g).iter().map(|(r, _)| r.area).sum(), f64::from(p.width) * f64::from(p.height))
+}
+
+/// Fragment areas add up to the plate's (relative error at most 1e-4) over many seeds, at the
+/// ends of the valid ranges: radial cracks of 1e8 px a step up to `f32::MAX` (too young to
+/// turn, they run straight in updates of exactly 10 px, and some land exactly on the edge),
+/// the widest and tallest plates with the impact near their far end, and crawling cracks.
+/// Plates wider or taller than `MAX_SIDE` (1e15, 1e20, `f32::MAX`) are refused by name.
+#[test]
+fn fragment_areas_sum_to_the_plate_at_the_ends_of_the_valid_ranges() {
+    use hibi_core::glass::{GlassParamError, MAX_SIDE};
+    let base = GlassParams::default();
+    let mut cases: Vec<(String, GlassParams)> = Vec::new();
+    for seed in 0..40 {
+        cases.push((format!("default, seed {seed}"), GlassParams { seed, ..base }));
+    }
+    for radial_speed in [1e8, 1e10, 1e20, 1e30, f32::MAX] {
+        for seed in 1..=10 {
+            cases.push((
+                format!("radial_speed {radial_speed:e}, seed {seed}"),
+                GlassParams { radial_speed, seed, ..base },
+            ));
+        }
+    }
+    for seed in 1..=5 {
+        let wide = GlassParams { width: MAX_SIDE, impact: [MAX_SIDE - 320.0, 320.0], seed, ..base };
+        let tall = GlassParams { height: MAX_SIDE, impact: [320.0, MAX_SIDE - 330.0], seed, ..base };
+        cases.push((format!("width {MAX_SIDE}, seed {seed}"), wide));
+        cases.push((format!("height {MAX_SIDE}, seed {seed}"), tall));
+    }
+    let square =
+        GlassParams { width: MAX_SIDE, height: MAX_SIDE, impact: [MAX_SIDE - 100.0, MAX_SIDE - 200.0], ..base };
+    cases.push((format!("{MAX_SIDE} x {MAX_SIDE}"), square));
+    for large_speed in [1e-30, 1e-5, 0.01] {
+        cases.push((format!("large_speed {large_speed:e}"), GlassParams { large_speed, ..base }));
+    }
+    cases.push(("ring_speed 1e-30".into(), GlassParams { ring_speed: 1e-30, ..base }));
+    for (what, p) in &cases {
+        assert_eq!(p.validate(), Ok(()), "{what}");
+        let (area, plate) = with_plate(p, |g| fragment_area(g));
+        assert!((area - plate).abs() <= 1e-4 * plate, "{what}: fragments cover {area} of {plate} px²");
+    }
+    println!("{} plates: the fragments cover each", cases.len());
+    for side in [MAX_SIDE.next_up(), 131_072.0, 1e15, 1e20, f32::MAX] {
+        assert_eq!(GlassParams { width: side, ..base }.validate(), Err(GlassParamError::Size), "width {side}");
+        assert_eq!(GlassParams { height: side, ..base }.validate(), Err(GlassParamError::Size), "height {side}");
+    }
+}
+
+/// Every valid run ends within 1e9 units, its work bounded by the time limit: generation
+/// stops after at most `MAX_TIME_STEPS` time steps whatever the speeds, and the time steps in
+/// which every growing crack waits (ring cracks whose large cracks crawl) are skipped, not
+/// done: large cracks of 1e-30 to 1e-5 px a step finish in under 1e6 units. The most work
+/// (printed): every speed 1e-30, all cracks awake and stuck at the impact for the whole time
+/// limit.
+#[test]
+fn every_run_ends_within_its_time_limit() {
+    use hibi_core::glass::MAX_TIME_STEPS;
+    const MOST: u64 = 1_000_000_000;
+    let base = GlassParams::default();
+    // Each case, and whether its ring cracks wait past the time limit, in skipped steps.
+    let cases = [
+        ("large_speed 1e-30", GlassParams { large_speed: 1e-30, ..base }, true),
+        ("large_speed 1e-20", GlassParams { large_speed: 1e-20, ..base }, true),
+        ("large_speed 1e-6", GlassParams { large_speed: 1e-6, ..base }, true),
+        ("large_speed 1e-5", GlassParams { large_speed: 1e-5, ..base }, true),
+        ("large_speed 0.01", GlassParams { large_speed: 0.01, ..base }, false),
+        ("ring_speed 1e-30", GlassParams { ring_speed: 1e-30, ..base }, false),
+        ("radial_speed 1e-30", GlassParams { radial_speed: 1e-30, ..base }, false),
+        (
+            "every speed 1e-30",
+            GlassParams { large_speed: 1e-30, radial_speed: 1e-30, ring_speed: 1e-30, ..base },
+            false,
+        ),
+    ];
+    for (what, p, waits) in cases {
+        let m = p.memory().unwrap();
+        let mut memory = m.allocate();
+        let mut g = Glass::new(&p, memory.buffers()).unwrap();
+        let mut progress = g.progress();
+        while !progress.finished {
+            progress = g.step(1_000_000);
+            assert!(
+                progress.work <= MOST,
+                "{what}: {} units at time step {}, not finished",
+                progress.work,
+                progress.time
+            );
+        }
+        assert!(progress.time <= MAX_TIME_STEPS, "{what}: {progress:?}");
+        println!("{what}: {} time steps, {} units", progress.time, progress.work);
+        let rings: Vec<usize> = (0..g.crack_count())
+            .filter(|&i| matches!(g.crack(i).unwrap().kind, CrackKind::RingClockwise | CrackKind::RingCounterClockwise))
+            .collect();
+        if waits {
+            // The large cracks were enclosed at the impact at once, and the ring cracks wait
+            // for them past the time limit: the time steps between are skipped.
+            assert_eq!(progress.time, MAX_TIME_STEPS, "{what}");
+            assert!(progress.work < 1_000_000, "{what}: {} units", progress.work);
+            assert!(rings.iter().all(|&i| points(&g, i).is_empty()), "{what}: a ring crack grew");
+        }
+        if p.large_speed == 0.01 {
+            // Ring cracks wake at ⌈d_i / 0.01⌉ steps, long after every other crack stopped:
+            // the skipped steps land exactly on that step, where each starts to grow.
+            let grown: Vec<usize> = rings.iter().copied().filter(|&i| !points(&g, i).is_empty()).collect();
+            assert!(!grown.is_empty(), "{what}: no ring crack grew");
+            for i in grown {
+                let (c, first) = (g.crack(i).unwrap(), points(&g, i)[0]);
+                assert!(
+                    c.wake > 1000 && first.time == c.wake as f32,
+                    "{what}: crack {i} woke at {}, starts at {}",
+                    c.wake,
+                    first.time
+                );
+            }
+        }
+    }
 }

@@ -190,7 +190,8 @@ constants! {
     /// `hibi_mud_create` and `hibi_mud_create_in` build: for them `hibi_mud_memory_size` cannot
     /// tell, and `hibi_mud_create_in` may have written the memory it was given.
     HIBI_ERROR_MUD_SHORT_STEP_STABILITY: MudParamError::ShortStepStability = 538;
-    /// Glass parameters: width and height must be finite and >= 1.
+    /// Glass parameters: width and height must be finite and within [1, 65536] px (positions
+    /// are f32: on a wider plate a crack tip's shortest moves round away).
     HIBI_ERROR_GLASS_SIZE: GlassParamError::Size = 1024;
     /// Glass parameters: the first impact must lie inside the plate.
     HIBI_ERROR_GLASS_IMPACT_POINT: GlassParamError::Impact = 1025;

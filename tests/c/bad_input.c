@@ -451,6 +451,7 @@ static void parameters(void) {
 
     GLASS("glass-unknown-spread", p_.spread = 5);
     GLASS("glass-width-nan", p_.width = NAN);
+    GLASS("glass-width-past-65536", p_.width = 1e20f);
     GLASS("glass-impact-outside", (p_.impact[0] = 700.0f, p_.impact[1] = 10.0f));
     GLASS("glass-radial-mean-negative", p_.radial_mean = -1.0f);
     GLASS("glass-ring-threshold-nan", p_.ring_threshold = NAN);

@@ -226,21 +226,27 @@ impl Glass<'_> {
         let point = |v: u32| {
             if (v as usize) < vertices { self.vertices[v as usize].at } else { corners[v as usize - vertices] }
         };
-        // Position along the perimeter, counter-clockwise from (0, 0) with y up.
+        // Position along the perimeter, counter-clockwise from (0, 0) with y up: the side
+        // (bottom, right, top, left) and the coordinate along it, negated where the walk runs
+        // towards 0. Compared exactly: one f64 distance along the whole perimeter, such as
+        // 2·W + H − x on the top side, rounds away differences below 2·W·2⁻⁵³ (or below the
+        // spacing of f64 near 2·W + H, for points near a corner), and a border out of order
+        // joins the wrong ends, losing fragments.
         let perimeter = |p: [f32; 2]| {
-            let (x, y) = (f64::from(p[0]), f64::from(p[1]));
-            let (w, h) = (f64::from(w), f64::from(h));
             if p[1] == 0.0 {
-                x
-            } else if p[0] == self.params.width {
-                w + y
-            } else if p[1] == self.params.height {
-                2.0 * w + h - x
+                (0u8, p[0])
+            } else if p[0] == w {
+                (1, p[1])
+            } else if p[1] == h {
+                (2, -p[0])
             } else {
-                2.0 * (w + h) - y
+                (3, -p[1])
             }
         };
-        s.border[..n].sort_unstable_by(|&a, &b| perimeter(point(a)).total_cmp(&perimeter(point(b))).then(a.cmp(&b)));
+        s.border[..n].sort_unstable_by(|&a, &b| {
+            let (pa, pb) = (perimeter(point(a)), perimeter(point(b)));
+            pa.0.cmp(&pb.0).then(pa.1.total_cmp(&pb.1)).then(a.cmp(&b))
+        });
         s.border_index[..vertices + 4].fill(NONE);
         for k in 0..n {
             s.border_index[s.border[k] as usize] = k as u32;

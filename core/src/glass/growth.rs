@@ -38,9 +38,10 @@ const MIN_SQUARENESS: f32 = 0.25;
 /// it 1 of 990 ring cracks (seeds 0–99) turned 2° less than the arc it spans (rule 5).
 const SQUARE: f32 = 0.94;
 
-/// A margin \[px\] on the distance bounds that let a sector query skip a segment: far larger
-/// than the rounding of a distance on the plate (about 1e-4 px at 640 px), so that a skipped
-/// segment is one whose computed distance could not have passed the bound.
+/// A margin \[px\] on the distance bounds that let a sector query skip a segment: larger than
+/// the rounding of a distance on the plate (about 1e-4 px at 640 px, and positions are 1/256 px
+/// apart or closer on the largest plate, 65536 px), so that a skipped segment is one whose
+/// computed distance could not have passed the bound.
 const SLACK: f32 = 1.0 / 64.0;
 
 /// The box (x0, y0, x1, y1) of the segment `a`–`z`, its ends' coordinates sorted by plain
@@ -189,9 +190,13 @@ impl Glass<'_> {
                         self.clock.work += 1;
                         let c = self.cracks[self.clock.cursor];
                         if c.growing && self.clock.time >= c.wake {
+                            self.clock.awake = true;
                             let update = self.begin_update(self.clock.cursor);
                             self.go_on_update(update, deadline);
                         } else {
+                            if c.growing {
+                                self.clock.next_wake = self.clock.next_wake.min(c.wake);
+                            }
                             self.clock.cursor += 1;
                         }
                     } else {
@@ -234,6 +239,8 @@ impl Glass<'_> {
         if i == self.crack_count {
             self.clock.phase = Phase::Advance;
             self.clock.done = 0;
+            self.clock.awake = false;
+            self.clock.next_wake = u32::MAX;
             return;
         }
         self.clock.work += 1;
@@ -254,7 +261,9 @@ impl Glass<'_> {
 
     /// One unit of the check at the end of a time step: generation ends when every large and
     /// ring crack of this impact has stopped (or at the time limit); else the next time step
-    /// begins.
+    /// begins. When no crack was awake to grow in the step just done, every step until the
+    /// next crack wakes would do the same nothing (no crack moves, no random draw is made):
+    /// the clock goes straight to that step, or to the time limit if it comes first.
     fn settle(&mut self) {
         let impact = self.impacts - 1;
         let i = self.clock.done;
@@ -268,6 +277,9 @@ impl Glass<'_> {
                 self.clock.done += 1;
             }
             return;
+        }
+        if i != self.crack_count && !self.clock.awake {
+            self.clock.time = self.clock.time.max(self.clock.next_wake.min(self.clock.time_limit));
         }
         if i == self.crack_count || self.clock.time >= self.clock.time_limit {
             self.finish();
@@ -685,10 +697,12 @@ impl Glass<'_> {
         let mut hit = (Hit::Nothing, 1.0f32);
         for (axis, limit) in [(0usize, 0.0f32), (0, p.width), (1, 0.0), (1, p.height)] {
             let (from, to) = (w[axis], next[axis]);
-            let outside = if limit == 0.0 { to < 0.0 } else { to > limit };
+            // A move that ends exactly on the edge reaches it too (t = 1): the tip stops there,
+            // rather than going on from the edge with a segment of length 0 along it.
+            let outside = if limit == 0.0 { to <= 0.0 } else { to >= limit };
             if outside && from != to {
                 let t = (limit - from) / (to - from);
-                if t < hit.1 {
+                if t < hit.1 || hit.0 == Hit::Nothing {
                     let other = 1 - axis;
                     let mut at = [0.0; 2];
                     at[axis] = limit;
@@ -809,6 +823,13 @@ impl Glass<'_> {
         };
         let tip_vertex = if c.last_segment == NONE { c.start_vertex } else { self.edges[c.last_segment as usize].to };
         let time = self.clock.time as f32 + u.done / c.speed;
+        if hit == Hit::Nothing && u.next == c.tip {
+            // A move too short to change the tip's position in f32 (a speed of 1e-30 px a step):
+            // the crack turns where it stands, with no segment of length 0.
+            self.cracks[i].heading = u.heading;
+            u.stopped = false;
+            return None;
+        }
         u.stopped = true;
         let (end, stop) = match hit {
             Hit::Nothing => (self.add_vertex(u.next), CrackEnd::Growing),

@@ -31,7 +31,7 @@ mod grid;
 mod params;
 mod presets;
 
-pub use params::{GlassParamError, GlassParams};
+pub use params::{GlassParamError, GlassParams, MAX_SIDE, MAX_TIME_STEPS};
 pub use presets::{PRESETS, preset};
 
 use grid::{Buckets, Grid, NONE};
@@ -287,7 +287,8 @@ impl core::error::Error for GlassError {
 /// Where generation stands, as [`Glass::step`] reports it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GlassProgress {
-    /// Steps taken for the current impact.
+    /// Steps taken for the current impact, at most [`MAX_TIME_STEPS`]. A run of steps in which
+    /// no crack is awake to grow (ring cracks waiting for the large ones) is counted, not done.
     pub time: u32,
     /// Cracks on the plate.
     pub cracks: u32,
@@ -383,8 +384,13 @@ struct Clock {
     time: u32,
     /// The next crack to advance in the current step.
     cursor: usize,
-    /// The step count after which generation ends regardless (no crack grows forever).
+    /// The step count after which generation ends regardless (no crack grows forever): at most
+    /// [`MAX_TIME_STEPS`].
     time_limit: u32,
+    /// A crack was advanced in the time step under way.
+    awake: bool,
+    /// The earliest step at which a growing crack passed over in it wakes (`u32::MAX` if none).
+    next_wake: u32,
     finished: bool,
     capacity_reached: bool,
     /// Units of work done so far (grid cells and entries examined, cracks looked at, face
@@ -483,6 +489,8 @@ impl<'a> Glass<'a> {
                 time: 0,
                 cursor: 0,
                 time_limit: 0,
+                awake: false,
+                next_wake: u32::MAX,
                 finished: false,
                 capacity_reached: false,
                 work: 0,
@@ -529,9 +537,13 @@ impl<'a> Glass<'a> {
         self.clock.phase = Phase::Unfile;
         self.clock.done = 0;
         self.clock.finished = false;
-        // Long enough to cross the plate twice at the slowest speed Rand can draw.
+        // Long enough to cross the plate twice at the slowest speed Rand can draw, and at most
+        // MAX_TIME_STEPS (a float past u32::MAX saturates).
         let slowest = p.large_speed.min(p.radial_speed).min(p.ring_speed) * (1.0 - p.spread_ratio);
-        self.clock.time_limit = (libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32).saturating_add(16);
+        let crossing = libm::ceilf(2.0 * (p.width + p.height) / slowest) as u32;
+        self.clock.time_limit = crossing.saturating_add(16).min(MAX_TIME_STEPS);
+        self.clock.awake = false;
+        self.clock.next_wake = u32::MAX;
         let tau = 2.0 * core::f32::consts::PI;
         let rotation = turn_rng.uniform_f32() * tau;
         // At most FLT_MAX: Rand((1 + z)·x) of a speed or radius near FLT_MAX is +inf, and an

@@ -7,9 +7,9 @@ use crate::rng::Spread;
 /// §4.3) and ours where it gives none (see each field).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GlassParams {
-    /// Plate width \[px\]. Paper: 640.
+    /// Plate width \[px\], within [1, [`MAX_SIDE`]]. Paper: 640.
     pub width: f32,
-    /// Plate height \[px\]. Paper: 640.
+    /// Plate height \[px\], within [1, [`MAX_SIDE`]]. Paper: 640.
     pub height: f32,
     /// The impact point L (x, y), inside the plate. Paper: (320, 320).
     pub impact: [f32; 2],
@@ -39,11 +39,23 @@ pub struct GlassParams {
     /// h in d_ave = g·M + h \[px\] (Eq. 7). Paper: 13.90.
     pub ring_radius_offset: f32,
     /// V1_ave: mean speed of the large cracks [px per step] (Eq. 9). Paper: 30–60, ≤ 40
-    /// looks natural; default 40.
+    /// looks natural; default 40. A ring crack wakes at step ⌈d_i / V1_ave⌉, once the large
+    /// cracks have passed its radius.
     pub large_speed: f32,
     /// V2_ave: mean speed of the other radial cracks (Eq. 10). Paper: 5–10; default 10.
     pub radial_speed: f32,
     /// V3_ave: mean speed of the ring cracks (Eq. 11). Paper: 10.
+    ///
+    /// Any finite speed > 0 is valid, and every run ends: generation of an impact stops after
+    /// at most [`MAX_TIME_STEPS`] (32 768) time steps, and sooner, after ⌈2·(W + H) / v⌉ + 16,
+    /// when v, the slowest speed Rand can draw ((1 − z)·min(V1_ave, V2_ave, V3_ave)), crosses
+    /// the plate twice in fewer. So a run's work is at most that many time steps' whatever the
+    /// speeds (time steps in which no crack is awake to grow are skipped, not done). Cracks
+    /// too slow to stop on their own by then end where they are
+    /// ([`CrackEnd::Generation`](super::CrackEnd)), and ring cracks whose waking step lies
+    /// past it never grow: with z = 0.3 on the 640 × 640 plate, that takes a mean speed below
+    /// about 0.11 px per step. The most work measured there (tests/glass.rs): every speed
+    /// 1e-30, its 135 cracks growing in place at the impact for all 32 768 steps, 7.1·10⁸ units.
     pub ring_speed: f32,
     /// z of Rand(x): values within [(1 − z)x, (1 + z)x]. Paper: 0.3.
     pub spread_ratio: f32,
@@ -137,8 +149,8 @@ impl Default for GlassParams {
 crate::error::error_list! {
     /// A parameter out of its range; each names the field and its constraint.
     pub enum GlassParamError {
-        /// `width` and `height` must be finite and >= 1.
-        Size => c"glass: width and height must be finite and >= 1",
+        /// `width` and `height` must be finite and within [1, [`MAX_SIDE`]] (65536).
+        Size => c"glass: width and height must be finite and within [1, 65536]",
         /// `impact` must lie inside the plate (strictly).
         Impact => c"glass: impact must lie inside the plate",
         /// `radial_mean` must be finite and within [0, 10000].
@@ -167,6 +179,19 @@ crate::error::error_list! {
     }
 }
 
+/// The longest side a plate may have \[px\]: 2¹⁶. Positions are f32, so on a plate this size
+/// they are 2⁻⁸ px apart or closer: finer than the shortest update of a crack tip (1/8 px) and
+/// than the margin the sector queries allow for rounding (1/64 px), so every move lands where it
+/// was planned. Much wider plates lose fragments: with the impact 320 px from the far end of a
+/// 2²² × 640 px plate (positions 1/4 px apart), the fragments of 2 of seeds 1–3 missed
+/// 3·10⁴ and 4·10⁴ px² (measured; 2²¹ px lost none over 24 plates).
+pub const MAX_SIDE: f32 = 65_536.0;
+
+/// The most time steps generation of one impact takes, whatever the speeds: 2¹⁵ (see
+/// [`GlassParams::ring_speed`]). A crack of the paper's slowest speed, 5 px per step (3.5 with
+/// Rand's z = 0.3), crosses even a plate of the largest side, 2¹⁶ px, within it.
+pub const MAX_TIME_STEPS: u32 = 1 << 15;
+
 /// Finite and ≥ 0.
 fn non_negative(x: f32) -> bool {
     x.is_finite() && x >= 0.0
@@ -184,7 +209,7 @@ impl GlassParams {
         let tau = 2.0 * core::f32::consts::PI;
         let [x, y] = self.impact;
         let checks = [
-            (self.width.is_finite() && self.width >= 1.0 && self.height.is_finite() && self.height >= 1.0, Size),
+            ([self.width, self.height].iter().all(|v| (1.0..=MAX_SIDE).contains(v)), Size),
             (x.is_finite() && y.is_finite() && x > 0.0 && x < self.width && y > 0.0 && y < self.height, Impact),
             (self.radial_mean.is_finite() && (0.0..=10_000.0).contains(&self.radial_mean), RadialMean),
             (self.ring_threshold.is_finite(), RingThreshold),
@@ -240,8 +265,10 @@ mod tests {
     #[test]
     fn every_bad_field_is_named() {
         type Spoil = fn(&mut GlassParams);
-        let cases: [(Spoil, GlassParamError); 14] = [
+        let cases: [(Spoil, GlassParamError); 16] = [
             (|p| p.width = 0.0, GlassParamError::Size),
+            (|p| p.width = 65_537.0, GlassParamError::Size),
+            (|p| p.height = 1e20, GlassParamError::Size),
             (|p| p.height = f32::NAN, GlassParamError::Size),
             (|p| p.impact = [700.0, 10.0], GlassParamError::Impact),
             (|p| p.impact = [0.0, 10.0], GlassParamError::Impact),
