@@ -569,11 +569,12 @@ typedef struct hibi_glass_params {
    */
   uint32_t cookie;
   /**
-   * Plate width [px] (default 640).
+   * Plate width [px], within [1, 65536] (default 640; wider, f32 positions could not place
+   * a crack's shortest move, and the fragments would not cover the plate).
    */
   float width;
   /**
-   * Plate height [px] (default 640).
+   * Plate height [px], within [1, 65536] (default 640).
    */
   float height;
   /**
@@ -628,7 +629,10 @@ typedef struct hibi_glass_params {
    */
   float radial_speed;
   /**
-   * V3_ave, the ring cracks' mean speed (default 10).
+   * V3_ave, the ring cracks' mean speed (default 10). Any finite speed > 0 is valid and
+   * every run ends: an impact's generation stops after at most 32 768 time steps (sooner,
+   * once the slowest speed drawn crosses the plate twice); cracks still growing then end
+   * where they are.
    */
   float ring_speed;
   /**

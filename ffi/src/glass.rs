@@ -47,9 +47,10 @@ const PARAMS_COOKIE: u32 = 0x474C_5331;
 pub struct hibi_glass_params {
     /// Set by `hibi_glass_params_default`; leave it alone.
     pub cookie: u32,
-    /// Plate width [px] (default 640).
+    /// Plate width [px], within [1, 65536] (default 640; wider, f32 positions could not place
+    /// a crack's shortest move, and the fragments would not cover the plate).
     pub width: f32,
-    /// Plate height [px] (default 640).
+    /// Plate height [px], within [1, 65536] (default 640).
     pub height: f32,
     /// The first impact point (default the centre).
     pub impact: [f32; 2],
@@ -78,7 +79,10 @@ pub struct hibi_glass_params {
     pub large_speed: f32,
     /// V2_ave, the other radial cracks' mean speed (default 10).
     pub radial_speed: f32,
-    /// V3_ave, the ring cracks' mean speed (default 10).
+    /// V3_ave, the ring cracks' mean speed (default 10). Any finite speed > 0 is valid and
+    /// every run ends: an impact's generation stops after at most 32 768 time steps (sooner,
+    /// once the slowest speed drawn crosses the plate twice); cracks still growing then end
+    /// where they are.
     pub ring_speed: f32,
     /// z of Rand(x) (paper: 0.3).
     pub spread_ratio: f32,
