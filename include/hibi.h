@@ -2196,9 +2196,12 @@ hibi_status hibi_skin_render(const struct hibi_skin *skin,
  * level-0 centre point tried), one cell at a time at any level: the budget is checked before
  * each cell, so a call builds at least one (or tries a level-0 centre point whose cell misses
  * the surface) and overruns the budget by less than one cell's work (at most 2 049 units: an
- * outline's most vertices and one). The cells do not depend on the budgets. Writes where it
- * stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and writes
- * nothing) once a cell outgrew its capacity; what was built stays usable.
+ * outline's most vertices and one). A unit stands for about the same work at any spacing
+ * ratio: a cell's neighbours are found among those near it, not sorted from all of its
+ * parent's children, so its time follows its own outline, not the number of its siblings.
+ * The cells do not depend on the budgets. Writes where it stands to `*progress` unless it is
+ * NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and writes nothing) once a cell outgrew its
+ * capacity; what was built stays usable.
  *
  * # Safety
  * `skin` must be NULL or a live skin; `progress` optional: NULL (not written) or writable.

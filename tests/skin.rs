@@ -448,3 +448,100 @@ fn a_fig19a_skin_builds_and_renders_in_a_32_kib_stack() {
         .unwrap();
     assert!(cells > 10_000, "{cells}");
 }
+
+/// The environment variable that makes [`a_unit_costs_about_the_same_at_every_spacing_ratio`],
+/// run under Callgrind by itself, build one case (its index) instead of measuring them all.
+const UNIT_CASE: &str = "HIBI_SKIN_UNIT_CASE";
+
+/// Two-level skins (level 0 at the default 40 px) whose level-1 spacing makes a parent hold
+/// from about one child (40) to about 1 800 (1), and the default two-level skin (40 / 3).
+fn unit_cases() -> Vec<(&'static str, SkinParams)> {
+    let two = SkinParams { width: 120, height: 120, levels: 2, ..SkinParams::default() };
+    let spaced = |s: f32| {
+        let mut p = two;
+        p.level[1].spacing = s;
+        p
+    };
+    vec![
+        ("default (level 1 at 40/3)", two),
+        ("level 1 at 1", spaced(1.0)),
+        ("level 1 at 5", spaced(5.0)),
+        ("level 1 at 8", spaced(8.0)),
+        ("level 1 at 40", spaced(40.0)),
+    ]
+}
+
+/// Steps `skin` with budgets of 10 000 until it is finished or has done `limit` units; the
+/// only function Callgrind counts in [`a_unit_costs_about_the_same_at_every_spacing_ratio`]
+/// (found by its unmangled name).
+#[unsafe(no_mangle)]
+#[inline(never)]
+fn hibi_test_skin_unit_steps(skin: &mut Skin, limit: u64) -> hibi_core::skin::SkinProgress {
+    loop {
+        let progress = skin.step(10_000);
+        if progress.finished || progress.work >= limit {
+            return progress;
+        }
+    }
+}
+
+/// What one unit of `Skin::step` costs, in instructions (Callgrind, so the same on any
+/// machine): a cell's neighbours are found among its siblings near it, whatever the number
+/// of siblings, so a unit costs about the same whether a parent holds one child or 1 800.
+/// Each case is built under Callgrind by this test binary itself (the case named by
+/// [`UNIT_CASE`]), counting `hibi_test_skin_unit_steps` alone, up to 60 000 units; its
+/// instructions per unit must be within 10 times those of every other case. (In the debug
+/// profile the random-number crates are not optimised, so the lattice's draws weigh more per
+/// unit where a parent holds few children: about 4 500 instructions a unit at 1 px, 16 000
+/// at 40. Sorting all siblings for each child would cost 1 px about 168 000.)
+#[test]
+fn a_unit_costs_about_the_same_at_every_spacing_ratio() {
+    const LIMIT: u64 = 60_000;
+    let cases = unit_cases();
+    if let Ok(case) = std::env::var(UNIT_CASE) {
+        // Under Callgrind: build the case and report its work.
+        let (_, p) = cases[case.parse::<usize>().expect("a case index")];
+        let mut memory = p.memory().expect("valid parameters").allocate();
+        let mut skin: Skin = Skin::new(&p, memory.buffers()).expect("memory suffices");
+        let progress = hibi_test_skin_unit_steps(&mut skin, LIMIT);
+        assert!(!progress.capacity_reached && progress.work > 100, "{progress:?}");
+        println!("\nskin unit work {}", progress.work);
+        return;
+    }
+    let exe = std::env::current_exe().expect("the test binary");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let mut per_unit = Vec::new();
+    for (k, (name, _)) in cases.iter().enumerate() {
+        let out = dir.join(format!("skin_unit_{k}.callgrind"));
+        let _ = std::fs::remove_file(&out);
+        let run = hibi_tests::tool("valgrind")
+            .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=hibi_test_skin_unit_steps"])
+            .arg(format!("--callgrind-out-file={}", out.display()))
+            .arg(&exe)
+            .args(["a_unit_costs_about_the_same_at_every_spacing_ratio", "--exact", "--nocapture", "--test-threads=1"])
+            .env(UNIT_CASE, k.to_string())
+            .output()
+            .expect("run valgrind");
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        assert!(run.status.success(), "{name}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
+        let work: u64 = stdout
+            .lines()
+            .find_map(|l| l.split_once("skin unit work ").map(|(_, w)| w))
+            .and_then(|w| w.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{name}: no work reported in\n{stdout}"));
+        let text = std::fs::read_to_string(&out).expect("Callgrind's output");
+        let instructions: u64 = text
+            .lines()
+            .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{name}: no instruction count in {}", out.display()));
+        // (Collection was on: the build's instructions are far more than its units.)
+        assert!(instructions > 100 * work, "{name}: {instructions} instructions for {work} units");
+        let cost = instructions as f64 / work as f64;
+        println!("{name}: {work} units, {instructions} instructions, {cost:.0} per unit");
+        per_unit.push((*name, cost));
+    }
+    let cheapest = per_unit.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+    let dearest = per_unit.iter().map(|c| c.1).fold(0.0, f64::max);
+    assert!(dearest <= 10.0 * cheapest, "instructions per unit from {cheapest:.0} to {dearest:.0}: {per_unit:?}");
+}

@@ -25,7 +25,9 @@ use frame::{Corner, bisector_meets_edge, circumcentre, sorted2};
 pub(super) use frame::{Frame, fixed_point_bits};
 use perturb::{crossings, perturb};
 
+use super::MAX_CHILDREN;
 use super::grid::{EdgeGrid, each_edge};
+use super::nearest::{self, Buckets, Nearest};
 use super::params::MAX_PERTURBATION_DEPTH;
 use super::shared::{EdgeKey, KEPT_POINTS, SharedEdges};
 use super::sites::Site;
@@ -90,7 +92,10 @@ pub(super) struct EdgeWork<'w> {
 pub(super) struct Builder<'s> {
     pub(super) clip: &'s mut [ClipVertex],
     pub(super) spare: &'s mut [ClipVertex],
-    pub(super) order: &'s mut [u32],
+    /// The skin's `words` (none for one level): the siblings a cell's walk has found and not
+    /// yet handed out ([`Nearest`], the first [`MAX_CHILDREN`]), then each finer level's
+    /// buckets of its parent's children ([`super::Layout::words_at`]).
+    pub(super) words: &'s mut [u32],
 }
 
 /// A parent outline (fixed point, counter-clockwise) and the bounding boxes (x0, y0, x1, y1)
@@ -266,11 +271,14 @@ impl Builder<'_> {
     /// Builds the outline of `site`'s cell among `neighbours` (which may include `site`
     /// itself, skipped by id and image) inside `parent` (fixed point, counter-clockwise), into
     /// `out`; returns its length (0 if the cell misses the parent).
+    ///
+    /// More than [`FEW`] neighbours must come with their `buckets` (a parent's children:
+    /// [`Buckets::fill`] into `words` from the place given); fewer are picked without.
     pub(super) fn outline(
         &mut self,
         f: &Frame,
         site: &Site,
-        neighbours: &[Site],
+        (neighbours, buckets): (&[Site], Option<(&Buckets, usize)>),
         parent: Parent,
         (out, work): (&mut [[i64; 2]], EdgeWork),
     ) -> Result<usize, OutlineFull> {
@@ -283,48 +291,57 @@ impl Builder<'_> {
         let mut n = n0;
         let mut fresh = true;
         // Neighbours nearest first, ties by place in the list (which is the order of ids:
-        // sites are listed in lattice order). A few are picked one at a time as the clipping
-        // asks for them (most cells are done after a handful); more are sorted.
+        // sites are listed in lattice order), handed out as the clipping asks for them (most
+        // cells are done after a handful). A few are picked one at a time among all of them;
+        // more (a parent's children) are walked bucket by bucket from the cell's own
+        // ([`Nearest`]), which looks at the siblings near it only.
         let distance_to = |p: [f64; 2]| {
             let d = [p[0] - site.at[0], p[1] - site.at[1]];
             d[0] * d[0] + d[1] * d[1]
         };
         let distance = |s: &Site| distance_to(s.at);
         let m = neighbours.len();
-        let few = m <= FEW;
+        let mut walk = match buckets {
+            Some((buckets, at)) if m > FEW => {
+                let (heap, levels) = self.words.split_at_mut(MAX_CHILDREN);
+                let words = &levels[at - MAX_CHILDREN..][..nearest::WORDS];
+                Some(Nearest::new(buckets, words, neighbours, site.at, heap))
+            }
+            // (Only a parent's children outnumber the few, and they come bucketed.)
+            None if m > FEW => return Err(OutlineFull),
+            _ => None,
+        };
         let mut keys = [f64::INFINITY; FEW];
-        if few {
+        if walk.is_none() {
             for (key, s) in keys.iter_mut().zip(neighbours) {
                 *key = distance(s);
             }
-        } else {
-            for (k, o) in self.order[..m].iter_mut().enumerate() {
-                *o = k as u32;
-            }
-            self.order[..m].sort_unstable_by(|&i, &j| {
-                let (a, b) = (&neighbours[i as usize], &neighbours[j as usize]);
-                distance(a).total_cmp(&distance(b)).then(i.cmp(&j))
-            });
         }
         // (Unbounded until the first clip: the nearest neighbours clip the parent.)
         let mut farthest = f64::INFINITY;
-        for k in 0..m {
-            let j = if few {
-                // The first of the nearest, without branches (which one it is follows no
-                // pattern a processor could learn).
-                let (mut nearest, mut j) = (f64::INFINITY, usize::MAX);
-                for (i, &e) in keys[..m].iter().enumerate() {
-                    let nearer = e < nearest;
-                    (nearest, j) = (if nearer { e } else { nearest }, if nearer { i } else { j });
+        loop {
+            let j = match walk.as_mut() {
+                // (None once the next lies farther than the check below lets through, or
+                // none is left.)
+                Some(walk) => match walk.next(4.0 * farthest) {
+                    Some(j) => j,
+                    None => break,
+                },
+                None => {
+                    // The first of the nearest, without branches (which one it is follows
+                    // no pattern a processor could learn).
+                    let (mut nearest, mut j) = (f64::INFINITY, usize::MAX);
+                    for (i, &e) in keys[..m].iter().enumerate() {
+                        let nearer = e < nearest;
+                        (nearest, j) = (if nearer { e } else { nearest }, if nearer { i } else { j });
+                    }
+                    // (Every one picked: only the marks are left.)
+                    if j == usize::MAX {
+                        break;
+                    }
+                    keys[j] = f64::INFINITY;
+                    j
                 }
-                // (Every one picked: only the marks are left.)
-                if j == usize::MAX {
-                    break;
-                }
-                keys[j] = f64::INFINITY;
-                j
-            } else {
-                self.order[k] as usize
             };
             let b = &neighbours[j];
             if b.id == site.id && b.image == site.image {
