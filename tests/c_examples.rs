@@ -1096,3 +1096,18 @@ fn c_every_model_runs_on_a_24_kib_thread() {
     assert_eq!(regression("tests/c/thread_stack.c"), expected);
     assert_eq!(build_and_run(&c_compiler(), "c99", "tests/c/thread_stack.c", Linkage::Static), expected);
 }
+
+/// Explicit runs whose f32 lattice cannot bring every force below the tolerance end
+/// (`tests/c/mud_runs_end.c`): open plates grown to the end by the explicit solver, unbreakable
+/// or cracking on the way, reach finished within 1e8 units of work at a growth of 100 or more,
+/// with the springs broken that the Rust API's runs break.
+#[test]
+fn c_explicit_mud_runs_end_where_f32_cannot_settle() {
+    let output = regression("tests/c/mud_runs_end.c");
+    let expected = [
+        "hexagonal 3x3, unbreakable, gamma 0.5: status 0, finished 1, growth 100 or more: yes, broken 0",
+        "square 3x3, unbreakable, gamma 0.5: status 0, finished 1, growth 100 or more: yes, broken 0",
+        "hexagonal 4x4, break stretch 3, gamma 0.99: status 0, finished 1, growth 100 or more: yes, broken 33",
+    ];
+    assert_eq!(output.lines().collect::<Vec<_>>(), expected, "{output}");
+}

@@ -23,6 +23,13 @@
 //! are recorded afterwards in a scalar pass over the row. So every value is the same bit for
 //! bit on every build, and the same as with one pass per direction and a row of scratch.
 //!
+//! A long step follows a short step whose forces pass Eq. 3, and also one that changed no
+//! displacement and no velocity and broke nothing: every short step after it would repeat it
+//! exactly, so a backend that cannot move a node by the force left (Q16.16: F·τ/c below half a
+//! unit) would otherwise never pass Eq. 3. And at most [`settle_bound`] short steps follow a
+//! long step or a break (a lattice whose rounding keeps it moving without passing Eq. 3), so a
+//! run takes at most that many short steps per long step and per spring.
+//!
 //! A short step can stop between rows and go on at the next call of [`Mud::step`] (frame
 //! budgets): its [`Phase`] is kept in [`Dynamics`] and each phase runs in the same order
 //! whatever the cuts, so a budgeted run is the same bit for bit as one call.
@@ -60,6 +67,13 @@ pub(super) struct Dynamics<'a, S> {
     /// Springs the short step under way has broken so far (counted in `Mud::broken` as they
     /// break; the crack density is tested once the short step is done).
     newly_broken: u32,
+    /// Whether the short step under way has changed a displacement or a velocity (Eq. 4).
+    moved: bool,
+    /// Short steps since the last long step or break.
+    unsettled: u64,
+    /// The most short steps that follow a long step or a break before the lattice is taken
+    /// as settled ([`settle_bound`]).
+    settle_bound: u64,
 }
 
 /// Where a short step stands between calls of [`Mud::step`]: it is done phase by phase, and
@@ -132,6 +146,62 @@ pub(super) fn stable_lattice(lattice: &Lattice, material: &Material<f32>, alpha:
     }
 }
 
+/// E-folds of the slowest decay of Eq. 4's map that a short-step streak may take
+/// ([`settle_bound`]).
+pub(super) const SETTLE_EFOLDS: f64 = 64.0;
+
+/// The modulus of the larger eigenvalue of Eq. 4's map under a stiffness `lambda` (the matrix
+/// of [`stable`]): how much one short step shrinks that mode of the motion at least.
+fn contraction(m: f64, c: f64, lambda: f64, tau: f64) -> f64 {
+    let e = libm::exp(-(c * tau / m));
+    let a = tau / c - (m / (c * c)) * (1.0 - e);
+    let b = (m / c) * (1.0 - e);
+    let (p, q, r) = (1.0 - lambda * a, b, -(1.0 - e) * lambda / c);
+    let (trace, det) = (p + e, p * e - q * r);
+    let discriminant = trace * trace - 4.0 * det;
+    if discriminant >= 0.0 { 0.5 * (libm::fabs(trace) + libm::sqrt(discriminant)) } else { libm::sqrt(det) }
+}
+
+/// The slowest [`contraction`] over the stiffnesses a node may see, from its shear spring
+/// `shear` (the lattice's slowest mode: every node moving together stretches no surface
+/// spring) to the stability test's bound `bound`, on 17 stiffnesses spaced evenly in ratio.
+fn slowest_contraction(m: f64, c: f64, (shear, bound): (f64, f64), tau: f64) -> f64 {
+    (0..=16).fold(0.0f64, |worst, i| {
+        let lambda = shear * libm::pow(bound / shear, f64::from(i) / 16.0);
+        let rho = contraction(m, c, lambda, tau);
+        // NaN (no contraction known) counts as the worst.
+        if rho.is_nan() { f64::INFINITY } else { worst.max(rho) }
+    })
+}
+
+/// The most short steps that follow a long step or a break before the explicit run takes the
+/// lattice as settled and takes a long step: [`SETTLE_EFOLDS`] e-folds of the slowest mode of
+/// Eq. 4's map, ⌈64 / −ln ρ⌉ with ρ from [`slowest_contraction`] (the worst node's on the
+/// irregular lattice), at least 1, saturating at `u64::MAX`. In exact arithmetic a force falls
+/// e⁶⁴ ≈ 6·10²⁷-fold in that many steps; at the paper's values it is about 14,000 short steps
+/// (hexagonal; a break settles within about 1,000), 22 % more on the square lattice. It bounds
+/// a run whose arithmetic cannot bring every force below δF (Eq. 3) but keeps moving: a run
+/// takes at most this many short steps per long step and per break. Computed in `f32`
+/// constants and `f64`, as [`stable_lattice`], so that it does not depend on the backend.
+pub(super) fn settle_bound(lattice: &Lattice, material: &Material<f32>, alpha: f32) -> u64 {
+    let tau = f64::from(material.short_step);
+    let rho = match lattice.mesh() {
+        None => {
+            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+            let shear = f64::from(material.shear);
+            let stiffness = (shear, shear + 2.0 * f64::from(springs));
+            slowest_contraction(f64::from(material.mass), f64::from(material.damping), stiffness, tau)
+        }
+        Some(mesh) => (0..lattice.node_count()).fold(0.0f64, |worst, node| {
+            let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
+            let stiffness = (f64::from(n.shear), f64::from(n.shear + 2.0 * n.springs));
+            worst.max(slowest_contraction(f64::from(n.mass), f64::from(n.damping), stiffness, tau))
+        }),
+    };
+    // ρ < 1 for a lattice that passes the stability test; ρ ≥ 1 (or NaN) bounds nothing.
+    if rho < 1.0 { (libm::ceil(SETTLE_EFOLDS / -libm::log(rho)) as u64).max(1) } else { u64::MAX }
+}
+
 /// The constants of one node of the irregular lattice (paper §2): m = ρ·B·H and
 /// c = 2·√(k_max·m)·α, with B the node's Voronoi area and k_max over its springs and its shear
 /// spring h; in lattice units m = B. δF = k_min·δx with k_min over the same springs.
@@ -170,7 +240,7 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
         lattice: &Lattice,
         other: &[u32],
         material: &Material<S>,
-        (tolerance_length, alpha): (f32, f32),
+        (tolerance_length, alpha, settle_bound): (f32, f32, u64),
     ) -> Self {
         let nodes = lattice.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
@@ -214,6 +284,9 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             node_constants,
             phase: Phase::Start,
             newly_broken: 0,
+            moved: false,
+            unsettled: 0,
+            settle_bound,
         }
     }
 }
@@ -637,7 +710,8 @@ fn component_reaches<S: Scalar>(x: S, y: S, tolerance: S) -> bool {
 }
 
 /// Eq. 4, every node: v = vᵖ + (vᵖ − F/c)(e^(−cτ/m) − 1),
-/// x = xᵖ + (vᵖ − F/c)(−m/c)(e^(−cτ/m) − 1) + (F/c)·τ.
+/// x = xᵖ + (vᵖ − F/c)(−m/c)(e^(−cτ/m) − 1) + (F/c)·τ. Returns whether a displacement or a
+/// velocity changed (a NaN counts as a change).
 /// (The arrays come in as separate arguments, so that the compiler knows they do not overlap.)
 #[inline(never)]
 fn move_nodes<S: Scalar>(
@@ -648,17 +722,20 @@ fn move_nodes<S: Scalar>(
     fy: &[S],
     ux: &mut [S],
     uy: &mut [S],
-) {
+) -> bool {
     let n = ux.len();
     let (uy, vx, vy, fx, fy) = (&mut uy[..n], &mut vx[..n], &mut vy[..n], &fx[..n], &fy[..n]);
+    let mut moved = false;
     for i in 0..n {
         let qx = vx[i] - fx[i] * inverse_damping;
         let qy = vy[i] - fy[i] * inverse_damping;
-        vx[i] += qx * decay;
-        vy[i] += qy * decay;
-        ux[i] += qx * drift + fx[i] * step_over_damping;
-        uy[i] += qy * drift + fy[i] * step_over_damping;
+        let (wx, wy) = (vx[i] + qx * decay, vy[i] + qy * decay);
+        let (x, y) =
+            (ux[i] + (qx * drift + fx[i] * step_over_damping), uy[i] + (qy * drift + fy[i] * step_over_damping));
+        moved |= (wx != vx[i]) | (wy != vy[i]) | (x != ux[i]) | (y != uy[i]);
+        (vx[i], vy[i], ux[i], uy[i]) = (wx, wy, x, y);
     }
+    moved
 }
 
 /// The end of a piece of `budget` items from `from`, at most `end`.
@@ -711,6 +788,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let irregular = self.lattice.mesh().is_some();
         let d = self.dynamics();
         d.newly_broken = 0;
+        d.moved = false;
         d.phase = match () {
             _ if irregular => Phase::Shear(0),
             _ if d.limit_rest == Some(rest) => Phase::Rows { k: 0, row: 0 },
@@ -895,15 +973,18 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     [0, 1, 2, 3].map(|k| d.node_constants[NODE_CONSTANTS * node + k]);
                 let qx = d.vx[node] - d.fx[node] * inverse_damping;
                 let qy = d.vy[node] - d.fy[node] * inverse_damping;
-                d.vx[node] += qx * decay;
-                d.vy[node] += qy * decay;
-                ux[node] += qx * drift + d.fx[node] * step_over_damping;
-                uy[node] += qy * drift + d.fy[node] * step_over_damping;
+                let v = (d.vx[node] + qx * decay, d.vy[node] + qy * decay);
+                let u = (
+                    ux[node] + (qx * drift + d.fx[node] * step_over_damping),
+                    uy[node] + (qy * drift + d.fy[node] * step_over_damping),
+                );
+                d.moved |= (v.0 != d.vx[node]) | (v.1 != d.vy[node]) | (u.0 != ux[node]) | (u.1 != uy[node]);
+                (d.vx[node], d.vy[node], ux[node], uy[node]) = (v.0, v.1, u.0, u.1);
             }
         } else {
             let constants = [d.decay, d.drift, d.inverse_damping, d.step_over_damping];
             let (vx, vy, fx, fy) = (&mut d.vx[from..end], &mut d.vy[from..end], &d.fx[from..end], &d.fy[from..end]);
-            move_nodes(constants, vx, vy, fx, fy, &mut ux[from..end], &mut uy[from..end]);
+            d.moved |= move_nodes(constants, vx, vy, fx, fy, &mut ux[from..end], &mut uy[from..end]);
         }
         if end < nodes {
             d.phase = Phase::Move(end);
@@ -975,12 +1056,22 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// Ends a short step that broke `newly_broken` springs (already counted): tests the crack
-    /// density, and takes a long step (Eq. 1) if the lattice was stable.
+    /// density, and takes a long step (Eq. 1) if the lattice is settled: stable (Eq. 3), or
+    /// at rest as far as the backend resolves it (the short step broke nothing and changed no
+    /// displacement and no velocity, so every short step after it would repeat it and the
+    /// stability test would never pass), or [`settle_bound`] short steps after the last long
+    /// step or break.
     fn after_short_step(&mut self, newly_broken: u32, stable: bool) {
         if newly_broken > 0 && self.density_reached() {
             self.finished = true;
         }
-        if stable && !self.finished {
+        let d = self.dynamics();
+        d.unsettled = if newly_broken > 0 { 0 } else { d.unsettled.saturating_add(1) };
+        let settled = stable || newly_broken == 0 && (!d.moved || d.unsettled >= d.settle_bound);
+        if settled {
+            d.unsettled = 0;
+        }
+        if settled && !self.finished {
             if self.misfit >= self.end_misfit() {
                 // Stable at the target (or at the largest misfit the model follows).
                 self.finished = true;

@@ -394,13 +394,23 @@ impl<'a, S: Scalar> Mud<'a, S> {
             let kappa = 1.0 + margin + spread * rng.normal_f32();
             break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
         }
+        // The bounds on a settling lattice's work come from the f32 constants, whatever the
+        // backend.
+        let reference = Material::<f32>::new(params, &shape)?;
         let solver = match params.solver {
             Solver::Explicit => {
-                let constants = (params.displacement_tolerance / params.element_size, params.damping_factor);
+                let settle = explicit::settle_bound(&lattice, &reference, params.damping_factor);
+                let constants = (params.displacement_tolerance / params.element_size, params.damping_factor, settle);
                 SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &lattice, other, &material, constants))
             }
             Solver::QuasiStatic => {
-                SolverState::QuasiStatic(quasi_static::Relaxation::new(&mut scalars, &mut words, nodes, springs))
+                let bound = quasi_static::relax_bound(&lattice, &reference);
+                SolverState::QuasiStatic(quasi_static::Relaxation::new(
+                    &mut scalars,
+                    &mut words,
+                    (nodes, springs),
+                    bound,
+                ))
             }
         };
         let mut mud = Mud {

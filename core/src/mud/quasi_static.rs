@@ -22,6 +22,10 @@
 //! then 19 % apart over 8 seeds (48²), and without it they agree within 15 %. When the queue is empty, springs whose
 //! s_break is below the misfit break first, smallest s_break first (the most overstrained).
 //! A tournament tree over blocks of springs keeps the smallest s_break in O(log n).
+//!
+//! Every relaxation ends within a bound that follows from the parameters: the tolerance is at
+//! least [`SOLVE_ROUNDING`] units of the backend's resolution, and after a break (or the
+//! setup) at most [`relax_bound`] nodes are relaxed before the rest of the queue is dropped.
 
 use super::{ABSENT, Drive, INTACT, Mud, SolverState, take};
 use crate::scalar::Scalar;
@@ -36,6 +40,16 @@ pub(super) const BLOCK: usize = 32;
 
 /// The smallest misfit the relaxation tolerance is scaled by (see [`Mud::relax`]).
 const TOLERANCE_MISFIT_FLOOR: f32 = 0.005;
+
+/// The least relaxation tolerance, in units of the backend's resolution ([`Scalar::RESOLUTION`]):
+/// a node's solve sums rounded products over its springs, so its u moves by a few units from
+/// rounding alone, and a smaller tolerance passes that back and forth between neighbours.
+/// Measured on Q16.16 (the smallest δx, 100² open hexagonal plate, shrink to the end): 1 or 2
+/// units relax for over 2·10⁹ units of work without reaching the end, 4 end in 6·10⁷ and 8 in
+/// 5·10⁷ (f32: 4·10⁷); the irregular lattice's nodes have more springs (64², 8 units: half the
+/// work of 4). In f32 it applies only where δx/(W·s) < 8·ε ≈ 9.5·10⁻⁷: never at the paper's δx
+/// (s ≤ 100), and at smaller δx only at growths past (δx/W)/(9.5·10⁻⁷).
+const SOLVE_ROUNDING: i32 = 8;
 
 /// Arrays of the quasi-static solver.
 pub(super) struct Relaxation<'a, S> {
@@ -58,6 +72,11 @@ pub(super) struct Relaxation<'a, S> {
     /// How far the refresh under way has come: touched nodes whose springs are up to date,
     /// then (past `touched_len`) touched marks cleared.
     refreshed: usize,
+    /// Node relaxations since the last break (or the setup).
+    relaxed: u64,
+    /// The most node relaxations that follow a break before the rest of the queue is dropped
+    /// ([`relax_bound`]).
+    relax_bound: u64,
 }
 
 /// The node is in the queue.
@@ -65,8 +84,50 @@ const QUEUED: u32 = 1;
 /// The node is in the touched list.
 const TOUCHED: u32 = 2;
 
+/// E-folds of the slowest convergence of the relaxation that the relaxations after a break may
+/// take ([`relax_bound`]).
+pub(super) const RELAX_EFOLDS: f64 = 64.0;
+
+/// The most node relaxations that follow a break (or the setup) before the quasi-static run
+/// takes the lattice as relaxed and drops the rest of its queue: [`RELAX_EFOLDS`] e-folds of
+/// the slowest sweep over the nodes, ⌈64 / ln(1 + h/Σk)⌉ sweeps of every node. A node's update
+/// shrinks the error of the mode in which every node moves together (the slowest: it stretches
+/// no surface spring, so only the shear spring h restores it) by the factor Σk/(h + Σk) at
+/// least, Σk over the node's surface springs (the worst node's on the irregular lattice). In
+/// exact arithmetic a sweep-by-sweep relaxation is then e⁶⁴-fold closer to equilibrium. At the
+/// paper's values it is 1,312 sweeps (hexagonal): 5.4 million relaxations on a 64² plate, where
+/// a break took at most about 1,000 (periodic, seeds 1–4) and the setup of an open plate's
+/// boundary layer about 11,000. It bounds a relaxation whose arithmetic cannot settle below
+/// its tolerance (node updates that round back and forth by a few units of the backend): a
+/// run relaxes at most this many nodes per break and after the setup. Computed in `f32`
+/// constants and `f64`, so that it does not depend on the backend; saturates at `u64::MAX`.
+pub(super) fn relax_bound(lattice: &super::Lattice, material: &super::Material<f32>) -> u64 {
+    // h/Σk of the slowest node.
+    let ratio = match lattice.mesh() {
+        None => {
+            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+            f64::from(material.shear) / f64::from(springs)
+        }
+        Some(mesh) => (0..lattice.node_count()).fold(f64::INFINITY, |slowest, node| {
+            let mut springs = 0.0f64;
+            mesh.for_each_spring_at(node, |spring, _, _| springs += f64::from(mesh.stiffness(spring)));
+            let shear = f64::from(mesh.area(node) * material.shear_per_area);
+            slowest.min(shear / springs)
+        }),
+    };
+    let sweeps = libm::ceil(RELAX_EFOLDS / libm::log1p(ratio));
+    let relaxations = sweeps * lattice.node_count() as f64;
+    // A NaN or infinite count (no shear, or no spring) gives the largest bound.
+    if relaxations.is_nan() { u64::MAX } else { (relaxations as u64).max(1) }
+}
+
 impl<'a, S: Scalar> Relaxation<'a, S> {
-    pub(super) fn new(scalars: &mut &'a mut [S], words: &mut &'a mut [u32], nodes: usize, springs: usize) -> Self {
+    pub(super) fn new(
+        scalars: &mut &'a mut [S],
+        words: &mut &'a mut [u32],
+        (nodes, springs): (usize, usize),
+        relax_bound: u64,
+    ) -> Self {
         let leaves = springs.div_ceil(BLOCK).next_power_of_two();
         let break_misfit = take(scalars, springs);
         let tree = take(words, 2 * leaves);
@@ -74,7 +135,20 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         let flags = take(words, nodes);
         let touched = take(words, nodes);
         flags.fill(0);
-        Relaxation { break_misfit, tree, leaves, queue, flags, head: 0, len: 0, touched, touched_len: 0, refreshed: 0 }
+        Relaxation {
+            break_misfit,
+            tree,
+            leaves,
+            queue,
+            flags,
+            head: 0,
+            len: 0,
+            touched,
+            touched_len: 0,
+            refreshed: 0,
+            relaxed: 0,
+            relax_bound,
+        }
     }
 
     /// The better of two tree entries.
@@ -221,7 +295,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// if u moved by more than the tolerance. Returns the springs visited.
     ///
     /// The tolerance is the paper's δx: displacements are s·u, so u needs resolving to
-    /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse).
+    /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse),
+    /// and to no less than [`SOLVE_ROUNDING`] units of the backend's resolution.
     fn relax(&mut self, node: usize) -> u64 {
         match self.lattice.mesh() {
             // At most six springs on the regular lattices: a smaller list to set up.
@@ -274,6 +349,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         self.uy[node] = y;
         let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
         let tolerance = S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
+        let tolerance = tolerance.max(S::RESOLUTION * S::from_i32(SOLVE_ROUNDING));
         let misfit = self.misfit;
         for &(spring, other, ex, ey, k) in &intact[..count] {
             let (spring, other) = (spring as usize, other as usize);
@@ -340,12 +416,18 @@ impl<'a, S: Scalar> Mud<'a, S> {
         work
     }
 
-    /// One piece of quasi-static work: relax one queued node (its springs), refresh the
-    /// touched nodes' springs until the work reaches `budget` (at least one node's), or
-    /// break the next spring (jumping the misfit to it; one unit). Returns the work done
-    /// (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
+    /// One piece of quasi-static work: relax one queued node (its springs), or drop it from
+    /// the queue once [`relax_bound`] nodes have been relaxed since the last break (one unit),
+    /// refresh the touched nodes' springs until the work reaches `budget` (at least one
+    /// node's), or break the next spring (jumping the misfit to it; one unit). Returns the work
+    /// done (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
     pub(super) fn quasi_static_step(&mut self, budget: u64) -> u64 {
         if let Some(node) = self.relaxation().pop() {
+            let r = self.relaxation();
+            if r.relaxed >= r.relax_bound {
+                return 1;
+            }
+            r.relaxed += 1;
             return self.relax(node);
         }
         if self.relaxation().touched_len > 0 {
@@ -377,6 +459,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         self.break_spring(spring);
         let (a, b) = (self.origin(spring), self.other[spring] as usize);
         let r = self.relaxation();
+        r.relaxed = 0;
         r.break_misfit[spring] = S::MAX;
         r.update(spring);
         r.push(a);
