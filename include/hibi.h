@@ -2283,11 +2283,13 @@ hibi_status hibi_skin_outline(const struct hibi_skin *skin,
 const char *hibi_status_string(hibi_status status);
 
 /**
- * The name of the pointer argument that the latest call on this thread refused, as it is
- * spelled in this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
- * `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`, or
- * `HIBI_ERROR_BUFFER_TOO_SMALL` for caller memory (`"memory"`) or a scratch (`"scratch"`);
- * `""` after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
+ * The name of the argument that the latest call on this thread refused, as it is spelled in
+ * this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
+ * `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED`, `HIBI_ERROR_SIZE_OVERFLOW`,
+ * `HIBI_ERROR_BUFFER_TOO_SMALL` (the buffer that is short: `"memory"`, `"scratch"`,
+ * `"pixels"`, `"points"`, ...) or `HIBI_ERROR_BAD_ENUM` (the enumeration argument, or the
+ * struct that holds the bad value); `""` after any other outcome (a parameter error's status
+ * names its field itself). Static and NUL-terminated, never NULL. Per thread: another
  * thread's calls do not change it, and neither do `hibi_status_string`,
  * `hibi_error_argument` and `hibi_version`.
  */

@@ -367,7 +367,7 @@ pub unsafe extern "C" fn hibi_glass_points(
         let (glass, _) = unsafe { crack_of(glass, index, (written, c"written")) }?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(points, len, c"points") }?;
-        let n = glass.points(index, out).map_err(glass_status)?;
+        let n = glass.points(index, out).map_err(|e| crate::status::short_buffer(glass_status(e), c"points"))?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(written, c"written", n) }
     })
@@ -460,8 +460,19 @@ polygon_query! {
         let glass = unsafe { object_ref(glass, c"glass") }?;
     }
     // SAFETY: the caller's contract.
-    |rings, points| glass.glass.fragments(unsafe { fragment_scratch(glass, scratch, scratch_size) }?, rings, points)
-        .map_err(glass_status)
+    |rings, points| {
+        let lengths = (rings.len(), points.len());
+        // SAFETY: the caller's contract.
+        let words = unsafe { fragment_scratch(glass, scratch, scratch_size) }?;
+        match glass.glass.fragments(words, rings, points) {
+            Err(GlassError::BufferTooSmall { .. }) => {
+                // Only on the failure path: count again to name the short buffer.
+                let (r, p) = glass.glass.fragment_counts(words).map_err(glass_status)?;
+                Err(crate::status::first_short(&[(c"rings", lengths.0, r), (c"points", lengths.1, p)]))
+            }
+            result => result.map_err(glass_status),
+        }
+    }
 }
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -596,6 +607,13 @@ mod tests {
             };
             let status = fragments(point_count - 1, &mut r, &mut n);
             assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL);
+            let named = core::ffi::CStr::from_ptr(crate::status::hibi_error_argument());
+            assert_eq!(named.to_str(), Ok("points"), "the short buffer is named");
+            let status =
+                hibi_glass_fragments(glass, sp, ss, ring_ptr, ring_count - 1, point_ptr, point_count, &mut r, &mut n);
+            assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL);
+            let named = core::ffi::CStr::from_ptr(crate::status::hibi_error_argument());
+            assert_eq!(named.to_str(), Ok("rings"), "the short buffer is named");
             assert!((r, n) == (7, 7) && rings.iter().all(|x| x.point_count == 0) && points.iter().all(|q| q.x == 9.0));
             let status = fragments(point_count, &mut r, &mut n);
             assert_eq!(status, HIBI_OK);

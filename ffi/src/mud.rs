@@ -34,7 +34,7 @@ use crate::guard::{Outs, buffer, check_pointer, guard, object_ref, query, update
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::polygons::polygon_query;
 use crate::raster::{Pixels, render};
-use crate::status::{HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, hibi_status};
+use crate::status::{HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RENDER_LAYER, first_short, hibi_status, short_buffer};
 
 /// Marks a params struct that came from `hibi_mud_params_default` ("MUD1").
 const PARAMS_COOKIE: u32 = 0x4D55_4431;
@@ -334,7 +334,7 @@ pub unsafe extern "C" fn hibi_mud_segments(
         check_pointer(written, c"written")?;
         // SAFETY: the caller's contract.
         let out = unsafe { buffer(segments, len, c"segments") }?;
-        let n = mud.mud.segments(out).map_err(output_status)?;
+        let n = mud.mud.segments(out).map_err(|e| short_buffer(output_status(e), c"segments"))?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(written, c"written", n) }
     })
@@ -428,7 +428,18 @@ pub unsafe extern "C" fn hibi_mud_network(
         let edge_out = unsafe { buffer(edges, edges_len, c"edges") }?;
         // SAFETY: as above.
         let point_out = unsafe { buffer(points, points_len, c"points") }?;
-        let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(output_status)?;
+        let lengths = [vertex_out.len(), edge_out.len(), point_out.len()];
+        let counts = mud.mud.network(vertex_out, edge_out, point_out).map_err(|e| match e {
+            MudError::BufferTooSmall { .. } => {
+                let c = mud.mud.network_counts();
+                first_short(&[
+                    (c"vertices", lengths[0], c.vertices),
+                    (c"edges", lengths[1], c.edges),
+                    (c"points", lengths[2], c.points),
+                ])
+            }
+            e => output_status(e),
+        })?;
         // SAFETY: checked; the caller's contract.
         unsafe { outs.write([counts.vertices, counts.edges, counts.points]) }
     })
@@ -473,7 +484,16 @@ polygon_query! {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
     }
-    |rings, points| mud.mud.cells(rings, points).map(|c| (c.rings, c.points)).map_err(output_status)
+    |rings, points| {
+        let lengths = (rings.len(), points.len());
+        mud.mud.cells(rings, points).map(|c| (c.rings, c.points)).map_err(|e| match e {
+            MudError::BufferTooSmall { .. } => {
+                let c = mud.mud.cell_counts();
+                first_short(&[(c"rings", lengths.0, c.rings), (c"points", lengths.1, c.points)])
+            }
+            e => output_status(e),
+        })
+    }
 }
 
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
@@ -691,6 +711,9 @@ mod tests {
                 let mut short = full;
                 short[i] -= 1;
                 assert_eq!(network(mud, short, written), HIBI_ERROR_BUFFER_TOO_SMALL, "buffer {i}");
+                // The short buffer is named, as the header spells it.
+                let named = core::ffi::CStr::from_ptr(crate::status::hibi_error_argument());
+                assert_eq!(named.to_str(), Ok(["vertices", "edges", "points"][i]), "buffer {i}");
                 let mut empty = full;
                 empty[i] = 0;
                 let status = match i {
@@ -766,8 +789,12 @@ mod tests {
                 assert_eq!(hibi_mud_cells(mud, r, nr, q, np, null_mut(), &mut wp), HIBI_ERROR_NULL_POINTER);
                 assert_eq!(hibi_mud_cells(mud, r, nr, q, np, &mut wr, null_mut()), HIBI_ERROR_NULL_POINTER);
                 assert_eq!(hibi_mud_cells(mud, null_mut(), nr, q, np, &mut wr, &mut wp), HIBI_ERROR_NULL_POINTER);
-                for (rl, pl) in [(nr - 1, np), (nr, np - 1), (0, np), (nr, 0)] {
+                for ((rl, pl), name) in
+                    [((nr - 1, np), "rings"), ((nr, np - 1), "points"), ((0, np), "rings"), ((nr, 0), "points")]
+                {
                     assert_eq!(hibi_mud_cells(mud, r, rl, q, pl, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);
+                    let named = core::ffi::CStr::from_ptr(crate::status::hibi_error_argument());
+                    assert_eq!(named.to_str(), Ok(name), "rings {rl}, points {pl}");
                 }
                 assert_eq!(hibi_mud_cells(mud, null_mut(), 0, q, np, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);
                 assert_eq!(hibi_mud_cells(mud, r, nr, null_mut(), 0, &mut wr, &mut wp), HIBI_ERROR_BUFFER_TOO_SMALL);

@@ -63,10 +63,11 @@ macro_rules! render {
                 let object = unsafe { $crate::guard::object_ref($arg, NAME) }?;
                 // SAFETY: the caller's contract.
                 let render = unsafe { $crate::guard::object_ref(render, c"render") }?;
-                let render = $crate::fields::Field::to_core(render).ok_or($crate::status::HIBI_ERROR_BAD_ENUM)?;
+                let render = $crate::fields::Field::to_core(render)
+                    .ok_or_else(|| $crate::status::refuse_argument(c"render", $crate::status::HIBI_ERROR_BAD_ENUM))?;
                 // SAFETY: the caller's contract.
                 let layers = $layers(layer, unsafe { $crate::raster::Pixels::new(pixels, pixels_len) })?;
-                object.$arg.render(&render, layers).map_err($status)
+                object.$arg.render(&render, layers).map_err(|e| $crate::status::short_buffer($status(e), c"pixels"))
             })
         }
     };

@@ -7,7 +7,7 @@ use hibi_core::{Rng, Spread};
 
 use crate::guard::{buffer, guard, object, write_out};
 use crate::object::{self, Arena, BLOCK_ALIGN, Object, Origin};
-use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, rng_status};
+use crate::status::{HIBI_ERROR_BAD_ENUM, hibi_status, refuse_argument, rng_status};
 
 /// A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
 pub struct hibi_rng {
@@ -165,7 +165,7 @@ pub unsafe extern "C" fn hibi_rng_rand(rng: *mut hibi_rng, x: f32, z: f32, sprea
         // SAFETY: the caller's contract.
         let rng = unsafe { object(rng, c"rng") }?;
         crate::guard::check_pointer(out, c"out")?;
-        let spread = Spread::from_u32(spread).ok_or(HIBI_ERROR_BAD_ENUM)?;
+        let spread = Spread::from_u32(spread).ok_or_else(|| refuse_argument(c"spread", HIBI_ERROR_BAD_ENUM))?;
         let value = rng.rng.rand(x, z, spread).map_err(rng_status)?;
         // SAFETY: checked; the caller's contract.
         unsafe { write_out(out, c"out", value) }

@@ -400,7 +400,9 @@ pub unsafe extern "C" fn hibi_skin_shade(
 ) -> hibi_status {
     guard(|| {
         // SAFETY: the caller's contract.
-        let params: ShadeParams = unsafe { object_ref(params, c"params") }?.to_core().ok_or(HIBI_ERROR_BAD_ENUM)?;
+        let params: ShadeParams = unsafe { object_ref(params, c"params") }?
+            .to_core()
+            .ok_or_else(|| crate::status::refuse_argument(c"params", HIBI_ERROR_BAD_ENUM))?;
         // NULL with a length (even one too short for a whole pixel) is refused, as for every
         // buffer (fuzzing found `rgb_len` 1 or 2 with NULL accepted).
         if normal_len > 0 {
@@ -417,7 +419,14 @@ pub unsafe extern "C" fn hibi_skin_shade(
                 buffer(rgb.cast::<[u8; 3]>(), rgb_len / 3, c"rgb")?,
             )
         };
-        shade(height, normal, &params, rgb).map_err(skin_status)
+        let pixels = height.len();
+        let lengths = (normal.len(), rgb.len());
+        shade(height, normal, &params, rgb).map_err(|e| match e {
+            SkinError::BufferTooSmall { .. } => {
+                crate::status::first_short(&[(c"normal", lengths.0, pixels), (c"rgb", lengths.1, pixels)])
+            }
+            e => skin_status(e),
+        })
     })
 }
 
@@ -490,7 +499,7 @@ pub unsafe extern "C" fn hibi_skin_outline(
         let outline = skin.skin.outline(cell);
         let needed = 2 * outline.len();
         if out.len() < needed {
-            return Err(HIBI_ERROR_BUFFER_TOO_SMALL);
+            return Err(crate::status::refuse_argument(c"xy", HIBI_ERROR_BUFFER_TOO_SMALL));
         }
         let unit = pixels_per_unit(&skin.skin);
         for (pair, v) in out.chunks_exact_mut(2).zip(outline) {

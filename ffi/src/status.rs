@@ -211,6 +211,19 @@ std::thread_local! {
     static REFUSED: Cell<&'static CStr> = const { Cell::new(c"") };
 }
 
+/// `status`, with buffer `name` put on record when it is `HIBI_ERROR_BUFFER_TOO_SMALL`: for
+/// the calls whose one output buffer is the only one that can be short.
+pub(crate) fn short_buffer(status: hibi_status, name: &'static CStr) -> hibi_status {
+    if status == HIBI_ERROR_BUFFER_TOO_SMALL { refuse_argument(name, status) } else { status }
+}
+
+/// `HIBI_ERROR_BUFFER_TOO_SMALL` naming the first of `buffers` (name, length, length needed)
+/// that is short, for the calls that write into several.
+pub(crate) fn first_short(buffers: &[(&'static CStr, usize, usize)]) -> hibi_status {
+    let name = buffers.iter().find(|(_, have, needed)| have < needed).map_or(c"", |b| b.0);
+    refuse_argument(name, HIBI_ERROR_BUFFER_TOO_SMALL)
+}
+
 /// Puts argument `name` on record as the one the current call refuses with `status`, and
 /// returns `status`.
 pub(crate) fn refuse_argument(name: &'static CStr, status: hibi_status) -> hibi_status {
@@ -223,11 +236,13 @@ pub(crate) fn clear_argument() {
     let _ = REFUSED.try_with(|r| r.set(c""));
 }
 
-/// The name of the pointer argument that the latest call on this thread refused, as it is
-/// spelled in this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
-/// `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED` or `HIBI_ERROR_SIZE_OVERFLOW`, or
-/// `HIBI_ERROR_BUFFER_TOO_SMALL` for caller memory (`"memory"`) or a scratch (`"scratch"`);
-/// `""` after any other outcome. Static and NUL-terminated, never NULL. Per thread: another
+/// The name of the argument that the latest call on this thread refused, as it is spelled in
+/// this header (`"written"`, `"rings"`, `"mud"`, ...), when that call returned
+/// `HIBI_ERROR_NULL_POINTER`, `HIBI_ERROR_MISALIGNED`, `HIBI_ERROR_SIZE_OVERFLOW`,
+/// `HIBI_ERROR_BUFFER_TOO_SMALL` (the buffer that is short: `"memory"`, `"scratch"`,
+/// `"pixels"`, `"points"`, ...) or `HIBI_ERROR_BAD_ENUM` (the enumeration argument, or the
+/// struct that holds the bad value); `""` after any other outcome (a parameter error's status
+/// names its field itself). Static and NUL-terminated, never NULL. Per thread: another
 /// thread's calls do not change it, and neither do `hibi_status_string`,
 /// `hibi_error_argument` and `hibi_version`.
 #[unsafe(no_mangle)]

@@ -14,12 +14,14 @@
 
 #include "hibi.h"
 
+/* Each row ends with what hibi_error_argument() names for the call just made, in brackets. */
 static void row(const char *id, hibi_status status) {
-    printf("%s: status %u\n", id, (unsigned)status);
+    printf("%s: status %u [%s]\n", id, (unsigned)status, hibi_error_argument());
 }
 
 static void row_kept(const char *id, hibi_status status, int untouched) {
-    printf("%s: status %u, output untouched: %s\n", id, (unsigned)status, untouched ? "yes" : "no");
+    printf("%s: status %u, output untouched: %s [%s]\n", id, (unsigned)status, untouched ? "yes" : "no",
+           hibi_error_argument());
 }
 
 /* A parameter row: memory_size and create must agree, and neither writes anything. */
@@ -377,7 +379,8 @@ static void calls_and_buffers(void) {
         shade.light[2] = 1e30f;
         {
             hibi_status status = hibi_skin_shade(height, 2, normal, 6, &shade, rgb, 6);
-            printf("shade-light-huge: status %u, output written: %s\n", (unsigned)status, rgb[0] != 0xA5 ? "yes" : "no");
+            printf("shade-light-huge: status %u, output written: %s [%s]\n", (unsigned)status, rgb[0] != 0xA5 ? "yes" : "no",
+                   hibi_error_argument());
         }
         memset(rgb, 0xA5, sizeof rgb);
         shade = hibi_skin_shade_params_default();
