@@ -1663,7 +1663,13 @@ void hibi_glass_destroy(struct hibi_glass *glass);
 
 /**
  * Adds an impact at (x, y): its cracks grow on the next steps and stop where they meet the
- * earlier ones. Writes the counts it drew unless `counts` is NULL.
+ * earlier ones. Writes the counts it drew unless `counts` is NULL. It starts at most M + 2R
+ * cracks, and looks at no more than `max_cracks` ring start points. Refused, with nothing
+ * written or changed: a point not inside the plate (`HIBI_ERROR_GLASS_IMPACT`), and any
+ * impact once a capacity has run out (`HIBI_ERROR_GLASS_CAPACITY`, as every later
+ * `hibi_glass_step` returns). An impact that runs out of capacity while starting its cracks
+ * returns `HIBI_OK` and its counts; the next `hibi_glass_step` returns
+ * `HIBI_ERROR_GLASS_CAPACITY`.
  *
  * # Safety
  * `glass` must be NULL or a live plate; `counts` optional: NULL (not written) or writable.
@@ -1676,12 +1682,14 @@ hibi_status hibi_glass_impact(struct hibi_glass *glass,
 /**
  * Advances growth by `budget` units of work (at least one; a unit is a grid cell, segment or
  * tip a query examines, a crack looked at by the step loop, the filing of the tips, the check
- * at the end of a time step or stop condition 2, or a step of a face walk of stop condition 2
- * when a crack closes a cycle). The budget is checked before every unit, and every query and
- * face walk resumes where it stopped, so a call does at most max(budget, 1) − 1 +
- * `HIBI_GLASS_STEP_PIECE` units, and the plate does not depend on the budgets; writes where
- * it stands to `*progress` unless it is NULL. Returns `HIBI_ERROR_GLASS_CAPACITY` (and writes
- * nothing) once a capacity has run out; the plate then stays as it was drawn, usable.
+ * at the end of a time step or stop condition 2, a step of a face walk of stop condition 2
+ * when a crack closes a cycle, or 64 grid cells emptied: a new plate's first units, at most
+ * 2048, which creation leaves to this call). The budget is checked before every unit, and
+ * every query and face walk resumes where it stopped, so a call does at most
+ * max(budget, 1) − 1 + `HIBI_GLASS_STEP_PIECE` units, and the plate does not depend on the
+ * budgets; writes where it stands to `*progress` unless it is NULL. Returns
+ * `HIBI_ERROR_GLASS_CAPACITY` (and writes nothing) once a capacity has run out; the plate
+ * then stays as it was drawn, usable.
  *
  * # Safety
  * `glass` must be NULL or a live plate; `progress` optional: NULL (not written) or writable.

@@ -1,7 +1,8 @@
 //! Model B against the paper's facts (Agui et al.) and hibi's own acceptance criteria.
 
 use hibi_core::glass::{
-    CrackEnd, CrackKind, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassParams, STEP_PIECE,
+    Crack, CrackEnd, CrackKind, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers,
+    GlassParams, GlassRender, STEP_PIECE, Vertex,
 };
 use hibi_tests::fnv1a64;
 
@@ -130,6 +131,227 @@ fn a_second_impact_grows_cracks_that_stop_at_the_first() {
         assert!(ends.contains(&CrackEnd::Crack), "no crack of the second impact met the first's");
         assert!(g.crack(0).unwrap().impact == 0 && g.crack(first).unwrap().impact == 1);
     });
+}
+
+/// Everything a caller can read of a plate, without stepping it: each crack (its record and
+/// points), the progress (work left out: `step` adds to it), the counts of the latest impact,
+/// a 64 × 64 mask and time raster, and the fragments.
+fn readout(g: &Glass) -> String {
+    let cracks: Vec<(Crack, Vec<CrackPoint>)> =
+        (0..g.crack_count()).map(|i| (*g.crack(i).unwrap(), points(g, i))).collect();
+    let render = GlassRender { width: 64, height: 64, ..GlassRender::default() };
+    let (mut mask, mut time) = (vec![0u8; 64 * 64], vec![0f32; 64 * 64]);
+    g.render(&render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time) }).unwrap();
+    let progress = hibi_core::glass::GlassProgress { work: 0, ..g.progress() };
+    let time: Vec<u32> = time.iter().map(|t| t.to_bits()).collect();
+    format!("{cracks:?} {progress:?} {:?} {mask:?} {time:?} {:?}", g.impact_counts(), fragments_of(g))
+}
+
+/// Creation's work does not grow with the capacities: `Glass::new` writes the first impact's
+/// cracks and vertices (and their words) and nothing else, as many elements at `max_vertices`
+/// 10⁴ as at 10⁶, and at `max_cracks` 512 as at 65 536, over buffers that hold a pattern (the
+/// grids are emptied by `step`'s first units, an edge's stamp and a vertex's mark set when it
+/// is added). The plate grown from those buffers is the one grown from zeroed buffers.
+#[test]
+fn creating_a_plate_writes_the_same_whatever_the_capacities() {
+    let base = GlassParams { seed: 7, ..GlassParams::default() };
+    let pattern = |i: usize| (i as u32).wrapping_mul(2_654_435_761) % 1000 + 1;
+    let mut vertex = Vertex::default();
+    vertex.at = [-1.0, -1.0];
+    let mut crack = Crack::default();
+    (crack.growing, crack.impact, crack.tip) = (true, 9, [-1.0, -1.0]);
+    // The elements `Glass::new` changed, and the plate those buffers grow.
+    let created = |p: &GlassParams| {
+        let m = p.memory().unwrap();
+        let (mut cracks, mut vertices) = (vec![crack; m.cracks], vec![vertex; m.vertices]);
+        let (mut edges, mut words) = (vec![Edge::default(); m.edges], (0..m.words).map(pattern).collect::<Vec<_>>());
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let made = Glass::new(p, buffers).unwrap().progress();
+        let changed = (
+            cracks.iter().filter(|&&c| c != crack).count(),
+            vertices.iter().filter(|&&v| v != vertex).count(),
+            edges.iter().filter(|&&e| e != Edge::default()).count(),
+            words.iter().enumerate().filter(|&(i, &w)| w != pattern(i)).count(),
+        );
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let mut glass = Glass::new(p, buffers).unwrap();
+        while !glass.step(100_000).finished {}
+        (made, changed, readout(&glass))
+    };
+    let (made, changed, plate) = created(&base);
+    println!("creation of the default plate: {made:?}; changed (cracks, vertices, edges, words) {changed:?}");
+    assert_eq!(changed.0, made.cracks as usize);
+    assert_eq!(changed.1, made.vertices as usize);
+    assert!(changed.2 == 0 && changed.3 <= 2 * made.vertices as usize, "{changed:?}");
+    assert_eq!(plate, with_plate(&base, |g| readout(g)), "the plate grown over the pattern");
+    for (max_vertices, max_cracks) in [(10_000, 512), (1_000_000, 512), (16_384, 65_536)] {
+        let p = GlassParams { max_vertices, max_cracks, ..base };
+        let (m, c, _) = created(&p);
+        assert_eq!((m, c), (made, changed), "max_vertices {max_vertices}, max_cracks {max_cracks}");
+    }
+}
+
+/// The environment variable that makes
+/// [`creating_a_plate_takes_the_same_instructions_whatever_max_vertices`], run under Callgrind
+/// by itself, create one case (its `max_vertices`) instead of measuring them all.
+const CREATE_CASE: &str = "HIBI_GLASS_CREATE_CASE";
+
+/// Creates a plate; the only function Callgrind counts in
+/// [`creating_a_plate_takes_the_same_instructions_whatever_max_vertices`] (found by its
+/// unmangled name).
+#[unsafe(no_mangle)]
+#[inline(never)]
+fn hibi_test_glass_new<'a>(p: &GlassParams, buffers: GlassBuffers<'a>) -> Glass<'a> {
+    Glass::new(p, buffers).expect("memory suffices")
+}
+
+/// What `Glass::new` costs, in instructions (Callgrind, so the same on any machine), does not
+/// grow with the capacities: the default plate at `max_vertices` 10⁷ takes at most 1.1 times
+/// the instructions of the one at 10⁵ (clearing every vertex's stamp and mark would take about
+/// 80 times as many). Each case is created under Callgrind by this test binary itself (the
+/// case named by [`CREATE_CASE`]), counting `hibi_test_glass_new` alone.
+#[test]
+fn creating_a_plate_takes_the_same_instructions_whatever_max_vertices() {
+    const CASES: [u32; 2] = [100_000, 10_000_000];
+    if let Ok(case) = std::env::var(CREATE_CASE) {
+        // Under Callgrind: create the case and report what it holds.
+        let p = GlassParams { max_vertices: case.parse().expect("a max_vertices"), ..GlassParams::default() };
+        let mut memory = p.memory().expect("valid parameters").allocate();
+        let glass = hibi_test_glass_new(&p, memory.buffers());
+        println!("\nglass created {:?}", glass.progress());
+        return;
+    }
+    let exe = std::env::current_exe().expect("the test binary");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let mut counts = Vec::new();
+    for max_vertices in CASES {
+        let out = dir.join(format!("glass_new_{max_vertices}.callgrind"));
+        let _ = std::fs::remove_file(&out);
+        let run = hibi_tests::tool("valgrind")
+            .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=hibi_test_glass_new"])
+            .arg(format!("--callgrind-out-file={}", out.display()))
+            .arg(&exe)
+            .args([
+                "creating_a_plate_takes_the_same_instructions_whatever_max_vertices",
+                "--exact",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env(CREATE_CASE, max_vertices.to_string())
+            .output()
+            .expect("run valgrind");
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        let what = format!("max_vertices {max_vertices}");
+        assert!(run.status.success(), "{what}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
+        let created = stdout.lines().find_map(|l| l.strip_prefix("glass created ")).map(str::to_owned);
+        let created = created.unwrap_or_else(|| panic!("{what}: no plate reported in\n{stdout}"));
+        let text = std::fs::read_to_string(&out).expect("Callgrind's output");
+        let instructions: u64 = text
+            .lines()
+            .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{what}: no instruction count in {}", out.display()));
+        // (Collection was on: drawing the first impact alone takes tens of thousands.)
+        assert!(instructions > 10_000, "{what}: {instructions} instructions");
+        println!("{what}: {instructions} instructions; {created}");
+        counts.push((instructions, created));
+    }
+    assert_eq!(counts[0].1, counts[1].1, "the same plate");
+    let (small, large) = (counts[0].0 as f64, counts[1].0 as f64);
+    assert!(large <= 1.1 * small, "{large} instructions at max_vertices 10⁷, {small} at 10⁵");
+}
+
+/// The largest grids (a 4096-px plate: 256 × 256 cells each) are emptied by the first 2048
+/// units of `step`, 64 cells a unit, within the budgets: no call does more than
+/// max(budget, 1) − 1 + `STEP_PIECE` units. Until then every query reads the plate as it was
+/// created, and an impact may be made; the plate grown does not depend on when it was made
+/// or on the budgets.
+#[test]
+fn a_new_plate_empties_its_grids_within_the_step_budgets() {
+    let p = GlassParams { width: 4096.0, height: 4096.0, impact: [2048.0, 2048.0], seed: 3, ..GlassParams::default() };
+    let m = p.memory().unwrap();
+    for budget in [0, 1, 7, 100] {
+        let mut memory = m.allocate();
+        let mut g = Glass::new(&p, memory.buffers()).unwrap();
+        let created = readout(&g);
+        while g.progress().work < 2048 {
+            let before = g.progress().work;
+            let progress = g.step(budget);
+            let did = progress.work - before;
+            assert!(did <= budget.max(1) - 1 + STEP_PIECE, "step({budget}) did {did} units");
+            if progress.work <= 2048 {
+                // Nothing but the grids' cells yet.
+                assert_eq!(readout(&g), created, "budget {budget}, {} units", progress.work);
+            }
+        }
+        assert_eq!(g.progress().time, 0);
+    }
+    // An impact while the grids are emptied: the plate is the one of an impact made at once.
+    let second = [1000.0, 3000.0];
+    let at_once = {
+        let mut memory = m.allocate();
+        let mut g = Glass::new(&p, memory.buffers()).unwrap();
+        g.impact(second).unwrap();
+        while !g.step(u64::MAX).finished {}
+        readout(&g)
+    };
+    let mut memory = m.allocate();
+    let mut g = Glass::new(&p, memory.buffers()).unwrap();
+    while g.progress().work < 1000 {
+        g.step(7);
+    }
+    g.impact(second).unwrap();
+    assert!(g.progress().work < 2048 && !g.progress().finished);
+    while !g.step(7).finished {}
+    assert_eq!(readout(&g), at_once, "an impact made while the grids were emptied");
+}
+
+/// The golden plate (the paper's, seed 7) is the same, bit for bit, for budgets 1, 7 and
+/// unbounded, its work included.
+#[test]
+fn the_golden_plate_does_not_depend_on_the_budgets() {
+    let p = GlassParams { seed: 7, ..GlassParams::default() };
+    let run = |budget: u64| {
+        let m = p.memory().unwrap();
+        let mut memory = m.allocate();
+        let mut g = Glass::new(&p, memory.buffers()).unwrap();
+        while !g.step(budget).finished {}
+        (readout(&g), g.progress().work)
+    };
+    let unbounded = run(u64::MAX);
+    assert_eq!(run(1), unbounded, "budget 1");
+    assert_eq!(run(7), unbounded, "budget 7");
+}
+
+/// Once a capacity has run out generation has stopped for good, as every later step reports:
+/// an impact is refused (`GlassError::Capacity`) and changes nothing. An impact that runs out
+/// as it starts its cracks (a ring count past `max_cracks`) is made, and stops the plate at once.
+#[test]
+fn an_impact_after_a_capacity_stop_is_refused_and_changes_nothing() {
+    let p = GlassParams { max_vertices: 400, seed: 5, ..GlassParams::default() };
+    with_plate(&p, |g| {
+        assert!(g.progress().capacity_reached);
+        let before = readout(g);
+        assert_eq!(g.impact([100.0, 100.0]), Err(GlassError::Capacity));
+        assert_eq!(g.impact([-1.0, 100.0]), Err(GlassError::Impact));
+        assert_eq!(readout(g), before);
+        assert!(g.step(1000).capacity_reached);
+        assert_eq!(readout(g), before);
+    });
+    let p = GlassParams { seed: 5, ..GlassParams::default() };
+    with_plate(&p, |g| {
+        let counts = g.impact([100.0, 100.0]).unwrap();
+        assert!(!g.progress().capacity_reached && counts.radial > 0, "{counts:?}");
+    });
+    let p = GlassParams { ring_slope: 1e4, seed: 5, ..GlassParams::default() };
+    let m = p.memory().unwrap();
+    let mut memory = m.allocate();
+    let mut g = Glass::new(&p, memory.buffers()).unwrap();
+    let progress = g.progress();
+    assert!(progress.capacity_reached && progress.finished, "{progress:?}");
+    assert_eq!(g.impact([100.0, 100.0]), Err(GlassError::Capacity));
 }
 
 #[test]

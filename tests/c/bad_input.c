@@ -342,6 +342,7 @@ static void calls_and_buffers(void) {
         hibi_glass_params p = hibi_glass_params_default();
         hibi_glass *full = NULL;
         hibi_glass_progress progress;
+        hibi_glass_counts counts;
         hibi_status status = HIBI_OK;
         int calls = 0;
         p.max_vertices = 80;
@@ -353,6 +354,9 @@ static void calls_and_buffers(void) {
             status = hibi_glass_step(full, 1000, &progress);
         } while (status == HIBI_OK && !progress.finished && ++calls < 10000);
         row("glass-outgrows-its-capacity", status);
+        memset(&counts, 0xA5, sizeof counts);
+        row_kept("glass-impact-after-capacity", hibi_glass_impact(full, 100.0f, 120.0f, &counts),
+                 ((unsigned char *)&counts)[0] == 0xA5);
         hibi_glass_destroy(full);
     }
     {

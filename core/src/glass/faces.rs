@@ -289,7 +289,9 @@ impl Glass<'_> {
     fn begin_measure(&mut self, e: &mut Enclosure) {
         self.walk.mark = self.walk.mark.wrapping_add(1);
         if self.walk.mark == 0 {
-            self.walk.marks.fill(0);
+            // The marks start over (every 2³² − 1 walks): those of the vertices so far are
+            // reset; a vertex added later gets its own when it is added.
+            self.walk.marks[..self.vertex_count].fill(0);
             self.walk.mark = 1;
         }
         e.walk = Walk::Measure;

@@ -45,10 +45,14 @@ pub(super) struct Buckets<'a> {
 }
 
 impl Buckets<'_> {
-    /// Empties every cell.
-    pub(super) fn clear(&mut self) {
-        self.heads.fill(NONE);
-        self.used = 0;
+    /// Empties the cells from `first` up to `first + count` (those that exist; the others
+    /// keep what they hold, so that a plate's grids are emptied a bounded chunk at a time);
+    /// how many it emptied.
+    pub(super) fn empty(&mut self, first: usize, count: usize) -> usize {
+        let cells = self.heads.get_mut(first..).unwrap_or_default();
+        let n = count.min(cells.len());
+        cells[..n].fill(NONE);
+        n
     }
 
     /// Adds `value` to `cell`; false when the entries are full.
@@ -75,7 +79,10 @@ mod tests {
         assert_eq!(g.span(-5.0, 10.0, 60.0, 80.0), (0, 0, 2, 1));
         let (mut heads, mut entries) = ([0u32; 8], [[0u32; 2]; 3]);
         let mut b = Buckets { heads: &mut heads, entries: &mut entries, used: 0 };
-        b.clear();
+        // Emptied in chunks: up to the grid's last cell, and no further.
+        assert_eq!((b.empty(0, 3), b.heads[2], b.heads[3]), (3, NONE, 0));
+        assert_eq!((b.empty(3, 3), b.empty(6, 3), b.empty(8, 3), b.empty(9, 3)), (3, 2, 0, 0));
+        assert!(b.heads.iter().all(|&h| h == NONE));
         assert!(b.insert(5, 10) && b.insert(5, 11) && b.insert(2, 12));
         assert!(!b.insert(1, 13));
         // Newest first.

@@ -59,6 +59,11 @@ fn span_of(a: [f32; 2], z: [f32; 2]) -> [f32; 4] {
 /// most max(budget, 1) − 1 + this.
 pub const STEP_PIECE: u64 = 2;
 
+/// Grid cells emptied per unit of [`Phase::Clear`].
+pub(super) const CLEAR_CHUNK: usize = 64;
+
+const _: () = assert!(CLEAR_CHUNK == 64, "the docs of Glass::step and hibi_glass_step say 64 cells a unit");
+
 /// What a step ran into.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Hit {
@@ -74,6 +79,10 @@ enum Hit {
 /// work).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Phase {
+    /// A new plate's first units: emptying the cells of the segment grid, then of the tip
+    /// grid, [`CLEAR_CHUNK`] cells a unit (`Clock::done` cells so far), so that creation does
+    /// no work that grows with the plate. Nothing reads the grids before it is over.
+    Clear,
     /// Taking the tips of the last time step out of the tip grid, one a unit.
     Unfile,
     /// Filing the growing tips where they start this time step, one crack a unit.
@@ -173,16 +182,20 @@ impl Glass<'_> {
     /// Advances growth by `budget` units of work (at least one). A unit is a grid cell or a
     /// grid entry (a segment or a tip) examined by a distance or crossing query, a crack looked
     /// at (by the step loop, the filing of the tips, the check at the end of a time step and
-    /// stop condition 2), or a step of a face walk of stop condition 2. The budget is checked
-    /// before every unit, and the rest of an update (its forces summed, its move made) is a
-    /// few units, so a call overruns it by less than [`STEP_PIECE`] units, whatever the
-    /// parameters (speeds, forces, sector, plate size); generation resumes exactly where it
-    /// stopped, so the result does not depend on the budgets. A time step moves every growing
-    /// tip once, in crack order, each by |v| in updates of at most 10 px.
+    /// stop condition 2), a step of a face walk of stop condition 2, or 64 grid cells emptied
+    /// (a new plate's first units, at most 2 · 65 536 cells in all, which [`Glass::new`] leaves
+    /// to this call so that creation does no work that grows with the plate or the
+    /// capacities). The budget is checked before every unit, and the rest of an
+    /// update (its forces summed, its move made) is a few units, so a call overruns it by less
+    /// than [`STEP_PIECE`] units, whatever the parameters (speeds, forces, sector, plate size);
+    /// generation resumes exactly where it stopped, so the result does not depend on the
+    /// budgets. A time step moves every growing tip once, in crack order, each by |v| in
+    /// updates of at most 10 px.
     pub fn step(&mut self, budget: u64) -> GlassProgress {
         let deadline = self.clock.work.saturating_add(budget.max(1));
         while !self.clock.finished && self.clock.work < deadline {
             match self.clock.phase {
+                Phase::Clear => self.clear_cells(),
                 Phase::Unfile => self.unfile_tip(),
                 Phase::File => self.file_tip(),
                 Phase::Advance => {
@@ -211,6 +224,24 @@ impl Glass<'_> {
             }
         }
         self.progress()
+    }
+
+    /// One unit of emptying a new plate's grids: the next [`CLEAR_CHUNK`] cells of the segment
+    /// grid, then of the tip grid. Then the first time step begins.
+    fn clear_cells(&mut self) {
+        let k = self.clock.done;
+        let cells = self.index.grid.cells();
+        if k < 2 * cells {
+            self.clock.work += 1;
+            self.clock.done += if k < cells {
+                self.index.segments.empty(k, CLEAR_CHUNK)
+            } else {
+                self.index.tips.empty(k - cells, CLEAR_CHUNK)
+            };
+        } else {
+            self.clock.phase = Phase::Unfile;
+            self.clock.done = 0;
+        }
     }
 
     /// One unit of taking the last time step's tips out of the tip grid: the cell of the next
@@ -965,6 +996,8 @@ impl Glass<'_> {
             return None;
         }
         let e = self.edge_count as u32;
+        // No segment query has seen it yet (a stamp is never 0).
+        self.index.stamps[self.edge_count] = 0;
         edge.links = [self.vertices[edge.from as usize].first_edge, self.vertices[edge.to as usize].first_edge];
         let (a, z) = (self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at);
         edge.orient(a, z);
@@ -1075,5 +1108,38 @@ fn nearest_to_zero(a: f32, b: f32) -> f32 {
         b
     } else {
         0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::glass::{Crack, GlassBuffers, GlassParams, Vertex};
+    extern crate std;
+    use std::vec;
+    use std::vec::Vec;
+
+    /// A segment query visits each edge filed in its cells once, whatever its stamp held
+    /// before it was added (here the very stamp the query takes).
+    #[test]
+    fn a_segment_query_visits_an_edge_added_over_any_stamp() {
+        let p = GlassParams::default();
+        let m = p.memory().unwrap();
+        let (mut cracks, mut vertices) = (vec![Crack::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+        let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![1u32; m.words]);
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let mut glass = Glass::new(&p, buffers).unwrap();
+        while glass.clock.phase == Phase::Clear {
+            glass.step(1);
+        }
+        let (a, z) = (glass.add_vertex([100.0, 100.0]), glass.add_vertex([105.0, 103.0]));
+        let e = glass.push_edge(Edge::new(a, z, 0, [0.0, 1.0])).unwrap();
+        let (columns, rows) = (glass.index.grid.columns, glass.index.grid.rows);
+        let mut scan = glass.start_scan(Filed::Segments, (0, 0, columns - 1, rows - 1));
+        assert_eq!(glass.index.stamp, 1);
+        let mut visited = Vec::new();
+        assert!(glass.go_on(&mut scan, u64::MAX, |_, _| false, |_, item| visited.push(item)));
+        assert_eq!(visited, [e]);
     }
 }

@@ -257,6 +257,9 @@ pub enum GlassError {
     },
     /// An impact point outside the plate.
     Impact,
+    /// An impact on a plate whose capacity ran out (`max_cracks`, `max_vertices` or the grid's
+    /// entries): generation stopped for good.
+    Capacity,
 }
 
 impl From<GlassParamError> for GlassError {
@@ -271,6 +274,7 @@ impl core::fmt::Display for GlassError {
             GlassError::Param(e) => e.fmt(f),
             GlassError::BufferTooSmall { needed } => write!(f, "glass: a caller buffer is too small ({needed} needed)"),
             GlassError::Impact => f.write_str("glass: the impact point must lie inside the plate"),
+            GlassError::Capacity => f.write_str("glass: a capacity ran out; the plate takes no more impacts"),
         }
     }
 }
@@ -299,7 +303,7 @@ pub struct GlassProgress {
     /// Generation of the current impact has ended.
     pub finished: bool,
     /// A capacity (`max_cracks`, `max_vertices`, grid entries) ran out: generation stopped
-    /// early, with everything drawn so far consistent.
+    /// early, with everything drawn so far consistent, and [`Glass::impact`] is refused.
     pub capacity_reached: bool,
     /// Work done since the plate was created, in the units of [`Glass::step`]'s budget.
     pub work: u64,
@@ -399,7 +403,7 @@ struct Clock {
     /// What the time step under way is doing, and how far along it is ([`Glass::step`] stops
     /// between any two units of work and resumes here).
     phase: Phase,
-    /// How far along `phase` is: tips unfiled, cracks filed, cracks checked.
+    /// How far along `phase` is: grid cells emptied, tips unfiled, cracks filed, cracks checked.
     done: usize,
     /// The update of the tip under way.
     update: Update,
@@ -443,7 +447,11 @@ fn wrap(angle: f32) -> f32 {
 
 impl<'a> Glass<'a> {
     /// Sets up the plate and the first impact (at `params.impact`). Nothing is written to the
-    /// buffers on failure.
+    /// buffers on failure. Its work does not grow with the capacities or the plate: it writes
+    /// the first impact's cracks and vertices (as [`Glass::impact`]) and nothing else, and
+    /// reads nothing it did not write, so the buffers may hold anything; the grids are emptied
+    /// by the first units of [`Glass::step`], within its budgets. Every query (render, points,
+    /// counts, fragments, progress) and [`Glass::impact`] may be called at once.
     pub fn new(params: &GlassParams, buffers: GlassBuffers<'a>) -> Result<Self, GlassError> {
         let m = params.memory()?;
         let short = [
@@ -459,22 +467,22 @@ impl<'a> Glass<'a> {
         let mut words = buffers.words;
         let vertices = params.max_vertices as usize;
         let cracks = params.max_cracks as usize;
-        let mut segments = Buckets {
+        let segments = Buckets {
             heads: take(&mut words, grid.cells()),
             entries: take(&mut words, 2 * vertices * ENTRIES_PER_VERTEX).as_chunks_mut().0,
             used: 0,
         };
-        let mut tips = Buckets {
+        let tips = Buckets {
             heads: take(&mut words, grid.cells()),
             entries: take(&mut words, 2 * cracks).as_chunks_mut().0,
             used: 0,
         };
-        segments.clear();
-        tips.clear();
+        // Nothing is cleared here, so that creation takes the same time whatever the
+        // capacities: the grids' cells are emptied by the first units of `step`
+        // (`Phase::Clear`), and a vertex's mark and root and an edge's stamp are set when it
+        // is added. No word is read before it is written.
         let stamps = take(&mut words, vertices);
-        stamps.fill(0);
         let marks = take(&mut words, vertices);
-        marks.fill(0);
         let roots = take(&mut words, vertices);
         let mut glass = Glass {
             params: *params,
@@ -494,7 +502,7 @@ impl<'a> Glass<'a> {
                 finished: false,
                 capacity_reached: false,
                 work: 0,
-                phase: Phase::Unfile,
+                phase: Phase::Clear,
                 done: 0,
                 update: Update::IDLE,
             },
@@ -513,11 +521,20 @@ impl<'a> Glass<'a> {
 
     /// Adds an impact at `at`: draws M, N and R and starts its cracks (paper §4.2.1). Cracks
     /// of earlier impacts stay; new cracks stop where they meet them. Growth of any earlier
-    /// impact still running ends first.
+    /// impact still running ends first. Its cost is bounded by the capacities: it starts at
+    /// most M + 2R cracks and looks at no more than `max_cracks` ring start points.
+    ///
+    /// Refused, with nothing changed: a point outside the plate ([`GlassError::Impact`]), and
+    /// any impact once a capacity has run out ([`GlassError::Capacity`]: generation stopped
+    /// for good, as every later [`Glass::step`] reports). An impact that runs out of capacity
+    /// while it starts its cracks is made (its counts returned), and growth then stops at once.
     pub fn impact(&mut self, at: [f32; 2]) -> Result<ImpactCounts, GlassError> {
         let p = self.params;
         if !(at[0] > 0.0 && at[0] < p.width && at[1] > 0.0 && at[1] < p.height) {
             return Err(GlassError::Impact);
+        }
+        if self.clock.capacity_reached {
+            return Err(GlassError::Capacity);
         }
         self.finish();
         let key = |stream: Stream| Rng::from_key(p.seed, stream.key() ^ (u64::from(self.impacts) << 32));
@@ -534,8 +551,11 @@ impl<'a> Glass<'a> {
         self.impacts += 1;
         self.clock.time = 0;
         self.clock.cursor = 0;
-        self.clock.phase = Phase::Unfile;
-        self.clock.done = 0;
+        if self.clock.phase != Phase::Clear {
+            // A new plate's grids are still being emptied (no tip is filed yet): that goes on.
+            self.clock.phase = Phase::Unfile;
+            self.clock.done = 0;
+        }
         self.clock.finished = false;
         // Long enough to cross the plate twice at the slowest speed Rand can draw, and at most
         // MAX_TIME_STEPS (a float past u32::MAX saturates).
@@ -613,6 +633,8 @@ impl<'a> Glass<'a> {
         }
         self.vertices[self.vertex_count] = Vertex { at, first_edge: NONE };
         self.walk.roots[self.vertex_count] = self.vertex_count as u32;
+        // No face walk has passed it yet (a mark is never 0).
+        self.walk.marks[self.vertex_count] = 0;
         self.vertex_count += 1;
         (self.vertex_count - 1) as u32
     }
@@ -699,3 +721,118 @@ use fragments::FragmentScratch;
 pub use growth::STEP_PIECE;
 pub use output::CrackPoint;
 pub use render::{GlassLayers, GlassRender};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::vec;
+    use std::vec::Vec;
+
+    /// Grows `p` to its end with `setup` applied to the new plate and `each` before every call
+    /// of `step(budget)`: every crack's end and points (position and time bits), and the
+    /// segment queries' stamp and the face walks' mark at the end.
+    fn grown(
+        p: &GlassParams,
+        budget: u64,
+        setup: impl FnOnce(&mut Glass),
+        mut each: impl FnMut(&mut Glass),
+    ) -> (Vec<u32>, u32, u32) {
+        let m = p.memory().unwrap();
+        let (mut cracks, mut vertices) = (vec![Crack::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+        let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![0u32; m.words]);
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let mut glass = Glass::new(p, buffers).unwrap();
+        setup(&mut glass);
+        loop {
+            each(&mut glass);
+            if glass.step(budget).finished {
+                break;
+            }
+        }
+        let mut bits = Vec::new();
+        for i in 0..glass.crack_count() {
+            bits.push(glass.cracks[i].end as u32);
+            glass.for_each_point(i, |q| bits.extend([q.at[0], q.at[1], q.time].map(f32::to_bits)));
+        }
+        (bits, glass.index.stamp, glass.walk.mark)
+    }
+
+    /// Creation clears no word, and an edge's stamp and a vertex's mark are set when it is
+    /// added: garbage in the grids and their entries when the plate is created, and in the
+    /// stamps and marks of the edges and vertices not yet added the stamp and mark one of the
+    /// next queries and walks takes (set before every unit of work), give the same plate
+    /// (`growth::tests` checks the stamp of an edge added over the very next query's). So do
+    /// stamps and marks that start over (after 2³² − 1 of them) half way through the run.
+    #[test]
+    fn garbage_in_the_words_and_stamps_and_marks_that_start_over_leave_the_plate_as_it_was() {
+        let p = GlassParams { seed: 7, ..GlassParams::default() };
+        let (plain, stamps, marks) = grown(&p, u64::MAX, |_| {}, |_| {});
+        assert!(stamps > 1000 && marks > 10, "{stamps} segment queries, {marks} face walks");
+        let garbage = grown(
+            &p,
+            1,
+            |g| {
+                g.index.segments.heads.fill(7);
+                g.index.segments.entries.fill([3, 5]);
+                g.index.tips.heads.fill(9);
+                g.index.tips.entries.fill([1, 2]);
+            },
+            |g| {
+                // The next 64 edges and vertices: edge e the stamp of the query 1 + (37e mod 256)
+                // ahead, vertex v the mark of the walk 1 + (v mod 8) ahead.
+                let (stamp, mark) = (g.index.stamp, g.walk.mark);
+                let (edges, vertices) = (g.edge_count, g.vertex_count);
+                for (e, s) in g.index.stamps.iter_mut().enumerate().skip(edges).take(64) {
+                    *s = stamp.wrapping_add(1 + (37 * e as u32) % 256);
+                }
+                for (v, m) in g.walk.marks.iter_mut().enumerate().skip(vertices).take(64) {
+                    *m = mark.wrapping_add(1 + v as u32 % 8);
+                }
+            },
+        );
+        assert_eq!(garbage.0, plain, "garbage in the words");
+        let start_over = |g: &mut Glass| {
+            g.index.stamp = u32::MAX - stamps / 2;
+            g.walk.mark = u32::MAX - marks / 2;
+        };
+        // Run once: the query that first visits each edge after the stamps start over.
+        let mut first = vec![0u32; p.max_vertices as usize];
+        let wrapped = grown(&p, 1, start_over, |g| {
+            if g.index.stamp < stamps {
+                for (e, &s) in g.index.stamps[..g.edge_count].iter().enumerate() {
+                    if first[e] == 0 && s < stamps {
+                        first[e] = s;
+                    }
+                }
+            }
+        });
+        assert!(wrapped.1 < stamps && wrapped.2 < marks, "{}, {}: they did not start over", wrapped.1, wrapped.2);
+        assert_eq!(wrapped.0, plain, "stamps and marks that start over");
+        // Run again, with the stamps and marks of the edges and vertices there just before they
+        // start over (those not of the query or walk under way) made those of queries and walks
+        // 2³² − 1 earlier: each edge's, the query that first visits it after the start; each
+        // vertex's, one of the first eight walks. The queries and walks after the start must
+        // not take them for their own.
+        let long_ago = |g: &mut Glass| {
+            let (stamp, mark) = (g.index.stamp, g.walk.mark);
+            if stamp >= u32::MAX - 2 {
+                for (e, s) in g.index.stamps[..g.edge_count].iter_mut().enumerate() {
+                    if *s != stamp {
+                        *s = first[e];
+                    }
+                }
+            }
+            if mark == u32::MAX {
+                for (v, m) in g.walk.marks[..g.vertex_count].iter_mut().enumerate() {
+                    if *m != mark {
+                        *m = 1 + v as u32 % 8;
+                    }
+                }
+            }
+        };
+        let wrapped = grown(&p, 1, start_over, long_ago);
+        assert_eq!(wrapped.0, plain, "stamps and marks that start over, with those of long ago");
+    }
+}

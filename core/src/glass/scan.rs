@@ -42,7 +42,9 @@ impl Glass<'_> {
         if filed == Filed::Segments {
             self.index.stamp = self.index.stamp.wrapping_add(1);
             if self.index.stamp == 0 {
-                self.index.stamps.fill(0);
+                // The stamps start over (every 2³² − 1 scans): those of the edges so far are
+                // reset; an edge added later gets its own when it is added.
+                self.index.stamps[..self.edge_count].fill(0);
                 self.index.stamp = 1;
             }
         }
