@@ -1502,7 +1502,8 @@ typedef struct hibi_skin_cell {
 
 /**
  * `hibi_glass_step`: `max_cracks`, `max_vertices` or the grid ran out; generation stopped
- * early and the plate stays usable as drawn.
+ * early and the plate stays usable as drawn. `hibi_glass_impact` on such a plate: refused,
+ * nothing changed.
  */
 #define HIBI_ERROR_GLASS_CAPACITY 1090
 

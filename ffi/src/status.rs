@@ -73,7 +73,8 @@ pub const HIBI_ERROR_GLASS_UNKNOWN_PRESET: hibi_status = 1093;
 /// `hibi_glass_impact`: the point is not inside the plate.
 pub const HIBI_ERROR_GLASS_IMPACT: hibi_status = 1089;
 /// `hibi_glass_step`: `max_cracks`, `max_vertices` or the grid ran out; generation stopped
-/// early and the plate stays usable as drawn.
+/// early and the plate stays usable as drawn. `hibi_glass_impact` on such a plate: refused,
+/// nothing changed.
 pub const HIBI_ERROR_GLASS_CAPACITY: hibi_status = 1090;
 /// A crack index is not below `hibi_glass_crack_count`.
 pub const HIBI_ERROR_GLASS_CRACK_INDEX: hibi_status = 1091;
