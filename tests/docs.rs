@@ -480,6 +480,18 @@ fn the_readme_is_a_front_page() {
     let lines = readme.lines().count();
     assert!(lines <= 250, "README.md has {lines} lines; the guide (docs/) holds the rest (at most 250)");
     assert!(readme.contains("./test"), "README.md shows the test command");
+    // The quick starts: one Rust, one C and one C++ example, each at most 15 lines as shown
+    // (a Rust block's hidden `# ` lines are not shown).
+    for language in ["rust", "c", "cpp"] {
+        let examples: Vec<Block> = blocks("README.md", &readme)
+            .into_iter()
+            .filter(|b| b.language() == language && b.not_run.is_none())
+            .collect();
+        assert_eq!(examples.len(), 1, "README.md has one {language} quick start");
+        let shown =
+            examples[0].code.lines().filter(|l| !(language == "rust" && (l.starts_with("# ") || *l == "#"))).count();
+        assert!(shown <= 15, "README.md's {language} quick start shows {shown} lines (at most 15)");
+    }
 }
 
 #[test]
