@@ -548,3 +548,63 @@ fn a_periodic_skin_stretched_past_the_fixed_point_builds_and_renders() {
     assert!(progress.finished == 1 && progress.cells > 0, "{progress:?}");
     assert!(height.iter().all(|h| h.is_finite()), "a height not finite");
 }
+
+/// The fragments of a plate as they stand, through the C ABI: the number of rings and the sum
+/// of their signed areas (outer rings positive, holes negative) in f64.
+///
+/// # Safety
+///
+/// `glass` must be a live plate.
+unsafe fn fragment_area(glass: *mut hibi_glass) -> (usize, f64) {
+    let mut size = 0;
+    let (mut rings, mut points) = (0, 0);
+    // SAFETY (every call below): a live plate, buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_glass_scratch_size(glass, &mut size), HIBI_OK);
+        let mut scratch = vec![0u64; size.div_ceil(8)];
+        let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points);
+        assert_eq!(status, HIBI_OK);
+        let mut ring_buf = vec![hibi_core::glass::FragmentRing::default(); rings];
+        let mut point_buf = vec![hibi_vec2::default(); points];
+        let (mut r, mut p) = (0, 0);
+        let status = hibi_glass_fragments(
+            glass,
+            scratch.as_mut_ptr().cast(),
+            size,
+            ring_buf.as_mut_ptr(),
+            rings,
+            point_buf.as_mut_ptr(),
+            points,
+            &mut r,
+            &mut p,
+        );
+        assert_eq!((status, r, p), (HIBI_OK, rings, points));
+        (rings, ring_buf.iter().map(|ring| ring.area).sum())
+    }
+}
+
+/// Finding 16: an impact at x = `FLT_MIN` on a 4 × 4 plate. The 53 cracks heading left from it
+/// reach the left edge after `FLT_MIN` px, all at (0, 2), each at its own vertex; the border
+/// edges between those vertices have no length, and the zero vector's pseudo-angle (0, to the
+/// right) put them among the cracks around each vertex. The walk around the outside of the
+/// plate left the border there and took the fragment between the left edge and the cracks to
+/// (0, 2) and to the top edge with it: 10 rings covered 15.914 of the plate's 16 px². A border
+/// edge of no length now runs along its side; the rings' signed areas add up to the plate's.
+#[test]
+fn fragments_of_an_impact_a_hair_from_the_edge_cover_the_plate() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (4.0, 4.0, [f32::MIN_POSITIVE, 2.0]);
+    params.seed = 216_269_917_094_150_403;
+    (params.large_slope, params.spread) = (f32::MIN_POSITIVE, HIBI_SPREAD_UNIFORM);
+    (params.max_cracks, params.max_vertices) = (115, 115);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    // SAFETY: valid pointers; a live plate.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
+        let (rings, area) = fragment_area(glass);
+        assert!((area - 16.0).abs() <= 1e-4 * 16.0, "{rings} rings cover {area} of 16 px²");
+        hibi_glass_destroy(glass);
+    }
+}

@@ -2,7 +2,7 @@
 //! `hibi_glass_create_in` (any memory length and alignment), then any sequence of impacts
 //! (any point), steps (any budgets), crack queries and polylines, fragments and fragment
 //! counts (any scratch and buffer lengths) and renders (both layers, any render params and
-//! pixel lengths).
+//! pixel lengths). Fragments must cover the plate: their signed areas sum to its area.
 #![no_main]
 
 use core::ptr::null;
@@ -144,11 +144,18 @@ fn fragments(u: &mut Unstructured, g: &Plate) -> Result<()> {
     if check(status) {
         assert!(outs && a.0 && b.0 && rw == r && pw == p);
         assert!(rb.untouched_past(r) && pb.untouched_past(p));
+        let mut covered = 0.0f64;
         for i in 0..r {
             let x: FragmentRing = rb.get(i);
             assert!(x.area.is_finite() && x.first_point as usize + x.point_count as usize <= p, "{x:?}");
             assert!(x.hole_of == HIBI_GLASS_NOT_A_HOLE || (x.hole_of as usize) < r, "{x:?}");
+            assert_eq!(x.reserved, 0, "{x:?}");
+            covered += x.area;
         }
+        // The fragments cover the plate, whatever the cracks so far: outer rings add their
+        // area, holes take theirs off.
+        let plate = f64::from(g.width) * f64::from(g.height);
+        assert!(((covered - plate) / plate).abs() <= 1e-4, "fragments cover {covered} of a {plate} plate ({r} rings)");
         for i in 0..p {
             let x: hibi_vec2 = pb.get(i);
             assert!(finite(&[x.x, x.y]), "{x:?}");

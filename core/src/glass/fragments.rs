@@ -90,6 +90,26 @@ impl<'a> FragmentScratch<'a> {
     }
 }
 
+/// The place of border point `p` along the perimeter of a `w` × `h` plate, counter-clockwise
+/// from (0, 0) with y up: the side (0 bottom, 1 right, 2 top, 3 left; (0, 0) begins the bottom,
+/// each other corner ends the side that reaches it) and the coordinate along it, negated where
+/// the walk runs towards 0.
+///
+/// Compared exactly: one f64 distance along the whole perimeter, such as 2·W + H − x on the top
+/// side, rounds away differences below 2·W·2⁻⁵³ (or below the spacing of f64 near 2·W + H, for
+/// points near a corner), and a border out of order joins the wrong ends, losing fragments.
+fn perimeter(p: [f32; 2], w: f32, h: f32) -> (u8, f32) {
+    if p[1] == 0.0 {
+        (0, p[0])
+    } else if p[0] == w {
+        (1, p[1])
+    } else if p[1] == h {
+        (2, -p[0])
+    } else {
+        (3, -p[1])
+    }
+}
+
 /// The pruned cracks plus the plate's border: border edge `k` runs from `border[k]` to
 /// `border[k + 1]` (counter-clockwise), with edge index `edge_count + k`.
 struct PlateGraph<'g> {
@@ -148,7 +168,18 @@ impl PlaneGraph for PlateGraph<'_> {
         }
         let (u, w) = self.ends(h);
         let (a, b) = (self.point(u), self.point(w));
-        pseudo_angle([b[0] - a[0], b[1] - a[1]])
+        if a != b {
+            return pseudo_angle([b[0] - a[0], b[1] - a[1]]);
+        }
+        // Two crack ends at one point of the border (cracks from an impact a hair from the
+        // edge all reach it there): the edge between them has no length, and the zero
+        // vector's angle (0) would put it among the cracks, so that the outside's walk left
+        // the border and took fragments with it. It runs along its side instead, as a border
+        // edge of any length does: right, up, left or down (0, 1, 2, 3), reversed on the way
+        // back.
+        let [width, height] = self.corners[2];
+        let side = perimeter(a, width, height).0;
+        f32::from((side + if h & 1 == 0 { 0 } else { 2 }) % 4)
     }
 
     fn half_edge_bound(&self) -> usize {
@@ -226,25 +257,8 @@ impl Glass<'_> {
         let point = |v: u32| {
             if (v as usize) < vertices { self.vertices[v as usize].at } else { corners[v as usize - vertices] }
         };
-        // Position along the perimeter, counter-clockwise from (0, 0) with y up: the side
-        // (bottom, right, top, left) and the coordinate along it, negated where the walk runs
-        // towards 0. Compared exactly: one f64 distance along the whole perimeter, such as
-        // 2·W + H − x on the top side, rounds away differences below 2·W·2⁻⁵³ (or below the
-        // spacing of f64 near 2·W + H, for points near a corner), and a border out of order
-        // joins the wrong ends, losing fragments.
-        let perimeter = |p: [f32; 2]| {
-            if p[1] == 0.0 {
-                (0u8, p[0])
-            } else if p[0] == w {
-                (1, p[1])
-            } else if p[1] == h {
-                (2, -p[0])
-            } else {
-                (3, -p[1])
-            }
-        };
         s.border[..n].sort_unstable_by(|&a, &b| {
-            let (pa, pb) = (perimeter(point(a)), perimeter(point(b)));
+            let (pa, pb) = (perimeter(point(a), w, h), perimeter(point(b), w, h));
             pa.0.cmp(&pb.0).then(pa.1.total_cmp(&pb.1)).then(a.cmp(&b))
         });
         s.border_index[..vertices + 4].fill(NONE);
