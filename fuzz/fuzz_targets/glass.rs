@@ -39,6 +39,12 @@ fn impact(u: &mut Unstructured, g: &mut Plate) -> Result<()> {
             assert!(counts.large <= counts.radial, "{counts:?}");
         }
         g.finished = false;
+    } else if status == HIBI_ERROR_GLASS_CAPACITY {
+        // Refused on a plate out of capacity: its steps say so too.
+        assert_eq!(counts.radial, u32::MAX, "a failing impact wrote");
+        // SAFETY: a live plate; no progress asked for.
+        let step = unsafe { hibi_glass_step(g.glass, 1, core::ptr::null_mut()) };
+        assert_eq!(step, HIBI_ERROR_GLASS_CAPACITY, "impact refused for capacity, but a step has room");
     } else {
         assert_eq!(status, HIBI_ERROR_GLASS_IMPACT);
         assert!(!inside, "impact refused ({x}, {y}) on a {} x {} plate", g.width, g.height);
