@@ -90,7 +90,10 @@ fn run(u: &mut Unstructured) -> Result<()> {
                     let valid = x.is_finite() && (0.0..1.0).contains(&z) && fits && spread < 2;
                     assert_eq!(check(status), valid, "rand({x}, {z}, {spread}): {status}");
                     if valid {
-                        let (a, b) = ((1.0 - z) * x, (1.0 + z) * x);
+                        // The range's ends in f64, each rounded to f32 as the draw is: rounding
+                        // keeps order, so the draw lies between them.
+                        let (x64, z64) = (f64::from(x), f64::from(z));
+                        let (a, b) = (((1.0 - z64) * x64) as f32, ((1.0 + z64) * x64) as f32);
                         assert!(v.is_finite() && v >= a.min(b) && v <= a.max(b), "rand({x}, {z}) = {v}");
                     } else {
                         assert!(v.is_nan());
