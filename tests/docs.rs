@@ -706,19 +706,19 @@ fn c_and_cpp_blocks_build_and_run() {
                 let output = std::process::Command::new(&exe).current_dir(&dir).output().expect("run a block");
                 ran += 1;
                 if !output.status.success() {
-                    failures.push(format!(
-                        "{}: exited with {}:\n{}{}",
-                        b.at(),
-                        output.status,
-                        String::from_utf8_lossy(&output.stdout),
-                        String::from_utf8_lossy(&output.stderr)
-                    ));
+                    failures.push(exited(&b, &output));
                 }
             }
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
     assert!(ran >= 2, "the README's C and C++ quick starts run ({ran} programs)");
+}
+
+/// What a block that failed when run printed.
+fn exited(b: &Block, output: &std::process::Output) -> String {
+    let (stdout, stderr) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+    format!("{}: exited with {}:\n{stdout}{stderr}", b.at(), output.status)
 }
 
 /// An empty directory for one block to run in.
@@ -765,13 +765,7 @@ fn sh_blocks_run() {
             .output()
             .expect("run bash");
         if !output.status.success() {
-            failures.push(format!(
-                "{}: exited with {}:\n{}{}",
-                b.at(),
-                output.status,
-                String::from_utf8_lossy(&output.stdout),
-                String::from_utf8_lossy(&output.stderr)
-            ));
+            failures.push(exited(&b, &output));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));

@@ -223,36 +223,16 @@ fn creating_a_plate_takes_the_same_instructions_whatever_max_vertices() {
         println!("\nglass created {:?}", glass.progress());
         return;
     }
-    let exe = std::env::current_exe().expect("the test binary");
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let mut counts = Vec::new();
     for max_vertices in CASES {
-        let out = dir.join(format!("glass_new_{max_vertices}.callgrind"));
-        let _ = std::fs::remove_file(&out);
-        let run = hibi_tests::tool("valgrind")
-            .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=hibi_test_glass_new"])
-            .arg(format!("--callgrind-out-file={}", out.display()))
-            .arg(&exe)
-            .args([
-                "creating_a_plate_takes_the_same_instructions_whatever_max_vertices",
-                "--exact",
-                "--nocapture",
-                "--test-threads=1",
-            ])
-            .env(CREATE_CASE, max_vertices.to_string())
-            .output()
-            .expect("run valgrind");
-        let stdout = String::from_utf8_lossy(&run.stdout);
+        let (stdout, instructions) = hibi_tests::callgrind_this_test(
+            "creating_a_plate_takes_the_same_instructions_whatever_max_vertices",
+            "hibi_test_glass_new",
+            (CREATE_CASE, &max_vertices.to_string()),
+        );
         let what = format!("max_vertices {max_vertices}");
-        assert!(run.status.success(), "{what}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
         let created = stdout.lines().find_map(|l| l.strip_prefix("glass created ")).map(str::to_owned);
         let created = created.unwrap_or_else(|| panic!("{what}: no plate reported in\n{stdout}"));
-        let text = std::fs::read_to_string(&out).expect("Callgrind's output");
-        let instructions: u64 = text
-            .lines()
-            .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
-            .and_then(|s| s.trim().parse().ok())
-            .unwrap_or_else(|| panic!("{what}: no instruction count in {}", out.display()));
         // (Collection was on: drawing the first impact alone takes tens of thousands.)
         assert!(instructions > 10_000, "{what}: {instructions} instructions");
         println!("{what}: {instructions} instructions; {created}");

@@ -508,33 +508,18 @@ fn a_unit_costs_about_the_same_at_every_spacing_ratio() {
         println!("\nskin unit work {}", progress.work);
         return;
     }
-    let exe = std::env::current_exe().expect("the test binary");
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let mut per_unit = Vec::new();
     for (k, (name, _)) in cases.iter().enumerate() {
-        let out = dir.join(format!("skin_unit_{k}.callgrind"));
-        let _ = std::fs::remove_file(&out);
-        let run = hibi_tests::tool("valgrind")
-            .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=hibi_test_skin_unit_steps"])
-            .arg(format!("--callgrind-out-file={}", out.display()))
-            .arg(&exe)
-            .args(["a_unit_costs_about_the_same_at_every_spacing_ratio", "--exact", "--nocapture", "--test-threads=1"])
-            .env(UNIT_CASE, k.to_string())
-            .output()
-            .expect("run valgrind");
-        let stdout = String::from_utf8_lossy(&run.stdout);
-        assert!(run.status.success(), "{name}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
+        let (stdout, instructions) = hibi_tests::callgrind_this_test(
+            "a_unit_costs_about_the_same_at_every_spacing_ratio",
+            "hibi_test_skin_unit_steps",
+            (UNIT_CASE, &k.to_string()),
+        );
         let work: u64 = stdout
             .lines()
             .find_map(|l| l.split_once("skin unit work ").map(|(_, w)| w))
             .and_then(|w| w.trim().parse().ok())
             .unwrap_or_else(|| panic!("{name}: no work reported in\n{stdout}"));
-        let text = std::fs::read_to_string(&out).expect("Callgrind's output");
-        let instructions: u64 = text
-            .lines()
-            .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
-            .and_then(|s| s.trim().parse().ok())
-            .unwrap_or_else(|| panic!("{name}: no instruction count in {}", out.display()));
         // (Collection was on: the build's instructions are far more than its units.)
         assert!(instructions > 100 * work, "{name}: {instructions} instructions for {work} units");
         let cost = instructions as f64 / work as f64;

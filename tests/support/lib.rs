@@ -130,3 +130,32 @@ mod guide {
     #[doc = include_str!("../../docs/src/rust.md")]
     struct RustApi;
 }
+
+/// Runs test `test` of the running test binary again, alone, under Callgrind with collection
+/// only inside the function `toggle` (a `no_mangle` function the test calls), with `env` set so
+/// that the re-run knows which case to do. Returns what the re-run printed and the
+/// instructions counted; fails when the re-run fails or Callgrind counted nothing.
+pub fn callgrind_this_test(test: &str, toggle: &str, env: (&str, &str)) -> (String, u64) {
+    let exe = std::env::current_exe().expect("the test binary");
+    let out = exe.with_file_name(format!("{test}_{}.callgrind", env.1));
+    let _ = std::fs::remove_file(&out);
+    let run = tool("valgrind")
+        .args(["-q", "--tool=callgrind", "--collect-atstart=no"])
+        .arg(format!("--toggle-collect={toggle}"))
+        .arg(format!("--callgrind-out-file={}", out.display()))
+        .arg(&exe)
+        .args([test, "--exact", "--nocapture", "--test-threads=1"])
+        .env(env.0, env.1)
+        .output()
+        .expect("run valgrind");
+    let stdout = String::from_utf8_lossy(&run.stdout).into_owned();
+    let case = format!("{test} with {}={}", env.0, env.1);
+    assert!(run.status.success(), "{case}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
+    let text = std::fs::read_to_string(&out).expect("Callgrind's output");
+    let instructions = text
+        .lines()
+        .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
+        .and_then(|s| s.trim().parse().ok())
+        .unwrap_or_else(|| panic!("{case}: no instruction count in {}", out.display()));
+    (stdout, instructions)
+}
