@@ -1598,8 +1598,8 @@ struct hibi_glass_params hibi_glass_params_default(void);
 
 /**
  * Writes the parameters of the preset `name` (`"fig14a"` … `"fig16d"`, the paper's
- * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
- * the defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes
+ * figures, see the guide's model pages) to `*out`, with the cookie set; change fields afterwards as
+ * with the defaults. An unknown name gives `HIBI_ERROR_GLASS_UNKNOWN_PRESET` and writes
  * nothing.
  *
  * # Safety
@@ -1809,8 +1809,8 @@ struct hibi_mud_params hibi_mud_params_default(void);
 
 /**
  * Writes the parameters of the preset `name` (`"fig6a"` … `"fig10"`, the paper's
- * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
- * the defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes
+ * figures, see the guide's model pages) to `*out`, with the cookie set; change fields afterwards as
+ * with the defaults. An unknown name gives `HIBI_ERROR_MUD_UNKNOWN_PRESET` and writes
  * nothing.
  *
  * # Safety
@@ -2113,8 +2113,8 @@ struct hibi_skin_params hibi_skin_params_default(void);
 
 /**
  * Writes the parameters of the preset `name` (`"fig13a"` … `"fig19f"`, the paper's
- * figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
- * the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
+ * figures, see the guide's model pages) to `*out`, with the cookie set; change fields afterwards as
+ * with the defaults. An unknown name gives `HIBI_ERROR_SKIN_UNKNOWN_PRESET` and writes
  * nothing.
  *
  * # Safety

@@ -74,7 +74,7 @@ fn explicit_and_quasi_static_agree_over_eight_seeds() {
 /// The same over 24 seeds (about a minute in release, so only on request:
 /// `cargo test --release --test mud -- --ignored --nocapture`).
 #[test]
-#[ignore = "a minute in release; the README's 24-seed figures"]
+#[ignore = "a minute in release: the solvers' agreement over seeds 1-24"]
 fn explicit_and_quasi_static_over_twenty_four_seeds() {
     let (density, area) = solver_means(24, Topology::Hexagonal, 48);
     assert!(within(density.0, density.1, 0.15), "crack density {density:?}");
@@ -444,7 +444,7 @@ fn the_network_is_one_connected_thing() {
 }
 
 /// At the default end (2.3 % shrink) the network is still growing: run on, its tips join up
-/// and the dead ends fall further, while the cells shrink (the README's figures; seeds 1-8).
+/// and the dead ends fall further, while the cells shrink (the figures in the guide's mud page; seeds 1-8).
 #[test]
 fn dead_ends_join_up_as_the_network_grows() {
     let figures = [0.023f32, 0.024, 0.025].map(|target_shrink| {

@@ -5,7 +5,7 @@
 //! same calls on a larger thread are each measured on their own: the stack is painted below the
 //! call, and the deepest painted word it overwrote gives its peak, which must stay within
 //! 16 KiB. The golden scenes, whose harness adds frames of its own (about 13 KB in release),
-//! run in a thread of 64 KiB and must match. The README gives the figures (in release: `cargo
+//! run in a thread of 64 KiB and must match. The guide's Platforms page gives the figures (in release: `cargo
 //! test --release --test stack -- --nocapture`).
 
 use std::hint::black_box;

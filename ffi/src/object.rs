@@ -320,8 +320,8 @@ macro_rules! lifecycle {
         }
 
         #[doc = concat!(" Writes the parameters of the preset `name` (", $presets, ", the paper's")]
-        /// figures, see the README) to `*out`, with the cookie set; change fields afterwards as with
-        #[doc = concat!(" the defaults. An unknown name gives `", stringify!($unknown), "` and writes")]
+        /// figures, see the guide's model pages) to `*out`, with the cookie set; change fields afterwards as
+        #[doc = concat!(" with the defaults. An unknown name gives `", stringify!($unknown), "` and writes")]
         /// nothing.
         ///
         /// # Safety
