@@ -301,9 +301,7 @@ impl Glass<'_> {
 
     /// Stops crack `i`: a region closed around its tip.
     fn enclosed(&mut self, i: usize) {
-        let c = &mut self.cracks[i];
-        c.growing = false;
-        c.end = CrackEnd::Enclosed;
+        self.stop(i, CrackEnd::Enclosed);
     }
 }
 

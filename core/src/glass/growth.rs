@@ -872,9 +872,7 @@ impl Glass<'_> {
         }
         if end == tip_vertex {
             // Met a crack exactly at its own tip (a rounding tie): it stops there.
-            let c = &mut self.cracks[i];
-            c.growing = false;
-            c.end = CrackEnd::Crack;
+            self.stop(i, CrackEnd::Crack);
             return None;
         }
         let segment = Edge::new(tip_vertex, end, i as u32, [time, time + along * u.length / c.speed]);
@@ -885,8 +883,7 @@ impl Glass<'_> {
         c.heading = u.heading;
         u.stopped = stop != CrackEnd::Growing;
         if u.stopped {
-            c.growing = false;
-            c.end = stop;
+            self.stop(i, stop);
         }
         closes_cycle.then_some(2 * e)
     }

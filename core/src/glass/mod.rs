@@ -356,6 +356,9 @@ pub struct Glass<'a> {
     params: GlassParams,
     cracks: &'a mut [Crack],
     crack_count: usize,
+    /// Cracks still growing (kept, so that [`Glass::progress`] does not count them: a call of
+    /// [`Glass::step`] costs its units, not the cracks on the plate).
+    growing: usize,
     vertices: &'a mut [Vertex],
     vertex_count: usize,
     edges: &'a mut [Edge],
@@ -488,6 +491,7 @@ impl<'a> Glass<'a> {
             params: *params,
             cracks: &mut buffers.cracks[..cracks],
             crack_count: 0,
+            growing: 0,
             vertices: &mut buffers.vertices[..vertices],
             vertex_count: 0,
             edges: &mut buffers.edges[..vertices],
@@ -664,6 +668,7 @@ impl<'a> Glass<'a> {
             left: 0.0,
         };
         self.crack_count += 1;
+        self.growing += 1;
     }
 
     /// Stops every crack: generation of the current impact has ended.
@@ -672,7 +677,16 @@ impl<'a> Glass<'a> {
             crack.growing = false;
             crack.end = CrackEnd::Generation;
         }
+        self.growing = 0;
         self.clock.finished = true;
+    }
+
+    /// Stops crack `i`, for `end`.
+    fn stop(&mut self, i: usize, end: CrackEnd) {
+        let c = &mut self.cracks[i];
+        self.growing -= usize::from(c.growing);
+        c.growing = false;
+        c.end = end;
     }
 
     /// The counts drawn by the latest impact.
@@ -700,7 +714,7 @@ impl<'a> Glass<'a> {
         GlassProgress {
             time: self.clock.time,
             cracks: self.crack_count as u32,
-            growing: self.cracks[..self.crack_count].iter().filter(|c| c.growing).count() as u32,
+            growing: self.growing as u32,
             vertices: self.vertex_count as u32,
             finished: self.clock.finished,
             capacity_reached: self.clock.capacity_reached,
