@@ -136,11 +136,35 @@ mod guide {
 /// that the re-run knows which case to do. Returns what the re-run printed and the
 /// instructions counted; fails when the re-run fails or Callgrind counted nothing.
 pub fn callgrind_this_test(test: &str, toggle: &str, env: (&str, &str)) -> (String, u64) {
+    let (stdout, text, case) = callgrind_rerun(test, toggle, env);
+    let instructions = text
+        .lines()
+        .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
+        .and_then(|s| s.trim().parse().ok())
+        .unwrap_or_else(|| panic!("{case}: no instruction count in Callgrind's output"));
+    (stdout, instructions)
+}
+
+/// [`callgrind_this_test`] with collection inside every function whose name matches `toggle`
+/// (Callgrind's wildcards: `hibi_test_phase_*`), and the instructions counted in each of them,
+/// what it calls included, by name (functions that were never called are absent).
+pub fn callgrind_this_test_by_function(
+    test: &str,
+    toggle: &str,
+    env: (&str, &str),
+) -> (String, std::collections::BTreeMap<String, u64>) {
+    let (stdout, text, _) = callgrind_rerun(test, toggle, env);
+    (stdout, inclusive_costs(&text))
+}
+
+/// Runs `test` again under Callgrind (see [`callgrind_this_test`]); returns what it printed,
+/// Callgrind's output (names written out, not compressed) and the case's name for messages.
+fn callgrind_rerun(test: &str, toggle: &str, env: (&str, &str)) -> (String, String, String) {
     let exe = std::env::current_exe().expect("the test binary");
     let out = exe.with_file_name(format!("{test}_{}.callgrind", env.1));
     let _ = std::fs::remove_file(&out);
     let run = tool("valgrind")
-        .args(["-q", "--tool=callgrind", "--collect-atstart=no"])
+        .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--compress-strings=no"])
         .arg(format!("--toggle-collect={toggle}"))
         .arg(format!("--callgrind-out-file={}", out.display()))
         .arg(&exe)
@@ -152,10 +176,24 @@ pub fn callgrind_this_test(test: &str, toggle: &str, env: (&str, &str)) -> (Stri
     let case = format!("{test} with {}={}", env.0, env.1);
     assert!(run.status.success(), "{case}: {}\n{stdout}\n{}", run.status, String::from_utf8_lossy(&run.stderr));
     let text = std::fs::read_to_string(&out).expect("Callgrind's output");
-    let instructions = text
-        .lines()
-        .find_map(|l| l.strip_prefix("summary: ").or_else(|| l.strip_prefix("totals: ")))
-        .and_then(|s| s.trim().parse().ok())
-        .unwrap_or_else(|| panic!("{case}: no instruction count in {}", out.display()));
-    (stdout, instructions)
+    (stdout, text, case)
+}
+
+/// The instructions counted in each function of a Callgrind output with one event (Ir), what
+/// it calls included: the cost lines of its `fn=` blocks, its own lines and those that follow
+/// a `calls=` line (the called function's cost, inclusive).
+fn inclusive_costs(text: &str) -> std::collections::BTreeMap<String, u64> {
+    let mut costs = std::collections::BTreeMap::new();
+    let mut current: Option<String> = None;
+    for line in text.lines() {
+        if let Some(name) = line.strip_prefix("fn=") {
+            current = Some(name.to_owned());
+        } else if line.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '*'))
+            && let Some(name) = &current
+        {
+            let cost: u64 = line.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+            *costs.entry(name.clone()).or_insert(0) += cost;
+        }
+    }
+    costs
 }
