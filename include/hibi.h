@@ -269,7 +269,9 @@
 #define HIBI_ERROR_MUD_TARGET_CRACK_DENSITY 530
 
 /**
- * Mud parameters: The lattice is too large: its memory size overflows.
+ * Mud parameters: the lattice is too large: `columns` × `rows` must be <= 2^28
+ * (268,435,456 nodes; irregular: also `columns` <= 2^20 and `rows` <= 2^21), and its
+ * memory must fit in the address space.
  */
 #define HIBI_ERROR_MUD_SIZE_OVERFLOW 531
 
@@ -380,7 +382,8 @@
 #define HIBI_ERROR_GLASS_FORCES 1035
 
 /**
- * Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+ * Glass parameters: `max_cracks` must be within [1, 2^28] and `max_vertices` within
+ * [2, 2^28], within memory.
  */
 #define HIBI_ERROR_GLASS_CAPACITY_PARAMS 1036
 
@@ -676,11 +679,11 @@ typedef struct hibi_glass_params {
    */
   float ring_adherence;
   /**
-   * Most cracks the plate holds (default 512).
+   * Most cracks the plate holds, within [1, 2^28] (default 512).
    */
   uint32_t max_cracks;
   /**
-   * Most crack vertices the plate holds (default 16384).
+   * Most crack vertices the plate holds, within [2, 2^28] (default 16384).
    */
   uint32_t max_vertices;
 } hibi_glass_params;
@@ -871,11 +874,11 @@ typedef struct hibi_mud_params {
    */
   uint32_t drive;
   /**
-   * Nodes per row (default 128).
+   * Nodes per row (default 128; `columns` × `rows` <= 2^28, and irregular `columns` <= 2^20).
    */
   uint32_t columns;
   /**
-   * Rows of nodes (default 128; even for periodic hexagonal lattices).
+   * Rows of nodes (default 128; even for periodic hexagonal lattices; irregular <= 2^21).
    */
   uint32_t rows;
   /**

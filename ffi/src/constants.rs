@@ -164,7 +164,9 @@ constants! {
     HIBI_ERROR_MUD_TARGET_SHRINK: MudParamError::TargetShrink = 529;
     /// Mud parameters: `target_crack_density` must be finite and >= 0.
     HIBI_ERROR_MUD_TARGET_CRACK_DENSITY: MudParamError::TargetCrackDensity = 530;
-    /// Mud parameters: The lattice is too large: its memory size overflows.
+    /// Mud parameters: the lattice is too large: `columns` × `rows` must be <= 2^28
+    /// (268,435,456 nodes; irregular: also `columns` <= 2^20 and `rows` <= 2^21), and its
+    /// memory must fit in the address space.
     HIBI_ERROR_MUD_SIZE_OVERFLOW: MudParamError::SizeOverflow = 531;
     /// Mud parameters: (shear_modulus / young_modulus)·(element_size / layer_thickness)² must be
     /// within [1e-6, 1e6].
@@ -215,7 +217,8 @@ constants! {
     HIBI_ERROR_GLASS_SECTOR: GlassParamError::Sector = 1034;
     /// Glass parameters: the force constants, `wander` and `ring_adherence` must be finite and >= 0.
     HIBI_ERROR_GLASS_FORCES: GlassParamError::Forces = 1035;
-    /// Glass parameters: `max_cracks` must be >= 1 and `max_vertices` >= 2, within memory.
+    /// Glass parameters: `max_cracks` must be within [1, 2^28] and `max_vertices` within
+    /// [2, 2^28], within memory.
     HIBI_ERROR_GLASS_CAPACITY_PARAMS: GlassParamError::Capacity = 1036;
     /// Skin parameters: `width` and `height` must be in 1..=32768.
     HIBI_ERROR_SKIN_SIZE: SkinParamError::Size = 1280;

@@ -21,14 +21,14 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    Crack, CrackPoint, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
-    GlassProgress, GlassRender, ImpactCounts, preset,
+    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
+    GlassProgress, GlassRender, ImpactCounts, Vertex, preset,
 };
 
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
 use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
-use crate::object::{self, Arena, Object, Origin, lifecycle};
+use crate::object::{self, AnyBits, Arena, Object, Origin, ZeroIsDefault, lifecycle};
 use crate::polygons::polygon_query;
 use crate::raster::{Pixels, render};
 use crate::status::{
@@ -104,9 +104,9 @@ pub struct hibi_glass_params {
     pub wander: f32,
     /// How hard ring cracks keep to their circle (default 2).
     pub ring_adherence: f32,
-    /// Most cracks the plate holds (default 512).
+    /// Most cracks the plate holds, within [1, 2^28] (default 512).
     pub max_cracks: u32,
-    /// Most crack vertices the plate holds (default 16384).
+    /// Most crack vertices the plate holds, within [2, 2^28] (default 16384).
     pub max_vertices: u32,
 }
 
@@ -207,6 +207,17 @@ lifecycle!(
     hibi_glass_create, hibi_glass_create_in, hibi_glass_destroy,
 );
 
+// SAFETY: a vertex is two f32 and a u32 (12 bytes, no padding, checked below): every bit
+// pattern is a value.
+unsafe impl AnyBits for Vertex {}
+// SAFETY: an edge is u32 and f32 fields only (56 bytes, no padding, checked below).
+unsafe impl AnyBits for Edge {}
+const _: () = assert!(size_of::<Vertex>() == 12 && size_of::<Edge>() == 56, "only u32 and f32 fields");
+// SAFETY: a crack's fields are numbers, a bool and two enumerations whose first (zero)
+// variants are their defaults (`CrackKind::Large`, `CrackEnd::Growing`): all-zero bytes are
+// `Crack::default()` (checked by `a_zeroed_crack_is_the_default`).
+unsafe impl ZeroIsDefault for Crack {}
+
 impl Object for hibi_glass {
     type Input = *const hibi_glass_params;
     type Plan = (GlassParams, GlassMemory);
@@ -220,12 +231,16 @@ impl Object for hibi_glass {
         Ok((params, memory))
     }
 
+    /// The plate reads no vertex, edge or word it did not write (`Glass::new`), so those arrays
+    /// are taken as they are; the crack records are written in caller memory only (the
+    /// library's zeroed block holds their defaults). `hibi_glass_create`'s work does not grow
+    /// with the capacities; `hibi_glass_create_in` writes `max_cracks` records.
     fn arrays((_, m): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
         GlassBuffers {
-            cracks: arena.take(m.cracks),
-            vertices: arena.take(m.vertices),
-            edges: arena.take(m.edges),
-            words: arena.take(m.words),
+            cracks: arena.take_default(m.cracks),
+            vertices: arena.take_as_is(m.vertices),
+            edges: arena.take_as_is(m.edges),
+            words: arena.take_as_is(m.words),
         }
     }
 
@@ -519,6 +534,18 @@ mod tests {
     use crate::constants::*;
     use crate::status::*;
     use core::ptr::null_mut;
+    use hibi_core::glass::{CrackEnd, CrackKind};
+
+    /// `hibi_glass_create` leaves the crack records as its zeroed block holds them: all-zero
+    /// bytes must be the default crack.
+    #[test]
+    fn a_zeroed_crack_is_the_default() {
+        assert_eq!((CrackKind::default() as u32, CrackEnd::default() as u32), (0, 0));
+        // SAFETY: every field of a crack is a number, a bool or an enumeration with a zero
+        // variant (checked above): all-zero bytes are a valid crack.
+        let zeroed: Crack = unsafe { core::mem::zeroed() };
+        assert_eq!(zeroed, Crack::default());
+    }
 
     #[test]
     fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {

@@ -55,9 +55,9 @@ pub struct hibi_mud_params {
     pub solver: u32,
     /// `HIBI_MUD_SHRINK` (default) or `HIBI_MUD_GROWTH`.
     pub drive: u32,
-    /// Nodes per row (default 128).
+    /// Nodes per row (default 128; `columns` × `rows` <= 2^28, and irregular `columns` <= 2^20).
     pub columns: u32,
-    /// Rows of nodes (default 128; even for periodic hexagonal lattices).
+    /// Rows of nodes (default 128; even for periodic hexagonal lattices; irregular <= 2^21).
     pub rows: u32,
     /// Seed of every random draw.
     pub seed: u64,
@@ -264,7 +264,7 @@ impl Object for hibi_mud {
     }
 
     fn arrays((_, memory): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
-        MudBuffers { scalars: arena.take(memory.scalars), words: arena.take(memory.words) }
+        MudBuffers { scalars: arena.take_as_is(memory.scalars), words: arena.take_as_is(memory.words) }
     }
 
     fn make((params, _): &Self::Plan, buffers: Self::Arrays, origin: Origin) -> Result<Self, hibi_status> {

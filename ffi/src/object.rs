@@ -9,7 +9,7 @@
 
 use core::ffi::{CStr, c_void};
 use core::mem::{align_of, size_of};
-use std::alloc::{Layout, alloc, dealloc};
+use std::alloc::{Layout, alloc_zeroed, dealloc};
 
 use crate::guard::{check_pointer, object, write_out};
 use crate::status::{
@@ -33,8 +33,29 @@ pub(crate) enum Origin {
     Caller,
 }
 
+/// Element types every bit pattern of which is a value: integers, floats, and structs of
+/// them without padding. An array of them may be handed out over a block's bytes as they are,
+/// for a model that reads no element before it writes it.
+///
+/// # Safety
+/// Every bit pattern of `size_of::<Self>()` bytes must be a valid `Self`.
+pub(crate) unsafe trait AnyBits: Copy {}
+
+// SAFETY: integers and floats: every bit pattern is a value.
+unsafe impl AnyBits for u32 {}
+// SAFETY: as u32.
+unsafe impl AnyBits for f32 {}
+
+/// Element types whose all-zero bytes are a value, the default one: in a block the library
+/// allocated (zeroed) an array of them is already set to its defaults.
+///
+/// # Safety
+/// All-zero bytes must be a valid `Self`, equal to `Self::default()`.
+pub(crate) unsafe trait ZeroIsDefault: Default {}
+
 /// Lays out the arrays of a block after its header. Measuring, it only counts the bytes;
-/// placing, it also hands out the arrays, each element set to its default.
+/// placing, it also hands out the arrays: [`Arena::take`] sets each element to its default,
+/// [`Arena::take_as_is`] leaves the bytes as they are.
 pub(crate) struct Arena {
     /// The block, or null when measuring.
     base: *mut u8,
@@ -42,34 +63,66 @@ pub(crate) struct Arena {
     at: usize,
     /// An array's size overflowed.
     overflow: bool,
+    /// The block is all zero bytes (allocated by the library).
+    zeroed: bool,
 }
 
 impl Arena {
-    /// Takes the next `n` elements of `T`.
+    /// Takes the next `n` elements of `T`, each set to its default: work in proportion to `n`.
     pub(crate) fn take<T: Default>(&mut self, n: usize) -> &'static mut [T] {
+        let Some(first) = self.next::<T>(n) else { return &mut [] };
+        // SAFETY: `next`'s range of `n` elements, each written before the slice is made.
+        unsafe {
+            for i in 0..n {
+                first.add(i).write(T::default());
+            }
+            core::slice::from_raw_parts_mut(first, n)
+        }
+    }
+
+    /// Takes the next `n` elements of `T`, each set to its default, writing them only in caller
+    /// memory: in the library's zeroed block they are their defaults already.
+    pub(crate) fn take_default<T: ZeroIsDefault>(&mut self, n: usize) -> &'static mut [T] {
+        if !self.zeroed {
+            return self.take(n);
+        }
+        let Some(first) = self.next::<T>(n) else { return &mut [] };
+        // SAFETY: `next`'s range of `n` elements, all zero bytes: each a valid `T`, its
+        // default (`ZeroIsDefault`).
+        unsafe { core::slice::from_raw_parts_mut(first, n) }
+    }
+
+    /// Takes the next `n` elements of `T` over the block's bytes as they are (zero in a block
+    /// the library allocated, the caller's bytes in caller memory), writing nothing: the same
+    /// work for any `n`. For the arrays a model reads no element of before writing it.
+    pub(crate) fn take_as_is<T: AnyBits>(&mut self, n: usize) -> &'static mut [T] {
+        let Some(first) = self.next::<T>(n) else { return &mut [] };
+        // SAFETY: `next`'s range of `n` elements, whose bytes are initialised (zeroed by
+        // `create`'s allocation, or the caller's memory, which Rust sees only through a
+        // pointer) and, whatever they hold, valid values of `T` (`AnyBits`).
+        unsafe { core::slice::from_raw_parts_mut(first, n) }
+    }
+
+    /// Lays out the next `n` elements of `T`: where they start when placing, `None` when
+    /// measuring or when their size overflows (then recorded).
+    fn next<T>(&mut self, n: usize) -> Option<*mut T> {
         const { assert!(align_of::<T>() <= BLOCK_ALIGN) };
         let start = (self.at + align_of::<T>() - 1) & !(align_of::<T>() - 1);
         match n.checked_mul(size_of::<T>()).and_then(|bytes| bytes.checked_add(start)) {
             Some(end) if end <= isize::MAX as usize / 2 => self.at = end,
             _ => {
                 self.overflow = true;
-                return &mut [];
+                return None;
             }
         }
         if self.base.is_null() {
-            return &mut [];
+            return None;
         }
         // SAFETY: placing, the block was checked to hold every byte the measuring pass counted
-        // (the same layout); the range is aligned (the block is BLOCK_ALIGN-aligned), disjoint
-        // from every other array and the header, and lives as long as the object (the
-        // callers' contract). Every element is written before the slice is made.
-        unsafe {
-            let first = self.base.add(start).cast::<T>();
-            for i in 0..n {
-                first.add(i).write(T::default());
-            }
-            core::slice::from_raw_parts_mut(first, n)
-        }
+        // (the same layout): the range is inside it, aligned (the block is BLOCK_ALIGN-aligned),
+        // disjoint from every other array and the header, and lives as long as the object
+        // (the callers' contract).
+        Some(unsafe { self.base.add(start).cast::<T>() })
     }
 }
 
@@ -118,7 +171,7 @@ unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_stat
     const { assert!(align_of::<T>() <= BLOCK_ALIGN) };
     // SAFETY: the caller's contract, passed on.
     let plan = unsafe { T::plan(input) }?;
-    let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false };
+    let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false, zeroed: false };
     T::arrays(&plan, &mut arena);
     if arena.overflow {
         return Err(T::TOO_LARGE);
@@ -131,7 +184,9 @@ unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_stat
 /// # Safety
 /// `block` must be valid for writes of `size` bytes and outlive the object.
 unsafe fn place<T: Object>(block: *mut u8, plan: &T::Plan, origin: Origin) -> Result<*mut T, hibi_status> {
-    let mut arena = Arena { base: block, at: header::<T>(), overflow: false };
+    // The library's blocks are allocated zeroed.
+    let zeroed = matches!(origin, Origin::Library { .. });
+    let mut arena = Arena { base: block, at: header::<T>(), overflow: false, zeroed };
     let arrays = T::arrays(plan, &mut arena);
     let object = T::make(plan, arrays, origin)?;
     let ptr = block.cast::<T>();
@@ -170,8 +225,10 @@ pub(crate) unsafe fn create<T: Object>(input: T::Input, out: *mut *mut T) -> Res
     // SAFETY: the caller's contract, passed on.
     let (plan, size) = unsafe { plan::<T>(input) }?;
     let layout = Layout::from_size_align(size, BLOCK_ALIGN).map_err(|_| HIBI_ERROR_SIZE_OVERFLOW)?;
+    // Zeroed, so that the arrays taken as they are hold values; the allocator gives large
+    // blocks as fresh zero pages, so creation does not write the block.
     // SAFETY: the layout has a non-zero size (the header is not empty).
-    let block = unsafe { alloc(layout) };
+    let block = unsafe { alloc_zeroed(layout) };
     if block.is_null() {
         return Err(HIBI_ERROR_OUT_OF_MEMORY);
     }
@@ -226,7 +283,7 @@ fn caller_block(memory: *mut c_void, len: usize, needed: usize, name: &'static C
 
 /// The bytes of a call's scratch whose arrays `carve` takes (`*_scratch_size`).
 pub(crate) fn scratch_size<A>(carve: impl Fn(&mut Arena) -> A) -> Result<usize, hibi_status> {
-    let mut arena = Arena { base: core::ptr::null_mut(), at: 0, overflow: false };
+    let mut arena = Arena { base: core::ptr::null_mut(), at: 0, overflow: false, zeroed: false };
     carve(&mut arena);
     if arena.overflow { Err(HIBI_ERROR_SIZE_OVERFLOW) } else { Ok(arena.at) }
 }
@@ -245,7 +302,7 @@ pub(crate) unsafe fn scratch<A>(
 ) -> Result<A, hibi_status> {
     let needed = scratch_size(&carve)?;
     let base = caller_block(memory, len, needed, c"scratch")?;
-    Ok(carve(&mut Arena { base, at: 0, overflow: false }))
+    Ok(carve(&mut Arena { base, at: 0, overflow: false, zeroed: false }))
 }
 
 /// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is

@@ -214,10 +214,10 @@ static void calls_and_buffers(void) {
         hibi_glass_params huge = hibi_glass_params_default();
         hibi_glass *big = NULL;
         size_t need = 0;
-        huge.max_cracks = UINT32_MAX;
-        huge.max_vertices = UINT32_MAX;
-        /* Valid parameters whose block (hundreds of GB) no allocator here can give. */
-        if (hibi_glass_memory_size(&huge, &need) != HIBI_OK || need < ((size_t)1 << 36)) {
+        huge.max_cracks = 1u << 28;
+        huge.max_vertices = 1u << 28;
+        /* The largest valid capacities, whose block (54 GiB) no allocator here gives. */
+        if (hibi_glass_memory_size(&huge, &need) != HIBI_OK || need < ((size_t)1 << 35)) {
             printf("huge-capacities: the block is not huge (%zu bytes)\n", need);
         }
         row_kept("huge-capacities", hibi_glass_create(&huge, &big), big == NULL);
@@ -449,6 +449,8 @@ static void parameters(void) {
     MUD("mud-target-shrink-1", p_.target_shrink = 1.0f);
     MUD("mud-target-crack-density-negative", p_.target_crack_density = -1.0f);
     MUD("mud-lattice-too-large", (p_.columns = UINT32_MAX, p_.rows = UINT32_MAX - 1));
+    MUD("mud-lattice-over-2-28-nodes", (p_.columns = 16385, p_.rows = 16384));
+    MUD("mud-irregular-too-wide", (p_.topology = HIBI_MUD_IRREGULAR, p_.columns = 1048577, p_.rows = 8));
     MUD("mud-shear-out-of-scale", p_.young_modulus = 1e20f);
     MUD("mud-damping-out-of-scale", p_.damping_factor = 1e9f);
     MUD("mud-short-step-out-of-scale", p_.short_step = 1e9f);
@@ -471,6 +473,8 @@ static void parameters(void) {
     GLASS("glass-sector-radius-negative", p_.sector_radius = -5.0f);
     GLASS("glass-wander-nan", p_.wander = NAN);
     GLASS("glass-max-vertices-1", p_.max_vertices = 1);
+    GLASS("glass-max-vertices-over-2-28", p_.max_vertices = 268435457u);
+    GLASS("glass-max-cracks-over-2-28", p_.max_cracks = 268435457u);
 
     SKIN("skin-unknown-layout", p_.layout = 3);
     SKIN("skin-periodic-2", p_.periodic = 2);

@@ -31,7 +31,7 @@ mod grid;
 mod params;
 mod presets;
 
-pub use params::{GlassParamError, GlassParams, MAX_SIDE, MAX_TIME_STEPS};
+pub use params::{GlassParamError, GlassParams, MAX_CAPACITY, MAX_SIDE, MAX_TIME_STEPS};
 pub use presets::{PRESETS, preset};
 
 use grid::{Buckets, Grid, NONE};

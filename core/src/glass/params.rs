@@ -174,10 +174,15 @@ crate::error::error_list! {
         /// `tip_repulsion`, `crack_attraction`, `ring_adherence` must be finite and >= 0, `wander`
         /// finite and >= 0.
         Forces => c"glass: tip_repulsion, crack_attraction, ring_adherence, wander must be finite and >= 0",
-        /// `max_cracks` must be >= 1 and `max_vertices` >= 2; their memory must fit.
-        Capacity => c"glass: max_cracks must be >= 1 and max_vertices >= 2, within memory",
+        /// `max_cracks` must be within [1, 2²⁸] and `max_vertices` within [2, 2²⁸]; their
+        /// memory must fit in the address space.
+        Capacity => c"glass: max_cracks must be within [1, 2^28] and max_vertices within [2, 2^28], within memory",
     }
 }
+
+/// The largest `max_cracks` and `max_vertices` (2²⁸ = 268 435 456): vertices, edges and the
+/// grids' entries (ten per vertex) are numbered in `u32` words.
+pub const MAX_CAPACITY: u32 = 1 << 28;
 
 /// The longest side a plate may have \[px\]: 2¹⁶. Positions are f32, so on a plate this size
 /// they are 2⁻⁸ px apart or closer: finer than the shortest update of a crack tip (1/8 px) and
@@ -237,7 +242,10 @@ impl GlassParams {
                     .all(|&v| non_negative(v)),
                 Forces,
             ),
-            (self.max_cracks >= 1 && self.max_vertices >= 2, Capacity),
+            (
+                (1..=MAX_CAPACITY).contains(&self.max_cracks) && (2..=MAX_CAPACITY).contains(&self.max_vertices),
+                Capacity,
+            ),
         ];
         match checks.iter().find(|(ok, _)| !ok) {
             Some(&(_, error)) => Err(error),
@@ -265,7 +273,7 @@ mod tests {
     #[test]
     fn every_bad_field_is_named() {
         type Spoil = fn(&mut GlassParams);
-        let cases: [(Spoil, GlassParamError); 16] = [
+        let cases: [(Spoil, GlassParamError); 18] = [
             (|p| p.width = 0.0, GlassParamError::Size),
             (|p| p.width = 65_537.0, GlassParamError::Size),
             (|p| p.height = 1e20, GlassParamError::Size),
@@ -282,6 +290,8 @@ mod tests {
             (|p| p.sector_radius = -5.0, GlassParamError::Sector),
             (|p| p.wander = f32::NAN, GlassParamError::Forces),
             (|p| p.max_vertices = 1, GlassParamError::Capacity),
+            (|p| p.max_vertices = MAX_CAPACITY + 1, GlassParamError::Capacity),
+            (|p| p.max_cracks = MAX_CAPACITY + 1, GlassParamError::Capacity),
         ];
         for (spoil, error) in cases {
             let mut p = GlassParams::default();

@@ -72,7 +72,21 @@ pub struct MudMemory {
     pub words: usize,
 }
 
-/// The memory a lattice of this shape needs with this solver; `None` if it overflows.
+/// The most nodes a lattice may have (`columns · rows`): 2²⁸ = 268 435 456. Springs, cells
+/// and the network's vertices are numbered in `u32` words, with room for the tables' markers
+/// and the irregular mesh's two flag bits.
+pub const MAX_NODES: u64 = 1 << 28;
+
+/// The most columns of an irregular lattice (2²⁰): its nodes' positions are `i32` in
+/// 1/1024 of an element.
+pub const MAX_IRREGULAR_COLUMNS: u32 = 1 << 20;
+
+/// The most rows of an irregular lattice (2²¹): `rows · PITCH` in `i32` positions.
+pub const MAX_IRREGULAR_ROWS: u32 = 1 << 21;
+
+/// The memory a lattice of this shape needs with this solver; `None` if it has more than
+/// [`MAX_NODES`] nodes (or, irregular, more than [`MAX_IRREGULAR_COLUMNS`] columns or
+/// [`MAX_IRREGULAR_ROWS`] rows), or if its memory overflows the address space.
 pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: u32) -> Option<MudMemory> {
     // In u128 nothing below can overflow; the result is checked against the address space.
     let dirs: u128 = match topology {
@@ -80,6 +94,14 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
         Topology::Hexagonal | Topology::Irregular => 3,
     };
     let nodes = columns as u128 * rows as u128;
+    if nodes > MAX_NODES as u128 {
+        return None;
+    }
+    if let Topology::Irregular = topology
+        && (columns > MAX_IRREGULAR_COLUMNS || rows > MAX_IRREGULAR_ROWS)
+    {
+        return None;
+    }
     // The irregular lattice keeps its mesh's tables (see `irregular`).
     let mesh = match topology {
         Topology::Irregular => irregular::words_for(nodes),

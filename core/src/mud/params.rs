@@ -226,8 +226,10 @@ crate::error::error_list! {
         TargetShrink => c"mud: target_shrink must be finite and within [0, 1)",
         /// `target_crack_density` must be finite and ≥ 0.
         TargetCrackDensity => c"mud: target_crack_density must be finite and >= 0",
-        /// The lattice is too large: its memory size overflows the address space.
-        SizeOverflow => c"mud: the lattice is too large (its memory size overflows)",
+        /// The lattice is too large: `columns` × `rows` must be ≤ 2²⁸ (268 435 456 nodes;
+        /// irregular: also `columns` ≤ 2²⁰ and `rows` ≤ 2²¹), and its memory must fit in the
+        /// address space.
+        SizeOverflow => c"mud: columns x rows must be <= 2^28 (irregular: columns <= 2^20, rows <= 2^21), within memory",
         /// The deep-layer spring constant h = (G/E)·(W/H)² (per unit element area) is outside
         /// [1e-6, 1e6]: the ratios of `shear_modulus`, `young_modulus`, `element_size` and
         /// `layer_thickness` are too far apart for the units the model computes in.
