@@ -24,7 +24,7 @@ fn run(size: u32, solver: Solver, topology: Topology) -> Run {
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let start = Instant::now();
     let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
-    let progress = mud.run();
+    let progress = mud.run().expect("a stable run");
     let counts = mud.cell_counts();
     let (mut rings, mut points) = (vec![CellRing::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);
     mud.cells(&mut rings, &mut points).expect("buffers suffice");

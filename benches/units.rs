@@ -49,7 +49,7 @@ fn mud(params: &MudParams) -> Sample {
     let mut memory = params.memory().expect("valid parameters").allocate::<f32>();
     let mut mud: Mud = Mud::new(params, memory.buffers()).expect("memory suffices");
     let sample = stepped(|budget| {
-        let p = mud.step(budget);
+        let p = mud.step(budget).expect("a stable run");
         (p.finished, p.work)
     });
     black_box(mud.statistics());

@@ -484,6 +484,12 @@
 #define HIBI_MUD_TRACE_PIECE 64
 
 /**
+ * The most work one piece of a mud run's setup does, in `hibi_mud_step`'s units (a block of
+ * the quasi-static solver's tree): a call that sets up does at most max(budget, 1) − 1 + this.
+ */
+#define HIBI_MUD_SETUP_PIECE 32
+
+/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_MUD_LAYER_MASK 0
@@ -1831,7 +1837,7 @@ const char *hibi_mud_preset_name(size_t index);
 /**
  * Checks `params` and writes the bytes a run needs in caller memory (for
  * `hibi_mud_create_in`). Every parameter error is reported here.
- * One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may have written its memory when it refuses them.
+ * One refusal comes later: an irregular lattice's explicit run is tested for `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` on its mesh, which the first `hibi_mud_step` calls build, so `hibi_mud_step` returns it and creation accepts such parameters.
  *
  * # Safety
  * `params` must be NULL or readable; `size` NULL or writable.
@@ -1845,21 +1851,22 @@ hibi_status hibi_mud_memory_size(const struct hibi_mud_params *params,
 size_t hibi_mud_memory_align(void);
 
 /**
- * Creates a run in library memory: every spring's break stretch drawn, ready to step.
+ * Creates a run in library memory: ready to step, in time independent of the lattice's size (the first steps set it up: see `hibi_mud_step`).
  * Free it with `hibi_mud_destroy`. `*out` is written only on success. Every array
  * it computes in is in its block: the calling thread's stack needs no more than 16 KiB.
  *
  * # Safety
  * `params` must be NULL or readable; `out` NULL or writable.
  */
-hibi_status hibi_mud_create(const struct hibi_mud_params *params, struct hibi_mud **out);
+hibi_status hibi_mud_create(const struct hibi_mud_params *params,
+                            struct hibi_mud **out);
 
 /**
  * Creates a run in caller memory of at least `hibi_mud_memory_size` bytes
  * aligned to `hibi_mud_memory_align()`, as `hibi_mud_create` does. The memory stays
  * the caller's (keep it untouched while the run lives); `hibi_mud_destroy` is
  * optional. Nothing is written on failure.
- * One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may have written its memory when it refuses them.
+ * One refusal comes later: an irregular lattice's explicit run is tested for `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` on its mesh, which the first `hibi_mud_step` calls build, so `hibi_mud_step` returns it and creation accepts such parameters.
  *
  * # Safety
  * `params` must be NULL or readable; `memory` NULL or writable for `memory_len` bytes;
@@ -1882,9 +1889,15 @@ void hibi_mud_destroy(struct hibi_mud *mud);
 /**
  * Advances the run by about `budget` units of work (one unit: one spring or node visited):
  * it does pieces until their work reaches the budget, so a call on an unfinished run does at
- * least one piece and does at most max(budget, 1) − 1 + one piece. The explicit solver's
- * short steps are resumed where the last call stopped; its piece is one row of the lattice
- * in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
+ * least one piece and does at most max(budget, 1) − 1 + one piece. The first calls set the
+ * run up, item by item (a spring, a node or a mesh cell: 1 unit; an irregular node's jitter
+ * into its mesh or its constants: 16; a block of the quasi-static solver's tree: 32, at most
+ * `HIBI_MUD_SETUP_PIECE`); until then the run is an uncracked plate at shrink 0 and every
+ * output describes that. An irregular lattice's explicit run is tested for stability node by
+ * node there: a node that fails gives `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` (the status
+ * names the field; nothing is written to `*progress`), and so does every later call. The
+ * explicit solver's short steps are resumed where the last call stopped; its piece is one
+ * row of the lattice in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
  * spring by spring and node by node: no overrun). The quasi-static solver's piece is one
  * node's springs (4 square, 6 hexagonal, at most 16 irregular). When the physics ends, the
  * crack network is traced within the same budgets, in pieces of at most

@@ -308,9 +308,11 @@ public:
     }
 
     /// Advances by about `budget` units of work (springs and nodes visited; overruns by less
-    /// than one piece: a row of the lattice, a node's springs, or a piece of the network's
-    /// tracing, at most HIBI_MUD_TRACE_PIECE units, which runs within the same budgets: see
-    /// hibi_mud_step).
+    /// than one piece: a piece of the setup the first calls do, at most HIBI_MUD_SETUP_PIECE
+    /// units, a row of the lattice, a node's springs, or a piece of the network's tracing, at
+    /// most HIBI_MUD_TRACE_PIECE units, which runs within the same budgets: see
+    /// hibi_mud_step). Throws hibi::Error on HIBI_ERROR_MUD_SHORT_STEP_STABILITY (an irregular
+    /// mesh that fails the explicit solver's stability test), and again on every later call.
     Progress step(std::uint64_t budget) {
         Progress progress{};
         check(hibi_mud_step(handle_.get(), budget, &progress));

@@ -239,7 +239,7 @@ fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::Ce
     let memory = params.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     let render = MudRender { width: 384, height: 384, ..MudRender::default() };
     let mut mask = vec![0u8; 384 * 384];
     mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
@@ -1053,6 +1053,23 @@ fn c_caller_memory_path_allocates_nothing() {
         .find(|l| l.contains("total heap usage:"))
         .unwrap_or_else(|| panic!("no heap summary:\n{stderr}"));
     assert!(summary.contains("total heap usage: 0 allocs, 0 frees"), "{summary}");
+}
+
+/// An irregular lattice's explicit run whose mesh fails the stability test is created (in
+/// caller memory of any bytes) and refused by the `hibi_mud_step` that tests the failing node,
+/// with the status naming `short_step`, no progress written, and every later step refused too.
+#[test]
+fn c_an_unstable_irregular_mesh_is_refused_by_step() {
+    let output = regression("tests/c/mud_unstable_mesh.c");
+    let lines: Vec<&str> = output.lines().collect();
+    assert_eq!(lines.len(), 5, "{output}");
+    assert_eq!(lines[..2], ["memory_size: status 0", "create_in: status 0"], "{output}");
+    let refused = format!("status {} (mud: short_step fails", hibi::HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+    assert!(lines[2].starts_with(&format!("step: {refused}")), "{output}");
+    assert!(lines[2].ends_with("after more than 1000 calls: yes, progress untouched: yes []"), "{output}");
+    let again = format!("step again: status {}, progress untouched: yes", hibi::HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+    assert_eq!(lines[3], again, "{output}");
+    assert_eq!(lines[4], "uncracked: segments 0, vertices 0, edges 0, points 0", "{output}");
 }
 
 /// Caller memory may hold anything: every model made with `*_create_in` over memory filled

@@ -141,8 +141,8 @@ fn a_huge_skin_perturbation_builds() {
 /// `hibi_mud_segments` wrote NaN ends and widths. Such a step is now refused, with the status
 /// naming it, before anything runs: it fails the stability test of the damped step (Eq. 4; a
 /// sufficient test, 1 s is a hundred times past it). The irregular lattice is checked node by
-/// node on its mesh, so only `hibi_mud_create` can tell. (The wrap itself is tested in
-/// `core/src/scalar.rs`.)
+/// node on its mesh, which the first steps build, so the `hibi_mud_step` that finds the failing
+/// node tells (and every later one). (The wrap itself is tested in `core/src/scalar.rs`.)
 #[test]
 fn explicit_short_steps_failing_the_stability_test_are_refused() {
     let unstable = |topology, drive, columns, rows, short_step| {
@@ -166,18 +166,21 @@ fn explicit_short_steps_failing_the_stability_test_are_refused() {
         assert!(mud.is_null());
     }
     let params = unstable(HIBI_MUD_IRREGULAR, HIBI_MUD_SHRINK, 12, 12, 1.0);
-    // SAFETY: valid pointers.
+    // SAFETY: valid pointers; the run is live until destroyed.
     unsafe {
-        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+        assert_eq!(hibi_mud_memory_size(&params, &mut size), HIBI_OK);
+        assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+        assert_eq!(hibi_mud_step(mud, u64::MAX, core::ptr::null_mut()), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+        assert_eq!(hibi_mud_step(mud, 1, core::ptr::null_mut()), HIBI_ERROR_MUD_SHORT_STEP_STABILITY);
+        hibi_mud_destroy(mud);
     }
-    assert!(mud.is_null());
     // SAFETY: a static C string.
     let message = unsafe { core::ffi::CStr::from_ptr(hibi_status_string(HIBI_ERROR_MUD_SHORT_STEP_STABILITY)) };
     assert!(message.to_str().unwrap().contains("short_step"), "{message:?}");
 }
 
 /// The stability test is not too loose: on each lattice, an explicit run at the largest short
-/// step `hibi_mud_create` accepts (found by bisection) keeps every segment finite, and its
+/// step `hibi_mud_create` and the run's first steps accept (found by bisection) keeps every segment finite, and its
 /// springs do not all break at once as a diverging run's do.
 #[test]
 fn an_explicit_run_at_the_largest_accepted_step_stays_finite() {
@@ -189,8 +192,14 @@ fn an_explicit_run_at_the_largest_accepted_step_stays_finite() {
             let mut p = params;
             p.short_step = short_step;
             let mut mud = core::ptr::null_mut();
-            // SAFETY: valid pointers.
-            let status = unsafe { hibi_mud_create(&p, &mut mud) };
+            // SAFETY: valid pointers; the irregular mesh is tested by the first steps (a
+            // stable run's whole run, at this size).
+            let status = unsafe {
+                match hibi_mud_create(&p, &mut mud) {
+                    HIBI_OK => hibi_mud_step(mud, u64::MAX, core::ptr::null_mut()),
+                    status => status,
+                }
+            };
             // SAFETY: created above, or NULL.
             unsafe { hibi_mud_destroy(mud) };
             assert!(status == HIBI_OK || status == HIBI_ERROR_MUD_SHORT_STEP_STABILITY, "{status}");

@@ -10,7 +10,7 @@ fn run<S: Scalar>(params: &MudParams) -> (CrackStatistics, u64, Vec<hibi_core::m
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
-    assert!(mud.run().finished);
+    assert!(mud.run().unwrap().finished);
     let stats = mud.statistics();
     let mut segments = vec![Default::default(); mud.segment_count()];
     mud.segments(&mut segments).expect("buffer suffices");
@@ -167,7 +167,7 @@ fn periodic_rasters_are_seamless() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     let [w, h] = mud.lattice().extent();
     let render = MudRender { width: 256, height: 256, ..MudRender::default() };
     let mut tile = vec![0u8; 256 * 256];
@@ -195,7 +195,7 @@ fn periodic_rasters_are_seamless() {
     let memory = open.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&open, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     mud.render(&render, MudLayers { mask: Some(&mut tile), ..Default::default() }).unwrap();
     mud.render(
         &MudRender { offset: [w / 2.0, h / 2.0], ..render },
@@ -282,7 +282,7 @@ fn step_does_bounded_work_and_resumes_to_the_same_result() {
         let mut before = 0;
         let mut calls = 0;
         loop {
-            let progress = mud.step(budget);
+            let progress = mud.step(budget).unwrap();
             let bound = budget - 1 + piece;
             assert!(progress.work - before <= bound, "{solver:?}: {} > {bound}", progress.work - before);
             before = progress.work;
@@ -306,7 +306,7 @@ fn a_run_can_end_at_a_target_crack_density() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    let end = mud.run();
+    let end = mud.run().unwrap();
     assert!(end.finished && end.crack_density >= 0.2 && end.crack_density < 0.25, "{end:?}");
     assert!(end.shrink < 0.023, "{end:?}");
 }
@@ -317,7 +317,7 @@ fn the_time_map_dates_every_crack_pixel_and_only_those() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    let end = mud.run();
+    let end = mud.run().unwrap();
     let render = MudRender { width: 192, height: 192, ..MudRender::default() };
     let (mut mask, mut time, mut height) = (vec![0u8; 192 * 192], vec![0.0f32; 192 * 192], vec![0.0f32; 192 * 192]);
     mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
@@ -353,7 +353,7 @@ fn network(params: &MudParams) -> Network {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
-    assert!(mud.run().finished);
+    assert!(mud.run().unwrap().finished);
     let counts = mud.network_counts();
     let mut n = Network {
         vertices: vec![Default::default(); counts.vertices],
@@ -478,7 +478,7 @@ fn cells_on<S: Scalar>(
     // In calls of a million units, a thousand at most: a run that does not end fails here.
     let mut end = mud.progress();
     for _ in 0..1000 {
-        end = mud.step(1_000_000);
+        end = mud.step(1_000_000).unwrap();
         if end.finished {
             break;
         }
@@ -605,7 +605,7 @@ fn run_within<S: Scalar>(params: &MudParams, limit: u64) -> hibi_core::mud::MudP
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     let mut progress = mud.progress();
     while !progress.finished && progress.work < limit {
-        progress = mud.step(1_000_000);
+        progress = mud.step(1_000_000).unwrap();
     }
     progress
 }
@@ -743,7 +743,7 @@ fn statistics_are_those_of_the_network_and_its_cells() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     let stats = mud.statistics();
     let n = network(&p);
     let (counts, rings, _, [w, h]) = cells(&p);
@@ -799,7 +799,7 @@ fn the_default_mask_shows_thin_connected_cracks() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     let render = MudRender { width: 512, height: 512, ..MudRender::default() };
     let mut mask = vec![0u8; 512 * 512];
     mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
@@ -830,7 +830,7 @@ fn the_square_lattice_gives_a_maze_of_short_cracks_meeting_square() {
         let memory = p.memory().unwrap();
         let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
         let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-        mud.run();
+        mud.run().unwrap();
         mud.statistics()
     };
     let (square, hexagonal) = (stats("fig6b"), stats("fig6a"));
@@ -849,7 +849,7 @@ fn network_and_cells_refuse_short_buffers_and_write_nothing() {
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-    mud.run();
+    mud.run().unwrap();
     let n = mud.network_counts();
     let sentinel_vertex = NetworkVertex { degree: 77, ..Default::default() };
     let sentinel_edge = NetworkEdge { from: 77, ..Default::default() };
@@ -885,7 +885,7 @@ fn golden_explicit_runs() {
         let memory = params.memory().unwrap();
         let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
         let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-        mud.run();
+        mud.run().unwrap();
         let springs = mud.lattice().spring_count();
         let times: Vec<u8> = (0..springs)
             .flat_map(|s| mud.spring_break_time(s).map_or(u32::MAX, f32::to_bits).to_le_bytes())
@@ -919,4 +919,236 @@ fn golden_explicit_runs() {
         16330958032564823092,
     ];
     assert_eq!(cases, expected);
+}
+
+/// The environment variable that makes
+/// [`creating_a_run_takes_the_same_instructions_whatever_the_lattice_size`], run under
+/// Callgrind by itself, create one case (`topology:size`) instead of measuring them all.
+const CREATE_CASE: &str = "HIBI_MUD_CREATE_CASE";
+
+/// Creates a run; the only function Callgrind counts in
+/// [`creating_a_run_takes_the_same_instructions_whatever_the_lattice_size`] (found by its
+/// unmangled name).
+#[unsafe(no_mangle)]
+#[inline(never)]
+fn hibi_test_mud_new<'a>(p: &MudParams, buffers: MudBuffers<'a, f32>) -> Mud<'a, f32> {
+    Mud::new(p, buffers).expect("memory suffices")
+}
+
+/// What `Mud::new` costs, in instructions (Callgrind, so the same on any machine), does not
+/// grow with the lattice: a 1024² lattice takes at most 1.1 times the instructions of a 64²
+/// one, regular and irregular, with either solver (the rest of the setup is done by the first
+/// steps, within their budgets). Each case is created under Callgrind by this test binary
+/// itself (the case named by [`CREATE_CASE`]), counting `hibi_test_mud_new` alone.
+#[test]
+fn creating_a_run_takes_the_same_instructions_whatever_the_lattice_size() {
+    let case_params = |case: &str| {
+        let (topology, rest) = case.split_once(':').expect("topology:solver:size");
+        let (solver, size) = rest.split_once(':').expect("solver:size");
+        let topology = if topology == "irregular" { Topology::Irregular } else { Topology::Hexagonal };
+        let solver = if solver == "explicit" { Solver::Explicit } else { Solver::QuasiStatic };
+        let size = size.parse().expect("a size");
+        MudParams { topology, solver, columns: size, rows: size, ..MudParams::default() }
+    };
+    if let Ok(case) = std::env::var(CREATE_CASE) {
+        // Under Callgrind: create the case and report what it holds.
+        let p = case_params(&case);
+        let mut memory = p.memory().expect("valid parameters").allocate();
+        let mud = hibi_test_mud_new(&p, memory.buffers());
+        println!("\nmud created {:?}", mud.progress());
+        return;
+    }
+    for topology in ["hexagonal", "irregular"] {
+        for solver in ["explicit", "quasi-static"] {
+            let mut counts = Vec::new();
+            for size in [64, 1024] {
+                let case = format!("{topology}:{solver}:{size}");
+                let (stdout, instructions) = hibi_tests::callgrind_this_test(
+                    "creating_a_run_takes_the_same_instructions_whatever_the_lattice_size",
+                    "hibi_test_mud_new",
+                    (CREATE_CASE, &case),
+                );
+                let created = stdout.lines().find_map(|l| l.strip_prefix("mud created ")).map(str::to_owned);
+                let created = created.unwrap_or_else(|| panic!("{case}: no run reported in\n{stdout}"));
+                println!("{case}: {instructions} instructions; {created}");
+                counts.push((instructions, created));
+            }
+            assert_eq!(counts[0].1, counts[1].1, "{topology} {solver}: the same progress");
+            let (small, large) = (counts[0].0 as f64, counts[1].0 as f64);
+            assert!(large <= 1.1 * small, "{topology} {solver}: {large} instructions at 1024², {small} at 64²");
+        }
+    }
+}
+
+/// Everything a run leaves, to compare runs bit for bit: progress, break times, segments,
+/// network, cells, statistics.
+#[derive(Debug, PartialEq)]
+struct Readout {
+    progress: String,
+    break_times: Vec<Option<u32>>,
+    segments: Vec<[u32; 8]>,
+    network: String,
+    cells: String,
+    statistics: String,
+}
+
+fn readout(mud: &Mud<'_, f32>) -> Readout {
+    let counts = mud.network_counts();
+    let mut v = vec![Default::default(); counts.vertices];
+    let mut e = vec![Default::default(); counts.edges];
+    let mut q = vec![Default::default(); counts.points];
+    mud.network(&mut v, &mut e, &mut q).expect("sized");
+    let cells = mud.cell_counts();
+    let (mut rings, mut points) = (vec![Default::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
+    mud.cells(&mut rings, &mut points).expect("sized");
+    let mut segments = Vec::new();
+    mud.for_each_segment(|s| {
+        let v = [s.start, s.end, s.width, s.time].concat();
+        segments.push(std::array::from_fn(|i| v[i].to_bits()));
+    });
+    Readout {
+        progress: format!("{:?}", mud.progress()),
+        break_times: (0..mud.lattice().spring_count()).map(|s| mud.spring_break_time(s).map(f32::to_bits)).collect(),
+        segments,
+        network: format!("{v:?} {e:?} {q:?}"),
+        cells: format!("{cells:?} {rings:?} {points:?}"),
+        statistics: format!("{:?}", mud.statistics()),
+    }
+}
+
+/// The cases of the budget tests: square, hexagonal and irregular lattices with both solvers,
+/// open and periodic edges, shrink and growth, small enough to step one unit at a time.
+fn budget_cases() -> Vec<MudParams> {
+    let small = MudParams { columns: 10, rows: 8, target_shrink: 0.03, ..MudParams::default() };
+    let mut cases = Vec::new();
+    for (i, topology) in [Topology::Square, Topology::Hexagonal, Topology::Irregular].into_iter().enumerate() {
+        for (j, solver) in [Solver::Explicit, Solver::QuasiStatic].into_iter().enumerate() {
+            let boundary = if (i + j) % 2 == 0 { Boundary::Open } else { Boundary::Periodic };
+            let drive = if j == 0 && i == 1 { hibi_core::mud::Drive::Growth } else { hibi_core::mud::Drive::Shrink };
+            cases.push(MudParams { topology, solver, boundary, drive, ..small });
+        }
+    }
+    cases
+}
+
+/// Runs `p` in `scalars` and `words` with `budget` per call (`None`: one `run()`), asserting
+/// that no call does more than max(budget, 1) − 1 + one piece (the setup's, a row's springs
+/// and their rescan, a node's springs, or the tracing's), and that while nothing has broken
+/// the outputs show no crack. Returns the readout.
+fn run_budgeted(p: &MudParams, scalars: &mut [f32], words: &mut [u32], budget: Option<u64>) -> Readout {
+    let mut mud = Mud::new(p, MudBuffers { scalars, words }).expect("memory suffices");
+    let uncracked = readout(&mud);
+    assert!(uncracked.segments.is_empty() && uncracked.break_times.iter().all(Option::is_none), "{p:?}");
+    let piece = match p.solver {
+        Solver::Explicit => 2 * u64::from(p.columns),
+        Solver::QuasiStatic => 16,
+    }
+    .max(hibi_core::mud::TRACE_PIECE)
+    .max(hibi_core::mud::SETUP_PIECE);
+    match budget {
+        None => {
+            mud.run().expect("a stable run");
+        }
+        Some(budget) => loop {
+            let before = mud.progress().work;
+            let progress = mud.step(budget).expect("a stable run");
+            let done = progress.work - before;
+            let bound = budget.max(1) - 1 + piece;
+            assert!(done <= bound, "{p:?}: budget {budget}: {done} > {bound}");
+            // (Past the setup and its first units, at most a few thousand here.)
+            if progress.work < 4000 && progress.broken_springs == 0 && !mud.is_tracing() {
+                let now = readout(&mud);
+                // No crack (the cells: none while the setup is under way, as while a trace is;
+                // an open plate's border once it is done).
+                assert_eq!((&now.segments, &now.network), (&uncracked.segments, &uncracked.network), "{p:?}");
+            }
+            if progress.finished {
+                break;
+            }
+        },
+    }
+    readout(&mud)
+}
+
+/// Frame budgets, the setup included: every budget in {0, 1, 7, 100} leaves the run of one
+/// unbounded call bit for bit, in every element of the buffers (displacements, break stretches,
+/// break times, the mesh, the solver's arrays) and every output, on every lattice with both
+/// solvers; no call does more than max(budget, 1) − 1 + one piece.
+#[test]
+fn every_budget_sets_up_and_runs_the_run_of_one_call() {
+    for p in budget_cases() {
+        let m = p.memory().expect("valid parameters");
+        let (mut scalars, mut words) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        let whole = run_budgeted(&p, &mut scalars, &mut words, None);
+        assert!(!whole.segments.is_empty(), "{p:?}: nothing broke");
+        for budget in [0, 1, 7, 100] {
+            let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+            let run = run_budgeted(&p, &mut s, &mut w, Some(budget));
+            assert!(run == whole, "{p:?}: budget {budget} changed the outputs");
+            let same_scalars = s.iter().zip(&scalars).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same_scalars && w == words, "{p:?}: budget {budget} changed the buffers");
+        }
+    }
+}
+
+/// The buffers may hold any bytes: a run over buffers filled with a byte pattern (0xa5, 0xff)
+/// gives the outputs of one over zeroed buffers, stepped or in one call.
+#[test]
+fn a_run_over_buffers_of_any_bytes_is_the_run_over_zeroed_ones() {
+    for p in budget_cases() {
+        let m = p.memory().expect("valid parameters");
+        let (mut scalars, mut words) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        let zeroed = run_budgeted(&p, &mut scalars, &mut words, None);
+        for byte in [0xa5u8, 0xff] {
+            let word = u32::from_ne_bytes([byte; 4]);
+            for budget in [None, Some(7)] {
+                let (mut s, mut w) = (vec![f32::from_bits(word); m.scalars], vec![word; m.words]);
+                let run = run_budgeted(&p, &mut s, &mut w, budget);
+                assert!(run == zeroed, "{p:?}: bytes {byte:#x}, budget {budget:?} changed the run");
+            }
+        }
+    }
+}
+
+/// An irregular lattice's explicit run is tested for stability on its mesh, which the first
+/// steps build: `Mud::new` accepts a short step the mesh refuses, the step that finds the
+/// failing node returns `ShortStepStability`, and so does every later call; the outputs stay
+/// those of the uncracked plate.
+#[test]
+fn an_unstable_irregular_explicit_run_is_refused_by_its_setup_steps() {
+    use hibi_core::mud::{MudError, MudParamError};
+    let p = MudParams {
+        topology: Topology::Irregular,
+        solver: Solver::Explicit,
+        boundary: Boundary::Open,
+        columns: 12,
+        rows: 12,
+        short_step: 1.0,
+        ..MudParams::default()
+    };
+    let m = p.memory().expect("the mesh is not built yet: accepted");
+    let refused = Err(MudError::Param(MudParamError::ShortStepStability));
+    for budget in [1, 100, u64::MAX] {
+        let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).expect("accepted");
+        let uncracked = readout(&mud);
+        let mut calls = 0;
+        let found = loop {
+            calls += 1;
+            match mud.step(budget) {
+                Ok(progress) => assert!(!progress.finished && progress.shrink == 0.0, "{progress:?}"),
+                Err(e) => break Err(e),
+            }
+        };
+        assert_eq!(found, refused, "budget {budget}");
+        assert!(budget != 1 || calls > 1000, "budget 1: refused after {calls} calls, before the mesh was built?");
+        assert_eq!(mud.step(budget), refused);
+        assert_eq!(mud.run(), refused);
+        let after = readout(&mud);
+        assert_eq!(
+            (&after.segments, &after.network, &after.cells),
+            (&uncracked.segments, &uncracked.network, &uncracked.cells)
+        );
+        assert!(mud.lattice().mesh().is_some(), "the mesh was built");
+    }
 }

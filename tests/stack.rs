@@ -70,8 +70,8 @@ fn every_public_function(peaks: &mut Calls) {
     let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
     let mut store = params.memory().expect("valid").allocate::<f32>();
     let mut mud = measured(peaks, "Mud::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
-    measured(peaks, "Mud::step", || mud.step(1000));
-    measured(peaks, "Mud::run", || mud.run());
+    measured(peaks, "Mud::step", || mud.step(1000).expect("stable"));
+    measured(peaks, "Mud::run", || mud.run().expect("stable"));
     let counts = mud.network_counts();
     let (mut v, mut e, mut p) = (
         vec![Default::default(); counts.vertices],
@@ -90,15 +90,15 @@ fn every_public_function(peaks: &mut Calls) {
     measured(peaks, "Mud::render", || mud.render(&render, layers).expect("sized"));
     let mut store = params.memory().expect("valid").allocate::<Q16>();
     let mut mud = measured(peaks, "Mud<Q16>::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
-    measured(peaks, "Mud<Q16>::run", || mud.run());
+    measured(peaks, "Mud<Q16>::run", || mud.run().expect("stable"));
     let explicit = MudParams { solver: hibi_core::mud::Solver::Explicit, columns: 16, rows: 16, ..params };
     let mut store = explicit.memory().expect("valid").allocate::<f32>();
     let mut mud = measured(peaks, "Mud::new (explicit)", || Mud::new(&explicit, store.buffers()).expect("memory"));
-    measured(peaks, "Mud::step (explicit)", || mud.step(100_000));
+    measured(peaks, "Mud::step (explicit)", || mud.step(100_000).expect("stable"));
     let irregular = MudParams { topology: hibi_core::mud::Topology::Irregular, ..params };
     let mut store = irregular.memory().expect("valid").allocate::<f32>();
     let mut mud = measured(peaks, "Mud::new (irregular)", || Mud::new(&irregular, store.buffers()).expect("memory"));
-    measured(peaks, "Mud::run (irregular)", || mud.run());
+    measured(peaks, "Mud::run (irregular)", || mud.run().expect("stable"));
 
     let params = GlassParams { width: 160.0, height: 160.0, impact: [80.0; 2], seed: 7, ..GlassParams::default() };
     let glass_memory = params.memory().expect("valid");

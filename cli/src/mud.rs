@@ -180,17 +180,17 @@ fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
 /// Runs `params` to its end, reporting to `progress`, and draws the maps of every view. The
 /// parameters and views must have passed [`check`]. Fails, naming the options, when the
 /// explicit solver's short step fails its stability test on an irregular lattice (known only
-/// once the lattice is built).
+/// once the first steps have built the lattice).
 pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> Result<MudRun, Failure> {
     let memory = params.memory().expect("checked parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let mut mud = match Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }) {
-        Ok(mud) => mud,
-        Err(MudError::Param(e)) => return Err(Failure::invalid("mud", option(e), e.to_string())),
-        Err(e) => return Err(Failure::Runtime(e.to_string())),
+    let failure = |error: MudError| match error {
+        MudError::Param(e) => Failure::invalid("mud", option(e), e.to_string()),
+        e => Failure::Runtime(e.to_string()),
     };
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).map_err(failure)?;
     loop {
-        let p = mud.step(2_000_000);
+        let p = mud.step(2_000_000).map_err(failure)?;
         progress.set_fraction(fraction(params, p.shrink, p.crack_density));
         if p.finished {
             break;

@@ -173,6 +173,12 @@ pub const HIBI_MUD_TRACE_PIECE: u64 = 64;
 
 const _: () = assert!(HIBI_MUD_TRACE_PIECE == hibi_core::mud::TRACE_PIECE);
 
+/// The most work one piece of a mud run's setup does, in `hibi_mud_step`'s units (a block of
+/// the quasi-static solver's tree): a call that sets up does at most max(budget, 1) − 1 + this.
+pub const HIBI_MUD_SETUP_PIECE: u64 = 32;
+
+const _: () = assert!(HIBI_MUD_SETUP_PIECE == hibi_core::mud::SETUP_PIECE);
+
 /// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
 /// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
 /// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
@@ -238,16 +244,15 @@ convert!(hibi_mud_crack_statistics <=> CrackStatistics {
 convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset });
 
 lifecycle!(
-    hibi_mud (mud: "run", "every spring's break stretch drawn, ready to step"),
+    hibi_mud (mud: "run", "ready to step, in time independent of the lattice's size (the first steps set it up: see `hibi_mud_step`)"),
     hibi_mud_params <=> MudParams, cookie PARAMS_COOKIE,
     errors (HIBI_ERROR_MUD_PARAMS_NOT_INITIALISED, HIBI_ERROR_MUD_ENUM, HIBI_ERROR_MUD_UNKNOWN_PRESET),
     presets "`\"fig6a\"` … `\"fig10\"`" in hibi_core::mud::PRESETS,
     hibi_mud_params_default, hibi_mud_params_preset, hibi_mud_preset_name, hibi_mud_memory_size, hibi_mud_memory_align,
     hibi_mud_create, hibi_mud_create_in, hibi_mud_destroy,
-    only create: "One exception: `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` of an irregular lattice's \
-        explicit run is found on its mesh, which only `hibi_mud_create` and `hibi_mud_create_in` \
-        build, so `hibi_mud_memory_size` accepts such parameters and `hibi_mud_create_in` may \
-        have written its memory when it refuses them.",
+    only create: "One refusal comes later: an irregular lattice's explicit run is tested for \
+        `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` on its mesh, which the first `hibi_mud_step` calls \
+        build, so `hibi_mud_step` returns it and creation accepts such parameters.",
 );
 
 impl Object for hibi_mud {
@@ -278,9 +283,15 @@ impl Object for hibi_mud {
 
 /// Advances the run by about `budget` units of work (one unit: one spring or node visited):
 /// it does pieces until their work reaches the budget, so a call on an unfinished run does at
-/// least one piece and does at most max(budget, 1) − 1 + one piece. The explicit solver's
-/// short steps are resumed where the last call stopped; its piece is one row of the lattice
-/// in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
+/// least one piece and does at most max(budget, 1) − 1 + one piece. The first calls set the
+/// run up, item by item (a spring, a node or a mesh cell: 1 unit; an irregular node's jitter
+/// into its mesh or its constants: 16; a block of the quasi-static solver's tree: 32, at most
+/// `HIBI_MUD_SETUP_PIECE`); until then the run is an uncracked plate at shrink 0 and every
+/// output describes that. An irregular lattice's explicit run is tested for stability node by
+/// node there: a node that fails gives `HIBI_ERROR_MUD_SHORT_STEP_STABILITY` (the status
+/// names the field; nothing is written to `*progress`), and so does every later call. The
+/// explicit solver's short steps are resumed where the last call stopped; its piece is one
+/// row of the lattice in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
 /// spring by spring and node by node: no overrun). The quasi-static solver's piece is one
 /// node's springs (4 square, 6 hexagonal, at most 16 irregular). When the physics ends, the
 /// crack network is traced within the same budgets, in pieces of at most
@@ -298,7 +309,8 @@ pub unsafe extern "C" fn hibi_mud_step(
     budget: u64,
     progress: *mut hibi_mud_progress,
 ) -> hibi_status {
-    let step = |mud: &mut hibi_mud| Ok(hibi_mud_progress::from_core(&mud.mud.step(budget)));
+    let step =
+        |mud: &mut hibi_mud| mud.mud.step(budget).map(|p| hibi_mud_progress::from_core(&p)).map_err(output_status);
     // SAFETY: the caller's contract.
     guard(|| unsafe { update(mud, c"mud", (progress, c"progress"), step) })
 }
@@ -358,7 +370,8 @@ pub unsafe extern "C" fn hibi_mud_statistics(mud: *const hibi_mud, out: *mut hib
     })
 }
 
-/// The status of a core error from writing an output: only a short buffer can happen.
+/// The status of a core error: a parameter's (from creating, or the stability test of an
+/// irregular explicit run's first steps), or a short buffer (from writing an output).
 fn output_status(error: MudError) -> hibi_status {
     match error {
         MudError::Param(p) => param_status(p),
@@ -674,7 +687,7 @@ mod tests {
         p.boundary = HIBI_MUD_OPEN;
         let (mud, mut scalars, mut words) = finished(&p);
         let mut core = Mud::new(&from_c(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-        core.run();
+        core.run().unwrap();
         let expected = core.network_counts();
         assert!(expected.vertices > 0 && expected.edges > 0 && expected.points > expected.edges);
         let (nv, ne, np) = (expected.vertices, expected.edges, expected.points);
@@ -765,7 +778,7 @@ mod tests {
             let (mud, mut scalars, mut words) = finished(&p);
             let mut core =
                 Mud::new(&from_c(&p).unwrap(), MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
-            core.run();
+            core.run().unwrap();
             let expected = core.cell_counts();
             let (nr, np) = (expected.rings, expected.points);
             assert!(nr > 1 && np > 3 * nr, "{boundary}: {expected:?}");

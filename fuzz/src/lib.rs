@@ -389,7 +389,7 @@ pub fn skin_params(u: &mut Unstructured) -> Result<hibi_skin_params> {
 /// most [`MAX_OBJECT_BYTES`], `*_create` or `*_create_in` into memory of any length and
 /// alignment. Returns the object and its caller memory (empty for `*_create`), which must
 /// outlive it.
-pub fn create<P: core::fmt::Debug + OnlyCreateCanTell, O>(
+pub fn create<P: core::fmt::Debug, O>(
     u: &mut Unstructured,
     params: &P,
     memory_size: unsafe extern "C" fn(*const P, *mut usize) -> hibi_status,
@@ -420,10 +420,7 @@ pub fn create<P: core::fmt::Debug + OnlyCreateCanTell, O>(
         let status = unsafe { create(params, &mut object) };
         if !check(status) {
             assert_eq!(object, dangling, "a failing create wrote its output");
-            assert!(
-                status == HIBI_ERROR_OUT_OF_MEMORY || Some(status) == params.only_create_can_tell(),
-                "memory_size accepted what create refused: status {status}"
-            );
+            assert!(status == HIBI_ERROR_OUT_OF_MEMORY, "memory_size accepted what create refused: status {status}");
             return Ok(None);
         }
         Ok(Some((object, Vec::new())))
@@ -435,35 +432,13 @@ pub fn create<P: core::fmt::Debug + OnlyCreateCanTell, O>(
         let fits = !ptr.is_null() && len >= size && (ptr as usize) % align == 0;
         if !check(status) {
             assert_eq!(object, dangling, "a failing create_in wrote its output");
-            assert!(
-                !fits || Some(status) == params.only_create_can_tell(),
-                "create_in refused memory that fits: status {status}"
-            );
+            assert!(!fits, "create_in refused memory that fits: status {status}");
             return Ok(None);
         }
         assert!(fits, "create_in accepted memory that does not fit");
         Ok(Some((object, memory)))
     }
 }
-
-/// A refusal `*_memory_size` cannot foresee for some parameters.
-pub trait OnlyCreateCanTell {
-    /// The status only `*_create` and `*_create_in` can give these parameters, if any.
-    fn only_create_can_tell(&self) -> Option<hibi_status> {
-        None
-    }
-}
-
-/// An irregular lattice's explicit run is checked for stability node by node on its mesh,
-/// which only create builds (see `HIBI_ERROR_MUD_SHORT_STEP_STABILITY`).
-impl OnlyCreateCanTell for hibi_mud_params {
-    fn only_create_can_tell(&self) -> Option<hibi_status> {
-        (self.topology == HIBI_MUD_IRREGULAR && self.solver == HIBI_MUD_EXPLICIT)
-            .then_some(HIBI_ERROR_MUD_SHORT_STEP_STABILITY)
-    }
-}
-impl OnlyCreateCanTell for hibi_glass_params {}
-impl OnlyCreateCanTell for hibi_skin_params {}
 
 /// An out-pointer to `value`, or (rarely) NULL.
 pub fn out<T>(u: &mut Unstructured, value: &mut T) -> Result<*mut T> {

@@ -457,6 +457,31 @@ static void parameters(void) {
     MUD("mud-tolerance-out-of-scale", p_.displacement_tolerance = 1e-12f);
     MUD("mud-spread-out-of-scale", p_.break_stretch_spread = FLT_MAX);
     MUD("mud-short-step-unstable", (p_.solver = HIBI_MUD_EXPLICIT, p_.short_step = 1.0f));
+    {
+        /* An irregular lattice's explicit run is tested on its mesh, which the first steps
+         * build: creation accepts it, and the step that finds the failing node refuses it,
+         * writing no progress. */
+        hibi_mud_params p = small_mud();
+        hibi_mud *mud = NULL;
+        hibi_mud_progress progress;
+        hibi_status status;
+        int kept = 0;
+        p.topology = HIBI_MUD_IRREGULAR;
+        p.solver = HIBI_MUD_EXPLICIT;
+        p.short_step = 1.0f;
+        p.columns = 12;
+        p.rows = 12;
+        status = hibi_mud_create(&p, &mud);
+        if (status == HIBI_OK) {
+            do {
+                memset(&progress, 0x5a, sizeof progress);
+                status = hibi_mud_step(mud, 1000, &progress);
+            } while (status == HIBI_OK && !progress.finished);
+            kept = progress.work == 0x5a5a5a5a5a5a5a5aull && progress.finished == 0x5a5a5a5au;
+            hibi_mud_destroy(mud);
+        }
+        row_kept("mud-irregular-short-step-unstable", status, kept);
+    }
 
     GLASS("glass-unknown-spread", p_.spread = 5);
     GLASS("glass-width-nan", p_.width = NAN);

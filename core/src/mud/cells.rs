@@ -310,8 +310,8 @@ impl<S: Scalar> Mud<'_, S> {
     /// order (by the lowest mesh cell and side it enters), and returns the number of rings
     /// that wrap around a periodic lattice.
     fn for_each_ring(&self, mut ring: impl FnMut(At)) -> usize {
-        // A trace under way has no cells to show yet.
-        if self.is_tracing() {
+        // The setup or a trace under way has no cells to show yet.
+        if !self.shows_network() {
             return 0;
         }
         let mut wrapping = 0;

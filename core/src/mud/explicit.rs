@@ -37,7 +37,7 @@
 use super::irregular::Mesh;
 use super::lattice::Lattice;
 use super::material::Material;
-use super::{ABSENT, Boundary, Mud, SolverState, take};
+use super::{Boundary, Mud, SolverState, Topology, take};
 use crate::scalar::Scalar;
 
 /// Velocities, forces, spring limits and the constants of the damped step.
@@ -122,28 +122,19 @@ pub(super) fn stable(m: f64, c: f64, lambda: f64, tau: f64) -> bool {
     mu * (x * (1.0 + e) - 2.0 * (1.0 - e)) < 2.0 * (1.0 + e) && mu * (1.0 - (1.0 + x) * e) < 1.0 - e
 }
 
-/// Whether the explicit run of `lattice` with `material` (computed in `f32` whatever the
-/// backend, so that every backend accepts the same parameters) passes [`stable`] with
-/// Gershgorin's bound on the stiffness a node sees: its shear spring h plus twice its surface
-/// springs (two per direction on the regular lattices). The bound is sufficient, not tight:
-/// on the regular lattices the stiffest mode is about h + 4k (square) or h + 6k (hexagonal)
-/// against the bound's h + 8k and h + 12k, so steps up to about twice the accepted ones
-/// may still converge. The irregular lattice's nodes each have their own mass and damping
-/// ([`NodeConstants`]); each is tested alone, which is a heuristic there rather than a proof
-/// (the coupled update does not split into one mode per node).
-pub(super) fn stable_lattice(lattice: &Lattice, material: &Material<f32>, alpha: f32) -> bool {
+/// Whether the explicit run of a regular `lattice` with `material` (computed in `f32`
+/// whatever the backend, so that every backend accepts the same parameters) passes [`stable`]
+/// with Gershgorin's bound on the stiffness a node sees: its shear spring h plus twice its
+/// surface springs (two per direction). The bound is sufficient, not tight: the stiffest mode
+/// is about h + 4k (square) or h + 6k (hexagonal) against the bound's h + 8k and h + 12k, so
+/// steps up to about twice the accepted ones may still converge. The irregular lattice's
+/// nodes each have their own mass and damping and are tested one by one as the run's setup
+/// builds them ([`NodeConstants::is_stable`]).
+pub(super) fn stable_lattice(lattice: &Lattice, material: &Material<f32>) -> bool {
     let tau = f64::from(material.short_step);
-    match lattice.mesh() {
-        None => {
-            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
-            let lambda = f64::from(material.shear) + 2.0 * f64::from(springs);
-            stable(f64::from(material.mass), f64::from(material.damping), lambda, tau)
-        }
-        Some(mesh) => (0..lattice.node_count()).all(|node| {
-            let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
-            stable(f64::from(n.mass), f64::from(n.damping), f64::from(n.shear + 2.0 * n.springs), tau)
-        }),
-    }
+    let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+    let lambda = f64::from(material.shear) + 2.0 * f64::from(springs);
+    stable(f64::from(material.mass), f64::from(material.damping), lambda, tau)
 }
 
 /// E-folds of the slowest decay of Eq. 4's map that a short-step streak may take
@@ -177,27 +168,23 @@ fn slowest_contraction(m: f64, c: f64, (shear, bound): (f64, f64), tau: f64) -> 
 /// The most short steps that follow a long step or a break before the explicit run takes the
 /// lattice as settled and takes a long step: [`SETTLE_EFOLDS`] e-folds of the slowest mode of
 /// Eq. 4's map, ⌈64 / −ln ρ⌉ with ρ from [`slowest_contraction`] (the worst node's on the
-/// irregular lattice), at least 1, saturating at `u64::MAX`. In exact arithmetic a force falls
+/// irregular lattice: [`NodeConstants::slowest_contraction`], folded over the nodes by the
+/// run's setup), at least 1, saturating at `u64::MAX`. In exact arithmetic a force falls
 /// e⁶⁴ ≈ 6·10²⁷-fold in that many steps; at the paper's values it is about 14,000 short steps
 /// (hexagonal; a break settles within about 1,000), 22 % more on the square lattice. It bounds
 /// a run whose arithmetic cannot bring every force below δF (Eq. 3) but keeps moving: a run
 /// takes at most this many short steps per long step and per break. Computed in `f32`
 /// constants and `f64`, as [`stable_lattice`], so that it does not depend on the backend.
-pub(super) fn settle_bound(lattice: &Lattice, material: &Material<f32>, alpha: f32) -> u64 {
+pub(super) fn settle_bound(lattice: &Lattice, material: &Material<f32>) -> u64 {
     let tau = f64::from(material.short_step);
-    let rho = match lattice.mesh() {
-        None => {
-            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
-            let shear = f64::from(material.shear);
-            let stiffness = (shear, shear + 2.0 * f64::from(springs));
-            slowest_contraction(f64::from(material.mass), f64::from(material.damping), stiffness, tau)
-        }
-        Some(mesh) => (0..lattice.node_count()).fold(0.0f64, |worst, node| {
-            let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
-            let stiffness = (f64::from(n.shear), f64::from(n.shear + 2.0 * n.springs));
-            worst.max(slowest_contraction(f64::from(n.mass), f64::from(n.damping), stiffness, tau))
-        }),
-    };
+    let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+    let shear = f64::from(material.shear);
+    let stiffness = (shear, shear + 2.0 * f64::from(springs));
+    settle_bound_of(slowest_contraction(f64::from(material.mass), f64::from(material.damping), stiffness, tau))
+}
+
+/// [`settle_bound`] of the slowest contraction `rho`.
+pub(super) fn settle_bound_of(rho: f64) -> u64 {
     // ρ < 1 for a lattice that passes the stability test; ρ ≥ 1 (or NaN) bounds nothing.
     if rho < 1.0 { (libm::ceil(SETTLE_EFOLDS / -libm::log(rho)) as u64).max(1) } else { u64::MAX }
 }
@@ -216,7 +203,7 @@ pub(super) struct NodeConstants {
 }
 
 impl NodeConstants {
-    fn of(mesh: &Mesh, node: usize, shear_per_area: f32, alpha: f32) -> Self {
+    pub(super) fn of(mesh: &Mesh, node: usize, shear_per_area: f32, alpha: f32) -> Self {
         let mass = mesh.area(node);
         let shear = mass * shear_per_area;
         let (mut k_max, mut weakest, mut springs) = (shear, shear, 0.0f32);
@@ -227,6 +214,21 @@ impl NodeConstants {
         });
         NodeConstants { mass, damping: 2.0 * libm::sqrtf(k_max * mass) * alpha, shear, weakest, springs }
     }
+
+    /// Whether the node alone passes [`stable`] with its Gershgorin bound h + 2·Σk, for the
+    /// short step of `reference` (a heuristic on the irregular lattice rather than a proof:
+    /// the coupled update does not split into one mode per node).
+    pub(super) fn is_stable(&self, reference: &Material<f32>) -> bool {
+        let lambda = f64::from(self.shear + 2.0 * self.springs);
+        stable(f64::from(self.mass), f64::from(self.damping), lambda, f64::from(reference.short_step))
+    }
+
+    /// The node's [`slowest_contraction`] for the short step of `reference`.
+    pub(super) fn slowest_contraction(&self, reference: &Material<f32>) -> f64 {
+        let stiffness = (f64::from(self.shear), f64::from(self.shear + 2.0 * self.springs));
+        let tau = f64::from(reference.short_step);
+        slowest_contraction(f64::from(self.mass), f64::from(self.damping), stiffness, tau)
+    }
 }
 
 /// The `limit` of a broken or absent spring.
@@ -235,39 +237,16 @@ fn broken<S: Scalar>() -> S {
 }
 
 impl<'a, S: Scalar> Dynamics<'a, S> {
-    pub(super) fn new(
-        scalars: &mut &'a mut [S],
-        lattice: &Lattice,
-        other: &[u32],
-        material: &Material<S>,
-        (tolerance_length, alpha, settle_bound): (f32, f32, u64),
-    ) -> Self {
-        let nodes = lattice.node_count();
+    /// The arrays, carved from `scalars` for a lattice of `shape`, and the constants of the
+    /// damped step; the run's setup writes the arrays ([`Dynamics::clear_nodes`],
+    /// [`Dynamics::set_up_spring`], [`Dynamics::set_node_constants`]) and, on the irregular
+    /// lattice, the settle bound.
+    pub(super) fn new(scalars: &mut &'a mut [S], shape: &Lattice, material: &Material<S>, settle_bound: u64) -> Self {
+        let nodes = shape.node_count();
         let [vx, vy, fx, fy] = [(); 4].map(|_| take(scalars, nodes));
-        let limit = take(scalars, lattice.spring_count());
-        let node_constants = take(scalars, if lattice.mesh().is_some() { NODE_CONSTANTS * nodes } else { 0 });
-        if let Some(mesh) = lattice.mesh() {
-            let tau = material.short_step;
-            for node in 0..nodes {
-                let n = NodeConstants::of(mesh, node, material.shear_per_area, alpha);
-                let (m, c) = (S::from_f32(n.mass), S::from_f32(n.damping));
-                let decay = (-(c * tau / m)).exp() - S::ONE;
-                let tolerance = S::from_f32(n.weakest * tolerance_length);
-                node_constants[NODE_CONSTANTS * node..NODE_CONSTANTS * (node + 1)].copy_from_slice(&[
-                    decay,
-                    -(m / c) * decay,
-                    S::ONE / c,
-                    tau / c,
-                    tolerance,
-                ]);
-            }
-        }
-        vx.fill(S::ZERO);
-        vy.fill(S::ZERO);
-        // Intact springs get their limits at the first step.
-        for (l, &o) in limit.iter_mut().zip(other.iter()) {
-            *l = if o == ABSENT { broken() } else { S::ZERO };
-        }
+        let limit = take(scalars, shape.spring_count());
+        let irregular = shape.topology == Topology::Irregular;
+        let node_constants = take(scalars, if irregular { NODE_CONSTANTS * nodes } else { 0 });
         let (m, c, tau) = (material.mass, material.damping, material.short_step);
         let decay = (-(c * tau / m)).exp() - S::ONE;
         Dynamics {
@@ -288,6 +267,46 @@ impl<'a, S: Scalar> Dynamics<'a, S> {
             unsettled: 0,
             settle_bound,
         }
+    }
+
+    /// Nodes `from..end` at rest (the forces are written by each short step before they are
+    /// read).
+    pub(super) fn clear_nodes(&mut self, from: usize, end: usize) {
+        self.vx[from..end].fill(S::ZERO);
+        self.vy[from..end].fill(S::ZERO);
+    }
+
+    /// Spring `spring`'s limit: broken if absent; an intact spring gets its limit at the
+    /// first short step.
+    pub(super) fn set_up_spring(&mut self, spring: usize, absent: bool) {
+        self.limit[spring] = if absent { broken() } else { S::ZERO };
+    }
+
+    /// The irregular node `node`'s constants of the damped step (Eq. 4) and its δF, from its
+    /// mass, damping and weakest spring `n`.
+    pub(super) fn set_node_constants(
+        &mut self,
+        node: usize,
+        n: &NodeConstants,
+        material: &Material<S>,
+        tolerance_length: f32,
+    ) {
+        let tau = material.short_step;
+        let (m, c) = (S::from_f32(n.mass), S::from_f32(n.damping));
+        let decay = (-(c * tau / m)).exp() - S::ONE;
+        let tolerance = S::from_f32(n.weakest * tolerance_length);
+        self.node_constants[NODE_CONSTANTS * node..NODE_CONSTANTS * (node + 1)].copy_from_slice(&[
+            decay,
+            -(m / c) * decay,
+            S::ONE / c,
+            tau / c,
+            tolerance,
+        ]);
+    }
+
+    /// The irregular lattice's settle bound, once the setup has seen every node.
+    pub(super) fn set_settle_bound(&mut self, settle_bound: u64) {
+        self.settle_bound = settle_bound;
     }
 }
 

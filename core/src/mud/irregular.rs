@@ -2,7 +2,8 @@
 //! jittered by up to [`JITTER`] of the element size and connected by their Delaunay
 //! triangulation, so that cracks are not held to three directions.
 //!
-//! Construction (deterministic, no allocation, in the run's memory): the nodes start on the
+//! Construction (deterministic, no allocation, in the run's memory, resumable item by item
+//! within [`Mud::step`](super::Mud::step)'s budgets: [`Construction`]): the nodes start on the
 //! triangular lattice, whose triangles are Delaunay. Node by node, in index order, each is
 //! moved to its jittered place (uniform in a disk, drawn from [`Stream::LatticeJitter`]); a
 //! move that would fold a triangle over is halved until it does not, and the node moves on
@@ -27,7 +28,7 @@ use super::lattice::Lattice;
 use super::material::anisotropy;
 use super::params::{Boundary, MudParams, Topology};
 use super::take;
-use crate::rng::{Rng, Stream};
+use crate::rng::Rng;
 
 /// Positions are integer multiples of 1/UNIT of the element size.
 pub const UNIT: i64 = 1024;
@@ -376,158 +377,340 @@ pub(super) struct Scratch<'s> {
     pub degree: &'s mut [u32],
 }
 
-/// Builds the irregular lattice of `params` (shape `shape`) in `words` (at least
-/// [`words_for`] of its nodes).
-pub(super) fn build<'a>(
-    shape: &Lattice<'_>,
-    params: &MudParams,
-    words: &'a mut [u32],
-    scratch: Scratch<'_>,
-) -> Mesh<'a> {
-    let hex = Lattice { topology: Topology::Hexagonal, mesh: None, ..*shape };
-    let (nodes, springs, cells) = (hex.node_count(), hex.spring_count(), hex.cell_count());
-    let mut words = words;
-    let position = take(&mut words, 2 * nodes);
-    let area = take(&mut words, nodes);
-    let ends = take(&mut words, 2 * springs);
-    let shape_words = take(&mut words, SHAPE * springs);
-    let sides_of = take(&mut words, 2 * springs);
-    let cell_words = take(&mut words, 6 * cells);
-    let offsets = take(&mut words, nodes + 1);
-    let star = take(&mut words, 2 * springs);
-    let columns = hex.columns as usize;
-    // The triangular lattice: sites, springs and cells as the hexagonal topology has them.
-    for node in 0..nodes {
-        let (i, j) = ((node % columns) as i64, (node / columns) as i64);
-        position[2 * node] = (i * UNIT + (j % 2) * UNIT / 2) as i32 as u32;
-        position[2 * node + 1] = (j * PITCH) as i32 as u32;
-    }
-    for spring in 0..springs {
-        let (a, b) = hex.spring_nodes(spring).map_or((NONE, NONE), |(a, b)| (a as u32, b as u32));
-        ends[2 * spring] = a;
-        ends[2 * spring + 1] = b;
-        for (k, side) in hex.cells_of_spring(spring).into_iter().enumerate() {
-            sides_of[2 * spring + k] = side.map_or(NONE, |(c, side)| (c as u32) << 2 | side as u32);
+/// The mesh's tables, carved from the run's word memory (at least [`words_for`] its nodes).
+struct Tables<'w> {
+    position: &'w mut [u32],
+    area: &'w mut [u32],
+    ends: &'w mut [u32],
+    shape: &'w mut [u32],
+    sides_of: &'w mut [u32],
+    cells: &'w mut [u32],
+    offsets: &'w mut [u32],
+    star: &'w mut [u32],
+}
+
+impl<'w> Tables<'w> {
+    fn carve(words: &'w mut [u32], nodes: usize) -> Self {
+        let (springs, cells) = (3 * nodes, 2 * nodes);
+        let mut words = words;
+        Tables {
+            position: take(&mut words, 2 * nodes),
+            area: take(&mut words, nodes),
+            ends: take(&mut words, 2 * springs),
+            shape: take(&mut words, SHAPE * springs),
+            sides_of: take(&mut words, 2 * springs),
+            cells: take(&mut words, 6 * cells),
+            offsets: take(&mut words, nodes + 1),
+            star: take(&mut words, 2 * springs),
         }
     }
-    scratch.node_cell.fill(NONE);
-    for cell in 0..cells {
-        let words = &mut cell_words[6 * cell..6 * cell + 6];
-        match hex.cell(cell) {
-            Some(c) => {
-                words.copy_from_slice(&[c.nodes[0], c.nodes[1], c.nodes[2], c.sides[0], c.sides[1], c.sides[2]]);
-                for &n in &c.nodes[..3] {
-                    scratch.node_cell[n as usize] = cell as u32;
+}
+
+impl<'a> Mesh<'a> {
+    /// The built mesh of `nodes` nodes in `words` (as [`Construction`] left them).
+    pub(super) fn of(words: &'a [u32], nodes: usize) -> Self {
+        let (springs, cells) = (3 * nodes, 2 * nodes);
+        let mut words = words;
+        let mut cut = |n: usize| {
+            let (head, tail) = words.split_at(n);
+            words = tail;
+            head
+        };
+        Mesh {
+            position: cut(2 * nodes),
+            area: cut(nodes),
+            ends: cut(2 * springs),
+            shape: cut(SHAPE * springs),
+            sides_of: cut(2 * springs),
+            cells: cut(6 * cells),
+            offsets: cut(nodes + 1),
+            star: cut(2 * springs),
+        }
+    }
+}
+
+/// The passes of the construction, in order; each goes item by item (a node, a spring, a
+/// cell), so that it can stop between items and go on where it stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pass {
+    /// The triangular lattice's sites (per node).
+    Sites,
+    /// Its springs' nodes and cells (per spring).
+    Springs,
+    /// No node has a cell yet (per cell).
+    Unmarked,
+    /// Its cells, and a cell of each node (per cell).
+    Cells,
+    /// No spring queued, no node with a spring (per spring).
+    Cleared,
+    /// The springs at each node (per spring).
+    Degrees,
+    /// Each node moved to its jittered place, with Lawson's flips (per node).
+    Jitter,
+    /// The Voronoi areas cleared (per node).
+    Areas,
+    /// Each spring's geometry, and its share of its nodes' areas (per spring).
+    Shapes,
+    /// The star offsets cleared (per node, and one more).
+    Offsets,
+    /// The springs at each node counted (per spring).
+    Counts,
+    /// The counts summed into offsets (per node).
+    Sums,
+    /// Each spring entered in its nodes' stars (per spring).
+    Stars,
+    /// The offsets moved back to each star's start, last node first (per node).
+    Starts,
+}
+
+/// Work units one jittered node counts: the most springs at a node. Its move looks at the
+/// cells around it, up to eight times, and Lawson's flips around it.
+pub(super) const JITTER_PIECE: u64 = MAX_DEGREE as u64;
+
+/// The construction of the irregular lattice under way: the pass and its next item.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Construction {
+    pass: Pass,
+    item: usize,
+}
+
+impl Construction {
+    /// The construction before its first item.
+    pub(super) const fn new() -> Self {
+        Construction { pass: Pass::Sites, item: 0 }
+    }
+
+    /// Builds the irregular lattice of `params` (shape `shape`) in `words` (at least
+    /// [`words_for`] of its nodes), item by item, until the work reaches `budget` (at least
+    /// one item) or the mesh is done; `rng` is the jitter's stream ([`Stream::LatticeJitter`]),
+    /// kept between calls. Returns the work (one unit per item, [`JITTER_PIECE`] per jittered
+    /// node) and whether the mesh is done: [`Mesh::of`] then reads it. Every item is the same
+    /// whatever the cuts, so the mesh does not depend on the budgets.
+    pub(super) fn advance(
+        &mut self,
+        shape: &Lattice<'_>,
+        params: &MudParams,
+        words: &mut [u32],
+        scratch: Scratch<'_>,
+        rng: &mut Rng,
+        budget: u64,
+    ) -> (u64, bool) {
+        let hex = Lattice { topology: Topology::Hexagonal, mesh: None, ..*shape };
+        let (nodes, springs, cells) = (hex.node_count(), hex.spring_count(), hex.cell_count());
+        let columns = hex.columns as usize;
+        let t = Tables::carve(words, nodes);
+        let periodic = hex.boundary == Boundary::Periodic;
+        let mut builder = Builder {
+            columns,
+            periodic,
+            period: [hex.columns as i64 * UNIT, hex.rows as i64 * PITCH],
+            position: t.position,
+            ends: t.ends,
+            sides_of: t.sides_of,
+            cells: t.cells,
+            scratch,
+            pending_len: 0,
+        };
+        let (area, shape_words, offsets, star) = (t.area, t.shape, t.offsets, t.star);
+        let mut work = 0u64;
+        loop {
+            let (pass, from) = (self.pass, self.item);
+            let len = match pass {
+                Pass::Sites | Pass::Jitter | Pass::Areas | Pass::Sums | Pass::Starts => nodes,
+                Pass::Offsets => nodes + 1,
+                Pass::Unmarked | Pass::Cells => cells,
+                _ => springs,
+            };
+            let cost = if pass == Pass::Jitter { JITTER_PIECE } else { 1 };
+            // Items from..end: as many as the budget left takes (at least one).
+            let items = usize::try_from(budget.saturating_sub(work).div_ceil(cost).max(1)).unwrap_or(usize::MAX);
+            let end = from.saturating_add(items).min(len);
+            let b = &mut builder;
+            match pass {
+                // The triangular lattice: sites, springs and cells as the hexagonal topology
+                // has them.
+                Pass::Sites => {
+                    for node in from..end {
+                        let (i, j) = ((node % columns) as i64, (node / columns) as i64);
+                        b.position[2 * node] = (i * UNIT + (j % 2) * UNIT / 2) as i32 as u32;
+                        b.position[2 * node + 1] = (j * PITCH) as i32 as u32;
+                    }
+                }
+                Pass::Springs => {
+                    for spring in from..end {
+                        let (a, c) = hex.spring_nodes(spring).map_or((NONE, NONE), |(a, c)| (a as u32, c as u32));
+                        b.ends[2 * spring] = a;
+                        b.ends[2 * spring + 1] = c;
+                        for (k, side) in hex.cells_of_spring(spring).into_iter().enumerate() {
+                            b.sides_of[2 * spring + k] = side.map_or(NONE, |(c, side)| (c as u32) << 2 | side as u32);
+                        }
+                    }
+                }
+                Pass::Unmarked => b.scratch.node_cell[from..end].fill(NONE),
+                Pass::Cells => {
+                    for cell in from..end {
+                        let words = &mut b.cells[6 * cell..6 * cell + 6];
+                        match hex.cell(cell) {
+                            Some(c) => {
+                                words.copy_from_slice(&[
+                                    c.nodes[0], c.nodes[1], c.nodes[2], c.sides[0], c.sides[1], c.sides[2],
+                                ]);
+                                for &n in &c.nodes[..3] {
+                                    b.scratch.node_cell[n as usize] = cell as u32;
+                                }
+                            }
+                            None => words.fill(NONE),
+                        }
+                    }
+                }
+                Pass::Cleared => {
+                    b.scratch.queued[from..end].fill(0);
+                    b.scratch.degree[from..end].fill(0);
+                }
+                Pass::Degrees => {
+                    for spring in from..end {
+                        if b.ends[2 * spring] != NONE {
+                            b.scratch.degree[b.ends[2 * spring] as usize] += 1;
+                            b.scratch.degree[b.ends[2 * spring + 1] as usize] += 1;
+                        }
+                    }
+                }
+                // Jitter node by node.
+                Pass::Jitter => {
+                    let radius = JITTER * UNIT as f32;
+                    for node in from..end {
+                        let r = radius * libm::sqrtf(rng.uniform_f32());
+                        let angle = 2.0 * core::f32::consts::PI * rng.uniform_f32();
+                        let (i, j) = ((node % b.columns) as i64, (node / b.columns) as i64);
+                        let site = [i * UNIT + (j % 2) * UNIT / 2, j * PITCH];
+                        let jitter =
+                            [libm::roundf(r * libm::cosf(angle)) as i64, libm::roundf(r * libm::sinf(angle)) as i64];
+                        b.move_node(node as u32, [site[0] + jitter[0], site[1] + jitter[1]]);
+                    }
+                }
+                Pass::Areas => area[from..end].fill(0.0f32.to_bits()),
+                // Geometry: e, l0, face, k per spring; the Voronoi area per node.
+                Pass::Shapes => {
+                    let mesh = Mesh {
+                        position: &*b.position,
+                        area: &[],
+                        ends: &*b.ends,
+                        shape: &[],
+                        sides_of: &*b.sides_of,
+                        cells: &*b.cells,
+                        offsets: &[],
+                        star: &[],
+                    };
+                    for spring in from..end {
+                        let words = &mut shape_words[SHAPE * spring..SHAPE * spring + SHAPE];
+                        spring_shape(&mesh, shape, params, spring, words, area);
+                    }
+                }
+                // Each node's springs, in spring order.
+                Pass::Offsets => offsets[from..end].fill(0),
+                Pass::Counts => {
+                    for spring in from..end {
+                        if b.ends[2 * spring] != NONE {
+                            offsets[b.ends[2 * spring] as usize + 1] += 1;
+                            offsets[b.ends[2 * spring + 1] as usize + 1] += 1;
+                        }
+                    }
+                }
+                Pass::Sums => {
+                    for n in from..end {
+                        offsets[n + 1] += offsets[n];
+                    }
+                }
+                // Fill with a running cursor per node kept in `offsets` (offsets[n] moves up,
+                // then is moved back).
+                Pass::Stars => {
+                    for spring in from..end {
+                        if b.ends[2 * spring] != NONE {
+                            let ends = [b.ends[2 * spring] as usize, b.ends[2 * spring + 1] as usize];
+                            for (n, incoming) in [(ends[0], 0u32), (ends[1], 1u32)] {
+                                star[offsets[n] as usize] = spring as u32 | incoming << 31;
+                                offsets[n] += 1;
+                            }
+                        }
+                    }
+                }
+                Pass::Starts => {
+                    for k in from..end {
+                        let n = nodes - k;
+                        offsets[n] = offsets[n - 1];
+                    }
+                    if end == len {
+                        offsets[0] = 0;
+                    }
                 }
             }
-            None => words.fill(NONE),
-        }
-    }
-    scratch.queued.fill(0);
-    scratch.degree.fill(0);
-    for spring in 0..springs {
-        if ends[2 * spring] != NONE {
-            scratch.degree[ends[2 * spring] as usize] += 1;
-            scratch.degree[ends[2 * spring + 1] as usize] += 1;
-        }
-    }
-    let periodic = hex.boundary == Boundary::Periodic;
-    let mut builder = Builder {
-        columns,
-        periodic,
-        period: [hex.columns as i64 * UNIT, hex.rows as i64 * PITCH],
-        position,
-        ends,
-        sides_of,
-        cells: cell_words,
-        scratch,
-        pending_len: 0,
-    };
-    // Jitter node by node.
-    let mut rng = Rng::new(params.seed, Stream::LatticeJitter);
-    let radius = JITTER * UNIT as f32;
-    for node in 0..nodes {
-        let r = radius * libm::sqrtf(rng.uniform_f32());
-        let angle = 2.0 * core::f32::consts::PI * rng.uniform_f32();
-        let (i, j) = ((node % builder.columns) as i64, (node / builder.columns) as i64);
-        let site = [i * UNIT + (j % 2) * UNIT / 2, j * PITCH];
-        let jitter = [libm::roundf(r * libm::cosf(angle)) as i64, libm::roundf(r * libm::sinf(angle)) as i64];
-        builder.move_node(node as u32, [site[0] + jitter[0], site[1] + jitter[1]]);
-    }
-    let Builder { position, ends, sides_of, cells: cell_words, .. } = builder;
-    let position: &'a [u32] = position;
-    let ends: &'a [u32] = ends;
-    let sides_of: &'a [u32] = sides_of;
-    let cell_words: &'a [u32] = cell_words;
-    let mut mesh = Mesh { position, area: &[], ends, shape: &[], sides_of, cells: cell_words, offsets: &[], star: &[] };
-    // Geometry: e, l0, face, k per spring; the Voronoi area per node.
-    area.fill(0.0f32.to_bits());
-    for spring in 0..springs {
-        let Some((a, b)) = mesh.ends(spring) else {
-            shape_words[SHAPE * spring..SHAPE * spring + SHAPE].fill(0);
-            continue;
-        };
-        let pa = mesh.position(a);
-        let pb = shape.nearest_image(pa, mesh.position(b));
-        let d = [pb[0] - pa[0], pb[1] - pa[1]];
-        let l0 = libm::sqrtf(d[0] * d[0] + d[1] * d[1]);
-        let e = [d[0] / l0, d[1] / l0];
-        let middle = [(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5];
-        // The circumcentre of each side's cell, measured along the spring's left normal.
-        let normal = [-e[1], e[0]];
-        let mut reach = [0.0f32; 2];
-        for (k, side) in mesh.cells_of_spring(spring).into_iter().enumerate() {
-            let Some((cell, _)) = side else { continue };
-            let (corners, _) = mesh.cell(cell).unwrap_or(([a as u32; 3], [0; 3]));
-            let third = corners.into_iter().find(|&n| n as usize != a && n as usize != b).unwrap_or(a as u32);
-            let pc = shape.nearest_image(pa, mesh.position(third as usize));
-            let centre = circumcentre(pa, pb, pc);
-            let along = (centre[0] - middle[0]) * normal[0] + (centre[1] - middle[1]) * normal[1];
-            reach[k] = if k == 0 { along } else { -along };
-        }
-        // Two cells: the whole Voronoi edge; at an open edge, the part inside the plate.
-        let face = (reach[0] + reach[1]).max(FACE_FLOOR);
-        let k = face / l0 * anisotropy(e, params.anisotropy_direction, params.stiffness_anisotropy_ratio);
-        let words = &mut shape_words[SHAPE * spring..SHAPE * spring + SHAPE];
-        words.copy_from_slice(&[e[0].to_bits(), e[1].to_bits(), l0.to_bits(), face.to_bits(), k.to_bits()]);
-        for n in [a, b] {
-            area[n] = (f32::from_bits(area[n]) + l0 * face * 0.25).to_bits();
-        }
-    }
-    // Each node's springs, in spring order.
-    offsets.fill(0);
-    for spring in 0..springs {
-        if let Some((a, b)) = mesh.ends(spring) {
-            offsets[a + 1] += 1;
-            offsets[b + 1] += 1;
-        }
-    }
-    for n in 0..nodes {
-        offsets[n + 1] += offsets[n];
-    }
-    // Fill with a running cursor per node kept in `star`'s own slots (offsets[n] moves up,
-    // then is restored).
-    for spring in 0..springs {
-        if let Some((a, b)) = mesh.ends(spring) {
-            for (n, incoming) in [(a, 0u32), (b, 1u32)] {
-                star[offsets[n] as usize] = spring as u32 | incoming << 31;
-                offsets[n] += 1;
+            work += (end - from) as u64 * cost;
+            self.item = end;
+            if end == len {
+                let next = match pass {
+                    Pass::Sites => Pass::Springs,
+                    Pass::Springs => Pass::Unmarked,
+                    Pass::Unmarked => Pass::Cells,
+                    Pass::Cells => Pass::Cleared,
+                    Pass::Cleared => Pass::Degrees,
+                    Pass::Degrees => Pass::Jitter,
+                    Pass::Jitter => Pass::Areas,
+                    Pass::Areas => Pass::Shapes,
+                    Pass::Shapes => Pass::Offsets,
+                    Pass::Offsets => Pass::Counts,
+                    Pass::Counts => Pass::Sums,
+                    Pass::Sums => Pass::Stars,
+                    Pass::Stars => Pass::Starts,
+                    Pass::Starts => return (work, true),
+                };
+                *self = Construction { pass: next, item: 0 };
+            }
+            if work >= budget {
+                return (work, false);
             }
         }
     }
-    for n in (1..=nodes).rev() {
-        offsets[n] = offsets[n - 1];
+}
+
+/// Spring `spring`'s geometry into `words` (e, l0, face, k; zero where its slot is empty),
+/// and its share l0·face/4 added to each of its nodes' areas.
+fn spring_shape(
+    mesh: &Mesh<'_>,
+    shape: &Lattice<'_>,
+    params: &MudParams,
+    spring: usize,
+    words: &mut [u32],
+    area: &mut [u32],
+) {
+    let Some((a, b)) = mesh.ends(spring) else {
+        words.fill(0);
+        return;
+    };
+    let pa = mesh.position(a);
+    let pb = shape.nearest_image(pa, mesh.position(b));
+    let d = [pb[0] - pa[0], pb[1] - pa[1]];
+    let l0 = libm::sqrtf(d[0] * d[0] + d[1] * d[1]);
+    let e = [d[0] / l0, d[1] / l0];
+    let middle = [(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5];
+    // The circumcentre of each side's cell, measured along the spring's left normal.
+    let normal = [-e[1], e[0]];
+    let mut reach = [0.0f32; 2];
+    for (k, side) in mesh.cells_of_spring(spring).into_iter().enumerate() {
+        let Some((cell, _)) = side else { continue };
+        let (corners, _) = mesh.cell(cell).unwrap_or(([a as u32; 3], [0; 3]));
+        let third = corners.into_iter().find(|&n| n as usize != a && n as usize != b).unwrap_or(a as u32);
+        let pc = shape.nearest_image(pa, mesh.position(third as usize));
+        let centre = circumcentre(pa, pb, pc);
+        let along = (centre[0] - middle[0]) * normal[0] + (centre[1] - middle[1]) * normal[1];
+        reach[k] = if k == 0 { along } else { -along };
     }
-    offsets[0] = 0;
-    let area: &'a [u32] = area;
-    let shape_words: &'a [u32] = shape_words;
-    let offsets: &'a [u32] = offsets;
-    let star: &'a [u32] = star;
-    mesh.area = area;
-    mesh.shape = shape_words;
-    mesh.offsets = offsets;
-    mesh.star = star;
-    mesh
+    // Two cells: the whole Voronoi edge; at an open edge, the part inside the plate.
+    let face = (reach[0] + reach[1]).max(FACE_FLOOR);
+    let k = face / l0 * anisotropy(e, params.anisotropy_direction, params.stiffness_anisotropy_ratio);
+    words.copy_from_slice(&[e[0].to_bits(), e[1].to_bits(), l0.to_bits(), face.to_bits(), k.to_bits()]);
+    for n in [a, b] {
+        area[n] = (f32::from_bits(area[n]) + l0 * face * 0.25).to_bits();
+    }
 }
 
 /// The centre of the circle through a, b, c.
@@ -550,7 +733,10 @@ mod tests {
         let p = MudParams { topology: Topology::Irregular, boundary, columns, rows, seed, ..MudParams::default() };
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
-        let mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+        // The first step builds the mesh.
+        assert!(mud.lattice().mesh().is_none());
+        mud.run().unwrap();
         check(mud.lattice());
     }
 

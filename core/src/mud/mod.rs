@@ -15,7 +15,7 @@
 //! let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
 //! let mut memory = params.memory().unwrap().allocate(); // or MudStorage, or your own buffers
 //! let mut mud: Mud = Mud::new(&params, memory.buffers()).unwrap(); // Mud<Q16> for fixed point
-//! while !mud.step(100_000).finished {}
+//! while !mud.step(100_000).unwrap().finished {} // the first steps set the run up
 //! let mut mask = vec![0u8; 64 * 64];
 //! let render = MudRender { width: 64, height: 64, ..MudRender::default() };
 //! mud.render(&render, MudLayers { mask: Some(&mut mask), ..MudLayers::default() }).unwrap();
@@ -39,6 +39,7 @@ mod params;
 mod presets;
 mod quasi_static;
 mod render;
+mod setup;
 mod spacing;
 mod statistics;
 mod trace;
@@ -50,11 +51,11 @@ pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVe
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
 pub use render::{BEVEL, MudLayers, MudRender};
+pub use setup::SETUP_PIECE;
 pub use spacing::{SpacingPrediction, predict_spacing};
 pub use statistics::{CrackStatistics, JUNCTION_REACH};
 pub use trace::CrackSegment;
 
-use crate::rng::{Rng, Stream};
 use crate::scalar::Scalar;
 
 /// Marks an intact spring in the break-time table.
@@ -148,10 +149,10 @@ impl MudParams {
         let lattice = self.lattice();
         let material = Material::<f32>::new(self, &lattice)?;
         // The explicit solver's short step must pass the stability test of its damped step
-        // (the irregular lattice's is checked on its mesh, by `Mud::new`).
+        // (the irregular lattice's is checked on its mesh, by the first steps: `Mud::step`).
         if self.solver == Solver::Explicit
             && self.topology != Topology::Irregular
-            && !explicit::stable_lattice(&lattice, &material, self.damping_factor)
+            && !explicit::stable_lattice(&lattice, &material)
         {
             return Err(MudParamError::ShortStepStability);
         }
@@ -320,6 +321,12 @@ pub struct Mud<'a, S: Scalar = f32> {
     broken: u32,
     finished: bool,
     work: u64,
+    /// The setup under way (`None` once done): see [`Mud::step`].
+    setup: Option<setup::Setup>,
+    /// The irregular lattice's words until its mesh is built (then `lattice.mesh` reads them).
+    mesh_words: &'a mut [u32],
+    /// Why the run ended in error, if it did (returned by every later step).
+    failure: Option<MudError>,
 }
 
 /// The arrays only one solver needs.
@@ -337,10 +344,11 @@ fn take<'a, T>(buffer: &mut &'a mut [T], n: usize) -> &'a mut [T] {
 
 impl<'a, S: Scalar> Mud<'a, S> {
     /// Sets up a run of `params` in caller memory of at least [`MudParams::memory`] elements:
-    /// draws every spring's break stretch and, for open edges, relaxes the boundary layer.
-    /// Nothing is written to the buffers on failure, with one exception: the irregular
-    /// lattice's explicit run is checked for stability node by node on its built mesh, so a
-    /// [`MudParamError::ShortStepStability`] there comes after the mesh was written.
+    /// checks the parameters and carves the buffers, work independent of the lattice's size.
+    /// The rest of the setup (the irregular lattice's mesh, every spring's break stretch, the
+    /// boundary layer of open edges to relax) is done by the first [`Mud::step`] calls, within
+    /// their budgets. The buffers may hold any bytes: the run reads no element before writing
+    /// it. Nothing is written to them here.
     pub fn new(params: &MudParams, buffers: MudBuffers<'a, S>) -> Result<Self, MudError> {
         let MudBuffers { scalars, words } = buffers;
         let memory = params.memory()?;
@@ -352,13 +360,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
         let shape = params.lattice();
         let material = Material::new(params, &shape)?;
+        // The stability test and the bounds on a settling lattice's work come from the f32
+        // constants, whatever the backend.
+        let reference = Material::<f32>::new(params, &shape)?;
         let (nodes, springs) = (shape.node_count(), shape.spring_count());
         let mut scalars = scalars;
         let mut words = words;
-        let mesh_words = match params.topology {
-            Topology::Irregular => take(&mut words, irregular::words_for(nodes as u128) as usize),
-            _ => &mut [],
-        };
+        let irregular = params.topology == Topology::Irregular;
+        let mesh_words =
+            if irregular { take(&mut words, irregular::words_for(nodes as u128) as usize) } else { &mut [] };
         let ux = take(&mut scalars, nodes);
         let uy = take(&mut scalars, nodes);
         let break_stretch = take(&mut scalars, springs);
@@ -366,67 +376,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let break_time = take(&mut words, springs);
         let trace = take(&mut words, springs);
         let crack_offset = take(&mut words, springs);
-        crack_offset.fill(0);
         let stack = take(&mut words, shape.cell_count());
         let ring_starts = take(&mut words, shape.cell_count());
-        ring_starts.fill(0);
-        let lattice = match params.topology {
-            Topology::Irregular => {
-                let scratch = irregular::Scratch {
-                    node_cell: &mut *stack,
-                    pending: &mut *trace,
-                    queued: &mut *break_time,
-                    degree: &mut *other,
-                };
-                let lattice = Lattice { mesh: Some(irregular::build(&shape, params, mesh_words, scratch)), ..shape };
-                // The regular lattices' explicit runs were checked by `memory`; this one needs
-                // its mesh.
-                let reference = Material::<f32>::new(params, &shape)?;
-                if params.solver == Solver::Explicit
-                    && !explicit::stable_lattice(&lattice, &reference, params.damping_factor)
-                {
-                    return Err(MudError::Param(MudParamError::ShortStepStability));
-                }
-                lattice
-            }
-            _ => shape,
-        };
-        trace.fill(INTACT);
-        stack.fill(0);
-        ux.fill(S::ZERO);
-        uy.fill(S::ZERO);
-        break_time.fill(INTACT);
-        let mut rng = Rng::new(params.seed, Stream::BreakStretch);
-        // κ̄ − 1, scaled to the element size when asked (mesh-scale independence, §4.2).
-        let x = params.break_stretch_size_exponent;
-        let scale = if x == 0.0 { 1.0 } else { libm::powf(1.0 / params.element_size, x) };
-        let margin = (params.break_stretch_mean - 1.0) * scale;
-        for spring in 0..springs {
-            other[spring] = lattice.spring_nodes(spring).map_or(ABSENT, |(_, b)| b as u32);
-            // κ_i = κ̄ + σ/√A_i·N(0,1); anisotropy scales the margin κ_i − 1 (Fig. 7). The
-            // draw is made for absent springs too, so a spring's κ does not depend on edges.
-            // The irregular lattice's springs each have their own face and direction.
-            let (spread, factor) = match lattice.mesh() {
-                Some(m) => (
-                    material.spread_per_root_face / libm::sqrtf(m.face(spring)),
-                    material::anisotropy(m.direction(spring), params.anisotropy_direction, params.anisotropy_ratio),
-                ),
-                None => (material.break_stretch_spread, material.margin_factor[lattice.spring_origin(spring).1]),
-            };
-            let kappa = 1.0 + margin + spread * rng.normal_f32();
-            break_stretch[spring] = S::from_f32(1.0 + (kappa - 1.0) * factor);
-        }
-        // The bounds on a settling lattice's work come from the f32 constants, whatever the
-        // backend.
-        let reference = Material::<f32>::new(params, &shape)?;
+        // The irregular lattice's bounds come from its nodes, which the setup sees one by one.
         let solver = match params.solver {
             Solver::Explicit => {
-                let settle = explicit::settle_bound(&lattice, &reference, params.damping_factor);
-                let constants = (params.displacement_tolerance / params.element_size, params.damping_factor, settle);
-                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &lattice, other, &material, constants))
+                let settle = if irregular { u64::MAX } else { explicit::settle_bound(&shape, &reference) };
+                SolverState::Explicit(explicit::Dynamics::new(&mut scalars, &shape, &material, settle))
             }
             Solver::QuasiStatic => {
-                let bound = quasi_static::relax_bound(&lattice, &reference);
+                let bound = if irregular { u64::MAX } else { quasi_static::relax_bound(&shape, &reference) };
                 SolverState::QuasiStatic(quasi_static::Relaxation::new(
                     &mut scalars,
                     &mut words,
@@ -435,9 +394,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 ))
             }
         };
-        let mut mud = Mud {
+        Ok(Mud {
             params: *params,
-            lattice,
+            lattice: shape,
             material,
             ux,
             uy,
@@ -459,11 +418,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
             broken: 0,
             finished: false,
             work: 0,
-        };
-        if let SolverState::QuasiStatic(_) = mud.solver {
-            mud.quasi_static_setup();
-        }
-        Ok(mud)
+            setup: Some(setup::Setup::new(params.seed, params.topology, params.solver, reference)),
+            mesh_words,
+            failure: None,
+        })
     }
 
     /// Advances the run by about `budget` units of work (one unit is one spring or one node
@@ -471,6 +429,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// unfinished run does at least one piece and overruns `max(budget, 1)` by less than one
     /// piece. A piece is bounded by a row of the lattice or a node, not by its size:
     ///
+    /// - the setup, first: item by item, a spring, a node or a mesh cell (1 unit), an
+    ///   irregular node's jitter into the mesh or its constants (16), a block of the
+    ///   quasi-static solver's tree (32; at most [`SETUP_PIECE`]). Until it is done the run
+    ///   is an uncracked plate at shrink 0 and the outputs describe that. The irregular
+    ///   lattice's explicit run is tested for stability node by node on its mesh here: a
+    ///   node that fails ends the run with [`MudParamError::ShortStepStability`].
     /// - explicit solver: a short step is resumed where the last call stopped, in the paper's
     ///   order (the springs' limits once per long step, then the forces and breaks of Eq. 2
     ///   and 5 row by row, direction by direction, the stability test of Eq. 3 and the move
@@ -487,17 +451,31 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// while its budget lasts, and the run is finished when the trace is done. Meanwhile
     /// ([`Mud::is_tracing`]) the outputs that read the network describe no crack. The run
     /// does not depend on the budgets: every budget gives the same run bit for bit.
-    pub fn step(&mut self, budget: u64) -> MudProgress {
+    ///
+    /// An error ends the run: the call that finds it and every later one return it, and the
+    /// outputs stay those of the uncracked plate.
+    pub fn step(&mut self, budget: u64) -> Result<MudProgress, MudError> {
+        if let Some(error) = self.failure {
+            return Err(error);
+        }
         let mut work = 0u64;
-        while !self.finished {
+        if !self.is_set_up() {
+            work = self.setup_step(budget);
+            self.work += work;
+            if let Some(error) = self.failure {
+                return Err(error);
+            }
+            if !self.is_set_up() {
+                return Ok(self.progress());
+            }
+        }
+        let setup_work = work;
+        while !self.finished && work < budget.max(1) {
             let left = budget.saturating_sub(work);
             work += match self.solver {
                 SolverState::Explicit(_) => self.explicit_step(left),
                 SolverState::QuasiStatic(_) => self.quasi_static_step(left),
             };
-            if work >= budget {
-                break;
-            }
         }
         if self.finished && self.tracing.is_none() && self.traced_broken != self.broken {
             self.tracing = Some(network::TracePass::Breaks(0));
@@ -505,12 +483,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if self.tracing.is_some() && work < budget.max(1) {
             work += self.trace_step(budget.saturating_sub(work));
         }
-        self.work += work;
-        self.progress()
+        self.work += work - setup_work;
+        Ok(self.progress())
     }
 
-    /// Runs to the end (target shrink or crack density).
-    pub fn run(&mut self) -> MudProgress {
+    /// Runs to the end (target shrink or crack density), or to an error ([`Mud::step`]).
+    pub fn run(&mut self) -> Result<MudProgress, MudError> {
         self.step(u64::MAX)
     }
 
@@ -531,7 +509,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         &self.params
     }
 
-    /// The lattice of the run.
+    /// The lattice of the run (an irregular lattice's mesh once the first steps have built
+    /// it: until then [`Lattice::mesh`] is `None`).
     pub fn lattice(&self) -> &Lattice<'a> {
         &self.lattice
     }
@@ -545,13 +524,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if length == 0.0 { 0.0 } else { (length / (area * self.params.element_size)).min(f32::MAX) }
     }
 
-    /// Whether spring `spring` exists and is broken.
+    /// Whether spring `spring` exists and is broken (none is while the setup is under way).
     pub fn is_broken(&self, spring: usize) -> bool {
-        self.break_time.get(spring).is_some_and(|&t| t != INTACT)
+        self.spring_break_time(spring).is_some()
     }
 
     /// The long step at which `spring` broke, if it did.
     pub fn spring_break_time(&self, spring: usize) -> Option<f32> {
+        if !self.is_set_up() {
+            return None;
+        }
         self.break_time.get(spring).filter(|&&t| t != INTACT).map(|&t| f32::from_bits(t))
     }
 
@@ -678,6 +660,10 @@ mod tests {
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+        // The setup, item by item (the budget ends each call there, before any physics).
+        while !mud.is_set_up() {
+            assert_eq!(mud.step(1).unwrap().shrink, 0.0);
+        }
         mud.trace();
         // Nothing is cut: one region, which wraps around the torus and has no outline.
         assert_eq!(mud.statistics().cells, 1);
@@ -723,7 +709,7 @@ mod tests {
         let mut storage = MudStorage::<f32, { M.scalars }, { M.words }>::new();
         let p = MudParams { columns: 16, rows: 16, ..MudParams::default() };
         let mut mud = Mud::new(&p, storage.buffers()).unwrap();
-        assert!(mud.run().finished);
+        assert!(mud.run().unwrap().finished);
     }
 
     #[test]
@@ -772,10 +758,10 @@ mod tests {
         let piece = piece.max(TRACE_PIECE);
         let mut traced_in = 0;
         let progress = match budget {
-            None => mud.run(),
+            None => mud.run().unwrap(),
             Some(budget) => loop {
                 let before = mud.progress().work;
-                let progress = mud.step(budget);
+                let progress = mud.step(budget).unwrap();
                 let work = progress.work - before;
                 let bound = budget.max(1) - 1 + piece;
                 assert!(work <= bound, "{p:?}: budget {budget}: {work} > {bound}");
@@ -854,7 +840,7 @@ mod tests {
             let m = p.memory().unwrap();
             let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
             let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
-            while !mud.step(3).finished {}
+            while !mud.step(3).unwrap().finished {}
             let before = mud.network_counts();
             mud.trace();
             assert_eq!(mud.network_counts(), before, "{p:?}");

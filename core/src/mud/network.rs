@@ -279,8 +279,13 @@ impl<S: Scalar> Mud<'_, S> {
     /// Traces the network of the cracks as they stand (see the module docs), in one call.
     /// [`Mud::step`] traces when the run ends, in pieces within its budgets; call this to see
     /// the network of an unfinished run (a trace under way starts again). The network, the
-    /// cells, the statistics and the rasters describe the state last traced.
+    /// cells, the statistics and the rasters describe the state last traced. While the setup
+    /// is under way (the first steps: see [`Mud::step`]) nothing has cracked and this does
+    /// nothing.
     pub fn trace(&mut self) {
+        if !self.is_set_up() {
+            return;
+        }
         self.tracing = Some(TracePass::Breaks(0));
         self.trace_step(u64::MAX);
     }
@@ -290,6 +295,12 @@ impl<S: Scalar> Mud<'_, S> {
     /// (network, cells, statistics, rasters) describe no crack meanwhile.
     pub fn is_tracing(&self) -> bool {
         self.tracing.is_some()
+    }
+
+    /// Whether the outputs that read the network show it: not while the setup or a trace is
+    /// under way (they describe no crack then).
+    pub(super) fn shows_network(&self) -> bool {
+        self.is_set_up() && self.tracing.is_none()
     }
 
     /// Goes on with the trace under way, piece by piece, until the pieces' work reaches
@@ -907,8 +918,8 @@ impl<S: Scalar> Mud<'_, S> {
     /// the vertex and side it starts from, then the closed cracks by their lowest spring.
     /// `points` calls its argument with the edge's points in order.
     fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint)))) {
-        // A trace under way has no network to show yet.
-        if self.is_tracing() {
+        // The setup or a trace under way has no network to show yet.
+        if !self.shows_network() {
             return;
         }
         for cell in 0..self.lattice.cell_count() {
@@ -992,8 +1003,8 @@ impl<S: Scalar> Mud<'_, S> {
     /// crack's point `reach` lattice units further along it (or its far end, if nearer): the
     /// crack's course, not the mesh cell's own geometry.
     pub(super) fn for_each_junction(&self, reach: f32, mut arms: impl FnMut(&[[f32; 2]])) {
-        // A trace under way has no network to show yet.
-        if self.is_tracing() {
+        // The setup or a trace under way has no network to show yet.
+        if !self.shows_network() {
             return;
         }
         for cell in 0..self.lattice.cell_count() {
@@ -1022,8 +1033,8 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// Calls `visit` with every vertex, in index order.
     pub(super) fn for_each_vertex(&self, mut visit: impl FnMut(NetworkVertex)) {
-        // A trace under way has no network to show yet.
-        if self.is_tracing() {
+        // The setup or a trace under way has no network to show yet.
+        if !self.shows_network() {
             return;
         }
         for cell in 0..self.lattice.cell_count() {
@@ -1039,7 +1050,7 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// How many vertices, edges and points [`Mud::network`] writes.
     pub fn network_counts(&self) -> NetworkCounts {
-        let vertices = if self.is_tracing() { 0 } else { self.vertex_total as usize };
+        let vertices = if !self.shows_network() { 0 } else { self.vertex_total as usize };
         let mut counts = NetworkCounts { vertices, ..NetworkCounts::default() };
         self.for_each_edge(|_, _, points| {
             counts.edges += 1;
@@ -1085,8 +1096,8 @@ impl<S: Scalar> Mud<'_, S> {
     /// Calls `emit(start, end)` for every straight piece of the traced network (Fig. 5's rule
     /// on the cut springs), cell by cell: what the rasters draw.
     pub(super) fn for_each_network_piece(&self, mut emit: impl FnMut(NetworkPoint, NetworkPoint)) {
-        // A trace under way has no network to show yet.
-        if self.is_tracing() {
+        // The setup or a trace under way has no network to show yet.
+        if !self.shows_network() {
             return;
         }
         for cell in 0..self.lattice.cell_count() {

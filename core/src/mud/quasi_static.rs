@@ -102,26 +102,31 @@ pub(super) const RELAX_EFOLDS: f64 = 64.0;
 /// run relaxes at most this many nodes per break and after the setup. Computed in `f32`
 /// constants and `f64`, so that it does not depend on the backend; saturates at `u64::MAX`.
 pub(super) fn relax_bound(lattice: &super::Lattice, material: &super::Material<f32>) -> u64 {
-    // h/Σk of the slowest node.
-    let ratio = match lattice.mesh() {
-        None => {
-            let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
-            f64::from(material.shear) / f64::from(springs)
-        }
-        Some(mesh) => (0..lattice.node_count()).fold(f64::INFINITY, |slowest, node| {
-            let mut springs = 0.0f64;
-            mesh.for_each_spring_at(node, |spring, _, _| springs += f64::from(mesh.stiffness(spring)));
-            let shear = f64::from(mesh.area(node) * material.shear_per_area);
-            slowest.min(shear / springs)
-        }),
-    };
+    let springs: f32 = material.stiffness[..lattice.directions()].iter().map(|&k| 2.0 * k).sum();
+    relax_bound_of(f64::from(material.shear) / f64::from(springs), lattice.node_count())
+}
+
+/// h/Σk of the irregular lattice's node `node` ([`relax_bound`] takes the smallest, which the
+/// run's setup folds over the nodes).
+pub(super) fn shear_over_springs(mesh: &super::irregular::Mesh, node: usize, material: &super::Material<f32>) -> f64 {
+    let mut springs = 0.0f64;
+    mesh.for_each_spring_at(node, |spring, _, _| springs += f64::from(mesh.stiffness(spring)));
+    let shear = f64::from(mesh.area(node) * material.shear_per_area);
+    shear / springs
+}
+
+/// [`relax_bound`] of a lattice of `nodes` nodes whose slowest node has h/Σk = `ratio`.
+pub(super) fn relax_bound_of(ratio: f64, nodes: usize) -> u64 {
     let sweeps = libm::ceil(RELAX_EFOLDS / libm::log1p(ratio));
-    let relaxations = sweeps * lattice.node_count() as f64;
+    let relaxations = sweeps * nodes as f64;
     // A NaN or infinite count (no shear, or no spring) gives the largest bound.
     if relaxations.is_nan() { u64::MAX } else { (relaxations as u64).max(1) }
 }
 
 impl<'a, S: Scalar> Relaxation<'a, S> {
+    /// The arrays, carved from `scalars` and `words`; the run's setup writes them
+    /// ([`Relaxation::clear_nodes`], [`Mud::set_break_misfits`], the tree and the queue) and,
+    /// on the irregular lattice, the relax bound.
     pub(super) fn new(
         scalars: &mut &'a mut [S],
         words: &mut &'a mut [u32],
@@ -134,7 +139,6 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         let queue = take(words, nodes);
         let flags = take(words, nodes);
         let touched = take(words, nodes);
-        flags.fill(0);
         Relaxation {
             break_misfit,
             tree,
@@ -149,6 +153,49 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             relaxed: 0,
             relax_bound,
         }
+    }
+
+    /// Nodes `from..end`: neither queued nor touched.
+    pub(super) fn clear_nodes(&mut self, from: usize, end: usize) {
+        self.flags[from..end].fill(0);
+    }
+
+    /// The tree's slots: 2·leaves.
+    pub(super) fn tree_len(&self) -> usize {
+        self.tree.len()
+    }
+
+    /// Tree slots `from..end` empty.
+    pub(super) fn clear_tree(&mut self, from: usize, end: usize) {
+        self.tree[from..end].fill(NONE);
+    }
+
+    /// The leaves of blocks `from..end`: each block's winner.
+    pub(super) fn tree_leaves(&mut self, from: usize, end: usize) {
+        for b in from..end {
+            self.tree[self.leaves + b] = self.block_winner(b);
+        }
+    }
+
+    /// Inner slots, the `from..end`th from the last leaf up (slot leaves − 1 first, slot 1
+    /// last): each its children's winner.
+    pub(super) fn tree_inner(&mut self, from: usize, end: usize) {
+        for k in from..end {
+            let slot = self.leaves - 1 - k;
+            self.tree[slot] = self.winner(self.tree[2 * slot], self.tree[2 * slot + 1]);
+        }
+    }
+
+    /// Nodes `from..end` queued for relaxing.
+    pub(super) fn queue_nodes(&mut self, from: usize, end: usize) {
+        for node in from..end {
+            self.push(node);
+        }
+    }
+
+    /// The irregular lattice's relax bound, once the setup has seen every node.
+    pub(super) fn set_relax_bound(&mut self, relax_bound: u64) {
+        self.relax_bound = relax_bound;
     }
 
     /// The better of two tree entries.
@@ -266,28 +313,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
     }
 
-    /// Computes every spring's break misfit, builds the tree, and queues every node when
-    /// the edges are open (their boundary layer needs relaxing; a periodic lattice is in
-    /// equilibrium at u = 0 by symmetry).
-    pub(super) fn quasi_static_setup(&mut self) {
-        let springs = self.lattice.spring_count();
-        for s in 0..springs {
+    /// Springs `from..end`: the misfit at which each breaks (the setup's, at u = 0; the tree
+    /// is built from them, and every node of an open or irregular lattice queued: its
+    /// boundary layer, or its differing springs, need relaxing).
+    pub(super) fn set_break_misfits(&mut self, from: usize, end: usize) {
+        for s in from..end {
             let value = self.break_misfit_of(s);
             self.relaxation().break_misfit[s] = value;
-        }
-        let r = self.relaxation();
-        r.tree.fill(NONE);
-        for b in 0..springs.div_ceil(BLOCK) {
-            r.tree[r.leaves + b] = r.block_winner(b);
-        }
-        for slot in (1..r.leaves).rev() {
-            r.tree[slot] = r.winner(r.tree[2 * slot], r.tree[2 * slot + 1]);
-        }
-        // The irregular lattice is not in equilibrium at u = 0 either: its springs differ.
-        if self.params.boundary == super::Boundary::Open || self.lattice.mesh().is_some() {
-            for node in 0..self.lattice.node_count() {
-                self.relaxation().push(node);
-            }
         }
     }
 

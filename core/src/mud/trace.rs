@@ -39,6 +39,10 @@ impl<S: Scalar> Mud<'_, S> {
     /// Calls `emit` with every crack segment, cell by cell in index order (what
     /// [`Mud::segments`] writes, without a buffer).
     pub fn for_each_segment(&self, mut emit: impl FnMut(CrackSegment)) {
+        // Nothing has cracked while the setup is under way.
+        if !self.is_set_up() {
+            return;
+        }
         let lattice = self.lattice;
         let (rest, deep) = self.factors();
         let (rest, deep) = (rest.to_f32(), deep.to_f32());

@@ -436,7 +436,7 @@ fn mud_run<'a, S: Scalar>(
 ) -> Result<Mud<'a, S>, Failure> {
     let mut mud = Mud::new(params, MudBuffers { scalars, words })
         .map_err(|_| Failure("mud: Mud::new refused (memory too small?)"))?;
-    while !mud.step(1_000_000).finished {}
+    while !mud.step(1_000_000).map_err(|_| Failure("mud: the run failed"))?.finished {}
     Ok(mud)
 }
 
