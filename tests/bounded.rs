@@ -243,6 +243,7 @@ fn skin_extremes() -> Vec<Extreme<SkinParams>> {
             p.level[1].spacing = 1e29;
         }),
         ("stretch 1e30", |p| p.level[0].stretch = [1e30, 1e30]),
+        ("finer level at 1 px (parents of a few hundred children)", |p| p.level[1].spacing = 1.0),
         ("profile reaching x' 1e30", |p| {
             let profile = &mut p.level[0].profile;
             let last = 3 * profile.segments as usize;
@@ -255,8 +256,9 @@ fn skin_case(name: &str, params: &SkinParams, budget: u64) -> (u64, bool) {
     let memory = params.memory().unwrap_or_else(|e| panic!("{name}: {e}"));
     let mut store = memory.allocate();
     let mut skin = Skin::<f32>::new(params, store.buffers()).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-    // One piece: a cell, its outline's vertices (at most MAX_OUTLINE) and one unit for a
-    // level-0 centre point (the step checks its budget before each cell).
+    // The largest piece: a cell, its outline's vertices (at most MAX_OUTLINE) and one unit
+    // for a level-0 centre point (the step checks its budget before each cell and between a
+    // division's pieces, one unit each: a centre point tried, a piece of bucketing).
     let piece = hibi_core::skin::MAX_OUTLINE as u64 + 1;
     let mut work = 0;
     let result = bounded(name, budget, piece, |b| {

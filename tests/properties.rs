@@ -22,7 +22,8 @@
 //!   (mud: a row of a short step, a node's relaxation, a break event or a piece of the
 //!   network's tracing; glass: a cell or entry of a query, a crack looked at or a step of a
 //!   face walk, at most `HIBI_GLASS_STEP_PIECE` units;
-//!   skin: one cell at any level). The largest piece is measured by a run with budget 1,
+//!   skin: one cell at any level, or one unit of a division: a centre point tried or a
+//!   piece of bucketing). The largest piece is measured by a run with budget 1,
 //!   whose calls each do exactly one piece; the run under test must then end in the same
 //!   state (the models do not depend on the budgets), so its pieces are the same ones;
 //! - the memory need is exact: `*_create_in` accepts `*_memory_size` bytes and refuses one
@@ -723,8 +724,9 @@ proptest! {
         memory_is_exact(&p, hibi_skin_memory_size, hibi_skin_create_in);
         let single = Skin::new(&p);
         let (piece, end) = single.run(1, u64::MAX);
-        // One cell at a time at every level: a piece is one cell's outline vertices and the
-        // unit of its centre point.
+        // The largest piece is a cell: its outline's vertices and the unit of its centre
+        // point (a division's pieces, a centre point tried or a piece of bucketing, are one
+        // unit each).
         let bound = hibi_core::skin::MAX_OUTLINE as u64 + 1;
         prop_assert!(piece <= bound, "a skin piece did {} work, over its bound {}", piece, bound);
         let skin = Skin::new(&p);

@@ -24,6 +24,7 @@ use std::path::PathBuf;
 use hibi_core::glass::{Glass, GlassParams};
 use hibi_core::mud::{Mud, MudParams, MudProgress, Solver, Topology};
 use hibi_core::scalar::{Q16, Scalar};
+use hibi_core::skin::{Skin, SkinParams};
 
 /// The environment variable that makes a test, run again under Callgrind by itself, run one
 /// case (its index) instead of measuring them all.
@@ -47,7 +48,9 @@ type Stepped = (u64, bool);
 /// A model stepped by the test: its `step`, and what the phase schedule reads after each call.
 trait Stepper {
     fn step(&mut self, budget: u64) -> Stepped;
-    /// Glass: the time step; mud: whether the network's tracing is under way.
+    /// Glass: the time step; mud: whether the network's tracing is under way; skin: the cells
+    /// built (high 32 bits) and the level-0 centre points done (low), and the newest cell's
+    /// level.
     fn observe(&self) -> (u64, u32);
 }
 
@@ -87,6 +90,18 @@ impl<S: Scalar> Stepper for Mud<'_, S> {
     }
 }
 
+impl Stepper for Skin<'_> {
+    fn step(&mut self, budget: u64) -> Stepped {
+        let p = Skin::step(self, budget);
+        (p.work, p.finished)
+    }
+    fn observe(&self) -> (u64, u32) {
+        let p = self.progress();
+        let level = self.cells().last().map_or(0, |c| c.level);
+        ((u64::from(p.cells) << 32) | u64::from(p.roots), level)
+    }
+}
+
 /// The step of a call made in phase `k` of its model: the only functions Callgrind counts
 /// (found by their unmangled names; each keeps its own body, so none is merged with another).
 macro_rules! phase_steps {
@@ -107,11 +122,13 @@ macro_rules! phase_steps {
 phase_steps!(0 hibi_unit_cost_phase_0, 1 hibi_unit_cost_phase_1, 2 hibi_unit_cost_phase_2, 3 hibi_unit_cost_phase_3);
 
 /// What a case runs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 enum Params {
     Glass(GlassParams),
     /// Mud in f32 (false) or Q16.16 (true).
     Mud(MudParams, bool),
+    /// (Boxed: a skin's parameters are far larger than the others'.)
+    Skin(Box<SkinParams>),
 }
 
 /// One case: its name, whether it is an ordinary one (defaults, presets) and its parameters.
@@ -142,6 +159,10 @@ fn with_model<R>(params: &Params, f: impl FnOnce(&mut dyn Stepper) -> R) -> R {
         Params::Mud(p, true) => {
             let mut memory = p.memory().expect("valid parameters").allocate::<Q16>();
             f(&mut Mud::<Q16>::new(p, memory.buffers()).expect("memory suffices"))
+        }
+        Params::Skin(p) => {
+            let mut memory = p.memory().expect("valid parameters").allocate();
+            f(&mut Skin::new(p, memory.buffers()).expect("memory suffices"))
         }
     }
 }
@@ -222,10 +243,37 @@ fn mud_schedule(p: &MudParams, model: &mut dyn Stepper) -> Schedule {
     schedule
 }
 
+/// Skin's phases.
+const SKIN_PHASES: [&str; 3] = ["level-0 cells", "finer cells", "divisions"];
+
+/// Skin: one piece a call (a budget of one unit). A call that builds a cell is of its level's
+/// phase (level 0, or finer); one that builds none is a level-0 cell's when it finishes a
+/// level-0 centre point (one whose cell misses the surface), else a division's (a centre
+/// point tried in a parent being divided, or a piece of its children's bucketing).
+fn skin_schedule(model: &mut dyn Stepper) -> Schedule {
+    let mut schedule = Vec::new();
+    let (mut work, mut finished, mut seen) = (0, false, 0);
+    while !finished && work < CAP {
+        (work, finished) = model.step(1);
+        let (now, level) = model.observe();
+        let phase = if now >> 32 > seen >> 32 {
+            if level == 0 { 0 } else { 1 }
+        } else if now > seen {
+            0
+        } else {
+            2
+        };
+        extend(&mut schedule, phase, work);
+        seen = now;
+    }
+    schedule
+}
+
 fn schedule_of(params: &Params) -> Schedule {
     with_model(params, |model| match params {
         Params::Glass(p) => glass_schedule(p, model),
         Params::Mud(p, _) => mud_schedule(p, model),
+        Params::Skin(_) => skin_schedule(model),
     })
 }
 
@@ -463,4 +511,47 @@ fn mud_cases() -> Vec<Case> {
 #[test]
 fn mud_units_cost_about_the_same_in_every_phase_at_any_valid_parameters() {
     measure("mud_units_cost_about_the_same_in_every_phase_at_any_valid_parameters", "mud", &MUD_PHASES, mud_cases());
+}
+
+// ---------------------------------------------------------------------------------------
+// Skin
+
+fn skin_cases() -> Vec<Case> {
+    let mut cases = vec![case("default", true, Params::Skin(Box::default()))];
+    for name in ["fig13a", "fig17b", "fig19a"] {
+        let p = hibi_core::skin::preset(name).expect("a preset");
+        cases.push(case(name, true, Params::Skin(Box::new(SkinParams { width: 160, height: 160, ..p }))));
+    }
+    let two = {
+        let mut p = SkinParams { width: 120, height: 120, levels: 2, ..SkinParams::default() };
+        p.level[0].spacing = 40.0;
+        p.level[1].spacing = 1.0;
+        p
+    };
+    let extremes: [Extreme<SkinParams>; 5] = [
+        ("level 1 at 1 px under 40", |_| {}),
+        ("level 1 at 1 px, stretch 1e30", |p| p.level[0].stretch = [1e30, 1e30]),
+        ("level 1 at 1 px, stretch 1e30 on level 1", |p| p.level[1].stretch = [1e30, 1e30]),
+        ("level 1 at 1 px, perturbation 1e30", |p| (p.level[0].perturbation, p.level[1].perturbation) = (1e30, 1e30)),
+        ("level 1 at 1 px, perturbation_decay 1e30", |p| {
+            (p.level[0].perturbation, p.level[0].perturbation_decay) = (0.5, 1e30);
+            (p.level[1].perturbation, p.level[1].perturbation_decay) = (0.5, 1e30);
+        }),
+    ];
+    for (name, f) in extremes {
+        let mut p = two;
+        f(&mut p);
+        cases.push(case(name, false, Params::Skin(Box::new(p))));
+    }
+    cases
+}
+
+#[test]
+fn skin_units_cost_about_the_same_in_every_phase_at_any_valid_parameters() {
+    measure(
+        "skin_units_cost_about_the_same_in_every_phase_at_any_valid_parameters",
+        "skin",
+        &SKIN_PHASES,
+        skin_cases(),
+    );
 }

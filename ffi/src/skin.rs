@@ -342,13 +342,16 @@ fn skin_layers(layer: u32, pixels: Pixels<'_>) -> Result<SkinLayers<'_>, hibi_st
     })
 }
 
-/// Advances the build by about `budget` units of work (outline vertices written, and one per
-/// level-0 centre point tried), one cell at a time at any level: the budget is checked before
-/// each cell, so a call builds at least one (or tries a level-0 centre point whose cell misses
-/// the surface) and overruns the budget by less than one cell's work (at most 2 049 units: an
-/// outline's most vertices and one). A unit stands for about the same work at any spacing
-/// ratio: a cell's neighbours are found among those near it, not sorted from all of its
-/// parent's children, so its time follows its own outline, not the number of its siblings.
+/// Advances the build by about `budget` units of work: outline vertices written, one per
+/// level-0 centre point tried, and, as a cell is divided into the next level's, one per centre
+/// point tried in its bounding box and (for more than 96 children) one per piece of bucketing
+/// its children (at most 256 children or buckets each). The work is done in pieces (a cell, a
+/// centre point tried, a piece of bucketing) and the budget is checked between them, so a call
+/// does at least one piece and overruns the budget by less than one (at most 2 049 units: a
+/// cell, an outline's most vertices and one; the other pieces are one unit each). A unit
+/// stands for about the same work at any parameters: a cell's neighbours are found among those
+/// near it, not sorted from all of its parent's children, so its time follows its own outline,
+/// not the number of its siblings, and a division's follows the centre points it tries.
 /// The cells do not depend on the budgets. Writes where it stands to `*progress` unless it is
 /// NULL. Returns `HIBI_ERROR_SKIN_CAPACITY` (and writes nothing) once a cell outgrew its
 /// capacity; what was built stays usable.
@@ -605,11 +608,12 @@ mod tests {
         let (cells, vertices, one_go, done) = outlines(u64::MAX);
         let (cells_1, vertices_1, many, done_1) = outlines(1);
         assert_eq!(one_go, 1);
-        // A budget-1 step builds one cell, or tries one level-0 centre point whose cell misses
-        // the surface.
-        let level0 = cells.iter().filter(|c| c.0 == 0).count() as u32;
-        assert!(level0 < done.cells, "two levels");
-        assert_eq!(many as u32, done.cells + done.root_total - level0, "{many} steps of one cell each");
+        // A budget-1 step builds one cell, or does one unit that builds none (a level-0 centre
+        // point whose cell misses the surface, or a unit of a division).
+        let level0 = cells.iter().filter(|c| c.0 == 0).count() as u64;
+        assert!(level0 < u64::from(done.cells), "two levels");
+        let due = u64::from(done.cells) - level0 + done.work - vertices.len() as u64;
+        assert_eq!(many as u64, due, "{many} steps of one piece each");
         assert!(cells == cells_1 && vertices == vertices_1);
         assert_eq!((done.cells, done.roots, done.work), (done_1.cells, done_1.roots, done_1.work));
     }

@@ -273,7 +273,7 @@ impl Builder<'_> {
     /// `out`; returns its length (0 if the cell misses the parent).
     ///
     /// More than [`FEW`] neighbours must come with their `buckets` (a parent's children:
-    /// [`Buckets::fill`] into `words` from the place given); fewer are picked without.
+    /// [`nearest::Filling`] into `words` from the place given); fewer are picked without.
     pub(super) fn outline(
         &mut self,
         f: &Frame,

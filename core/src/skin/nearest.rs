@@ -37,18 +37,142 @@ pub(super) struct Buckets {
     slack: f64,
 }
 
+/// Children (or buckets) one piece of a bucketing handles, at most ([`Filling::piece`]).
+pub(super) const PIECE: usize = 256;
+
+/// A bucketing under way ([`Buckets::fill`] in pieces): each piece handles at most [`PIECE`]
+/// children or buckets of one of its passes, and the bucketing resumes between any two.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Filling {
+    pass: Pass,
+    /// The next child or bucket of the pass.
+    at: usize,
+    /// The children's box so far (the first pass).
+    low: [f64; 2],
+    high: [f64; 2],
+}
+
+/// The passes of a bucketing, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pass {
+    /// The box of the children's centre points, then the buckets over it.
+    Bound,
+    /// Each bucket's count set to 0.
+    Clear,
+    /// Each bucket's children counted.
+    Count,
+    /// The counts summed into the buckets' ends.
+    Sum,
+    /// Each child's place written in its bucket, in list order.
+    Place,
+    /// The ends moved up by one bucket into starts (from the last bucket down).
+    Shift,
+    Done,
+}
+
+impl Filling {
+    pub(super) const fn new() -> Filling {
+        Filling { pass: Pass::Bound, at: 0, low: [f64::INFINITY; 2], high: [f64::NEG_INFINITY; 2] }
+    }
+
+    /// Does the next piece of bucketing `sites` into `words` and `buckets` (the same `sites`
+    /// and `words` at every piece; `buckets` is set by the first pass and read by the rest);
+    /// returns whether the bucketing is done. Each piece is O([`PIECE`]).
+    pub(super) fn piece(&mut self, buckets: &mut Buckets, sites: &[Site], words: &mut [u32]) -> bool {
+        let count = sites.len().min(MAX_CHILDREN);
+        let sites = &sites[..count];
+        let (order, starts) = words.split_at_mut(MAX_CHILDREN);
+        let total = buckets.dims[0] * buckets.dims[1];
+        let from = self.at;
+        // The end of this piece in a pass over `n` items, and whether it ends the pass.
+        let upto = |n: usize| ((from + PIECE).min(n), from + PIECE >= n);
+        let (to, last) = match self.pass {
+            Pass::Bound => {
+                let (to, last) = upto(count);
+                for s in &sites[from..to] {
+                    self.low = [self.low[0].min(s.at[0]), self.low[1].min(s.at[1])];
+                    self.high = [self.high[0].max(s.at[0]), self.high[1].max(s.at[1])];
+                }
+                if last {
+                    *buckets = Buckets::over(count, self.low, self.high);
+                }
+                (to, last)
+            }
+            Pass::Clear => {
+                let (to, last) = upto(total + 1);
+                starts[from..to].fill(0);
+                (to, last)
+            }
+            Pass::Count => {
+                let (to, last) = upto(count);
+                for s in &sites[from..to] {
+                    starts[buckets.index(s.at) + 1] += 1;
+                }
+                (to, last)
+            }
+            Pass::Sum => {
+                // (Buckets 1 to total: at starts from 0.)
+                let (to, last) = upto(total);
+                for b in from + 1..=to {
+                    starts[b] += starts[b - 1];
+                }
+                (to, last)
+            }
+            Pass::Place => {
+                // (Each bucket's start moves to the next one's as it is filled, then back by
+                // one: the next pass.)
+                let (to, last) = upto(count);
+                for (k, s) in sites.iter().enumerate().take(to).skip(from) {
+                    let b = buckets.index(s.at);
+                    order[starts[b] as usize] = k as u32;
+                    starts[b] += 1;
+                }
+                (to, last)
+            }
+            Pass::Shift => {
+                // (Buckets total down to 1, `at` counting those moved: each reads the one
+                // below before that one is moved.)
+                let (to, last) = upto(total);
+                for b in (total - to + 1..=total - from).rev() {
+                    starts[b] = starts[b - 1];
+                }
+                if last {
+                    starts[0] = 0;
+                }
+                (to, last)
+            }
+            Pass::Done => return true,
+        };
+        self.at = to;
+        if last {
+            self.at = 0;
+            self.pass = match self.pass {
+                Pass::Bound => Pass::Clear,
+                Pass::Clear => Pass::Count,
+                Pass::Count => Pass::Sum,
+                Pass::Sum => Pass::Place,
+                Pass::Place => Pass::Shift,
+                Pass::Shift | Pass::Done => Pass::Done,
+            };
+        }
+        self.pass == Pass::Done
+    }
+}
+
 impl Buckets {
     /// Buckets `sites` (a parent's children, as listed): writes into `words` ([`WORDS`] of
     /// them) their places in the list bucket by bucket, in list order within a bucket, and
-    /// after those ([`MAX_CHILDREN`] on) where each bucket's places start. O(children).
+    /// after those ([`MAX_CHILDREN`] on) where each bucket's places start. O(children), in
+    /// one go ([`Filling`] does it in pieces).
+    #[cfg(test)]
     pub(super) fn fill(sites: &[Site], words: &mut [u32]) -> Buckets {
-        let count = sites.len().min(MAX_CHILDREN);
-        let sites = &sites[..count];
-        let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for s in sites {
-            low = [low[0].min(s.at[0]), low[1].min(s.at[1])];
-            high = [high[0].max(s.at[0]), high[1].max(s.at[1])];
-        }
+        let (mut filling, mut buckets) = (Filling::new(), Buckets::default());
+        while !filling.piece(&mut buckets, sites, words) {}
+        buckets
+    }
+
+    /// The buckets for `count` children whose centre points span the box [low, high].
+    fn over(count: usize, low: [f64; 2], high: [f64; 2]) -> Buckets {
         let extent = [0, 1].map(|k| (high[k] - low[k]).max(0.0));
         // Square buckets of about one child each; an axis of no extent (a row of centres
         // without jitter) gets one bucket and the other axis all of them.
@@ -65,27 +189,7 @@ impl Buckets {
         let scale = [0, 1].map(|k| if extent[k] > 0.0 { dims[k] as f64 / extent[k] } else { 0.0 });
         let side = [0, 1].map(|k| extent[k] / dims[k] as f64);
         let magnitude = [0, 1].map(|k| low[k].abs().max(high[k].abs())).into_iter().fold(0.0, f64::max);
-        let buckets = Buckets { origin: low, scale, side, dims, slack: 1e-9 * magnitude };
-        // Counting sort: each bucket's size, then its start, then its places in list order.
-        let (order, starts) = words.split_at_mut(MAX_CHILDREN);
-        let total = dims[0] * dims[1];
-        let starts = &mut starts[..=total];
-        starts.fill(0);
-        for s in sites {
-            starts[buckets.index(s.at) + 1] += 1;
-        }
-        for b in 1..=total {
-            starts[b] += starts[b - 1];
-        }
-        // (Each bucket's start moves to the next one's as it is filled, then back by one.)
-        for (k, s) in sites.iter().enumerate() {
-            let b = buckets.index(s.at);
-            order[starts[b] as usize] = k as u32;
-            starts[b] += 1;
-        }
-        starts.copy_within(..total, 1);
-        starts[0] = 0;
-        buckets
+        Buckets { origin: low, scale, side, dims, slack: 1e-9 * magnitude }
     }
 
     /// The bucket (column, row) of a frame point, the nearest one for a point outside the box.
