@@ -70,6 +70,8 @@ fn step(u: &mut Unstructured, g: &mut Plate) -> Result<()> {
         if !o.is_null() {
             assert!(progress.finished <= 1 && progress.capacity_reached <= 1, "{progress:?}");
             assert!(progress.growing <= progress.cracks, "{progress:?}");
+            // Every impact's growth ends: it takes at most MAX_TIME_STEPS time steps.
+            assert!(progress.time <= hibi_core::glass::MAX_TIME_STEPS, "{progress:?}");
             g.finished = progress.finished == 1;
         }
     } else {

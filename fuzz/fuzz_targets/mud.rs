@@ -1,7 +1,8 @@
 //! Model A through the C ABI: params from the input, `hibi_mud_create` or
 //! `hibi_mud_create_in` (any memory length and alignment), then any sequence of steps (any
 //! budgets), segment, network and cell outputs (any buffer lengths), statistics and renders
-//! (every layer, any render params and pixel lengths).
+//! (every layer, any render params and pixel lengths). A finished periodic run's cells cover
+//! the plate: their signed areas add up to its area, unless a region wraps around it.
 #![no_main]
 
 use core::ptr::null;
@@ -9,26 +10,50 @@ use core::ptr::null;
 use arbitrary::{Result, Unstructured};
 use hibi::*;
 use hibi_core::glass::FragmentRing;
-use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
+use hibi_core::mud::{Boundary, CrackSegment, Lattice, NetworkEdge, NetworkPoint, NetworkVertex, Topology};
 use hibi_fuzz::*;
 use libfuzzer_sys::fuzz_target;
 
 const WRITTEN: usize = usize::MAX - 3;
 
-fn step(u: &mut Unstructured, mud: *mut hibi_mud, work: &mut u64, finished: &mut bool) -> Result<()> {
+/// Where the run stands, as the step calls reported it.
+struct Run {
+    work: u64,
+    finished: bool,
+    /// The misfit at the last report.
+    shrink: f32,
+    /// The status every step returns once the built lattice was refused.
+    refused: Option<hibi_status>,
+}
+
+fn step(u: &mut Unstructured, mud: *mut hibi_mud, p: &hibi_mud_params, run: &mut Run) -> Result<()> {
     let mut budget = budget(u)?;
-    if !*finished {
-        budget = budget.min(MAX_WORK.saturating_sub(*work));
+    if !run.finished {
+        budget = budget.min(MAX_WORK.saturating_sub(run.work));
     }
     let mut progress = hibi_mud_progress { work: u64::MAX, ..Default::default() };
     let out = out(u, &mut progress)?;
     // SAFETY: a live run; `out` NULL or writable.
     let status = unsafe { hibi_mud_step(mud, budget, out) };
+    if let Some(refused) = run.refused {
+        assert_eq!(status, refused, "a refused run stepped on");
+        assert_eq!(progress.work, u64::MAX, "a refused step wrote its progress");
+        return Ok(());
+    }
+    if status == HIBI_ERROR_MUD_SHORT_STEP_STABILITY {
+        // Only the irregular lattice's explicit run is checked on its built mesh, by the step
+        // that finishes building it.
+        assert!(p.topology == HIBI_MUD_IRREGULAR && p.solver == HIBI_MUD_EXPLICIT, "{p:?}");
+        assert_eq!(progress.work, u64::MAX, "a refused step wrote its progress");
+        run.refused = Some(status);
+        return Ok(());
+    }
     assert!(check(status), "step failed: {status}");
     if !out.is_null() {
-        assert!(progress.work >= *work, "work went back");
-        *work = progress.work;
-        *finished = progress.finished == 1;
+        assert!(progress.work >= run.work, "work went back");
+        run.work = progress.work;
+        run.finished = progress.finished == 1;
+        run.shrink = progress.shrink;
         assert!(progress.finished <= 1);
         assert!(finite(&[progress.shrink, progress.time, progress.crack_density]), "{progress:?}");
     }
@@ -104,7 +129,7 @@ fn network(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
     Ok(())
 }
 
-fn cells(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
+fn cells(u: &mut Unstructured, mud: *mut hibi_mud, params: &hibi_mud_params, run: &Run) -> Result<()> {
     let (mut r, mut p, mut wrapping) = (WRITTEN, WRITTEN, WRITTEN);
     // SAFETY: a live run, writable counts.
     assert!(check(unsafe { hibi_mud_cell_counts(mud, &mut r, &mut p, &mut wrapping) }));
@@ -120,18 +145,35 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud) -> Result<()> {
     if check(status) {
         assert!(possible && rw == r && pw == p);
         assert!(rb.untouched_past(r) && pb.untouched_past(p));
+        let (mut covered, mut wraps) = (0.0f64, wrapping > 0);
         for i in 0..r {
             let x: FragmentRing = rb.get(i);
             assert!(x.area.is_finite() && x.first_point as usize + x.point_count as usize <= p, "{x:?}");
+            assert_eq!(x.reserved, 0, "{x:?}");
+            covered += x.area;
             // An outer ring of positive area; a hole of negative area in a ring, or in a cell that
             // wraps around a periodic lattice.
             let in_wrapping = x.hole_of == HIBI_MUD_IN_WRAPPING_CELL && x.area < 0.0;
+            wraps |= in_wrapping;
             let in_ring = (x.hole_of as usize) < r && x.area < 0.0;
             assert!((x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0) || in_ring || in_wrapping, "{x:?}");
         }
         for i in 0..p {
             let x: hibi_vec2 = pb.get(i);
             assert!(finite(&[x.x, x.y]), "{x:?}");
+        }
+        // A finished periodic run's cells cover one period of the plate (drawn in the
+        // growing frame under the growth drive), unless a region wraps around it.
+        if run.finished && params.boundary == HIBI_MUD_PERIODIC && !wraps && r > 0 {
+            let topology = match params.topology {
+                HIBI_MUD_SQUARE => Topology::Square,
+                HIBI_MUD_HEXAGONAL => Topology::Hexagonal,
+                _ => Topology::Irregular,
+            };
+            let [w, h] = Lattice::new(topology, Boundary::Periodic, params.columns, params.rows).extent();
+            let deep = if params.drive == HIBI_MUD_GROWTH { 1.0 + run.shrink } else { 1.0 };
+            let plate = f64::from(w * deep) * f64::from(h * deep);
+            assert!(((covered - plate) / plate).abs() <= 1e-4, "cells cover {covered} of a {plate} plate ({r} rings)");
         }
     } else {
         assert!(!required, "cells refused buffers that fit: {status}");
@@ -205,14 +247,14 @@ fn run(u: &mut Unstructured) -> Result<()> {
     let p = mud_params(u)?;
     let made = create(u, &p, hibi_mud_memory_size, hibi_mud_memory_align, hibi_mud_create, hibi_mud_create_in)?;
     let Some((mud, memory)) = made else { return Ok(()) };
-    let (mut work, mut finished) = (0u64, false);
+    let mut run = Run { work: 0, finished: false, shrink: 0.0, refused: None };
     let result = (|| {
         for _ in 0..12 {
             match u.int_in_range(0u8..=5)? {
-                0 | 1 => step(u, mud, &mut work, &mut finished)?,
+                0 | 1 => step(u, mud, &p, &mut run)?,
                 2 => segments(u, mud)?,
                 3 => network(u, mud)?,
-                4 => cells(u, mud)?,
+                4 => cells(u, mud, &p, &run)?,
                 _ => {
                     if u.arbitrary()? {
                         measure(u, mud)?
