@@ -86,7 +86,7 @@ impl<S: Scalar> Stepper for Mud<'_, S> {
         Mud::step(self, budget).stepped()
     }
     fn observe(&self) -> (u64, u32) {
-        (u64::from(self.is_tracing()), 0)
+        (u64::from(self.is_tracing()), u32::from(self.is_setting_up()))
     }
 }
 
@@ -227,18 +227,28 @@ fn glass_schedule(p: &GlassParams, model: &mut dyn Stepper) -> Schedule {
 }
 
 /// Mud's phases.
-const MUD_PHASES: [&str; 3] = ["explicit solver", "quasi-static solver", "network tracing"];
+const MUD_PHASES: [&str; 4] = ["explicit solver", "quasi-static solver", "network tracing", "setup"];
 
-/// Mud: the solver's units, then the network's tracing (the calls after which a trace is
-/// under way, and the call that ends it).
+/// Mud: the setup (the calls after which it is still under way, and the call that ends it:
+/// the budget ends a call there, before any physics), the solver's units, then the network's
+/// tracing (the calls after which a trace is under way, and the call that ends it).
 fn mud_schedule(p: &MudParams, model: &mut dyn Stepper) -> Schedule {
     let solver = if p.solver == Solver::Explicit { 0 } else { 1 };
     let mut schedule = Vec::new();
-    let (mut work, mut finished, mut tracing) = (0, false, false);
+    let (mut work, mut finished, mut tracing, mut set_up) = (0, false, false, false);
     while !finished && work < CAP {
         (work, finished) = model.step(16);
-        tracing |= model.observe().0 == 1;
-        extend(&mut schedule, if tracing { 2 } else { solver }, work);
+        let (trace, setting_up) = model.observe();
+        tracing |= trace == 1;
+        let phase = if !set_up {
+            3
+        } else if tracing {
+            2
+        } else {
+            solver
+        };
+        set_up |= setting_up == 0;
+        extend(&mut schedule, phase, work);
     }
     schedule
 }

@@ -492,6 +492,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
         self.step(u64::MAX)
     }
 
+    /// Whether the setup (the first steps' work: see [`Mud::step`]) is still under way; until it
+    /// is done the run is an uncracked plate at shrink 0.
+    pub fn is_setting_up(&self) -> bool {
+        self.setup.is_some()
+    }
+
     /// Where the run stands.
     pub fn progress(&self) -> MudProgress {
         MudProgress {
