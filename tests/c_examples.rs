@@ -8,7 +8,9 @@
 //! `tests/c/work_counts.c` also runs under Callgrind, which counts the instructions of create
 //! and render calls with extreme float values, whose cost the sizes and capacities bound.
 //! `tests/cpp/wrapper.cpp` checks the C++17 wrapper `include/hibi.hpp` against the C
-//! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind.
+//! calls, built by g++ and clang++, statically, shared, under the sanitizers and Valgrind;
+//! `tests/cpp/results.cpp` checks its `hibi::Result` API, with exceptions, with
+//! `-fno-exceptions -fno-rtti` and with `HIBI_NO_EXCEPTIONS`, as C++17 and C++20.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -34,14 +36,17 @@ enum Linkage {
 
 /// The program `build_and_run_capturing` builds from `source` with `compiler` and `linkage`
 /// (and a language standard other than the usual C99 or C++17 in the name: the wrapper is
-/// also built as C++20).
-fn program_path(compiler: &str, standard: &str, source: &str, linkage: Linkage) -> PathBuf {
+/// also built as C++20; and the extra compiler flags, if any).
+fn program_path(compiler: &str, standard: &str, source: &str, linkage: Linkage, flags: &[&str]) -> PathBuf {
     let stem = Path::new(source).file_name().unwrap().to_string_lossy().replace('.', "_");
     // Named by compiler too: the same source may be built by two compilers at once.
     let by = Path::new(compiler).file_name().unwrap().to_string_lossy().replace('+', "p");
     let std =
         if ["c99", "c++17"].contains(&standard) { String::new() } else { format!("_{}", standard.replace('+', "p")) };
-    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{stem}_{by}_{linkage:?}{std}"))
+    // And by its extra flags: one source may be built in several modes at once.
+    let modes: String =
+        flags.iter().map(|f| format!("_{}", f.trim_start_matches('-').replace(['-', '='], "_"))).collect();
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{stem}_{by}_{linkage:?}{std}{modes}"))
 }
 
 /// Compiles `source` with `compiler` and the warning flags, links it to libhibi, runs it, and
@@ -63,11 +68,25 @@ fn build_and_run_capturing(
     linkage: Linkage,
     args: &[&str],
 ) -> (String, String) {
+    build_and_run_flagged(compiler, standard, source, linkage, &[], args)
+}
+
+/// As [`build_and_run_capturing`], compiling with the extra `flags` (`-fno-exceptions`, a
+/// `-D` define).
+fn build_and_run_flagged(
+    compiler: &str,
+    standard: &str,
+    source: &str,
+    linkage: Linkage,
+    flags: &[&str],
+    args: &[&str],
+) -> (String, String) {
     let root = workspace_root();
     let lib = c_library_dir();
-    let exe = program_path(compiler, standard, source, linkage);
+    let exe = program_path(compiler, standard, source, linkage, flags);
     let mut cc = hibi_tests::tool(compiler);
     cc.arg(format!("-std={standard}"))
+        .args(flags)
         .args(["-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
         .arg(root.join("include"))
         .arg(root.join(source))
@@ -87,7 +106,7 @@ fn build_and_run_capturing(
     let compiled = cc.output().expect("run the C compiler");
     assert!(
         compiled.status.success(),
-        "{compiler} {source} ({linkage:?}) failed:\n{}",
+        "{compiler} {source} ({linkage:?} {flags:?}) failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
     // cargo points LD_LIBRARY_PATH at its own target directories, which may hold another
@@ -124,7 +143,7 @@ fn build_and_run_capturing(
     let run = command.args(args).env_remove("LD_LIBRARY_PATH").output().expect("run the example");
     let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
     let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
-    assert!(run.status.success(), "{source} ({linkage:?}) exited with {}:\n{stdout}\n{stderr}", run.status);
+    assert!(run.status.success(), "{source} ({linkage:?} {flags:?}) exited with {}:\n{stdout}\n{stderr}", run.status);
     (stdout, stderr)
 }
 
@@ -592,7 +611,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
     let (stdout, stderr) = build_and_run_capturing(&c_compiler(), "c99", source, Linkage::Callgrind, &[]);
     assert!(stderr.is_empty(), "{source} under Callgrind printed on stderr:\n{stderr}");
     assert_eq!(line(&stdout, "glass-render cracks:"), "glass-render cracks: some");
-    let counts = callgrind_counts(&program_path(&c_compiler(), "c99", source, Linkage::Callgrind));
+    let counts = callgrind_counts(&program_path(&c_compiler(), "c99", source, Linkage::Callgrind, &[]));
     let names: Vec<String> =
         CASES.iter().flat_map(|(case, ..)| ["twin", "extreme"].map(|k| format!("{case} {k}"))).collect();
     assert_eq!(
@@ -909,6 +928,174 @@ fn cpp_wrapper_is_clean_under_valgrind() {
     let (stdout, stderr) = build_and_run_capturing("g++", "c++17", "tests/cpp/wrapper.cpp", Linkage::Valgrind, &[]);
     assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
     check_wrapper(&stdout, "c++17");
+}
+
+/// The modes `tests/cpp/results.cpp` is built in: with exceptions (the `try_` twins beside
+/// the throwing calls), without (`-fno-exceptions`, and `-fno-rtti` with it), and with
+/// exceptions on but `HIBI_NO_EXCEPTIONS` defined; in the last two every call returns its
+/// `hibi::Result`.
+const WITH_EXCEPTIONS: &[&str] = &[];
+const NO_EXCEPTIONS: &[&str] = &["-fno-exceptions", "-fno-rtti"];
+const HIBI_NO_EXCEPTIONS: &[&str] = &["-DHIBI_NO_EXCEPTIONS"];
+
+/// What `tests/cpp/results.cpp` must print, built with `flags` as `standard`: every entry
+/// point's result equals the C call's and a failed call wrote nothing ("yes"), and each
+/// failure carries the C status and the refused argument's name (views one element short:
+/// status 3, `HIBI_ERROR_BUFFER_TOO_SMALL`; objects without a handle: status 1 and the
+/// handle's name). Without exceptions a `hibi::Buffer` that cannot be allocated is empty,
+/// which the C call refuses; with them, reading a failed result's value throws `hibi::Error`.
+fn check_results(output: &str, flags: &[&str], standard: &str) {
+    let results = flags != WITH_EXCEPTIONS;
+    let mode = match flags {
+        WITH_EXCEPTIONS => "exceptions, language exceptions on, rtti on",
+        NO_EXCEPTIONS => "results, language exceptions off, rtti off",
+        _ => "results, language exceptions on, rtti on",
+    };
+    let mut expected = vec![
+        format!("mode: {mode}"),
+        "try_check: yes; status 1 [rng]".into(),
+        "value_or: yes; status 1 [mud]".into(),
+        if results {
+            "buffer of 2^62 bytes: yes; status 1 [memory]".into()
+        } else {
+            "value of a failure: throws hibi::Error: yes".into()
+        },
+    ];
+    let lines = [
+        "rng try_create_in, misaligned: yes; status 2 [memory]",
+        "rng try_create_in, short: yes; status 3 [memory]",
+        "rng try_create, try_next_u32: yes; status 1 [rng]",
+        "rng try_uniform(view): yes; status 1 [values]",
+        "rng try_uniform(n): yes; status 1 [rng]",
+        "rng try_normal(view): yes; status 1 [rng]",
+        "rng try_normal(n): yes; status 1 [rng]",
+        "rng try_poisson: yes; status 256 []",
+        "rng try_rand: yes; status 4 [spread]",
+        "mud try_preset: yes; status 577 []",
+        "mud try_memory_size: yes; status 522 []",
+        "mud try_create: yes; status 522 []",
+        "mud try_create_in: yes; status 3 [memory]",
+        "mud try_step: yes; status 1 [mud]",
+        "mud try_run: yes; status 1 [mud]",
+        "mud try_segment_count: yes; status 1 [mud]",
+        "mud try_segments(view): yes; status 3 [segments]",
+        "mud try_segments(): yes; status 1 [mud]",
+        "mud try_statistics: yes; status 1 [mud]",
+        "mud try_network_counts: yes; status 1 [mud]",
+        "mud try_network(views): yes; status 3 [edges]",
+        "mud try_network(): yes; status 1 [mud]",
+        "mud try_cell_counts: yes; status 1 [mud]",
+        "mud try_cells(views): yes; status 3 [rings]",
+        "mud try_cells(): yes; status 1 [mud]",
+        "mud try_render: yes; status 773 []",
+        "mud try_render_mask(view): yes; status 3 [pixels]",
+        "mud try_render_height(view): yes; status 3 [pixels]",
+        "mud try_render_time(view): yes; status 3 [pixels]",
+        "mud try_render_mask(): yes; status 1 [mud]",
+        "mud try_render_height(): yes; status 1 [mud]",
+        "mud try_render_time(): yes; status 1 [mud]",
+        "mud caller memory, same mask: yes",
+        "glass try_preset: yes; status 1093 []",
+        "glass try_memory_size: yes; status 1024 []",
+        "glass try_create: yes; status 1025 []",
+        "glass try_create_in: yes; status 3 [memory]",
+        "glass try_step: yes; status 1 [glass]",
+        "glass try_run: yes; status 1 [glass]",
+        "glass try_crack_count: yes; status 1 [glass]",
+        "glass try_crack: yes; status 1091 []",
+        "glass try_points(view): yes; status 3 [points]",
+        "glass try_points(): yes; status 1091 []",
+        "glass try_scratch_size: yes; status 1 [glass]",
+        "glass try_scratch: yes; status 1 [glass]",
+        "glass try_fragment_counts: yes; status 3 [scratch]",
+        "glass try_fragments(views): yes; status 3 [points]",
+        "glass try_fragments(): yes; status 1 [scratch]",
+        "glass try_render: yes; status 1094 []",
+        "glass try_render_mask(view): yes; status 3 [pixels]",
+        "glass try_render_time(view): yes; status 3 [pixels]",
+        "glass try_render_mask(): yes; status 1 [glass]",
+        "glass try_render_time(): yes; status 1 [glass]",
+        "glass try_impact: yes; status 1089 []",
+        "skin try_preset: yes; status 1348 []",
+        "skin try_memory_size: yes; status 1280 []",
+        "skin try_create: yes; status 1280 []",
+        "skin try_create_in: yes; status 3 [memory]",
+        "skin try_step: yes; status 1 [skin]",
+        "skin try_run: yes; status 1 [skin]",
+        "skin try_cell_count: yes; status 1 [skin]",
+        "skin try_cell: yes; status 1349 []",
+        "skin try_outline(view): yes; status 3 [xy]",
+        "skin try_outline(): yes; status 1349 []",
+        "skin try_render: yes; status 1354 []",
+        "skin try_render_height(view): yes; status 3 [pixels]",
+        "skin try_render_normal(view): yes; status 3 [pixels]",
+        "skin try_render_cells(view): yes; status 3 [pixels]",
+        "skin try_render_height(): yes; status 1 [skin]",
+        "skin try_render_normal(): yes; status 1 [skin]",
+        "skin try_render_cells(): yes; status 1346 []",
+        "skin try_shade(views): yes; status 3 [rgb]",
+        "skin try_shade(): yes; status 3 [normal]",
+    ];
+    expected.extend(lines.map(String::from));
+    expected.push(if standard == "c++20" { "std::span views: yes" } else { "std::span views: not C++20" }.into());
+    expected.push(if results {
+        "calls without try_: return what the twin returns: yes".into()
+    } else {
+        "calls without try_: throw what the twin returns: yes".into()
+    });
+    assert_eq!(output.lines().collect::<Vec<_>>(), expected, "{flags:?} {standard}:\n{output}");
+}
+
+/// `tests/cpp/results.cpp` built by g++ and clang++ with `flags`, as C++17 and C++20.
+fn check_results_mode(flags: &[&str]) {
+    for compiler in ["g++", "clang++"] {
+        for standard in ["c++17", "c++20"] {
+            let (stdout, stderr) =
+                build_and_run_flagged(compiler, standard, "tests/cpp/results.cpp", Linkage::Static, flags, &[]);
+            assert!(stderr.is_empty(), "{compiler} {standard} {flags:?}: stderr:\n{stderr}");
+            check_results(&stdout, flags, standard);
+        }
+    }
+}
+
+/// Without exceptions (and without RTTI), every wrapper call returns its `hibi::Result`.
+#[test]
+fn cpp_results_without_exceptions_with_gxx_and_clangxx() {
+    check_results_mode(NO_EXCEPTIONS);
+}
+
+/// With exceptions on, `HIBI_NO_EXCEPTIONS` turns the wrapper into its result mode all the same.
+#[test]
+fn cpp_results_with_hibi_no_exceptions_with_gxx_and_clangxx() {
+    check_results_mode(HIBI_NO_EXCEPTIONS);
+}
+
+/// With exceptions, the `try_` twins return results beside the throwing calls.
+#[test]
+fn cpp_results_beside_exceptions_with_gxx_and_clangxx() {
+    check_results_mode(WITH_EXCEPTIONS);
+}
+
+#[test]
+fn cpp_results_are_clean_under_sanitizers_with_gxx_and_clangxx() {
+    for (compiler, flags) in [("g++", NO_EXCEPTIONS), ("clang++", NO_EXCEPTIONS), ("clang++", WITH_EXCEPTIONS)] {
+        let (stdout, stderr) =
+            build_and_run_flagged(compiler, "c++17", "tests/cpp/results.cpp", Linkage::Sanitized, flags, &[]);
+        // Without exceptions the program asks for a 2^62-byte hibi::Buffer, which must come out
+        // empty: AddressSanitizer returns NULL (allocator_may_return_null) and says so.
+        let refused = "WARNING: AddressSanitizer failed to allocate 0x4000000000000000 bytes";
+        let stderr: Vec<&str> = stderr.lines().filter(|l| !l.ends_with(refused)).collect();
+        assert!(stderr.is_empty(), "{compiler} {flags:?}: stderr:\n{}", stderr.join("\n"));
+        check_results(&stdout, flags, "c++17");
+    }
+}
+
+#[test]
+fn cpp_results_are_clean_under_valgrind() {
+    let (stdout, stderr) =
+        build_and_run_flagged("g++", "c++17", "tests/cpp/results.cpp", Linkage::Valgrind, NO_EXCEPTIONS, &[]);
+    assert!(stderr.is_empty(), "stderr under Valgrind:\n{stderr}");
+    check_results(&stdout, NO_EXCEPTIONS, "c++17");
 }
 
 /// The glass plate `c_examples/engine.cpp` breaks, drawn by Rust: which of its 160 × 160
