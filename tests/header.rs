@@ -88,8 +88,10 @@ fn every_cited_constant_is_defined() {
     let defined: std::collections::BTreeSet<&str> =
         header.lines().filter_map(|l| l.strip_prefix("#define ")?.split_whitespace().next()).collect();
     // Not constants: the wrapper's include guard, the environment variable that rewrites the
-    // header (`header_is_fresh`), and the CMake variable that picks the static library.
-    let not_constants = ["HIBI_HPP", "HIBI_BLESS", "HIBI_STATIC"];
+    // header (`header_is_fresh`), the CMake variable that picks the static library, and the
+    // wrapper's mode macros (`HIBI_NO_EXCEPTIONS`, which a user defines, and `HIBI_EXCEPTIONS`,
+    // which the wrapper defines).
+    let not_constants = ["HIBI_HPP", "HIBI_BLESS", "HIBI_STATIC", "HIBI_NO_EXCEPTIONS", "HIBI_EXCEPTIONS"];
     let mut sources = vec![root.join("include/hibi.h"), root.join("include/hibi.hpp"), root.join("README.md")];
     for dir in ["docs", "c_examples"] {
         let mut entries: Vec<_> = std::fs::read_dir(root.join(dir)).expect(dir).map(|e| e.expect(dir).path()).collect();
