@@ -2023,6 +2023,34 @@ hibi_status hibi_mud_cells(const struct hibi_mud *mud,
 struct hibi_mud_render_params hibi_mud_render_params_default(void);
 
 /**
+ * Writes into `*out` the default drawing `width` pixels wide at the aspect of the run's
+ * domain (`hibi_mud_extent`): its height rounded from the aspect (at least 1), so that
+ * nothing is stretched, and its narrowest stroke a fifth of a lattice spacing (at least 1
+ * pixel); the rest as `hibi_mud_render_params_default`. A `width` of 0 is
+ * `HIBI_ERROR_RENDER_SIZE`, nothing written.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `out` NULL or writable.
+ */
+hibi_status hibi_mud_render_params_fit(const struct hibi_mud *mud,
+                                       uint32_t width,
+                                       struct hibi_mud_render_params *out);
+
+/**
+ * Writes the size of the run's domain (one period when periodic) into `*extent`: `x` its
+ * width, `y` its height, in lattice units (times `element_size` for cm): columns × rows on
+ * the square lattice, columns × rows·√3/2 on the hexagonal one, columns × rows·887/1024 on
+ * the irregular one. Every point the run writes (segments, network, cells) lies in it, x
+ * along a row and y across the rows, in the raster's own directions: a render stretches the
+ * domain over its `width` × `height` pixels, x to the right and y down the rows, row 0 at
+ * y = 0 (`hibi_mud_render_params_fit` keeps the aspect).
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `extent` NULL or writable.
+ */
+hibi_status hibi_mud_extent(const struct hibi_mud *mud, struct hibi_vec2 *extent);
+
+/**
  * Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
  * `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
  * `pixels_len` counts values, not bytes. Nothing is written on failure.

@@ -559,6 +559,21 @@ public:
         return Result<std::vector<hibi_mud_segment>>(std::move(out));
     }
     detail::Returned<std::vector<hibi_mud_segment>> segments() const { return detail::returned(try_segments()); }
+    /// Width and height of the domain, lattice units (hibi_mud_extent).
+    Result<hibi_vec2> try_extent() const noexcept {
+        hibi_vec2 extent{};
+        return detail::result(hibi_mud_extent(handle_.get(), &extent), extent);
+    }
+    detail::Returned<hibi_vec2> extent() const { return detail::returned(try_extent()); }
+    /// The default drawing `width` pixels wide at the domain's aspect
+    /// (hibi_mud_render_params_fit).
+    Result<RenderParams> try_render_fit(std::uint32_t width) const noexcept {
+        RenderParams params{};
+        return detail::result(hibi_mud_render_params_fit(handle_.get(), width, &params), params);
+    }
+    detail::Returned<RenderParams> render_fit(std::uint32_t width) const {
+        return detail::returned(try_render_fit(width));
+    }
     /// Crack density, cells, junctions and dead ends of the traced network.
     Result<hibi_mud_crack_statistics> try_statistics() const noexcept {
         hibi_mud_crack_statistics stats{};

@@ -1273,6 +1273,29 @@ fn c_create_in_any_bytes_grows_the_same_result() {
     }
 }
 
+/// Polygons and rasters share their axes (x right along a row, y down the rows, row 0 at
+/// y = 0): laid over each model's crack mask, drawn at the domain's aspect
+/// (`hibi_mud_render_params_fit`, `hibi_mud_extent`), the edges of the glass fragments and of
+/// the mud cells lie on crack pixels (all but 1 %), and with y flipped most do not; every
+/// outer ring's signed area is positive in those axes.
+#[test]
+fn c_polygons_lie_on_their_crack_masks() {
+    let output = regression("tests/c/overlay.c");
+    for model in ["glass", "mud"] {
+        let l = line(&output, &format!("{model}: "));
+        let number = |after: &str| -> f64 {
+            let rest = l.split_once(after).unwrap_or_else(|| panic!("{l}")).1;
+            rest.split([';', ' ']).next().unwrap().trim_end_matches(',').parse().unwrap()
+        };
+        assert!(number("on cracks ") >= 0.99, "{l}");
+        assert!(number("flipped ") <= 0.5, "{l}");
+        let (positive, outer) = l.split_once("outer rings positive ").unwrap().1.split_once(" of ").unwrap();
+        assert_eq!(positive, outer, "{l}");
+        assert!(outer.parse::<u32>().unwrap() > 10, "{l}");
+    }
+    assert!(line(&output, "mud extent ").ends_with("(aspect kept: yes)"), "{output}");
+}
+
 /// C lists every model's presets, the core's names in the core's order, each accepted by
 /// `hibi_*_params_preset`.
 #[test]

@@ -165,7 +165,8 @@ struct Piece {
 /// The mud view for a preset: `width` pixels wide at the domain's aspect, drawn as the
 /// command line draws by default.
 fn mud_view(params: &MudParams, width: u32) -> MudRender {
-    mud::view(params, Some(mud::default_size(params, width)), &MudOptions::default())
+    let fit = MudRender::fit(params.extent(), width);
+    mud::view(params, Some([fit.width, fit.height]), &MudOptions::default())
 }
 
 /// A mud figure. fig10 is the growth: six stills and the animation.

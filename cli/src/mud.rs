@@ -68,35 +68,19 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &MudOptions) -> MudPar
 }
 
 /// The raster: `size`, or 4 pixels per lattice spacing (256 to 2048 wide) at the domain's
-/// aspect; stroke options as given.
+/// aspect; the narrowest stroke the library's fit for the width; stroke options as given.
 pub fn view(params: &MudParams, size: Option<[u32; 2]>, o: &MudOptions) -> MudRender {
-    let [width, height] = size.unwrap_or_else(|| default_size(params, (params.columns * 4).clamp(256, 2048)));
-    let d = MudRender::default();
+    let width = size.map_or((params.columns * 4).clamp(256, 2048), |s| s[0]);
+    let fit = MudRender::fit(params.extent(), width);
+    let [width, height] = size.unwrap_or([fit.width, fit.height]);
     MudRender {
         width,
         height,
-        width_scale: o.width_scale.unwrap_or(d.width_scale),
-        min_width: o.min_width.unwrap_or_else(|| drawn_width(params, width)),
-        groove_depth: o.groove_depth.unwrap_or(d.groove_depth),
-        offset: o.offset.unwrap_or(d.offset),
+        width_scale: o.width_scale.unwrap_or(fit.width_scale),
+        min_width: o.min_width.unwrap_or(fit.min_width),
+        groove_depth: o.groove_depth.unwrap_or(fit.groove_depth),
+        offset: o.offset.unwrap_or(fit.offset),
     }
-}
-
-/// The narrowest stroke by default: [`HAIRLINE`] spacings, at least one pixel, for a raster
-/// `width` pixels wide; rounded to 1/100 px. The traced network is connected, so the stroke
-/// only has to keep the youngest cracks visible.
-pub fn drawn_width(params: &MudParams, width: u32) -> f32 {
-    let pixels_per_spacing = width as f32 / params.lattice().extent()[0];
-    ((HAIRLINE * pixels_per_spacing).max(1.0) * 100.0).round() / 100.0
-}
-
-/// The narrowest crack drawn by default, in lattice spacings.
-const HAIRLINE: f32 = 0.2;
-
-/// A raster `width` pixels wide at the aspect of the lattice's domain.
-pub fn default_size(params: &MudParams, width: u32) -> [u32; 2] {
-    let [w, h] = params.lattice().extent();
-    [width, ((width as f32 * h / w).round() as u32).max(1)]
 }
 
 /// The option a parameter error is about.

@@ -30,6 +30,7 @@ use hibi_core::mud::{
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
 
+use crate::glass::hibi_vec2;
 use crate::guard::{Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
 use crate::object::{Arena, Object, Origin, lifecycle};
 use crate::polygons::polygon_query;
@@ -522,6 +523,56 @@ pub extern "C" fn hibi_mud_render_params_default() -> hibi_mud_render_params {
     guard(|| hibi_mud_render_params::from_core(&MudRender::default()))
 }
 
+/// Writes into `*out` the default drawing `width` pixels wide at the aspect of the run's
+/// domain (`hibi_mud_extent`): its height rounded from the aspect (at least 1), so that
+/// nothing is stretched, and its narrowest stroke a fifth of a lattice spacing (at least 1
+/// pixel); the rest as `hibi_mud_render_params_default`. A `width` of 0 is
+/// `HIBI_ERROR_RENDER_SIZE`, nothing written.
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_render_params_fit(
+    mud: *const hibi_mud,
+    width: u32,
+    out: *mut hibi_mud_render_params,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        unsafe {
+            query(mud, c"mud", (out, c"out"), |mud| {
+                if width == 0 {
+                    return Err(crate::status::HIBI_ERROR_RENDER_SIZE);
+                }
+                Ok(hibi_mud_render_params::from_core(&MudRender::fit(mud.mud.extent(), width)))
+            })
+        }
+    })
+}
+
+/// Writes the size of the run's domain (one period when periodic) into `*extent`: `x` its
+/// width, `y` its height, in lattice units (times `element_size` for cm): columns × rows on
+/// the square lattice, columns × rows·√3/2 on the hexagonal one, columns × rows·887/1024 on
+/// the irregular one. Every point the run writes (segments, network, cells) lies in it, x
+/// along a row and y across the rows, in the raster's own directions: a render stretches the
+/// domain over its `width` × `height` pixels, x to the right and y down the rows, row 0 at
+/// y = 0 (`hibi_mud_render_params_fit` keeps the aspect).
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `extent` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_extent(mud: *const hibi_mud, extent: *mut hibi_vec2) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        unsafe {
+            query(mud, c"mud", (extent, c"extent"), |mud| {
+                let [x, y] = mud.mud.extent();
+                Ok(hibi_vec2 { x, y })
+            })
+        }
+    })
+}
+
 render! {
     /// Draws `layer` into `pixels` (row-major, `width × height` values; `uint8_t` for
     /// `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
@@ -544,7 +595,6 @@ fn mud_layers(layer: u32, pixels: Pixels<'_>) -> Result<MudLayers<'_>, hibi_stat
 mod tests {
     use super::*;
     use crate::constants::*;
-    use crate::glass::hibi_vec2;
     use crate::status::*;
     use core::ptr::{null, null_mut};
     use hibi_core::mud::CellRing;

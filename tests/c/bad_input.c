@@ -277,6 +277,11 @@ static void calls_and_buffers(void) {
         render.height = UINT32_MAX;
         row_kept("mud-render-huge-size", hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, 16),
                  pixels[0] == 0xA5);
+        {
+            hibi_mud_render_params fit = render;
+            row_kept("mud-render-fit-width-zero", hibi_mud_render_params_fit(mud, 0, &fit),
+                     fit.width == UINT32_MAX && fit.height == UINT32_MAX);
+        }
         render.width = 4;
         render.height = 4;
         render.width_scale = -1.0f;

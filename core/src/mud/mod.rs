@@ -50,7 +50,7 @@ pub use material::Material;
 pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex, TRACE_PIECE};
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
-pub use render::{BEVEL, MudLayers, MudRender};
+pub use render::{BEVEL, HAIRLINE, MudLayers, MudRender};
 pub use setup::SETUP_PIECE;
 pub use spacing::{SpacingPrediction, predict_spacing};
 pub use statistics::{CrackStatistics, JUNCTION_REACH};
@@ -157,6 +157,12 @@ impl MudParams {
             return Err(MudParamError::ShortStepStability);
         }
         Ok(memory)
+    }
+
+    /// Width and height of the domain of a run of these parameters, lattice units (see
+    /// [`Mud::extent`]).
+    pub fn extent(&self) -> [f32; 2] {
+        self.lattice().extent()
     }
 
     /// The shape of the lattice these parameters describe (an irregular lattice's mesh is
@@ -513,6 +519,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// The parameters of the run.
     pub fn params(&self) -> &MudParams {
         &self.params
+    }
+
+    /// Width and height of the run's domain (one period when periodic), lattice units (times
+    /// `element_size` for cm): columns × rows on the square lattice, columns × rows·√3/2 on
+    /// the hexagonal one, columns × rows·887/1024 on the irregular one. Points of the network
+    /// and the cells lie in it, x along a row and y across the rows, as a raster's columns
+    /// and rows (row 0 at y = 0); a raster stretches it over its width × height
+    /// ([`MudRender::fit`] keeps its aspect).
+    pub fn extent(&self) -> [f32; 2] {
+        self.lattice.extent()
     }
 
     /// The lattice of the run (an irregular lattice's mesh once the first steps have built

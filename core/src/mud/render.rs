@@ -45,7 +45,24 @@ impl Default for MudRender {
     }
 }
 
+/// The narrowest crack [`MudRender::fit`] draws, in lattice spacings: the traced network is
+/// connected, so the stroke only has to keep the youngest cracks visible.
+pub const HAIRLINE: f32 = 0.2;
+
 impl MudRender {
+    /// The default drawing `width` pixels wide over a domain of `extent` (lattice units, from
+    /// [`Mud::extent`] or [`super::MudParams::extent`]): its height at the domain's aspect
+    /// (rounded, at least 1 pixel), so that nothing is stretched, and its narrowest stroke
+    /// [`HAIRLINE`] of a spacing (at least 1 pixel, rounded to 1/100 px); the rest as
+    /// [`MudRender::default`].
+    pub fn fit(extent: [f32; 2], width: u32) -> MudRender {
+        let [w, h] = extent;
+        let height = (libm::roundf(width as f32 * h / w) as u32).max(1);
+        let pixels_per_spacing = width as f32 / w;
+        let min_width = libm::roundf((HAIRLINE * pixels_per_spacing).max(1.0) * 100.0) / 100.0;
+        MudRender { width, height, min_width, ..MudRender::default() }
+    }
+
     fn validate(&self) -> Result<usize, RasterError> {
         if !(self.width_scale.is_finite() && self.width_scale >= 0.0) {
             return Err(RasterError::WidthScale);

@@ -125,7 +125,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 }
                 continue;
             }
-            let (len, cost) = self.extent(pass);
+            let (len, cost) = self.pass_extent(pass);
             // Items from..end: as many as the budget left takes (at least one).
             let items = usize::try_from((budget - work).div_ceil(cost)).unwrap_or(usize::MAX);
             let end = from.saturating_add(items).min(len);
@@ -180,7 +180,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// A pass's items and the work each counts.
-    fn extent(&self, pass: Pass) -> (usize, u64) {
+    fn pass_extent(&self, pass: Pass) -> (usize, u64) {
         let l = &self.lattice;
         let (nodes, springs) = (l.node_count(), l.spring_count());
         match (pass, &self.solver) {
@@ -231,7 +231,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 }
                 // A pass with no items (the queue of a periodic regular lattice) ends at once,
                 // so the setup ends with its last item.
-                if self.extent(next).0 == 0 {
+                if self.pass_extent(next).0 == 0 {
                     self.next_pass(next);
                 }
             }
