@@ -578,7 +578,8 @@ fn callgrind_counts(exe: &Path) -> std::collections::BTreeMap<String, u64> {
 /// (the most that is valid) is a Poisson draw of that mean, one uniform per unit of the mean
 /// (Knuth's method), so creation is bounded by the validation's cap rather than by the
 /// capacities (about 56 times the twin with mean 100); a mud `anisotropy_direction` of 1e30
-/// costs libm's argument reduction of the huge angle in creation (about 1.7 times). One case
+/// costs libm's argument reduction of the huge angle in creation, a constant that weighs
+/// against creation's own constant work (about 2 times the twin in release, 12 in debug). One case
 /// is a capacity, not a float: a glass plate created with `max_vertices` 2 000 000 costs what
 /// one with 2 048 does (its vertex, edge and word arrays are not written).
 #[test]
@@ -592,7 +593,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
         ("glass-create max_vertices", 1.1, true),
         ("glass-create radial_mean", 64.0, false),
         ("mud-create break_stretch_mean", 1.1, false),
-        ("mud-create anisotropy", 2.0, false),
+        ("mud-create anisotropy", 16.0, false),
         ("mud-create target_crack_density", 1.1, false),
         ("skin-create perturbation", 1.1, false),
         ("skin-create stretch", 1.1, false),
