@@ -9,7 +9,8 @@
 
 use std::time::Instant;
 
-use hibi_core::mud::{CellRing, CrackStatistics, Mud, MudBuffers, MudParams, Solver, Topology};
+use hibi_core::mud::{CrackStatistics, Mud, MudBuffers, MudParams, Solver, Topology};
+use hibi_core::polygon::Ring;
 
 struct Run {
     seconds: f64,
@@ -26,7 +27,7 @@ fn run(size: u32, solver: Solver, topology: Topology) -> Run {
     let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
     let progress = mud.run().expect("a stable run");
     let counts = mud.cell_counts();
-    let (mut rings, mut points) = (vec![CellRing::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);
+    let (mut rings, mut points) = (vec![Ring::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);
     mud.cells(&mut rings, &mut points).expect("buffers suffice");
     let seconds = start.elapsed().as_secs_f64();
     let stats = mud.statistics();

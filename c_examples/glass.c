@@ -39,7 +39,7 @@ int main(int argc, char **argv) {
     size_t pixels = (size_t)render.width * render.height;
     size_t ring_count = 0, point_count = 0, holes = 0, scratch_size = 0;
     void *scratch;
-    hibi_glass_fragment_ring *rings;
+    hibi_ring *rings;
     hibi_vec2 *points;
     double area = 0.0;
     unsigned char *mask, *again;
@@ -105,7 +105,7 @@ int main(int argc, char **argv) {
     if (status != HIBI_OK) return fail("hibi_glass_fragments", status);
     for (i = 0; i < ring_count; i++) {
         area += rings[i].area; /* holes count negative */
-        if (rings[i].hole_of != HIBI_GLASS_NOT_A_HOLE) holes++;
+        if (rings[i].hole_of != HIBI_RING_NOT_A_HOLE) holes++;
     }
     printf("fragments: %lu, holes: %lu, points: %lu, covering %.1f of %.1f square pixels\n",
            (unsigned long)(ring_count - holes), (unsigned long)holes, (unsigned long)point_count, area,

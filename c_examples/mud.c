@@ -58,7 +58,7 @@ static int cells(const hibi_mud *mud) {
     size_t rings_written = UNTOUCHED, points_written = UNTOUCHED;
     int untouched = 1;
     double area = 0.0;
-    hibi_mud_cell_ring *rings;
+    hibi_ring *rings;
     hibi_vec2 *points;
     hibi_status status = hibi_mud_cell_counts(mud, &ring_count, &point_count, &wrapping);
     if (status != HIBI_OK) return fail("hibi_mud_cell_counts", status);

@@ -450,11 +450,6 @@
 #define HIBI_GLASS_STEP_PIECE 2
 
 /**
- * `hibi_glass_fragment_ring.hole_of` of an outer ring.
- */
-#define HIBI_GLASS_NOT_A_HOLE UINT32_MAX
-
-/**
  * Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
  */
 #define HIBI_GLASS_LAYER_MASK 0
@@ -471,7 +466,7 @@
 #define HIBI_MUD_NO_VERTEX UINT32_MAX
 
 /**
- * `hibi_mud_cell_ring.hole_of` of a hole in a cell that wraps around a periodic lattice:
+ * `hibi_ring.hole_of` of a hole in a mud cell that wraps around a periodic lattice:
  * that cell has no outline in the plane (it is counted in `hibi_mud_cell_counts`'s
  * `wrapping`, or it is the whole plate less its islands), so there is no ring to name.
  */
@@ -503,6 +498,11 @@
  * Render layer: break time in long steps, `float` per pixel, +infinity where no crack is.
  */
 #define HIBI_MUD_LAYER_TIME 2
+
+/**
+ * `hibi_ring.hole_of` of an outer ring (a hole's names the outer ring it lies in).
+ */
+#define HIBI_RING_NOT_A_HOLE UINT32_MAX
 
 /**
  * Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
@@ -791,12 +791,13 @@ typedef struct hibi_glass_point {
 } hibi_glass_point;
 
 /**
- * One ring of a fragment's outline (glass) or of a cell's (mud): `point_count` points from
- * `first_point` on in the point buffer, counter-clockwise with y up for an outer ring
- * (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the outer
- * ring it lies in). In C: `hibi_glass_fragment_ring` and `hibi_mud_cell_ring`.
+ * One ring of a polygon's outline (a glass fragment's, a mud cell's): `point_count` points
+ * from `first_point` on in the point buffer, counter-clockwise with y up for an outer ring
+ * (positive `area`; `hole_of` is `NOT_A_HOLE`), clockwise for a hole (negative `area`, and
+ * `hole_of` names the outer ring it lies in, or holds a model's own mark, such as mud's
+ * `IN_WRAPPING_CELL`). In C: `hibi_ring`.
  */
-typedef struct hibi_glass_fragment_ring {
+typedef struct hibi_ring {
   /**
    * Signed area: px² for glass, lattice units² for mud.
    */
@@ -810,8 +811,8 @@ typedef struct hibi_glass_fragment_ring {
    */
   uint32_t point_count;
   /**
-   * For a hole, the index of the outer ring it lies in; `u32::MAX` otherwise
-   * (`HIBI_GLASS_NOT_A_HOLE` in C).
+   * For a hole, the index of the outer ring it lies in; `NOT_A_HOLE` for an outer ring
+   * (`HIBI_RING_NOT_A_HOLE` in C).
    */
   uint32_t hole_of;
   /**
@@ -819,7 +820,7 @@ typedef struct hibi_glass_fragment_ring {
    * output can be hashed or compared as bytes).
    */
   uint32_t reserved;
-} hibi_glass_fragment_ring;
+} hibi_ring;
 
 /**
  * A point of a fragment's outline [px].
@@ -1139,16 +1140,6 @@ typedef struct hibi_mud_network_point {
    */
   float time;
 } hibi_mud_network_point;
-
-/**
- * One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
- * points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
- * outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
- * outer ring it lies in, or is `HIBI_MUD_IN_WRAPPING_CELL` when that cell wraps around a
- * periodic lattice; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
- * lattice units (× element_size for cm), not pixels.
- */
-typedef struct hibi_glass_fragment_ring hibi_mud_cell_ring;
 
 /**
  * How to draw a raster: its size and the stroke widths. Defaults from
@@ -1767,10 +1758,10 @@ hibi_status hibi_glass_fragment_counts(const struct hibi_glass *glass,
                                        size_t *points);
 
 /**
- * Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
- * record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
- * the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
- * do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
+ * Writes the fragments the cracks cut the plate into, as polygons for a physics engine:
+ * one `hibi_ring` per ring into `rings[0..rings_len]`, their points into
+ * `points[0..points_len]`, and the counts into `*rings_written` and `*points_written`.
+ * Cracks that end inside a fragment do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
  * written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
  * `hibi_glass_fragment_counts` does; the plate is only read.
  *
@@ -1782,7 +1773,7 @@ hibi_status hibi_glass_fragment_counts(const struct hibi_glass *glass,
 hibi_status hibi_glass_fragments(const struct hibi_glass *glass,
                                  void *scratch,
                                  size_t scratch_size,
-                                 struct hibi_glass_fragment_ring *rings,
+                                 struct hibi_ring *rings,
                                  size_t rings_len,
                                  struct hibi_vec2 *points,
                                  size_t points_len,
@@ -1996,9 +1987,10 @@ hibi_status hibi_mud_cell_counts(const struct hibi_mud *mud,
                                  size_t *wrapping);
 
 /**
- * Writes the cells the separating cracks cut the plate into, as polygons: one record per
- * ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
- * and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
+ * Writes the cells the separating cracks cut the plate into, as polygons: one `hibi_ring`
+ * per ring into `rings[0..rings_len]`, their points into `points[0..points_len]` (lattice
+ * units, × element_size for cm, not pixels; a hole in a cell that wraps around a periodic
+ * lattice has `hole_of` `HIBI_MUD_IN_WRAPPING_CELL`), and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
  * do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
  * signed areas add up to the plate's (less the regions that wrap, see
  * `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
@@ -2010,7 +2002,7 @@ hibi_status hibi_mud_cell_counts(const struct hibi_mud *mud,
  * overlapping; `rings_written` and `points_written` NULL (refused) or writable.
  */
 hibi_status hibi_mud_cells(const struct hibi_mud *mud,
-                           hibi_mud_cell_ring *rings,
+                           struct hibi_ring *rings,
                            size_t rings_len,
                            struct hibi_vec2 *points,
                            size_t points_len,

@@ -459,7 +459,7 @@ public:
     };
     /// The cells as polygons (hibi_mud_cells), and the boundaries that wrap (not written).
     struct Cells {
-        std::vector<hibi_mud_cell_ring> rings;
+        std::vector<hibi_ring> rings;
         std::vector<hibi_vec2> points;
         std::size_t wrapping = 0;
     };
@@ -624,13 +624,13 @@ public:
     detail::Returned<CellCounts> cell_counts() const { return detail::returned(try_cell_counts()); }
     /// Writes the cells into the two views (at least cell_counts().rings and .points);
     /// returns how many of each.
-    Result<RingCounts> try_cells(Span<hibi_mud_cell_ring> rings, Span<hibi_vec2> points) const noexcept {
+    Result<RingCounts> try_cells(Span<hibi_ring> rings, Span<hibi_vec2> points) const noexcept {
         RingCounts written;
         return detail::result(hibi_mud_cells(handle_.get(), rings.data(), rings.size(), points.data(), points.size(),
                                              &written.rings, &written.points),
                               written);
     }
-    detail::Returned<RingCounts> cells(Span<hibi_mud_cell_ring> rings, Span<hibi_vec2> points) const {
+    detail::Returned<RingCounts> cells(Span<hibi_ring> rings, Span<hibi_vec2> points) const {
         return detail::returned(try_cells(rings, points));
     }
     Result<Cells> try_cells() const {
@@ -640,7 +640,7 @@ public:
         out.wrapping = counts->wrapping;
         out.rings.resize(counts->rings);
         out.points.resize(counts->points);
-        Result<RingCounts> written = try_cells(Span<hibi_mud_cell_ring>(out.rings), Span<hibi_vec2>(out.points));
+        Result<RingCounts> written = try_cells(Span<hibi_ring>(out.rings), Span<hibi_vec2>(out.points));
         if (!written) return detail::failure<Cells>(written);
         out.rings.resize(written->rings);
         out.points.resize(written->points);
@@ -723,7 +723,7 @@ public:
 
     /// The fragments as polygons (hibi_glass_fragments).
     struct Fragments {
-        std::vector<hibi_glass_fragment_ring> rings;
+        std::vector<hibi_ring> rings;
         std::vector<hibi_vec2> points;
     };
 
@@ -841,7 +841,7 @@ public:
     }
     /// Writes the fragments into the two views (at least fragment_counts()); returns how
     /// many rings and points.
-    Result<RingCounts> try_fragments(Scratch &scratch, Span<hibi_glass_fragment_ring> rings,
+    Result<RingCounts> try_fragments(Scratch &scratch, Span<hibi_ring> rings,
                                      Span<hibi_vec2> points) const noexcept {
         RingCounts written;
         return detail::result(hibi_glass_fragments(handle_.get(), scratch.data(), scratch.size(), rings.data(),
@@ -849,7 +849,7 @@ public:
                                                    &written.points),
                               written);
     }
-    detail::Returned<RingCounts> fragments(Scratch &scratch, Span<hibi_glass_fragment_ring> rings,
+    detail::Returned<RingCounts> fragments(Scratch &scratch, Span<hibi_ring> rings,
                                            Span<hibi_vec2> points) const {
         return detail::returned(try_fragments(scratch, rings, points));
     }
@@ -860,7 +860,7 @@ public:
         out.rings.resize(counts->first);
         out.points.resize(counts->second);
         Result<RingCounts> written =
-            try_fragments(scratch, Span<hibi_glass_fragment_ring>(out.rings), Span<hibi_vec2>(out.points));
+            try_fragments(scratch, Span<hibi_ring>(out.rings), Span<hibi_vec2>(out.points));
         if (!written) return detail::failure<Fragments>(written);
         out.rings.resize(written->rings);
         out.points.resize(written->points);

@@ -253,7 +253,7 @@ fn cpp17_example_links_shared_library() {
 /// What the mud example computes, as Rust computes it for the same parameters: the mask,
 /// the network's counts, and the cells' counts and summed ring area.
 fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::CellCounts, f64) {
-    use hibi_core::mud::{CellRing, Mud, MudBuffers, MudLayers, MudParams, MudRender};
+    use hibi_core::mud::{Mud, MudBuffers, MudLayers, MudParams, MudRender};
     let params = MudParams { columns: 96, rows: 96, seed: 7, ..MudParams::default() };
     let memory = params.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
@@ -263,7 +263,8 @@ fn expected_mud() -> (Vec<u8>, hibi_core::mud::NetworkCounts, hibi_core::mud::Ce
     let mut mask = vec![0u8; 384 * 384];
     mud.render(&render, MudLayers { mask: Some(&mut mask), ..Default::default() }).unwrap();
     let cells = mud.cell_counts();
-    let (mut rings, mut points) = (vec![CellRing::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
+    let (mut rings, mut points) =
+        (vec![hibi_core::polygon::Ring::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
     mud.cells(&mut rings, &mut points).unwrap();
     // Summed in ring order, as the C program sums them.
     let area = rings.iter().fold(0.0f64, |sum, ring| sum + ring.area);

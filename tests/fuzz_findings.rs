@@ -559,7 +559,7 @@ unsafe fn fragment_area(glass: *mut hibi_glass) -> (usize, f64) {
         let mut scratch = vec![0u64; size.div_ceil(8)];
         let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points);
         assert_eq!(status, HIBI_OK);
-        let mut ring_buf = vec![hibi_core::glass::FragmentRing::default(); rings];
+        let mut ring_buf = vec![hibi_core::polygon::Ring::default(); rings];
         let mut point_buf = vec![hibi_vec2::default(); points];
         let (mut r, mut p) = (0, 0);
         let status = hibi_glass_fragments(

@@ -1,9 +1,10 @@
 //! Model B against the paper's facts (Agui et al.) and hibi's own acceptance criteria.
 
 use hibi_core::glass::{
-    Crack, CrackEnd, CrackKind, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers,
-    GlassParams, GlassRender, STEP_PIECE, Vertex,
+    Crack, CrackEnd, CrackKind, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassParams,
+    GlassRender, STEP_PIECE, Vertex,
 };
+use hibi_core::polygon::Ring;
 use hibi_tests::fnv1a64;
 
 /// Runs `params` to the end of generation and hands the plate to `inspect`.
@@ -96,7 +97,7 @@ fn running_out_of_capacity_is_reported_not_a_panic() {
 fn a_plate_out_of_capacity_stays_usable_down_to_two_vertices() {
     let fragments = |g: &mut Glass| {
         let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
-        let (mut ring_out, mut point_out) = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
+        let (mut ring_out, mut point_out) = (vec![Ring::default(); rings], vec![[0.0f32; 2]; points]);
         assert_eq!(g.fragments(&mut scratch(g), &mut ring_out, &mut point_out), Ok((rings, points)));
         ring_out.iter().map(|r| r.area).sum::<f64>()
     };
@@ -409,14 +410,14 @@ fn scratch(g: &Glass) -> Vec<u32> {
 }
 
 /// The fragments of a plate: ring records and each ring's points.
-fn fragments(g: &mut Glass) -> Vec<(FragmentRing, Vec<[f32; 2]>)> {
+fn fragments(g: &mut Glass) -> Vec<(Ring, Vec<[f32; 2]>)> {
     fragments_of(g)
 }
 
 /// [`fragments`] through a shared reference.
-fn fragments_of(g: &Glass) -> Vec<(FragmentRing, Vec<[f32; 2]>)> {
+fn fragments_of(g: &Glass) -> Vec<(Ring, Vec<[f32; 2]>)> {
     let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
-    let mut out = (vec![FragmentRing::default(); rings], vec![[0.0f32; 2]; points]);
+    let mut out = (vec![Ring::default(); rings], vec![[0.0f32; 2]; points]);
     assert_eq!(g.fragments(&mut scratch(g), &mut out.0, &mut out.1), Ok((rings, points)));
     out.0.iter().map(|r| (*r, out.1[r.first_point as usize..][..r.point_count as usize].to_vec())).collect()
 }
@@ -435,7 +436,7 @@ fn ring_contains(ring: &[[f32; 2]], p: [f64; 2]) -> bool {
 
 /// Checks that the fragments tile the plate: signed areas add up to W·H, and sample points
 /// lie in exactly one fragment (in its outer ring and in none of its holes).
-fn assert_fragments_tile(p: &GlassParams, frags: &[(FragmentRing, Vec<[f32; 2]>)], what: &str) {
+fn assert_fragments_tile(p: &GlassParams, frags: &[(Ring, Vec<[f32; 2]>)], what: &str) {
     let plate = f64::from(p.width) * f64::from(p.height);
     let total: f64 = frags.iter().map(|(r, _)| r.area).sum();
     assert!((total - plate).abs() < 1e-6 * plate, "{what}: areas add up to {total}, not {plate}");
@@ -534,13 +535,13 @@ fn fragment_queries_share_the_plate_across_threads() {
 fn fragments_are_written_only_into_buffers_that_fit() {
     with_plate(&GlassParams { seed: 2, ..GlassParams::default() }, |g| {
         let (rings, points) = g.fragment_counts(&mut scratch(g)).unwrap();
-        let mut short = (vec![FragmentRing::default(); rings], vec![[9.0f32; 2]; points - 1]);
+        let mut short = (vec![Ring::default(); rings], vec![[9.0f32; 2]; points - 1]);
         assert_eq!(
             g.fragments(&mut scratch(g), &mut short.0, &mut short.1),
             Err(GlassError::BufferTooSmall { needed: points })
         );
-        assert!(short.0.iter().all(|r| *r == FragmentRing::default()) && short.1.iter().all(|q| *q == [9.0; 2]));
-        let mut short = (vec![FragmentRing::default(); rings - 1], vec![[9.0f32; 2]; points]);
+        assert!(short.0.iter().all(|r| *r == Ring::default()) && short.1.iter().all(|q| *q == [9.0; 2]));
+        let mut short = (vec![Ring::default(); rings - 1], vec![[9.0f32; 2]; points]);
         assert_eq!(
             g.fragments(&mut scratch(g), &mut short.0, &mut short.1),
             Err(GlassError::BufferTooSmall { needed: rings })

@@ -462,7 +462,7 @@ fn dead_ends_join_up_as_the_network_grows() {
 }
 
 /// The cells of a finished run: rings and their points, and the lattice's extent.
-fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud::CellRing>, Vec<[f32; 2]>, [f32; 2]) {
+fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::polygon::Ring>, Vec<[f32; 2]>, [f32; 2]) {
     cells_on::<f32>(params)
 }
 
@@ -471,7 +471,7 @@ fn cells(params: &MudParams) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud:
 /// factor 1 + misfit under the growth drive: the pattern is drawn in the growing frame).
 fn cells_on<S: Scalar>(
     params: &MudParams,
-) -> (hibi_core::mud::CellCounts, Vec<hibi_core::mud::CellRing>, Vec<[f32; 2]>, [f32; 2]) {
+) -> (hibi_core::mud::CellCounts, Vec<hibi_core::polygon::Ring>, Vec<[f32; 2]>, [f32; 2]) {
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![S::ZERO; memory.scalars], vec![0u32; memory.words]);
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
@@ -502,12 +502,10 @@ fn cells_on<S: Scalar>(
 #[test]
 fn cells_are_polygons_whose_areas_add_up_to_the_plate() {
     use Topology::{Hexagonal, Irregular, Square};
-    use hibi_core::mud::{CellCounts, CellRing, Drive, IN_WRAPPING_CELL};
+    use hibi_core::mud::{CellCounts, Drive, IN_WRAPPING_CELL};
+    use hibi_core::polygon::Ring;
     /// Checks one run's cells; returns whether the rings cover the whole plate.
-    fn check(
-        name: &str,
-        (counts, rings, points, [w, h]): (CellCounts, Vec<CellRing>, Vec<[f32; 2]>, [f32; 2]),
-    ) -> bool {
+    fn check(name: &str, (counts, rings, points, [w, h]): (CellCounts, Vec<Ring>, Vec<[f32; 2]>, [f32; 2])) -> bool {
         let plate = f64::from(w) * f64::from(h);
         let total: f64 = rings.iter().map(|r| r.area).sum();
         let outer = rings.iter().filter(|r| r.area > 0.0).count();
@@ -844,7 +842,8 @@ fn the_square_lattice_gives_a_maze_of_short_cracks_meeting_square() {
 
 #[test]
 fn network_and_cells_refuse_short_buffers_and_write_nothing() {
-    use hibi_core::mud::{CellRing, MudError, NetworkEdge, NetworkPoint, NetworkVertex};
+    use hibi_core::mud::{MudError, NetworkEdge, NetworkPoint, NetworkVertex};
+    use hibi_core::polygon::Ring;
     let p = params(48);
     let memory = p.memory().unwrap();
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
@@ -868,7 +867,7 @@ fn network_and_cells_refuse_short_buffers_and_write_nothing() {
     }
     assert_eq!(mud.network(&mut v, &mut e, &mut q), Ok(n));
     let c = mud.cell_counts();
-    let sentinel_ring = CellRing { hole_of: 77, ..Default::default() };
+    let sentinel_ring = Ring { hole_of: 77, ..Default::default() };
     let (mut rings, mut points) = (vec![sentinel_ring; c.rings], vec![[77.0f32; 2]; c.points]);
     assert_eq!(mud.cells(&mut rings, &mut points[..c.points - 1]), Err(MudError::BufferTooSmall { needed: c.points }));
     assert!(rings.iter().all(|r| *r == sentinel_ring) && points.iter().all(|p| *p == [77.0; 2]));

@@ -36,8 +36,9 @@
 use core::ffi::c_void;
 
 use hibi::*;
-use hibi_core::glass::{CrackPoint, FragmentRing, Glass, GlassParams, GlassProgress};
+use hibi_core::glass::{CrackPoint, Glass, GlassParams, GlassProgress};
 use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
+use hibi_core::polygon::Ring;
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
@@ -217,17 +218,17 @@ fn mask_and_time_agree(mask: &[u8], time: &[f32], end: f32) {
 /// The rings of a cell or fragment outline index points that exist; a hole names an outer
 /// ring (or, where `wrapping_cells` — mud on a periodic lattice —, a cell that wraps around
 /// it) and has a negative area, an outer ring a positive one.
-fn rings_are_consistent(rings: &[FragmentRing], points: usize, wrapping_cells: bool) {
+fn rings_are_consistent(rings: &[Ring], points: usize, wrapping_cells: bool) {
     for (i, ring) in rings.iter().enumerate() {
         let end = ring.first_point as usize + ring.point_count as usize;
         assert!(ring.point_count >= 3 && end <= points, "ring {i}: {ring:?} of {points} points");
-        if ring.hole_of == HIBI_GLASS_NOT_A_HOLE {
+        if ring.hole_of == HIBI_RING_NOT_A_HOLE {
             assert!(ring.area > 0.0, "outer ring {i}: {ring:?}");
         } else if ring.hole_of == HIBI_MUD_IN_WRAPPING_CELL {
             assert!(wrapping_cells && ring.area < 0.0, "hole {i} in a wrapping cell: {ring:?}");
         } else {
             let outer = rings.get(ring.hole_of as usize).unwrap_or_else(|| panic!("ring {i}: {ring:?}"));
-            assert!(ring.area < 0.0 && outer.hole_of == HIBI_GLASS_NOT_A_HOLE, "hole {i}: {ring:?} in {outer:?}");
+            assert!(ring.area < 0.0 && outer.hole_of == HIBI_RING_NOT_A_HOLE, "hole {i}: {ring:?} in {outer:?}");
         }
     }
 }
@@ -282,7 +283,7 @@ fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_re
         }
         let (mut r, mut q, mut wrapping) = (0, 0, 0);
         assert_eq!(hibi_mud_cell_counts(mud.0, &mut r, &mut q, &mut wrapping), HIBI_OK);
-        let mut rings = vec![FragmentRing::default(); r];
+        let mut rings = vec![Ring::default(); r];
         let mut ring_points = vec![hibi_vec2::default(); q];
         let status = hibi_mud_cells(mud.0, rings.as_mut_ptr(), r, ring_points.as_mut_ptr(), q, &mut a, &mut b);
         assert_eq!(status, HIBI_OK);
@@ -293,7 +294,7 @@ fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_re
         assert_eq!(hibi_mud_statistics(mud.0, &mut stats), HIBI_OK);
         let s = stats;
         // Every cell is counted: each outer ring, and a cell that wraps if a hole is in one.
-        let outer = rings.iter().filter(|x| x.hole_of == HIBI_GLASS_NOT_A_HOLE).count();
+        let outer = rings.iter().filter(|x| x.hole_of == HIBI_RING_NOT_A_HOLE).count();
         let wrapped = usize::from(rings.iter().any(|x| x.hole_of == HIBI_MUD_IN_WRAPPING_CELL) || wrapping > 0);
         assert!(
             s.cells as usize >= outer + wrapped,
@@ -497,7 +498,7 @@ fn glass_outputs_in_range(p: &hibi_glass_params, end: &GlassProgress, render: &h
         assert_eq!(status, HIBI_ERROR_BUFFER_TOO_SMALL, "scratch one byte short");
         let status = hibi_glass_fragment_counts(glass, scratch.as_mut_ptr().cast(), size, &mut r, &mut q);
         assert_eq!(status, HIBI_OK);
-        let mut rings = vec![FragmentRing::default(); r];
+        let mut rings = vec![Ring::default(); r];
         let mut points = vec![hibi_vec2::default(); q];
         let (mut a, mut b) = (0, 0);
         let status = hibi_glass_fragments(

@@ -163,7 +163,7 @@ fn every_c_entry_point(peaks: &mut Calls) {
         assert_eq!(status, HIBI_OK);
         let (mut rings, mut points, mut wrapping) = (0, 0, 0);
         assert_eq!(hibi_mud_cell_counts(m, &mut rings, &mut points, &mut wrapping), HIBI_OK);
-        let mut ring = vec![core::mem::zeroed::<hibi_mud_cell_ring>(); rings];
+        let mut ring = vec![hibi_core::polygon::Ring::default(); rings];
         let mut point = vec![core::mem::zeroed::<hibi_vec2>(); points];
         let status = measured(peaks, "hibi_mud_cells", || {
             hibi_mud_cells(m, ring.as_mut_ptr(), rings, point.as_mut_ptr(), points, &mut written, &mut count)
@@ -193,7 +193,7 @@ fn every_c_entry_point(peaks: &mut Calls) {
             hibi_glass_fragment_counts(g, scratch.as_mut_ptr().cast(), size, &mut rings, &mut points)
         });
         assert_eq!(status, HIBI_OK);
-        let mut ring = vec![hibi_core::glass::FragmentRing::default(); rings];
+        let mut ring = vec![hibi_core::polygon::Ring::default(); rings];
         let mut point = vec![core::mem::zeroed::<hibi_vec2>(); points];
         let (mut rings_written, mut points_written) = (0, 0);
         let status = measured(peaks, "hibi_glass_fragments", || {

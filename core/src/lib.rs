@@ -15,6 +15,7 @@
 //! - [`mud`]: model A, the drying-mud spring lattice.
 //! - [`glass`]: model B, the crack grower for a glass plate hit by a ball.
 //! - [`skin`]: model C, hierarchical Voronoi skin cells.
+//! - [`polygon`]: the rings glass fragments and mud cells are written as.
 //! - [`raster`]: drawing into caller buffers.
 #![no_std]
 #![forbid(unsafe_code)]
@@ -28,6 +29,7 @@ mod error;
 mod geom;
 pub mod glass;
 pub mod mud;
+pub mod polygon;
 pub mod raster;
 pub mod rng;
 pub mod scalar;

@@ -21,8 +21,8 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    Crack, CrackPoint, Edge, FragmentRing, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
-    GlassProgress, GlassRender, ImpactCounts, Vertex, preset,
+    Crack, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams, GlassProgress,
+    GlassRender, ImpactCounts, Vertex, preset,
 };
 
 use crate::constants::param_status;
@@ -410,9 +410,6 @@ pub struct hibi_vec2 {
 const _: () =
     assert!(size_of::<hibi_vec2>() == size_of::<[f32; 2]>() && align_of::<hibi_vec2>() == align_of::<[f32; 2]>());
 
-/// `hibi_glass_fragment_ring.hole_of` of an outer ring.
-pub const HIBI_GLASS_NOT_A_HOLE: u32 = u32::MAX;
-
 /// Writes the bytes of scratch (aligned to `hibi_glass_memory_align()`) that
 /// `hibi_glass_fragment_counts` and `hibi_glass_fragments` work in. The scratch is the
 /// caller's so that those queries only read the plate: several threads may query one plate
@@ -469,16 +466,16 @@ pub unsafe extern "C" fn hibi_glass_fragment_counts(
 }
 
 polygon_query! {
-    /// Writes the fragments the cracks cut the plate into, as polygons for a physics engine: one
-    /// record per ring into `rings[0..rings_len]`, their points into `points[0..points_len]`, and
-    /// the counts into `*rings_written` and `*points_written`. Cracks that end inside a fragment
-    /// do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
+    /// Writes the fragments the cracks cut the plate into, as polygons for a physics engine:
+    /// one `hibi_ring` per ring into `rings[0..rings_len]`, their points into
+    /// `points[0..points_len]`, and the counts into `*rings_written` and `*points_written`.
+    /// Cracks that end inside a fragment do not cut it. If a buffer is too small (see `hibi_glass_fragment_counts`), nothing is
     /// written and the status is `HIBI_ERROR_BUFFER_TOO_SMALL`. Works in `scratch` as
     /// `hibi_glass_fragment_counts` does; the plate is only read.
     ///
     /// # Safety
     /// `glass` must be NULL or a live plate; `scratch` as in `hibi_glass_fragment_counts`;
-    hibi_glass_fragments(glass: hibi_glass, scratch: *mut c_void, scratch_size: usize) -> FragmentRing;
+    hibi_glass_fragments(glass: hibi_glass, scratch: *mut c_void, scratch_size: usize);
     {
         // SAFETY: the caller's contract.
         let glass = unsafe { object_ref(glass, c"glass") }?;
@@ -634,7 +631,7 @@ mod tests {
             assert_eq!(ring_count, 0);
             assert_eq!(hibi_glass_fragment_counts(glass, sp, ss, &mut ring_count, &mut point_count), HIBI_OK);
             assert!(ring_count > 10 && point_count > 3 * ring_count);
-            let mut rings = vec![FragmentRing::default(); ring_count];
+            let mut rings = vec![hibi_core::polygon::Ring::default(); ring_count];
             let mut points = vec![hibi_vec2 { x: 9.0, y: 9.0 }; point_count];
             let (mut r, mut n) = (7usize, 7usize);
             let (ring_ptr, point_ptr) = (rings.as_mut_ptr(), points.as_mut_ptr());
@@ -656,7 +653,7 @@ mod tests {
             assert_eq!((r, n), (ring_count, point_count));
             let area: f64 = rings.iter().map(|x| x.area).sum();
             assert!((area - 640.0 * 640.0).abs() < 1e-3, "{area}");
-            assert!(rings.iter().all(|x| x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0));
+            assert!(rings.iter().all(|x| x.hole_of == crate::HIBI_RING_NOT_A_HOLE && x.area > 0.0));
             assert_eq!(rings.iter().map(|x| x.point_count as usize).sum::<usize>(), point_count);
             hibi_glass_destroy(glass);
         }
@@ -678,7 +675,7 @@ mod tests {
             assert_eq!(hibi_glass_scratch_size(glass, &mut ss), HIBI_OK);
             let mut scratch = vec![0xA5A5_A5A5_A5A5_A5A5u64; ss.div_ceil(8)];
             let sp = scratch.as_mut_ptr().cast::<c_void>();
-            let (mut rings, mut points) = ([FragmentRing::default(); 4], [hibi_vec2::default(); 4]);
+            let (mut rings, mut points) = ([hibi_core::polygon::Ring::default(); 4], [hibi_vec2::default(); 4]);
             let (rp, pp) = (rings.as_mut_ptr(), points.as_mut_ptr());
             let (mut r, mut n) = (0usize, 0usize);
             let (r, n) = (&raw mut r, &raw mut n);

@@ -21,7 +21,6 @@
 
 use core::ffi::{c_char, c_void};
 
-use hibi_core::glass::FragmentRing;
 use hibi_core::mud::{
     CrackSegment, CrackStatistics, Mud, MudBuffers, MudError, MudLayers, MudMemory, MudParams, MudProgress, MudRender,
     NO_VERTEX, NetworkEdge, NetworkPoint, NetworkVertex, preset,
@@ -161,7 +160,7 @@ pub const HIBI_MUD_NO_VERTEX: u32 = u32::MAX;
 
 const _: () = assert!(HIBI_MUD_NO_VERTEX == NO_VERTEX);
 
-/// `hibi_mud_cell_ring.hole_of` of a hole in a cell that wraps around a periodic lattice:
+/// `hibi_ring.hole_of` of a hole in a mud cell that wraps around a periodic lattice:
 /// that cell has no outline in the plane (it is counted in `hibi_mud_cell_counts`'s
 /// `wrapping`, or it is the whole plate less its islands), so there is no ring to name.
 pub const HIBI_MUD_IN_WRAPPING_CELL: u32 = 0xFFFF_FFFE;
@@ -179,14 +178,6 @@ const _: () = assert!(HIBI_MUD_TRACE_PIECE == hibi_core::mud::TRACE_PIECE);
 pub const HIBI_MUD_SETUP_PIECE: u64 = 32;
 
 const _: () = assert!(HIBI_MUD_SETUP_PIECE == hibi_core::mud::SETUP_PIECE);
-
-/// One ring of a cell's outline, the same struct as `hibi_glass_fragment_ring`: `point_count`
-/// points from `first_point` on in the point buffer, counter-clockwise with y up for a cell's
-/// outer ring (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the
-/// outer ring it lies in, or is `HIBI_MUD_IN_WRAPPING_CELL` when that cell wraps around a
-/// periodic lattice; `HIBI_GLASS_NOT_A_HOLE` for an outer ring). Areas and points are in
-/// lattice units (× element_size for cm), not pixels.
-pub type hibi_mud_cell_ring = FragmentRing;
 
 /// How to draw a raster: its size and the stroke widths. Defaults from
 /// `hibi_mud_render_params_default`.
@@ -483,9 +474,10 @@ pub unsafe extern "C" fn hibi_mud_cell_counts(
 }
 
 polygon_query! {
-    /// Writes the cells the separating cracks cut the plate into, as polygons: one record per
-    /// ring into `rings[0..rings_len]`, their points (lattice units) into `points[0..points_len]`,
-    /// and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
+    /// Writes the cells the separating cracks cut the plate into, as polygons: one `hibi_ring`
+    /// per ring into `rings[0..rings_len]`, their points into `points[0..points_len]` (lattice
+    /// units, × element_size for cm, not pixels; a hole in a cell that wraps around a periodic
+    /// lattice has `hole_of` `HIBI_MUD_IN_WRAPPING_CELL`), and the counts into `*rings_written` and `*points_written`. Cracks that end inside a cell
     /// do not cut it; on an open lattice the plate's border bounds the cells along it; the rings'
     /// signed areas add up to the plate's (less the regions that wrap, see
     /// `hibi_mud_cell_counts`). If a buffer is too small, nothing is written and the status is
@@ -493,7 +485,7 @@ polygon_query! {
     ///
     /// # Safety
     /// `mud` must be NULL or a live run;
-    hibi_mud_cells(mud: hibi_mud) -> hibi_mud_cell_ring;
+    hibi_mud_cells(mud: hibi_mud);
     {
         // SAFETY: the caller's contract.
         let mud = unsafe { object_ref(mud, c"mud") }?;
@@ -597,7 +589,7 @@ mod tests {
     use crate::constants::*;
     use crate::status::*;
     use core::ptr::{null, null_mut};
-    use hibi_core::mud::CellRing;
+    use hibi_core::polygon::Ring;
 
     fn small() -> hibi_mud_params {
         let mut p = hibi_mud_params_default();
@@ -728,7 +720,7 @@ mod tests {
     const VERTEX: NetworkVertex = NetworkVertex { at: [-7.0; 2], degree: 77, on_border: 77 };
     const EDGE: NetworkEdge = NetworkEdge { from: 77, to: 77, first_point: 77, point_count: 77 };
     const POINT: NetworkPoint = NetworkPoint { at: [-7.0; 2], width: -7.0, time: -7.0 };
-    const RING: CellRing = CellRing { area: -7.0, first_point: 77, point_count: 77, hole_of: 77, reserved: 77 };
+    const RING: Ring = Ring { area: -7.0, first_point: 77, point_count: 77, hole_of: 77, reserved: 77 };
     const VEC: hibi_vec2 = hibi_vec2 { x: -7.0, y: -7.0 };
 
     #[test]
@@ -833,8 +825,7 @@ mod tests {
             let (nr, np) = (expected.rings, expected.points);
             assert!(nr > 1 && np > 3 * nr, "{boundary}: {expected:?}");
             let (mut rings, mut points) = (vec![RING; nr + 1], vec![VEC; np + 1]);
-            let untouched =
-                |r: &[CellRing], q: &[hibi_vec2]| r.iter().all(|x| *x == RING) && q.iter().all(|x| *x == VEC);
+            let untouched = |r: &[Ring], q: &[hibi_vec2]| r.iter().all(|x| *x == RING) && q.iter().all(|x| *x == VEC);
             let (r, q) = (rings.as_mut_ptr(), points.as_mut_ptr());
             let (mut wr, mut wp) = (5usize, 5usize);
             // SAFETY: valid pointers and lengths throughout; failing calls write nothing.
@@ -868,7 +859,7 @@ mod tests {
                 assert_eq!((wr, wp), (nr, np));
                 assert!(untouched(&rings[nr..], &points[np..]), "written past the counts");
             }
-            let (mut want, mut want_points) = (vec![CellRing::default(); nr], vec![[0.0f32; 2]; np]);
+            let (mut want, mut want_points) = (vec![Ring::default(); nr], vec![[0.0f32; 2]; np]);
             assert_eq!(core.cells(&mut want, &mut want_points), Ok(expected));
             for (c, w) in rings.iter().zip(&want) {
                 assert_eq!(

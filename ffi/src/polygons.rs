@@ -1,6 +1,13 @@
-//! The polygon queries, mud's `hibi_mud_cells` and glass's `hibi_glass_fragments`: one C
-//! shape (the object and its extra arguments, then a ring buffer, a point buffer and the two
-//! counts written), so the function is written once, by [`polygon_query!`].
+//! The polygons glass fragments and mud cells are written as: the ring record `hibi_ring`
+//! (the core's `polygon::Ring`) and its outer-ring mark, and the polygon queries, mud's
+//! `hibi_mud_cells` and glass's `hibi_glass_fragments`: one C shape (the object and its extra
+//! arguments, then a ring buffer, a point buffer and the two counts written), so the function
+//! is written once, by [`polygon_query!`].
+
+/// `hibi_ring.hole_of` of an outer ring (a hole's names the outer ring it lies in).
+pub const HIBI_RING_NOT_A_HOLE: u32 = u32::MAX;
+
+const _: () = assert!(HIBI_RING_NOT_A_HOLE == hibi_core::polygon::NOT_A_HOLE);
 
 /// A polygon query `$name`: runs the statements in braces, which open the object, then checks
 /// `rings_written` and `points_written` (required) and the ring and point buffers, in that
@@ -13,7 +20,7 @@
 macro_rules! polygon_query {
     (
         $(#[$doc:meta])*
-        $name:ident($arg:ident: $object:ty $(, $extra:ident: $extra_ty:ty)*) -> $ring:ty;
+        $name:ident($arg:ident: $object:ty $(, $extra:ident: $extra_ty:ty)*);
         { $($open:tt)* }
         |$rings:ident, $points:ident| $query:expr
     ) => {
@@ -25,7 +32,7 @@ macro_rules! polygon_query {
         pub unsafe extern "C" fn $name(
             $arg: *const $object,
             $($extra: $extra_ty,)*
-            rings: *mut $ring,
+            rings: *mut hibi_core::polygon::Ring,
             rings_len: usize,
             points: *mut $crate::glass::hibi_vec2,
             points_len: usize,

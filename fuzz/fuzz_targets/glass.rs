@@ -9,7 +9,8 @@ use core::ptr::null;
 
 use arbitrary::{Result, Unstructured};
 use hibi::*;
-use hibi_core::glass::{CrackPoint, FragmentRing};
+use hibi_core::glass::CrackPoint;
+use hibi_core::polygon::Ring;
 use hibi_fuzz::*;
 use libfuzzer_sys::fuzz_target;
 
@@ -141,7 +142,7 @@ fn fragments(u: &mut Unstructured, g: &Plate) -> Result<()> {
         return Ok(());
     }
     assert!(scratch_fits.0, "fragment_counts accepted a scratch that does not fit");
-    let mut rb = Buffer::pick(u, r, r + 8, size_of::<FragmentRing>())?;
+    let mut rb = Buffer::pick(u, r, r + 8, size_of::<Ring>())?;
     let mut pb = Buffer::pick(u, p, p + 8, size_of::<hibi_vec2>())?;
     let (mut rw, mut pw) = (WRITTEN, WRITTEN);
     let (ro, po) = (out(u, &mut rw)?, out(u, &mut pw)?);
@@ -154,9 +155,9 @@ fn fragments(u: &mut Unstructured, g: &Plate) -> Result<()> {
         assert!(rb.untouched_past(r) && pb.untouched_past(p));
         let mut covered = 0.0f64;
         for i in 0..r {
-            let x: FragmentRing = rb.get(i);
+            let x: Ring = rb.get(i);
             assert!(x.area.is_finite() && x.first_point as usize + x.point_count as usize <= p, "{x:?}");
-            assert!(x.hole_of == HIBI_GLASS_NOT_A_HOLE || (x.hole_of as usize) < r, "{x:?}");
+            assert!(x.hole_of == HIBI_RING_NOT_A_HOLE || (x.hole_of as usize) < r, "{x:?}");
             assert_eq!(x.reserved, 0, "{x:?}");
             covered += x.area;
         }

@@ -9,7 +9,7 @@ use core::ptr::null;
 
 use arbitrary::{Result, Unstructured};
 use hibi::*;
-use hibi_core::glass::FragmentRing;
+use hibi_core::polygon::Ring;
 use hibi_core::mud::{Boundary, CrackSegment, Lattice, NetworkEdge, NetworkPoint, NetworkVertex, Topology};
 use hibi_fuzz::*;
 use libfuzzer_sys::fuzz_target;
@@ -133,7 +133,7 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud, params: &hibi_mud_params, run
     let (mut r, mut p, mut wrapping) = (WRITTEN, WRITTEN, WRITTEN);
     // SAFETY: a live run, writable counts.
     assert!(check(unsafe { hibi_mud_cell_counts(mud, &mut r, &mut p, &mut wrapping) }));
-    let mut rb = Buffer::pick(u, r, r + 8, size_of::<FragmentRing>())?;
+    let mut rb = Buffer::pick(u, r, r + 8, size_of::<Ring>())?;
     let mut pb = Buffer::pick(u, p, p + 8, size_of::<hibi_vec2>())?;
     let (mut rw, mut pw) = (WRITTEN, WRITTEN);
     let (ro, po) = (out(u, &mut rw)?, out(u, &mut pw)?);
@@ -147,7 +147,7 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud, params: &hibi_mud_params, run
         assert!(rb.untouched_past(r) && pb.untouched_past(p));
         let (mut covered, mut wraps) = (0.0f64, wrapping > 0);
         for i in 0..r {
-            let x: FragmentRing = rb.get(i);
+            let x: Ring = rb.get(i);
             assert!(x.area.is_finite() && x.first_point as usize + x.point_count as usize <= p, "{x:?}");
             assert_eq!(x.reserved, 0, "{x:?}");
             covered += x.area;
@@ -156,7 +156,7 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud, params: &hibi_mud_params, run
             let in_wrapping = x.hole_of == HIBI_MUD_IN_WRAPPING_CELL && x.area < 0.0;
             wraps |= in_wrapping;
             let in_ring = (x.hole_of as usize) < r && x.area < 0.0;
-            assert!((x.hole_of == HIBI_GLASS_NOT_A_HOLE && x.area > 0.0) || in_ring || in_wrapping, "{x:?}");
+            assert!((x.hole_of == HIBI_RING_NOT_A_HOLE && x.area > 0.0) || in_ring || in_wrapping, "{x:?}");
         }
         for i in 0..p {
             let x: hibi_vec2 = pb.get(i);

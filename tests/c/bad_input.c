@@ -183,7 +183,7 @@ static void calls_and_buffers(void) {
     }
     {
         size_t rings = 0, points = 0;
-        hibi_glass_fragment_ring ring;
+        hibi_ring ring;
         hibi_vec2 point;
         size_t rings_written = 777, points_written = 777, scratch_size = 0;
         void *scratch = NULL;

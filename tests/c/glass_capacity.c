@@ -16,7 +16,7 @@ static void plate(unsigned max_vertices, unsigned max_cracks, unsigned long seed
     hibi_status status = HIBI_OK, first = HIBI_OK;
     size_t rings = 0, points = 0, rings_written = 0, points_written = 0, cracks = 0, i, scratch_size = 0;
     void *scratch = NULL;
-    hibi_glass_fragment_ring *ring_buffer;
+    hibi_ring *ring_buffer;
     hibi_vec2 *point_buffer;
     unsigned char *mask;
     double area = 0.0;

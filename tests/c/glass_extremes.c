@@ -25,7 +25,7 @@ static void run(const char *what, const hibi_glass_params *params, int timed) {
     hibi_status status = hibi_glass_create(params, &glass);
     size_t scratch_size = 0, rings = 0, points = 0, rings_written = 0, points_written = 0, i;
     void *scratch = NULL;
-    hibi_glass_fragment_ring *ring_buffer = NULL;
+    hibi_ring *ring_buffer = NULL;
     hibi_vec2 *point_buffer = NULL;
     double area = 0.0, plate = (double)params->width * (double)params->height, error;
     int covered = 0;

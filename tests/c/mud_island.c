@@ -3,7 +3,7 @@
  * loop, the region around the island wraps around the torus and has no outline. Its boundary
  * (the island's, walked from outside) must be a hole in a wrapping cell
  * (HIBI_MUD_IN_WRAPPING_CELL), not a ring with a negative area and hole_of =
- * HIBI_GLASS_NOT_A_HOLE, the mark of an outer ring; and the statistics must count two cells,
+ * HIBI_RING_NOT_A_HOLE, the mark of an outer ring; and the statistics must count two cells,
  * not one of mean area zero less its island.
  */
 #include <stdio.h>
@@ -14,7 +14,7 @@ int main(void) {
     hibi_mud_params params = hibi_mud_params_default();
     hibi_mud *mud = NULL;
     hibi_mud_progress progress;
-    hibi_mud_cell_ring rings[8];
+    hibi_ring rings[8];
     hibi_vec2 points[256];
     hibi_mud_crack_statistics stats;
     size_t ring_count = 0, point_count = 0, wrapping = 0, rings_written = 0, points_written = 0, i;
@@ -55,7 +55,7 @@ int main(void) {
     }
     printf("rings %u, wrapping %u\n", (unsigned)rings_written, (unsigned)wrapping);
     for (i = 0; i < rings_written; i++) {
-        const char *kind = rings[i].hole_of == HIBI_GLASS_NOT_A_HOLE      ? "outer"
+        const char *kind = rings[i].hole_of == HIBI_RING_NOT_A_HOLE      ? "outer"
                            : rings[i].hole_of == HIBI_MUD_IN_WRAPPING_CELL ? "hole in a wrapping cell"
                                                                            : "hole in a ring";
         printf("ring %u: %s, area %s\n", (unsigned)i, kind, rings[i].area > 0.0 ? "positive" : "negative");

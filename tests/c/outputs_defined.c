@@ -62,7 +62,7 @@ int main(void) {
         while (status == HIBI_OK && !progress.finished) status = hibi_mud_step(mud, 1000000, &progress);
         {
             size_t rings = 0, points = 0, rw = 0, pw = 0, wrapping = 0;
-            static hibi_mud_cell_ring ring_buffer[4096];
+            static hibi_ring ring_buffer[4096];
             static hibi_vec2 point_buffer[1 << 16];
             size_t i;
             int all = 1;
@@ -70,7 +70,7 @@ int main(void) {
             memset(ring_buffer, 0xAA, sizeof ring_buffer);
             if (status == HIBI_OK && rings <= 4096 && points <= (1u << 16))
                 status = hibi_mud_cells(mud, ring_buffer, rings, point_buffer, points, &rw, &pw);
-            for (i = 0; i < rw; i++) all &= reserved_zero(&ring_buffer[i], offsetof(hibi_mud_cell_ring, reserved));
+            for (i = 0; i < rw; i++) all &= reserved_zero(&ring_buffer[i], offsetof(hibi_ring, reserved));
             printf("mud cells: status %u, rings %s, reserved 0 in every ring: %s\n", (unsigned)status,
                    yes(rw > 0 && rw == rings), yes(all));
         }
@@ -88,7 +88,7 @@ int main(void) {
         } while (status == HIBI_OK && !progress.finished);
         {
             static unsigned char scratch[1 << 22];
-            static hibi_glass_fragment_ring ring_buffer[4096];
+            static hibi_ring ring_buffer[4096];
             static hibi_vec2 point_buffer[1 << 16];
             size_t need = 0, rings = 0, points = 0, rw = 0, pw = 0, i;
             int all = 1;
@@ -100,7 +100,7 @@ int main(void) {
                 status = hibi_glass_fragments(glass, scratch, sizeof scratch, ring_buffer, rings, point_buffer, points,
                                               &rw, &pw);
             for (i = 0; i < rw; i++)
-                all &= reserved_zero(&ring_buffer[i], offsetof(hibi_glass_fragment_ring, reserved));
+                all &= reserved_zero(&ring_buffer[i], offsetof(hibi_ring, reserved));
             printf("glass fragments: status %u, rings %s, reserved 0 in every ring: %s\n", (unsigned)status,
                    yes(rw > 0 && rw == rings), yes(all));
         }

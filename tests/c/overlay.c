@@ -34,12 +34,12 @@ typedef struct {
 } overlay;
 
 /* Lays `rings` (points in domain units, `scale` pixels a unit) over `mask`. */
-static overlay lay(const hibi_glass_fragment_ring *rings, size_t ring_count, const hibi_vec2 *points,
+static overlay lay(const hibi_ring *rings, size_t ring_count, const hibi_vec2 *points,
                    const uint8_t *mask, uint32_t w, uint32_t h, double scale[2], double domain[2], int wrap) {
     overlay o = {0, 0, 0, 0, 0};
     size_t r, i;
     for (r = 0; r < ring_count; r++) {
-        const hibi_glass_fragment_ring *ring = &rings[r];
+        const hibi_ring *ring = &rings[r];
         double twice_area = 0.0;
         for (i = 0; i < ring->point_count; i++) {
             hibi_vec2 a = points[ring->first_point + i];
@@ -73,7 +73,7 @@ static void glass(void) {
     hibi_glass *glass = NULL;
     size_t scratch_size = 0, ring_count = 0, point_count = 0, rw = 0, pw = 0;
     void *scratch;
-    hibi_glass_fragment_ring *rings;
+    hibi_ring *rings;
     hibi_vec2 *points;
     uint8_t *mask;
     double scale[2], domain[2];
@@ -114,7 +114,7 @@ static void mud(void) {
     hibi_mud *mud = NULL;
     hibi_vec2 extent;
     size_t ring_count = 0, point_count = 0, wrapping = 0, rw = 0, pw = 0;
-    hibi_mud_cell_ring *rings;
+    hibi_ring *rings;
     hibi_vec2 *points;
     uint8_t *mask;
     double scale[2], domain[2];

@@ -298,10 +298,10 @@ void mud() {
     report("mud try_cell_counts",
            cell_counts.ok() && cell_counts->rings == cr && cell_counts->points == cpts && cell_counts->wrapping == cw,
            failure(empty.try_cell_counts()));
-    std::vector<hibi_mud_cell_ring> c_rings(cr);
+    std::vector<hibi_ring> c_rings(cr);
     std::vector<hibi_vec2> c_points(cpts);
     must(hibi_mud_cells(c, c_rings.data(), cr, c_points.data(), cpts, &a, &b));
-    Block<hibi_mud_cell_ring> rings(cr);
+    Block<hibi_ring> rings(cr);
     Block<hibi_vec2> points(cpts);
     hibi::Result<hibi::RingCounts> cells_written = mud.try_cells(rings.view(cr), points.view(cpts));
     bool cells_ok = cells_written.ok() && cells_written->rings == a && cells_written->points == b &&
@@ -448,12 +448,12 @@ void glass() {
     hibi::Scratch tiny(1, hibi::Glass::memory_align());
     report("glass try_fragment_counts", counts.ok() && counts->first == cr && counts->second == cp && cr > 0,
            failure(glass.try_fragment_counts(tiny)));
-    std::vector<hibi_glass_fragment_ring> c_rings(cr);
+    std::vector<hibi_ring> c_rings(cr);
     std::vector<hibi_vec2> c_ring_points(cp);
     std::size_t a = 0, b = 0;
     must(hibi_glass_fragments(c, c_memory.data(), c_memory.size(), c_rings.data(), cr, c_ring_points.data(), cp,
                                      &a, &b));
-    Block<hibi_glass_fragment_ring> rings(cr);
+    Block<hibi_ring> rings(cr);
     Block<hibi_vec2> ring_points(cp);
     hibi::Result<hibi::RingCounts> fragments_written =
         glass.try_fragments(*scratch, rings.view(cr), ring_points.view(cp));

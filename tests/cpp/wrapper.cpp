@@ -25,7 +25,7 @@ namespace {
 const char *yes(bool b) { return b ? "yes" : "no"; }
 
 // Field by field: a ring record has padding.
-bool same_rings(const std::vector<hibi_glass_fragment_ring> &a, const std::vector<hibi_glass_fragment_ring> &b) {
+bool same_rings(const std::vector<hibi_ring> &a, const std::vector<hibi_ring> &b) {
     return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto &x, const auto &y) {
         return x.area == y.area && x.first_point == y.first_point && x.point_count == y.point_count &&
                x.hole_of == y.hole_of;
@@ -210,9 +210,9 @@ void mud() {
         hibi::Mud::CellCounts cc = mud.cell_counts();
         std::size_t cr = 0, cp = 0, cw = 0;
         hibi::check(hibi_mud_cell_counts(mud.get(), &cr, &cp, &cw));
-        Block<hibi_mud_cell_ring> rings(cc.rings);
+        Block<hibi_ring> rings(cc.rings);
         Block<hibi_vec2> points(cc.points);
-        std::vector<hibi_mud_cell_ring> c_rings(cr);
+        std::vector<hibi_ring> c_rings(cr);
         std::vector<hibi_vec2> c_points(cp);
         std::size_t rw = 0, pw = 0;
         hibi::check(hibi_mud_cells(mud.get(), c_rings.data(), cr, c_points.data(), cp, &rw, &pw));
@@ -333,9 +333,9 @@ void glass() {
         Block<hibi_glass_point> first(glass.crack(0).points);
         unsigned s_points = short_status(first, [&] { glass.points(0, first.short_view()); }, untouched);
 
-        Block<hibi_glass_fragment_ring> rings(counts.first);
+        Block<hibi_ring> rings(counts.first);
         Block<hibi_vec2> fpoints(counts.second);
-        std::vector<hibi_glass_fragment_ring> c_rings(counts.first);
+        std::vector<hibi_ring> c_rings(counts.first);
         std::vector<hibi_vec2> c_points(counts.second);
         std::size_t rw = 0, pw = 0;
         hibi::check(hibi_glass_fragments(glass.get(), scratch.data(), scratch.size(), c_rings.data(), c_rings.size(),

@@ -14,27 +14,7 @@ use super::grid::NONE;
 use super::{Glass, GlassError, take};
 use crate::geom::pseudo_angle;
 use crate::geom::{crosses_ray, shoelace};
-
-/// One ring of a fragment's outline (glass) or of a cell's (mud): `point_count` points from
-/// `first_point` on in the point buffer, counter-clockwise with y up for an outer ring
-/// (positive `area`), clockwise for a hole (negative `area`, and `hole_of` names the outer
-/// ring it lies in). In C: `hibi_glass_fragment_ring` and `hibi_mud_cell_ring`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[repr(C)]
-pub struct FragmentRing {
-    /// Signed area: px² for glass, lattice units² for mud.
-    pub area: f64,
-    /// Index of the ring's first point.
-    pub first_point: u32,
-    /// Number of points (the first is not repeated).
-    pub point_count: u32,
-    /// For a hole, the index of the outer ring it lies in; `u32::MAX` otherwise
-    /// (`HIBI_GLASS_NOT_A_HOLE` in C).
-    pub hole_of: u32,
-    /// Always 0: the struct has no padding, so every byte a call writes is defined (an
-    /// output can be hashed or compared as bytes).
-    pub reserved: u32,
-}
+use crate::polygon::{NOT_A_HOLE, Ring};
 
 /// Caller words the fragment walk works in, sized for the plate's vertex capacity.
 pub(super) struct FragmentScratch<'a> {
@@ -189,7 +169,7 @@ impl PlaneGraph for PlateGraph<'_> {
 
 /// A ring found by the walk: where it starts, its signed area and its number of points.
 #[derive(Clone, Copy)]
-struct Ring {
+struct FoundRing {
     start: HalfEdge,
     area: f64,
     points: usize,
@@ -270,7 +250,11 @@ impl Glass<'_> {
 
     /// Walks every face of the plate once; calls `visit` with each fragment ring (not the
     /// outside of the plate) in a fixed order, working in the caller's `scratch`.
-    fn for_each_ring(&self, scratch: &mut [u32], mut visit: impl FnMut(&PlateGraph, Ring)) -> Result<(), GlassError> {
+    fn for_each_ring(
+        &self,
+        scratch: &mut [u32],
+        mut visit: impl FnMut(&PlateGraph, FoundRing),
+    ) -> Result<(), GlassError> {
         let mut s = FragmentScratch::new(scratch, self.params.max_vertices as usize)?;
         let n = self.prepare_fragments(&mut s);
         let (w, h) = (self.params.width, self.params.height);
@@ -295,7 +279,7 @@ impl Glass<'_> {
             // (`pseudo_angle`). Should one not (it did when a zero-length edge's angle was
             // NaN: fuzz finding 11), it stops at the first half-edge another walk took and is
             // dropped, so the query stays linear in the half-edges whatever the geometry.
-            let (mut ring, mut h, mut closed) = (Ring { start, area: 0.0, points: 0 }, start, false);
+            let (mut ring, mut h, mut closed) = (FoundRing { start, area: 0.0, points: 0 }, start, false);
             for _ in 0..=g.half_edge_bound() {
                 if bit(visited, h as usize) {
                     break;
@@ -337,7 +321,7 @@ impl Glass<'_> {
     pub fn fragments(
         &self,
         scratch: &mut [u32],
-        rings: &mut [FragmentRing],
+        rings: &mut [Ring],
         points: &mut [[f32; 2]],
     ) -> Result<(usize, usize), GlassError> {
         let (ring_count, point_count) = self.fragment_counts(scratch)?;
@@ -348,11 +332,11 @@ impl Glass<'_> {
         }
         let (mut r, mut p) = (0, 0);
         self.for_each_ring(scratch, |g, ring| {
-            rings[r] = FragmentRing {
+            rings[r] = Ring {
                 area: ring.area,
                 first_point: p as u32,
                 point_count: ring.points as u32,
-                hole_of: NONE,
+                hole_of: NOT_A_HOLE,
                 reserved: 0,
             };
             walk_face(g, ring.start, |h| {
@@ -362,7 +346,7 @@ impl Glass<'_> {
             r += 1;
         })?;
         let (rings, points) = (&mut rings[..r], &points[..p]);
-        let outline = |ring: &FragmentRing| &points[ring.first_point as usize..][..ring.point_count as usize];
+        let outline = |ring: &Ring| &points[ring.first_point as usize..][..ring.point_count as usize];
         // A hole lies in the smallest outer ring around its first point that it does not touch.
         for i in 0..r {
             if rings[i].area > 0.0 {

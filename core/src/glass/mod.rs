@@ -730,7 +730,6 @@ mod output;
 mod render;
 mod scan;
 
-pub use fragments::FragmentRing;
 use fragments::FragmentScratch;
 pub use growth::STEP_PIECE;
 pub use output::CrackPoint;

@@ -19,13 +19,12 @@
 use super::network::TracedCell;
 use super::{Boundary, Mud, MudError};
 use crate::geom::shoelace;
+use crate::polygon::{NOT_A_HOLE, Ring};
 use crate::scalar::Scalar;
-
-pub use crate::glass::FragmentRing as CellRing;
 
 /// `hole_of` of a hole in a cell that wraps around a periodic lattice: that cell has no
 /// outline in the plane, so no ring to name (`HIBI_MUD_IN_WRAPPING_CELL` in C). An outer
-/// ring's `hole_of` is `u32::MAX`, as for glass fragments.
+/// ring's `hole_of` is [`NOT_A_HOLE`].
 pub const IN_WRAPPING_CELL: u32 = u32::MAX - 1;
 
 /// How many rings and points [`Mud::cells`] writes, and the regions it cannot.
@@ -374,7 +373,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// with positive area, holes with negative area naming the ring of the cell they are in,
     /// or [`IN_WRAPPING_CELL`]), their points (lattice units) into `points`, and returns the
     /// counts. Nothing is written if a buffer is shorter than [`Mud::cell_counts`] says.
-    pub fn cells(&self, rings: &mut [CellRing], points: &mut [[f32; 2]]) -> Result<CellCounts, MudError> {
+    pub fn cells(&self, rings: &mut [Ring], points: &mut [[f32; 2]]) -> Result<CellCounts, MudError> {
         let counts = self.cell_counts();
         for (have, needed) in [(rings.len(), counts.rings), (points.len(), counts.points)] {
             if have < needed {
@@ -392,11 +391,11 @@ impl<S: Scalar> Mud<'_, S> {
             let ring = &points[first..p];
             let twice: f64 = ring.iter().zip(ring.iter().cycle().skip(1)).map(|(a, b)| shoelace(*a, *b)).sum();
             let area = 0.5 * twice;
-            rings[r] = CellRing {
+            rings[r] = Ring {
                 area,
                 first_point: first as u32,
                 point_count: (p - first) as u32,
-                hole_of: u32::MAX,
+                hole_of: NOT_A_HOLE,
                 reserved: 0,
             };
             r += 1;

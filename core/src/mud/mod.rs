@@ -44,7 +44,7 @@ mod spacing;
 mod statistics;
 mod trace;
 
-pub use cells::{CellCounts, CellRing, IN_WRAPPING_CELL};
+pub use cells::{CellCounts, IN_WRAPPING_CELL};
 pub use lattice::Lattice;
 pub use material::Material;
 pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex, TRACE_PIECE};
@@ -710,10 +710,10 @@ mod tests {
         mud.trace();
         let counts = mud.cell_counts();
         assert_eq!((counts.rings, counts.wrapping), (2, 0));
-        let mut rings = vec![CellRing::default(); counts.rings];
+        let mut rings = vec![crate::polygon::Ring::default(); counts.rings];
         let mut points = vec![[0.0f32; 2]; counts.points];
         assert_eq!(mud.cells(&mut rings[..1], &mut points), Err(MudError::BufferTooSmall { needed: 2 }));
-        assert!(rings.iter().all(|r| *r == CellRing::default()), "nothing written on failure");
+        assert!(rings.iter().all(|r| *r == crate::polygon::Ring::default()), "nothing written on failure");
         assert_eq!(mud.cells(&mut rings, &mut points), Ok(counts));
         for ring in &rings {
             assert!((ring.area - 72.0).abs() < 1e-3, "{ring:?}");

@@ -20,11 +20,12 @@ use core::fmt::{self, Write};
 use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicBool, Ordering};
 
-use hibi_core::glass::{Crack, Edge, FragmentRing, Glass, GlassBuffers, GlassLayers, GlassParams, GlassRender, Vertex};
+use hibi_core::glass::{Crack, Edge, Glass, GlassBuffers, GlassLayers, GlassParams, GlassRender, Vertex};
 use hibi_core::mud::{
     Mud, MudBuffers, MudLayers, MudParams, MudRender, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology,
     memory_for,
 };
+use hibi_core::polygon::Ring;
 use hibi_core::scalar::Q16;
 use hibi_core::skin::{
     ClipVertex, ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinDivision, SkinLayers, SkinLevel, SkinParams,
@@ -284,7 +285,7 @@ struct Outputs {
     net_vertices: &'static mut [NetworkVertex],
     net_edges: &'static mut [NetworkEdge],
     net_points: &'static mut [NetworkPoint],
-    rings: &'static mut [FragmentRing],
+    rings: &'static mut [Ring],
     ring_points: &'static mut [[f32; 2]],
     mask: &'static mut [u8],
     floats: &'static mut [f32],
@@ -300,7 +301,7 @@ impl Memory {
         static NET_VERTICES: Slot<NetworkVertex, NETWORK_VERTICES> = Slot::new();
         static NET_EDGES: Slot<NetworkEdge, NETWORK_EDGES> = Slot::new();
         static NET_POINTS: Slot<NetworkPoint, NETWORK_POINTS> = Slot::new();
-        static RING: Slot<FragmentRing, RINGS> = Slot::new();
+        static RING: Slot<Ring, RINGS> = Slot::new();
         static RING_POINT: Slot<[f32; 2], RING_POINTS> = Slot::new();
         static CRACKS: Slot<Crack, GLASS_CRACKS> = Slot::new();
         static VERTICES: Slot<Vertex, GLASS_VERTICES> = Slot::new();
@@ -366,7 +367,7 @@ impl Memory {
             + NETWORK_VERTICES * size_of::<NetworkVertex>()
             + NETWORK_EDGES * size_of::<NetworkEdge>()
             + NETWORK_POINTS * size_of::<NetworkPoint>()
-            + RINGS * size_of::<FragmentRing>()
+            + RINGS * size_of::<Ring>()
             + RING_POINTS * 8
             + GLASS_CRACKS * size_of::<Crack>()
             + GLASS_VERTICES * size_of::<Vertex>()
@@ -524,7 +525,7 @@ fn floats_hash(values: &[f32]) -> u64 {
 }
 
 /// The hash of rings (mud's cells, glass's fragments) and their points.
-fn rings_hash(rings: &[FragmentRing], points: &[[f32; 2]]) -> Fnv {
+fn rings_hash(rings: &[Ring], points: &[[f32; 2]]) -> Fnv {
     let mut h = Fnv::new();
     for r in rings {
         h.f64(r.area);
