@@ -530,3 +530,60 @@ fn a_unit_costs_about_the_same_at_every_spacing_ratio() {
     let dearest = per_unit.iter().map(|c| c.1).fold(0.0, f64::max);
     assert!(dearest <= 10.0 * cheapest, "instructions per unit from {cheapest:.0} to {dearest:.0}: {per_unit:?}");
 }
+
+/// The signed areas of one level's cell outlines, summed in f64, in pixels².
+fn level_areas(skin: &Skin) -> Vec<f64> {
+    let unit = (1u64 << skin.fixed_point_bits()) as f64;
+    let mut sums = vec![0.0f64; skin.params().levels as usize];
+    for cell in skin.cells() {
+        let o = skin.outline(cell);
+        let twice: f64 = (0..o.len())
+            .map(|i| {
+                let (a, b) = (o[i], o[(i + 1) % o.len()]);
+                a[0] as f64 * b[1] as f64 - b[0] as f64 * a[1] as f64
+            })
+            .sum();
+        sums[cell.level as usize] += 0.5 * twice / (unit * unit);
+    }
+    sums
+}
+
+/// The cells of every level tile the surface: their outlines' areas add up to width × height
+/// within 1e-4, summed in f64, for the defaults and every preset (at 200 × 200), open and
+/// periodic, and at the extremes the validation accepts (a perturbation of 10³⁰, a stretch of
+/// 10³⁰ and of 10⁻³, two levels 40 px and 1 px apart).
+#[test]
+fn the_cells_of_every_level_cover_the_surface() {
+    let mut cases: Vec<(String, SkinParams)> = vec![("defaults".into(), SkinParams::default())];
+    cases.extend(PRESETS.iter().map(|&name| (name.to_string(), preset(name).expect("a preset"))));
+    let base = SkinParams { width: 160, height: 160, ..SkinParams::default() };
+    type Extreme = (&'static str, fn(&mut SkinParams));
+    let extremes: [Extreme; 4] = [
+        ("perturbation 1e30", |p| p.level[0].perturbation = 1e30),
+        ("stretch 1e30", |p| p.level[0].stretch = [1e30, 1e30]),
+        ("stretch 1e-3", |p| p.level[0].stretch = [1e-3, 1.0]),
+        ("1 px under 40", |p| (p.levels, p.level[0].spacing, p.level[1].spacing) = (2, 40.0, 1.0)),
+    ];
+    for (name, change) in extremes {
+        let mut p = base;
+        change(&mut p);
+        cases.push((name.to_string(), p));
+    }
+    for (name, mut p) in cases {
+        (p.width, p.height) = (p.width.min(200), p.height.min(200));
+        for periodic in [false, true] {
+            p.periodic = periodic;
+            let mut memory = p.memory().expect("valid parameters").allocate();
+            let mut skin: Skin = Skin::new(&p, memory.buffers()).expect("memory suffices");
+            let progress = skin.run();
+            assert!(progress.finished && !progress.capacity_reached, "{name}: {progress:?}");
+            let surface = f64::from(p.width) * f64::from(p.height);
+            for (level, area) in level_areas(&skin).into_iter().enumerate() {
+                assert!(
+                    (area / surface - 1.0).abs() <= 1e-4,
+                    "{name}, periodic {periodic}, level {level}: {area} of {surface}"
+                );
+            }
+        }
+    }
+}

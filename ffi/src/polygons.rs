@@ -2,7 +2,7 @@
 //! (the core's `polygon::Ring`) and its outer-ring mark, and the polygon queries, mud's
 //! `hibi_mud_cells` and glass's `hibi_glass_fragments`: one C shape (the object and its extra
 //! arguments, then a ring buffer, a point buffer and the two counts written), so the function
-//! is written once, by [`polygon_query!`].
+//! is written once, by `polygon_query!`.
 
 /// `hibi_ring.hole_of` of an outer ring (a hole's names the outer ring it lies in).
 pub const HIBI_RING_NOT_A_HOLE: u32 = u32::MAX;
