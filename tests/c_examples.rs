@@ -580,9 +580,11 @@ fn callgrind_counts(exe: &Path) -> std::collections::BTreeMap<String, u64> {
 /// (Knuth's method), so creation is bounded by the validation's cap rather than by the
 /// capacities (about 56 times the twin with mean 100); a mud `anisotropy_direction` of 1e30
 /// costs libm's argument reduction of the huge angle in creation, a constant that weighs
-/// against creation's own constant work (about 2 times the twin in release, 12 in debug). One case
-/// is a capacity, not a float: a glass plate created with `max_vertices` 2 000 000 costs what
-/// one with 2 048 does (its vertex, edge and word arrays are not written).
+/// against creation's own constant work (about 2 times the twin in release, 12 in debug). Two
+/// cases are capacities, not floats: a glass plate created with `max_vertices` 2 000 000 costs
+/// what one with 2 048 does (its vertex, edge and word arrays are not written), and one created
+/// in caller memory (`hibi_glass_create_in`) with `max_cracks` 2 000 000 what one with 128 does
+/// (its crack slots are not written either).
 #[test]
 fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
     const CASES: &[(&str, f64, bool)] = &[
@@ -593,6 +595,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
         ("glass-create speeds", 1.1, true),
         ("glass-create max_vertices", 1.1, true),
         ("glass-create radial_mean", 64.0, false),
+        ("glass-create_in max_cracks", 1.1, true),
         ("mud-create break_stretch_mean", 1.1, false),
         ("mud-create anisotropy", 16.0, false),
         ("mud-create target_crack_density", 1.1, false),
@@ -640,7 +643,7 @@ fn c_create_and_render_work_does_not_grow_with_extreme_floats() {
 #[test]
 fn c_work_counts_prints_every_case() {
     let output = regression("tests/c/work_counts.c");
-    assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 44, "{output}");
+    assert_eq!(output.lines().filter(|l| l.contains(": status 0, digest ")).count(), 46, "{output}");
 }
 
 /// A huge ring count formula is bounded by `max_cracks`: creation takes under a second, not

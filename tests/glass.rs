@@ -1,7 +1,7 @@
 //! Model B against the paper's facts (Agui et al.) and hibi's own acceptance criteria.
 
 use hibi_core::glass::{
-    Crack, CrackEnd, CrackKind, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassParams,
+    Crack, CrackEnd, CrackKind, CrackPoint, CrackSlot, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassParams,
     GlassRender, STEP_PIECE, Vertex,
 };
 use hibi_core::polygon::Ring;
@@ -139,7 +139,7 @@ fn a_second_impact_grows_cracks_that_stop_at_the_first() {
 /// a 64 × 64 mask and time raster, and the fragments.
 fn readout(g: &Glass) -> String {
     let cracks: Vec<(Crack, Vec<CrackPoint>)> =
-        (0..g.crack_count()).map(|i| (*g.crack(i).unwrap(), points(g, i))).collect();
+        (0..g.crack_count()).map(|i| (g.crack(i).unwrap(), points(g, i))).collect();
     let render = GlassRender { width: 64, height: 64, ..GlassRender::default() };
     let (mut mask, mut time) = (vec![0u8; 64 * 64], vec![0f32; 64 * 64]);
     g.render(&render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time) }).unwrap();
@@ -159,8 +159,19 @@ fn creating_a_plate_writes_the_same_whatever_the_capacities() {
     let pattern = |i: usize| (i as u32).wrapping_mul(2_654_435_761) % 1000 + 1;
     let mut vertex = Vertex::default();
     vertex.at = [-1.0, -1.0];
-    let mut crack = Crack::default();
-    (crack.growing, crack.impact, crack.tip) = (true, 9, [-1.0, -1.0]);
+    // A slot another plate wrote (its first crack, grown and stopped): none that creation writes.
+    let crack = {
+        let p = GlassParams { seed: 8, ..base };
+        let m = p.memory().unwrap();
+        let (mut cracks, mut vertices) = (vec![CrackSlot::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+        let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![0; m.words]);
+        let buffers =
+            GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+        let mut glass = Glass::new(&p, buffers).unwrap();
+        while !glass.step(100_000).finished {}
+        assert_ne!(cracks[0], CrackSlot::default());
+        cracks[0]
+    };
     // The elements `Glass::new` changed, and the plate those buffers grow.
     let created = |p: &GlassParams| {
         let m = p.memory().unwrap();
@@ -596,7 +607,7 @@ fn plate(p: &GlassParams) -> Plate {
         impact: p.impact,
         counts: g.impact_counts(),
         cracks: (0..g.crack_count())
-            .map(|i| (*g.crack(i).unwrap(), points(g, i).iter().map(|q| q.at).collect()))
+            .map(|i| (g.crack(i).unwrap(), points(g, i).iter().map(|q| q.at).collect()))
             .collect(),
     })
 }

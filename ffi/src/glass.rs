@@ -21,14 +21,14 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    Crack, CrackPoint, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams, GlassProgress,
-    GlassRender, ImpactCounts, Vertex, preset,
+    Crack, CrackPoint, CrackSlot, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
+    GlassProgress, GlassRender, ImpactCounts, Vertex, preset,
 };
 
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
 use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
-use crate::object::{self, AnyBits, Arena, Object, Origin, ZeroIsDefault, lifecycle};
+use crate::object::{self, AnyBits, Arena, Object, Origin, lifecycle};
 use crate::polygons::polygon_query;
 use crate::raster::{Pixels, render};
 use crate::status::{
@@ -212,11 +212,13 @@ lifecycle!(
 unsafe impl AnyBits for Vertex {}
 // SAFETY: an edge is u32 and f32 fields only (56 bytes, no padding, checked below).
 unsafe impl AnyBits for Edge {}
-const _: () = assert!(size_of::<Vertex>() == 12 && size_of::<Edge>() == 56, "only u32 and f32 fields");
-// SAFETY: a crack's fields are numbers, a bool and two enumerations whose first (zero)
-// variants are their defaults (`CrackKind::Large`, `CrackEnd::Growing`): all-zero bytes are
-// `Crack::default()` (checked by `a_zeroed_crack_is_the_default`).
-unsafe impl ZeroIsDefault for Crack {}
+// SAFETY: a crack slot is u32 and f32 fields only (its kind, end and growing flag as u32
+// numbers; 88 bytes, no padding, checked below).
+unsafe impl AnyBits for CrackSlot {}
+const _: () = assert!(
+    size_of::<Vertex>() == 12 && size_of::<Edge>() == 56 && size_of::<CrackSlot>() == 88,
+    "only u32 and f32 fields"
+);
 
 impl Object for hibi_glass {
     type Input = *const hibi_glass_params;
@@ -231,13 +233,12 @@ impl Object for hibi_glass {
         Ok((params, memory))
     }
 
-    /// The plate reads no vertex, edge or word it did not write (`Glass::new`), so those arrays
-    /// are taken as they are; the crack records are written in caller memory only (the
-    /// library's zeroed block holds their defaults). `hibi_glass_create`'s work does not grow
-    /// with the capacities; `hibi_glass_create_in` writes `max_cracks` records.
+    /// The plate reads no crack slot, vertex, edge or word it did not write (`Glass::new`), so
+    /// every array is taken as it is: neither `hibi_glass_create` nor `hibi_glass_create_in`
+    /// writes an array, and their work does not grow with the capacities.
     fn arrays((_, m): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
         GlassBuffers {
-            cracks: arena.take_default(m.cracks),
+            cracks: arena.take_as_is(m.cracks),
             vertices: arena.take_as_is(m.vertices),
             edges: arena.take_as_is(m.edges),
             words: arena.take_as_is(m.words),
@@ -341,7 +342,7 @@ unsafe fn crack_of<'a, O>(
     glass: *const hibi_glass,
     index: usize,
     (out, name): (*mut O, &'static CStr),
-) -> Result<(&'a Glass<'static>, &'a Crack), hibi_status> {
+) -> Result<(&'a Glass<'static>, Crack), hibi_status> {
     // SAFETY: the caller's contract.
     let glass = &unsafe { object_ref(glass, c"glass") }?.glass;
     check_pointer(out, name)?;
@@ -531,18 +532,6 @@ mod tests {
     use crate::constants::*;
     use crate::status::*;
     use core::ptr::null_mut;
-    use hibi_core::glass::{CrackEnd, CrackKind};
-
-    /// `hibi_glass_create` leaves the crack records as its zeroed block holds them: all-zero
-    /// bytes must be the default crack.
-    #[test]
-    fn a_zeroed_crack_is_the_default() {
-        assert_eq!((CrackKind::default() as u32, CrackEnd::default() as u32), (0, 0));
-        // SAFETY: every field of a crack is a number, a bool or an enumeration with a zero
-        // variant (checked above): all-zero bytes are a valid crack.
-        let zeroed: Crack = unsafe { core::mem::zeroed() };
-        assert_eq!(zeroed, Crack::default());
-    }
 
     #[test]
     fn bad_fields_and_enums_are_specific_statuses_and_nothing_is_created() {

@@ -46,13 +46,6 @@ unsafe impl AnyBits for u32 {}
 // SAFETY: as u32.
 unsafe impl AnyBits for f32 {}
 
-/// Element types whose all-zero bytes are a value, the default one: in a block the library
-/// allocated (zeroed) an array of them is already set to its defaults.
-///
-/// # Safety
-/// All-zero bytes must be a valid `Self`, equal to `Self::default()`.
-pub(crate) unsafe trait ZeroIsDefault: Default {}
-
 /// Lays out the arrays of a block after its header. Measuring, it only counts the bytes;
 /// placing, it also hands out the arrays: [`Arena::take`] sets each element to its default,
 /// [`Arena::take_as_is`] leaves the bytes as they are.
@@ -63,8 +56,6 @@ pub(crate) struct Arena {
     at: usize,
     /// An array's size overflowed.
     overflow: bool,
-    /// The block is all zero bytes (allocated by the library).
-    zeroed: bool,
 }
 
 impl Arena {
@@ -78,18 +69,6 @@ impl Arena {
             }
             core::slice::from_raw_parts_mut(first, n)
         }
-    }
-
-    /// Takes the next `n` elements of `T`, each set to its default, writing them only in caller
-    /// memory: in the library's zeroed block they are their defaults already.
-    pub(crate) fn take_default<T: ZeroIsDefault>(&mut self, n: usize) -> &'static mut [T] {
-        if !self.zeroed {
-            return self.take(n);
-        }
-        let Some(first) = self.next::<T>(n) else { return &mut [] };
-        // SAFETY: `next`'s range of `n` elements, all zero bytes: each a valid `T`, its
-        // default (`ZeroIsDefault`).
-        unsafe { core::slice::from_raw_parts_mut(first, n) }
     }
 
     /// Takes the next `n` elements of `T` over the block's bytes as they are (zero in a block
@@ -171,7 +150,7 @@ unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_stat
     const { assert!(align_of::<T>() <= BLOCK_ALIGN) };
     // SAFETY: the caller's contract, passed on.
     let plan = unsafe { T::plan(input) }?;
-    let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false, zeroed: false };
+    let mut arena = Arena { base: core::ptr::null_mut(), at: header::<T>(), overflow: false };
     T::arrays(&plan, &mut arena);
     if arena.overflow {
         return Err(T::TOO_LARGE);
@@ -184,9 +163,7 @@ unsafe fn plan<T: Object>(input: T::Input) -> Result<(T::Plan, usize), hibi_stat
 /// # Safety
 /// `block` must be valid for writes of `size` bytes and outlive the object.
 unsafe fn place<T: Object>(block: *mut u8, plan: &T::Plan, origin: Origin) -> Result<*mut T, hibi_status> {
-    // The library's blocks are allocated zeroed.
-    let zeroed = matches!(origin, Origin::Library { .. });
-    let mut arena = Arena { base: block, at: header::<T>(), overflow: false, zeroed };
+    let mut arena = Arena { base: block, at: header::<T>(), overflow: false };
     let arrays = T::arrays(plan, &mut arena);
     let object = T::make(plan, arrays, origin)?;
     let ptr = block.cast::<T>();
@@ -283,7 +260,7 @@ fn caller_block(memory: *mut c_void, len: usize, needed: usize, name: &'static C
 
 /// The bytes of a call's scratch whose arrays `carve` takes (`*_scratch_size`).
 pub(crate) fn scratch_size<A>(carve: impl Fn(&mut Arena) -> A) -> Result<usize, hibi_status> {
-    let mut arena = Arena { base: core::ptr::null_mut(), at: 0, overflow: false, zeroed: false };
+    let mut arena = Arena { base: core::ptr::null_mut(), at: 0, overflow: false };
     carve(&mut arena);
     if arena.overflow { Err(HIBI_ERROR_SIZE_OVERFLOW) } else { Ok(arena.at) }
 }
@@ -302,7 +279,7 @@ pub(crate) unsafe fn scratch<A>(
 ) -> Result<A, hibi_status> {
     let needed = scratch_size(&carve)?;
     let base = caller_block(memory, len, needed, c"scratch")?;
-    Ok(carve(&mut Arena { base, at: 0, overflow: false, zeroed: false }))
+    Ok(carve(&mut Arena { base, at: 0, overflow: false }))
 }
 
 /// `*_destroy`: drops the object and frees its block if the library allocated it; NULL is

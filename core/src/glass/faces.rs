@@ -247,7 +247,7 @@ impl Glass<'_> {
                     self.clock.work += 1;
                     let i = e.crack;
                     e.crack += 1;
-                    if !self.cracks[i].growing {
+                    if !self.cracks[i].growing() {
                         continue;
                     }
                     let tip = self.tip_vertex(i);

@@ -202,12 +202,12 @@ impl Glass<'_> {
                     if self.clock.cursor < self.crack_count {
                         self.clock.work += 1;
                         let c = self.cracks[self.clock.cursor];
-                        if c.growing && self.clock.time >= c.wake {
+                        if c.growing() && self.clock.time >= c.wake {
                             self.clock.awake = true;
                             let update = self.begin_update(self.clock.cursor);
                             self.go_on_update(update, deadline);
                         } else {
-                            if c.growing {
+                            if c.growing() {
                                 self.clock.next_wake = self.clock.next_wake.min(c.wake);
                             }
                             self.clock.cursor += 1;
@@ -279,7 +279,7 @@ impl Glass<'_> {
         c.before = c.tip;
         c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
         let c = self.cracks[i];
-        if c.growing {
+        if c.growing() {
             let (cx, cy, _, _) = self.index.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
             if !self.index.tips.insert(cy * self.index.grid.columns + cx, i as u32) {
                 self.clock.capacity_reached = true;
@@ -301,7 +301,7 @@ impl Glass<'_> {
         if i < self.crack_count {
             self.clock.work += 1;
             let c = &self.cracks[i];
-            if c.growing && c.impact == impact && c.kind != CrackKind::Radial {
+            if c.growing() && c.impact == impact && !c.is(CrackKind::Radial) {
                 // A crack still drives growth: the next time step, unless time is up.
                 self.clock.done = self.crack_count + 1;
             } else {
@@ -440,7 +440,7 @@ impl Glass<'_> {
     fn begin_update(&mut self, i: usize) -> Update {
         let c = self.cracks[i];
         let left = if c.left > 0.0 { c.left } else { c.speed };
-        let ring = matches!(c.kind, CrackKind::RingCounterClockwise | CrackKind::RingClockwise);
+        let ring = c.is_ring();
         let course = if ring { Self::ring_course(&c) } else { c.heading };
         let direction = [libm::cosf(course), libm::sinf(course)];
         let bounds = self.sector_box(c.tip, direction);
@@ -776,12 +776,12 @@ impl Glass<'_> {
 
     /// Where ring crack `c`'s tip is on its circle: its angle and distance about the impact,
     /// and the sense it grows in (1 counter-clockwise, −1 clockwise).
-    fn ring_frame(c: &super::Crack) -> (f32, f32, f32) {
+    fn ring_frame(c: &super::CrackSlot) -> (f32, f32, f32) {
         let centre = c.ring.0;
         let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
         let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
         let angle = libm::atan2f(rel[1], rel[0]);
-        let sense = if c.kind == CrackKind::RingCounterClockwise { 1.0 } else { -1.0 };
+        let sense = if c.is(CrackKind::RingCounterClockwise) { 1.0 } else { -1.0 };
         (angle, r, sense)
     }
 
@@ -791,7 +791,7 @@ impl Glass<'_> {
     /// quarter of that chord's angle. The course is thus always turned inwards from the
     /// tangent, so that a ring crack turns at least as much as the arc it runs along, and
     /// returns to its circle without ever turning outwards.
-    fn ring_course(c: &super::Crack) -> f32 {
+    fn ring_course(c: &super::CrackSlot) -> f32 {
         let radius = c.ring.1;
         let (angle, r, sense) = Self::ring_frame(c);
         let update = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
@@ -891,7 +891,7 @@ impl Glass<'_> {
     /// Ends the update of crack `i`: its time step is complete when it stopped or has moved
     /// |v|; then the step loop goes on (or finishes, when the plate's capacity ran out).
     fn end_update(&mut self, i: usize, u: &Update) {
-        let stopped = u.stopped || !self.cracks[i].growing;
+        let stopped = u.stopped || !self.cracks[i].growing();
         let left = u.left - u.length;
         let c = &mut self.cracks[i];
         if stopped || left <= 1e-3 * c.speed {
@@ -1111,7 +1111,7 @@ fn nearest_to_zero(a: f32, b: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::glass::{Crack, GlassBuffers, GlassParams, Vertex};
+    use crate::glass::{CrackSlot, GlassBuffers, GlassParams, Vertex};
     extern crate std;
     use std::vec;
     use std::vec::Vec;
@@ -1122,7 +1122,7 @@ mod tests {
     fn a_segment_query_visits_an_edge_added_over_any_stamp() {
         let p = GlassParams::default();
         let m = p.memory().unwrap();
-        let (mut cracks, mut vertices) = (vec![Crack::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+        let (mut cracks, mut vertices) = (vec![CrackSlot::default(); m.cracks], vec![Vertex::default(); m.vertices]);
         let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![1u32; m.words]);
         let buffers =
             GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };

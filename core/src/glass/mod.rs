@@ -72,8 +72,10 @@ enumeration! {
     default Growing
 }
 
-/// One crack: its kind, its tip and how it grows.
+/// One crack: its kind, its tip and how it grows, as [`Glass::crack`] reads it from its
+/// [`CrackSlot`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Crack {
     /// Large, radial or ring.
     pub kind: CrackKind,
@@ -95,6 +97,27 @@ pub struct Crack {
     pub wake: u32,
     /// Ring cracks: the impact point and the ring's radius d_i.
     pub ring: ([f32; 2], f32),
+}
+
+/// Where a plate keeps one crack: its state as plain numbers (`u32` and `f32` fields only,
+/// its kind, end and growing flag as their numbers), so that any bytes are a slot and caller
+/// memory can be handed in as it is. Opaque: read a crack with [`Glass::crack`]. The plate
+/// writes a slot before it reads it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CrackSlot {
+    /// [`CrackKind`] as its number.
+    kind: u32,
+    /// 1 while it grows, else 0.
+    growing: u32,
+    /// [`CrackEnd`] as its number.
+    end: u32,
+    impact: u32,
+    tip: [f32; 2],
+    heading: f32,
+    speed: f32,
+    age: u32,
+    wake: u32,
+    ring: ([f32; 2], f32),
     /// First and last segment of the crack's chain (NONE before the first step).
     first_segment: u32,
     last_segment: u32,
@@ -109,6 +132,47 @@ pub struct Crack {
     start_heading: f32,
     /// What is left of the current time step's move (0 between steps) \[px\].
     left: f32,
+}
+
+impl CrackSlot {
+    /// Still growing.
+    fn growing(&self) -> bool {
+        self.growing != 0
+    }
+
+    /// Of `kind`.
+    fn is(&self, kind: CrackKind) -> bool {
+        self.kind == kind as u32
+    }
+
+    /// A ring crack, either way round.
+    fn is_ring(&self) -> bool {
+        self.is(CrackKind::RingCounterClockwise) || self.is(CrackKind::RingClockwise)
+    }
+
+    /// Stops growing, for `end`.
+    fn stop(&mut self, end: CrackEnd) {
+        self.growing = 0;
+        self.end = end as u32;
+    }
+
+    /// The crack a written slot holds (its numbers are those `Glass::add_crack` and
+    /// `CrackSlot::stop` write; a number out of range, which the plate never writes, would
+    /// read as the default).
+    fn crack(&self) -> Crack {
+        Crack {
+            kind: CrackKind::from_u32(self.kind).unwrap_or_default(),
+            growing: self.growing(),
+            end: CrackEnd::from_u32(self.end).unwrap_or_default(),
+            impact: self.impact,
+            tip: self.tip,
+            heading: self.heading,
+            speed: self.speed,
+            age: self.age,
+            wake: self.wake,
+            ring: self.ring,
+        }
+    }
 }
 
 /// A crack vertex. Where cracks meet, both share the vertex.
@@ -141,7 +205,7 @@ pub struct Edge {
 /// How much caller memory a plate needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GlassMemory {
-    /// [`Crack`] records.
+    /// [`CrackSlot`]s.
     pub cracks: usize,
     /// [`Vertex`] records.
     pub vertices: usize,
@@ -158,7 +222,7 @@ pub struct GlassMemory {
 /// Caller memory for a plate.
 pub struct GlassBuffers<'a> {
     /// At least [`GlassMemory::cracks`].
-    pub cracks: &'a mut [Crack],
+    pub cracks: &'a mut [CrackSlot],
     /// At least [`GlassMemory::vertices`].
     pub vertices: &'a mut [Vertex],
     /// At least [`GlassMemory::edges`].
@@ -182,7 +246,7 @@ macro_rules! buffers_of {
 /// Owned memory for a plate (the `alloc` feature), from [`GlassMemory::allocate`].
 #[cfg(feature = "alloc")]
 pub struct GlassStore {
-    cracks: alloc::vec::Vec<Crack>,
+    cracks: alloc::vec::Vec<CrackSlot>,
     vertices: alloc::vec::Vec<Vertex>,
     edges: alloc::vec::Vec<Edge>,
     words: alloc::vec::Vec<u32>,
@@ -193,7 +257,7 @@ impl GlassMemory {
     /// Owned buffers of this size.
     pub fn allocate(&self) -> GlassStore {
         GlassStore {
-            cracks: alloc::vec![Crack::default(); self.cracks],
+            cracks: alloc::vec![CrackSlot::default(); self.cracks],
             vertices: alloc::vec![Vertex::default(); self.vertices],
             edges: alloc::vec![Edge::default(); self.edges],
             words: alloc::vec![0; self.words],
@@ -212,8 +276,8 @@ impl GlassStore {
 /// Fixed-size storage for callers without a heap: the sizes are those of
 /// [`GlassParams::memory`] (edges as many as vertices).
 pub struct GlassStorage<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> {
-    /// Crack records.
-    pub cracks: [Crack; CRACKS],
+    /// Crack slots.
+    pub cracks: [CrackSlot; CRACKS],
     /// Vertex records.
     pub vertices: [Vertex; VERTICES],
     /// Edge records.
@@ -226,7 +290,7 @@ impl<const CRACKS: usize, const VERTICES: usize, const WORDS: usize> GlassStorag
     /// Empty storage.
     pub fn new() -> Self {
         GlassStorage {
-            cracks: [Crack::default(); CRACKS],
+            cracks: [CrackSlot::default(); CRACKS],
             vertices: [Vertex::default(); VERTICES],
             edges: [Edge::default(); VERTICES],
             words: [0; WORDS],
@@ -354,7 +418,7 @@ impl GlassParams {
 /// A glass plate and the cracks growing in it, over caller memory.
 pub struct Glass<'a> {
     params: GlassParams,
-    cracks: &'a mut [Crack],
+    cracks: &'a mut [CrackSlot],
     crack_count: usize,
     /// Cracks still growing (kept, so that [`Glass::progress`] does not count them: a call of
     /// [`Glass::step`] costs its units, not the cracks on the plate).
@@ -648,10 +712,10 @@ impl<'a> Glass<'a> {
             self.clock.capacity_reached = true;
             return;
         }
-        self.cracks[self.crack_count] = Crack {
-            kind,
-            growing: true,
-            end: CrackEnd::Growing,
+        self.cracks[self.crack_count] = CrackSlot {
+            kind: kind as u32,
+            growing: 1,
+            end: CrackEnd::Growing as u32,
             impact,
             tip: self.vertices[start as usize].at,
             heading,
@@ -673,9 +737,8 @@ impl<'a> Glass<'a> {
 
     /// Stops every crack: generation of the current impact has ended.
     fn finish(&mut self) {
-        for crack in self.cracks[..self.crack_count].iter_mut().filter(|c| c.growing) {
-            crack.growing = false;
-            crack.end = CrackEnd::Generation;
+        for crack in self.cracks[..self.crack_count].iter_mut().filter(|c| c.growing()) {
+            crack.stop(CrackEnd::Generation);
         }
         self.growing = 0;
         self.clock.finished = true;
@@ -684,9 +747,8 @@ impl<'a> Glass<'a> {
     /// Stops crack `i`, for `end`.
     fn stop(&mut self, i: usize, end: CrackEnd) {
         let c = &mut self.cracks[i];
-        self.growing -= usize::from(c.growing);
-        c.growing = false;
-        c.end = end;
+        self.growing -= usize::from(c.growing());
+        c.stop(end);
     }
 
     /// The counts drawn by the latest impact.
@@ -705,8 +767,8 @@ impl<'a> Glass<'a> {
     }
 
     /// Crack `i`.
-    pub fn crack(&self, i: usize) -> Option<&Crack> {
-        self.cracks[..self.crack_count].get(i)
+    pub fn crack(&self, i: usize) -> Option<Crack> {
+        self.cracks[..self.crack_count].get(i).map(CrackSlot::crack)
     }
 
     /// Where generation stands.
@@ -752,7 +814,7 @@ mod tests {
         mut each: impl FnMut(&mut Glass),
     ) -> (Vec<u32>, u32, u32) {
         let m = p.memory().unwrap();
-        let (mut cracks, mut vertices) = (vec![Crack::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+        let (mut cracks, mut vertices) = (vec![CrackSlot::default(); m.cracks], vec![Vertex::default(); m.vertices]);
         let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![0u32; m.words]);
         let buffers =
             GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
@@ -766,7 +828,7 @@ mod tests {
         }
         let mut bits = Vec::new();
         for i in 0..glass.crack_count() {
-            bits.push(glass.cracks[i].end as u32);
+            bits.push(glass.cracks[i].end);
             glass.for_each_point(i, |q| bits.extend([q.at[0], q.at[1], q.time].map(f32::to_bits)));
         }
         (bits, glass.index.stamp, glass.walk.mark)

@@ -18,7 +18,7 @@ impl Glass<'_> {
     /// Calls `visit` with the points of crack `i` in growth order (nothing for a crack that
     /// never grew).
     pub fn for_each_point(&self, i: usize, mut visit: impl FnMut(CrackPoint)) {
-        let Some(c) = self.crack(i) else { return };
+        let Some(c) = self.cracks[..self.crack_count].get(i) else { return };
         let mut e = c.first_segment;
         if e == NONE {
             return;

@@ -20,7 +20,7 @@ use core::fmt::{self, Write};
 use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicBool, Ordering};
 
-use hibi_core::glass::{Crack, Edge, Glass, GlassBuffers, GlassLayers, GlassParams, GlassRender, Vertex};
+use hibi_core::glass::{CrackSlot, Edge, Glass, GlassBuffers, GlassLayers, GlassParams, GlassRender, Vertex};
 use hibi_core::mud::{
     Mud, MudBuffers, MudLayers, MudParams, MudRender, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology,
     memory_for,
@@ -262,7 +262,7 @@ pub struct Memory {
     mud_q16: &'static mut [Q16],
     words: &'static mut [u32],
     out: Outputs,
-    cracks: &'static mut [Crack],
+    cracks: &'static mut [CrackSlot],
     vertices: &'static mut [Vertex],
     edges: &'static mut [Edge],
     skin_cells: &'static mut [SkinCell],
@@ -303,7 +303,7 @@ impl Memory {
         static NET_POINTS: Slot<NetworkPoint, NETWORK_POINTS> = Slot::new();
         static RING: Slot<Ring, RINGS> = Slot::new();
         static RING_POINT: Slot<[f32; 2], RING_POINTS> = Slot::new();
-        static CRACKS: Slot<Crack, GLASS_CRACKS> = Slot::new();
+        static CRACKS: Slot<CrackSlot, GLASS_CRACKS> = Slot::new();
         static VERTICES: Slot<Vertex, GLASS_VERTICES> = Slot::new();
         static EDGES: Slot<Edge, GLASS_EDGES> = Slot::new();
         static SKIN_CELL: Slot<SkinCell, SKIN_CELLS> = Slot::new();
@@ -369,7 +369,7 @@ impl Memory {
             + NETWORK_POINTS * size_of::<NetworkPoint>()
             + RINGS * size_of::<Ring>()
             + RING_POINTS * 8
-            + GLASS_CRACKS * size_of::<Crack>()
+            + GLASS_CRACKS * size_of::<CrackSlot>()
             + GLASS_VERTICES * size_of::<Vertex>()
             + GLASS_EDGES * size_of::<Edge>()
             + SKIN_CELLS * size_of::<SkinCell>()
