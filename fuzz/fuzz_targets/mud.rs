@@ -10,7 +10,7 @@ use core::ptr::null;
 use arbitrary::{Result, Unstructured};
 use hibi::*;
 use hibi_core::polygon::Ring;
-use hibi_core::mud::{Boundary, CrackSegment, Lattice, NetworkEdge, NetworkPoint, NetworkVertex, Topology};
+use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
 use hibi_fuzz::*;
 use libfuzzer_sys::fuzz_target;
 
@@ -165,12 +165,10 @@ fn cells(u: &mut Unstructured, mud: *mut hibi_mud, params: &hibi_mud_params, run
         // A finished periodic run's cells cover one period of the plate (drawn in the
         // growing frame under the growth drive), unless a region wraps around it.
         if run.finished && params.boundary == HIBI_MUD_PERIODIC && !wraps && r > 0 {
-            let topology = match params.topology {
-                HIBI_MUD_SQUARE => Topology::Square,
-                HIBI_MUD_HEXAGONAL => Topology::Hexagonal,
-                _ => Topology::Irregular,
-            };
-            let [w, h] = Lattice::new(topology, Boundary::Periodic, params.columns, params.rows).extent();
+            let mut extent = hibi_vec2 { x: f32::NAN, y: f32::NAN };
+            // SAFETY: a live run, a writable extent.
+            assert!(check(unsafe { hibi_mud_extent(mud, &mut extent) }));
+            let [w, h] = [extent.x, extent.y];
             let deep = if params.drive == HIBI_MUD_GROWTH { 1.0 + run.shrink } else { 1.0 };
             let plate = f64::from(w * deep) * f64::from(h * deep);
             assert!(((covered - plate) / plate).abs() <= 1e-4, "cells cover {covered} of a {plate} plate ({r} rings)");
