@@ -505,6 +505,11 @@
 #define HIBI_RING_NOT_A_HOLE UINT32_MAX
 
 /**
+ * The most points of a `hibi_convex_piece` (Box2D's `b2_maxPolygonVertices`).
+ */
+#define HIBI_PIECE_MAX_POINTS 8
+
+/**
  * Most hierarchy levels a skin can have (the length of `hibi_skin_params.level`).
  */
 #define HIBI_SKIN_MAX_LEVELS 4
@@ -1173,6 +1178,42 @@ typedef struct hibi_mud_render_params {
 } hibi_mud_render_params;
 
 /**
+ * One triangle: three point indices, counter-clockwise with y up (positive area), and the
+ * outer ring of the polygon it belongs to. In C: `hibi_triangle`.
+ */
+typedef struct hibi_triangle {
+  /**
+   * Index of the polygon's outer ring (the glass fragment, the mud cell).
+   */
+  uint32_t ring;
+  /**
+   * Indices into the point buffer, counter-clockwise with y up.
+   */
+  uint32_t points[3];
+} hibi_triangle;
+
+/**
+ * One convex piece: 3 to 8 point indices, counter-clockwise with y up and strictly convex
+ * (no three consecutive points on a line), and the outer ring of the polygon it belongs
+ * to. In C: `hibi_convex_piece`.
+ */
+typedef struct hibi_convex_piece {
+  /**
+   * Index of the polygon's outer ring (the glass fragment, the mud cell).
+   */
+  uint32_t ring;
+  /**
+   * How many of `points` are used (3 to 8); the rest are 0.
+   */
+  uint32_t point_count;
+  /**
+   * Indices into the point buffer, counter-clockwise with y up ([`MAX_PIECE_POINTS`],
+   * `HIBI_PIECE_MAX_POINTS` in C).
+   */
+  uint32_t points[8];
+} hibi_convex_piece;
+
+/**
  * Parameter 5, a ridge's cross-section: cubic Bézier segments in the body plane (x' from the
  * centre point at 0 to the polygon's edge at the last point's x', z' the height). Segment k
  * has control points `points[3k]` to `points[3k + 3]`; consecutive segments share an end
@@ -1580,6 +1621,30 @@ typedef struct hibi_skin_cell {
  * `hibi_skin_render`: `layer` is not one of the `HIBI_SKIN_LAYER_*` constants.
  */
 #define HIBI_ERROR_SKIN_RENDER_LAYER 1354
+
+/**
+ * `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's `first_point +
+ * point_count` runs past `points_len`.
+ */
+#define HIBI_ERROR_RING_POINTS 1536
+
+/**
+ * `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's `hole_of` (below
+ * `rings_len`) names a hole or the ring itself, not an outer ring.
+ */
+#define HIBI_ERROR_RING_HOLE_OF 1537
+
+/**
+ * `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's point is NaN or
+ * infinite.
+ */
+#define HIBI_ERROR_RING_POINT_NOT_FINITE 1538
+
+/**
+ * `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: one polygon holds 2^30 or more
+ * points with its holes (rings may share points), or there are 2^32 or more rings.
+ */
+#define HIBI_ERROR_RING_SIZE 1539
 
 #ifdef __cplusplus
 extern "C" {
@@ -2057,6 +2122,104 @@ hibi_status hibi_mud_render(const struct hibi_mud *mud,
                             uint32_t layer,
                             void *pixels,
                             size_t pixels_len);
+
+/**
+ * Checks the rings `rings[0..rings_len]` over the points `points[0..points_len]` (glass
+ * fragments or mud cells as `hibi_glass_fragments` and `hibi_mud_cells` write them, or any
+ * polygons in that shape) and writes into `*scratch_len` how many `uint32_t` words of scratch
+ * `hibi_pieces_counts`, `hibi_triangulate` and `hibi_convex_pieces` need: 3 per ring plus 1,
+ * and 4 per point of the largest outer ring and of every hole (2 more per hole).
+ *
+ * An outer ring (`hole_of` `HIBI_RING_NOT_A_HOLE`) and the holes whose `hole_of` is its index
+ * make one polygon. A hole whose `hole_of` is past the rings (`HIBI_MUD_IN_WRAPPING_CELL`)
+ * and a ring of fewer than 3 points make no pieces. The rings' orientation is taken from
+ * their points: an outer ring given clockwise is walked the other way.
+ *
+ * Refused, naming nothing: `HIBI_ERROR_RING_POINTS` (a ring's `first_point + point_count`
+ * runs past `points_len`), `HIBI_ERROR_RING_HOLE_OF` (a `hole_of` below `rings_len` names a
+ * hole or the ring itself), `HIBI_ERROR_RING_POINT_NOT_FINITE` (a ring's point is NaN or
+ * infinite), `HIBI_ERROR_RING_SIZE` (a polygon holds 2^30 or more points with its holes).
+ *
+ * # Safety
+ * `rings` and `points` NULL (only with length 0) or readable for their lengths;
+ * `scratch_len` NULL (refused) or writable.
+ */
+hibi_status hibi_pieces_scratch_size(const struct hibi_ring *rings,
+                                     size_t rings_len,
+                                     const struct hibi_vec2 *points,
+                                     size_t points_len,
+                                     size_t *scratch_len);
+
+/**
+ * Writes how many triangles (`*triangles`) and convex pieces (`*pieces`) `hibi_triangulate`
+ * and `hibi_convex_pieces` write for the rings. Works in `scratch[0..scratch_len]` (at least
+ * `hibi_pieces_scratch_size` words, else `HIBI_ERROR_BUFFER_TOO_SMALL` naming `scratch`); as
+ * much work as writing them. Refuses bad rings as `hibi_pieces_scratch_size` does.
+ *
+ * # Safety
+ * `rings` and `points` as in `hibi_pieces_scratch_size`; `scratch` NULL (only with length
+ * 0) or writable for `scratch_len` words, overlapping nothing else; `triangles` and `pieces`
+ * NULL (refused) or writable.
+ */
+hibi_status hibi_pieces_counts(const struct hibi_ring *rings,
+                               size_t rings_len,
+                               const struct hibi_vec2 *points,
+                               size_t points_len,
+                               uint32_t *scratch,
+                               size_t scratch_len,
+                               size_t *triangles,
+                               size_t *pieces);
+
+/**
+ * Writes the triangles of every polygon into `triangles[0..triangles_len]`, polygon by
+ * polygon in ring order, and their count into `*written`: three indices into `points`,
+ * counter-clockwise with y up, and the index of the polygon's outer ring. Holes are left
+ * out; each polygon's triangle areas add up to its outer ring's area minus its holes'.
+ * Works in `scratch` as `hibi_pieces_counts` does. If `triangles_len` is below the count
+ * (`hibi_pieces_counts`), nothing is written and the status is
+ * `HIBI_ERROR_BUFFER_TOO_SMALL` naming `triangles`.
+ *
+ * Work: at most 3·m² point tests for a polygon of m points (its outer ring's, its holes'
+ * and 2 per hole), whatever the points hold.
+ *
+ * # Safety
+ * As `hibi_pieces_counts`; `triangles` NULL (only with length 0) or writable for
+ * `triangles_len` entries; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_triangulate(const struct hibi_ring *rings,
+                             size_t rings_len,
+                             const struct hibi_vec2 *points,
+                             size_t points_len,
+                             uint32_t *scratch,
+                             size_t scratch_len,
+                             struct hibi_triangle *triangles,
+                             size_t triangles_len,
+                             size_t *written);
+
+/**
+ * Writes the convex pieces of every polygon into `pieces[0..pieces_len]`, polygon by polygon
+ * in ring order, and their count into `*written`: 3 to `HIBI_PIECE_MAX_POINTS` (8) indices
+ * into `points`, counter-clockwise with y up and strictly convex (what Box2D's
+ * `b2PolygonShape::Set`, Jolt's and PhysX's convex shapes take), and the index of the
+ * polygon's outer ring. They are the triangles of `hibi_triangulate` merged while the union
+ * stays convex; each polygon's piece areas add up to its outer ring's area minus its holes'.
+ * Works in `scratch` as `hibi_pieces_counts` does. If `pieces_len` is below the count
+ * (`hibi_pieces_counts`), nothing is written and the status is
+ * `HIBI_ERROR_BUFFER_TOO_SMALL` naming `pieces`.
+ *
+ * # Safety
+ * As `hibi_pieces_counts`; `pieces` NULL (only with length 0) or writable for `pieces_len`
+ * entries; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_convex_pieces(const struct hibi_ring *rings,
+                               size_t rings_len,
+                               const struct hibi_vec2 *points,
+                               size_t points_len,
+                               uint32_t *scratch,
+                               size_t scratch_len,
+                               struct hibi_convex_piece *pieces,
+                               size_t pieces_len,
+                               size_t *written);
 
 /**
  * Bytes a `hibi_rng` needs in caller memory (for `hibi_rng_create_in`).

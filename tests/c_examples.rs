@@ -648,6 +648,19 @@ fn c_work_counts_prints_every_case() {
 
 /// A huge ring count formula is bounded by `max_cracks`: creation takes under a second, not
 /// minutes.
+/// Glass fragments and mud cells as triangles and convex pieces through the C API: each
+/// polygon's pieces add up to its area, the plate's to its size, every piece counter-clockwise
+/// and strictly convex with at most 8 points; a short buffer is refused by name, untouched.
+#[test]
+fn c_pieces_add_up_to_the_plate() {
+    let output = regression("tests/c/pieces.c");
+    for model in ["glass", "mud"] {
+        let l = line(&output, &format!("{model}:"));
+        assert!(l.contains("pieces add up: yes") && l.ends_with("all counter-clockwise and convex: yes"), "{l}");
+        assert!(l.contains("of at most 8 points") || l.contains("of at most 7 points"), "{l}");
+    }
+}
+
 #[test]
 fn c_glass_create_is_bounded_by_the_capacities() {
     let output = regression("tests/c/glass_ring_counts.c");

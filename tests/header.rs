@@ -25,6 +25,7 @@ fn header_is_fresh() {
         .with_src(root.join("core/src/mud/network.rs"))
         .with_src(root.join("core/src/glass/output.rs"))
         .with_src(root.join("core/src/polygon/ring.rs"))
+        .with_src(root.join("core/src/polygon/pieces.rs"))
         .generate()
         .expect("cbindgen parses ffi/src")
         .write(&mut generated);

@@ -6,6 +6,7 @@ use core::ffi::{CStr, c_char};
 use hibi_core::RngError;
 use hibi_core::glass::GlassParamError;
 use hibi_core::mud::MudParamError;
+use hibi_core::polygon::RingError;
 use hibi_core::raster::RasterError;
 use hibi_core::skin::{ShadeError, SkinParamError};
 
@@ -110,6 +111,19 @@ pub const HIBI_ERROR_SKIN_CELL_INDEX: hibi_status = 1349;
 /// `hibi_skin_render`: `layer` is not one of the `HIBI_SKIN_LAYER_*` constants.
 pub const HIBI_ERROR_SKIN_RENDER_LAYER: hibi_status = 1354;
 
+/// `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's `first_point +
+/// point_count` runs past `points_len`.
+pub const HIBI_ERROR_RING_POINTS: hibi_status = 1536;
+/// `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's `hole_of` (below
+/// `rings_len`) names a hole or the ring itself, not an outer ring.
+pub const HIBI_ERROR_RING_HOLE_OF: hibi_status = 1537;
+/// `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: a ring's point is NaN or
+/// infinite.
+pub const HIBI_ERROR_RING_POINT_NOT_FINITE: hibi_status = 1538;
+/// `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: one polygon holds 2^30 or more
+/// points with its holes (rings may share points), or there are 2^32 or more rings.
+pub const HIBI_ERROR_RING_SIZE: hibi_status = 1539;
+
 /// The status that reports a raster error.
 pub(crate) fn raster_status(error: RasterError) -> hibi_status {
     match error {
@@ -187,6 +201,10 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_SKIN_SHADE_SPECULAR => ShadeError::Specular.message(),
         HIBI_ERROR_SKIN_UNKNOWN_PRESET => c"skin: no preset has that name",
         HIBI_ERROR_SKIN_CELL_INDEX => c"skin: cell index out of range",
+        HIBI_ERROR_RING_POINTS => RingError::Points.message(),
+        HIBI_ERROR_RING_HOLE_OF => RingError::HoleOf.message(),
+        HIBI_ERROR_RING_POINT_NOT_FINITE => RingError::NotFinite.message(),
+        HIBI_ERROR_RING_SIZE => RingError::Size.message(),
         _ => match (
             param_error::<MudParamError>(status),
             param_error::<GlassParamError>(status),

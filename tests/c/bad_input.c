@@ -245,6 +245,48 @@ static void calls_and_buffers(void) {
                  hibi_glass_points(glass, SIZE_MAX, NULL, 0, &written), written == 777);
     }
     {
+        hibi_vec2 points[3] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}};
+        hibi_ring rings[2] = {{0.5, 1, 3, HIBI_RING_NOT_A_HOLE, 0}, {-0.5, 0, 3, 1, 0}};
+        uint32_t scratch[64];
+        hibi_triangle triangles[4];
+        hibi_convex_piece pieces[4];
+        size_t len = 777, written = 777, triangle_count = 777, piece_count = 777;
+        hibi_ring *many = calloc(65537, sizeof(hibi_ring));
+        hibi_vec2 *grid = calloc(16384, sizeof(hibi_vec2));
+        size_t k;
+        memset(triangles, 0xA5, sizeof triangles);
+        memset(pieces, 0xA5, sizeof pieces);
+        row_kept("ring-points-past-the-end", hibi_pieces_scratch_size(rings, 1, points, 3, &len), len == 777);
+        rings[0].first_point = 0;
+        row_kept("ring-hole-of-itself", hibi_triangulate(rings, 2, points, 3, scratch, 64, triangles, 4, &written),
+                 written == 777 && ((unsigned char *)triangles)[0] == 0xA5);
+        points[2].y = NAN;
+        row_kept("ring-point-nan", hibi_convex_pieces(rings, 1, points, 3, scratch, 64, pieces, 4, &written),
+                 written == 777 && ((unsigned char *)pieces)[0] == 0xA5);
+        points[2].y = 1.0f;
+        if (many == NULL || grid == NULL) {
+            printf("out of memory\n");
+            exit(1);
+        }
+        many[0].point_count = 16384;
+        many[0].hole_of = HIBI_RING_NOT_A_HOLE;
+        for (k = 1; k < 65537; k++) {
+            many[k].point_count = 16384;
+            many[k].hole_of = 0;
+        }
+        row_kept("ring-polygon-too-large",
+                 hibi_pieces_counts(many, 65537, grid, 16384, scratch, 64, &triangle_count, &piece_count),
+                 triangle_count == 777 && piece_count == 777);
+        free(many);
+        free(grid);
+        if (hibi_pieces_scratch_size(rings, 1, points, 3, &len) != HIBI_OK || len > 64) {
+            printf("hibi_pieces_scratch_size failed\n");
+            exit(1);
+        }
+        row_kept("short-pieces-buffer", hibi_convex_pieces(rings, 1, points, 3, scratch, len, pieces, 0, &written),
+                 written == 777 && ((unsigned char *)pieces)[0] == 0xA5);
+    }
+    {
         hibi_glass_counts counts;
         memset(&counts, 0xA5, sizeof counts);
         row_kept("impact-outside-the-plate", hibi_glass_impact(glass, -1.0f, 10.0f, &counts),
