@@ -648,6 +648,41 @@ fn c_work_counts_prints_every_case() {
 
 /// A huge ring count formula is bounded by `max_cracks`: creation takes under a second, not
 /// minutes.
+/// `tests/cpp/box2d.cpp`: the convex pieces of a glass plate's fragments and of a mud run's
+/// cells become Box2D bodies (Debian's `libbox2d-dev`, Box2D 2.4, linked with `-lbox2d`),
+/// one per fragment or cell, one fixture per piece; their masses at density 1 add up to the
+/// plate's area within 10⁻⁴ (the slivers Box2D welds away, under 10⁻⁴ of it, left out), and
+/// 120 steps of the world keep every position finite.
+#[test]
+fn cpp_pieces_become_box2d_bodies() {
+    let root = workspace_root();
+    let source = "tests/cpp/box2d.cpp";
+    let exe = program_path("g++", "c++17", source, Linkage::Static, &["-lbox2d"]);
+    let mut cc = hibi_tests::tool("g++");
+    cc.args(["-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-I"])
+        .arg(root.join("include"))
+        .arg(root.join(source))
+        .arg("-o")
+        .arg(&exe)
+        .arg(c_library_dir().join("libhibi.a"))
+        .arg("-lbox2d")
+        .args(NATIVE_STATIC_LIBS);
+    let compiled = cc.output().expect("run g++");
+    assert!(compiled.status.success(), "g++ {source} failed:\n{}", String::from_utf8_lossy(&compiled.stderr));
+    let run = Command::new(&exe).env_remove("LD_LIBRARY_PATH").output().expect("run the Box2D test");
+    let stdout = String::from_utf8(run.stdout).expect("UTF-8 output");
+    assert!(run.status.success(), "{source}: {}\n{stdout}{}", run.status, String::from_utf8_lossy(&run.stderr));
+    for model in ["glass", "mud"] {
+        let l = line(&stdout, &format!("{model}:"));
+        let bodies: Vec<&str> = l.split_whitespace().collect();
+        assert_eq!(bodies[1], bodies[4], "a body per fragment: {l}");
+        assert!(l.ends_with("120 steps: positions finite: yes, fell: yes"), "{l}");
+        let ratio: f64 = l.split("masses / plate area = ").nth(1).unwrap().split(',').next().unwrap().parse().unwrap();
+        assert!((ratio - 1.0).abs() <= 1e-4, "{l}");
+    }
+    println!("{stdout}");
+}
+
 /// Glass fragments and mud cells as triangles and convex pieces through the C API: each
 /// polygon's pieces add up to its area, the plate's to its size, every piece counter-clockwise
 /// and strictly convex with at most 8 points; a short buffer is refused by name, untouched.
