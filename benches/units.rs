@@ -1,21 +1,31 @@
-//! What one unit of `step(budget)`'s work costs in time, per model: each run is stepped to
-//! its end with a fixed budget per call, as an engine would spread it over frames, and its
-//! work total (`progress.work`) is divided into the time spent in those calls. Runs: mud at
+//! What one unit of `step(budget)`'s work costs in time, per model and per phase: each run is
+//! stepped to its end with a fixed budget per call, as an engine would spread it over frames,
+//! and each call's time and work (`progress.work`) go to the phase the call is in. Runs: mud at
 //! its defaults (64², quasi-static, the network's tracing included) and with the explicit
-//! solver (16², the paper's short step), glass at its defaults (640×640, M_ave = 100), skin
-//! at `fig19a` (400×400, three levels). Each model is run once per round, the rounds one
-//! after another so that a slow spell of the machine hits every model alike; round 0 warms
-//! up and is not counted, and each figure is the median of the rest.
+//! solver (16², the paper's short step), glass at its defaults (640×640, M_ave = 100) and then
+//! its fragments built in steps (`FragmentBuild`), skin at `fig19a` (400×400, three levels).
+//! Each model is run once per round, the rounds one after another so that a slow spell of the
+//! machine hits every model alike; round 0 warms up and is not counted, and each figure is the
+//! median of the rest.
+//!
+//! A call is counted in one phase: mud's calls while its setup is under way are the setup's
+//! (the setup ends a call), those with a trace of the network under way before or after them
+//! the tracing's (a call can hold the last physics before a trace), the rest the solver's;
+//! glass's calls before the plate finishes growing are growth, the rest the fragment build;
+//! skin's setup (the profile tables, 522 units for fig19a) is stepped a piece a call (a budget
+//! of one unit) and timed as a whole, then the cells (of every level, and the divisions
+//! between them) with the budget.
 //!
 //!     cargo bench --bench units
 //!
-//! The nanoseconds depend on the machine; the ratios between models, measured in one run,
-//! are the figure to carry to another machine.
+//! The nanoseconds depend on the machine; the ratios between models and phases, measured in one
+//! run, are the figure to carry to another machine, and "a budget of N units takes N × (ns per
+//! unit)" holds on the machine that ran it.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use hibi_core::glass::{Glass, GlassParams};
+use hibi_core::glass::{FragmentBuild, Glass, GlassParams};
 use hibi_core::mud::{Mud, MudParams, Solver};
 use hibi_core::skin::{Skin, preset};
 
@@ -24,58 +34,114 @@ const BUDGET: u64 = 10_000;
 /// Counted rounds (one more warms up).
 const ROUNDS: usize = 10;
 
-/// The work a run did and the time its `step` calls took (set-up excluded).
+/// The phases measured, in the order of the table: (model, phase).
+const PHASES: [(&str, &str); 9] = [
+    ("mud, 64² hexagonal, quasi-static", "setup"),
+    ("mud, 64² hexagonal, quasi-static", "quasi-static solver"),
+    ("mud, 64² hexagonal, quasi-static", "network tracing"),
+    ("mud, 16² hexagonal, explicit", "setup"),
+    ("mud, 16² hexagonal, explicit", "explicit solver"),
+    ("mud, 16² hexagonal, explicit", "network tracing"),
+    ("glass, 640×640, M_ave = 100", "growth"),
+    ("glass, 640×640, M_ave = 100", "fragment build"),
+    ("skin, fig19a, 400×400, 3 levels", "setup"),
+];
+/// Skin's cells, the last row (kept apart so that the array above stays one type).
+const SKIN_CELLS: (&str, &str) = ("skin, fig19a, 400×400, 3 levels", "cells and divisions");
+
+/// The work and time of one phase of one run.
+#[derive(Clone, Copy, Default)]
 struct Sample {
     work: u64,
     time: Duration,
     calls: u64,
 }
 
-/// Steps `step` with [`BUDGET`] until it reports `(finished, work)` with `finished` set.
-fn stepped(mut step: impl FnMut(u64) -> (bool, u64)) -> Sample {
-    let (mut time, mut calls) = (Duration::ZERO, 0);
-    loop {
-        let start = Instant::now();
-        let (finished, work) = step(BUDGET);
-        time += start.elapsed();
-        calls += 1;
-        if finished {
-            return Sample { work, time, calls };
-        }
+impl Sample {
+    fn add(&mut self, work: u64, time: Duration) {
+        self.work += work;
+        self.time += time;
+        self.calls += 1;
     }
 }
 
-fn mud(params: &MudParams) -> Sample {
+/// Times one call of `step`, which returns the run's work after it.
+fn timed(step: impl FnOnce() -> u64, before: u64, phase: &mut Sample) -> u64 {
+    let start = Instant::now();
+    let work = step();
+    phase.add(work - before, start.elapsed());
+    work
+}
+
+/// Mud: setup, solver, tracing.
+fn mud(params: &MudParams) -> [Sample; 3] {
     let mut memory = params.memory().expect("valid parameters").allocate::<f32>();
     let mut mud: Mud = Mud::new(params, memory.buffers()).expect("memory suffices");
-    let sample = stepped(|budget| {
-        let p = mud.step(budget).expect("a stable run");
-        (p.finished, p.work)
-    });
+    let mut phases = [Sample::default(); 3];
+    let (mut work, mut finished) = (0, false);
+    while !finished {
+        let (setting_up, tracing) = (mud.is_setting_up(), mud.is_tracing());
+        let start = Instant::now();
+        let p = mud.step(BUDGET).expect("a stable run");
+        let time = start.elapsed();
+        let phase = if setting_up {
+            0
+        } else if tracing || mud.is_tracing() {
+            2
+        } else {
+            1
+        };
+        phases[phase].add(p.work - work, time);
+        (work, finished) = (p.work, p.finished);
+    }
     black_box(mud.statistics());
-    sample
+    phases
 }
 
-fn glass(params: &GlassParams) -> Sample {
+/// Glass: growth, then the fragment build.
+fn glass(params: &GlassParams) -> [Sample; 2] {
     let mut memory = params.memory().expect("valid parameters").allocate();
     let mut glass = Glass::new(params, memory.buffers()).expect("memory suffices");
-    let sample = stepped(|budget| {
-        let p = glass.step(budget);
-        (p.finished, p.work)
-    });
-    black_box(glass.crack_count());
-    sample
+    let mut phases = [Sample::default(); 2];
+    let mut work = 0;
+    while !glass.progress().finished {
+        work = timed(|| glass.step(BUDGET).work, work, &mut phases[0]);
+    }
+    let mut build_memory = glass.fragment_build_memory().allocate();
+    let mut build = FragmentBuild::new(&glass, build_memory.buffers()).expect("memory suffices");
+    let (mut work, mut finished) = (0, false);
+    while !finished {
+        let start = Instant::now();
+        let p = build.step(&glass, BUDGET).expect("the plate it was made for");
+        phases[1].add(p.work - work, start.elapsed());
+        (work, finished) = (p.work, p.finished);
+    }
+    black_box(build.rings().len());
+    phases
 }
 
-fn skin(params: &hibi_core::skin::SkinParams) -> Sample {
+/// Skin: setup, then the cells.
+fn skin(params: &hibi_core::skin::SkinParams) -> [Sample; 2] {
     let mut memory = params.memory().expect("valid parameters").allocate();
     let mut skin: Skin = Skin::new(params, memory.buffers()).expect("memory suffices");
-    let sample = stepped(|budget| {
-        let p = skin.step(budget);
-        (p.finished, p.work)
-    });
+    let mut phases = [Sample::default(); 2];
+    // The setup is one call's worth at this budget: stepped a piece a call (one unit's budget)
+    // and timed as a whole, so that it ends a call of its own.
+    let (mut work, mut calls, start) = (0, 0, Instant::now());
+    while skin.is_setting_up() {
+        work = skin.step(1).work;
+        calls += 1;
+    }
+    phases[0] = Sample { work, time: start.elapsed(), calls };
+    let mut finished = false;
+    while !finished {
+        let start = Instant::now();
+        let p = skin.step(BUDGET);
+        phases[1].add(p.work - work, start.elapsed());
+        (work, finished) = (p.work, p.finished);
+    }
     black_box(skin.cells().len());
-    sample
+    phases
 }
 
 fn median(mut values: Vec<f64>) -> f64 {
@@ -89,38 +155,38 @@ fn main() {
     let explicit = MudParams { columns: 16, rows: 16, solver: Solver::Explicit, ..MudParams::default() };
     let plate = GlassParams::default();
     let fig19a = preset("fig19a").expect("preset exists");
-    let names = [
-        "mud, 64² hexagonal, quasi-static (with the tracing)",
-        "mud, 16² hexagonal, explicit (with the tracing)",
-        "glass, 640×640, M_ave = 100",
-        "skin, fig19a, 400×400, 3 levels",
-    ];
-    let mut ns_per_unit: [Vec<f64>; 4] = Default::default();
-    let mut last: [Option<Sample>; 4] = Default::default();
+    let rows: Vec<(&str, &str)> = PHASES.iter().copied().chain([SKIN_CELLS]).collect();
+    let mut ns_per_unit: Vec<Vec<f64>> = vec![Vec::new(); rows.len()];
+    let mut last = vec![Sample::default(); rows.len()];
     for round in 0..=ROUNDS {
-        let samples = [mud(&quasi_static), mud(&explicit), glass(&plate), skin(&fig19a)];
+        let samples: Vec<Sample> =
+            [&mud(&quasi_static)[..], &mud(&explicit)[..], &glass(&plate)[..], &skin(&fig19a)[..]].concat();
         for (i, s) in samples.into_iter().enumerate() {
-            if round > 0 {
+            if round > 0 && s.work > 0 {
                 ns_per_unit[i].push(s.time.as_secs_f64() * 1e9 / s.work as f64);
             }
-            last[i] = Some(s);
+            last[i] = s;
         }
     }
-    let ns: Vec<f64> = ns_per_unit.into_iter().map(median).collect();
+    let ns: Vec<f64> = ns_per_unit.into_iter().map(|v| if v.is_empty() { f64::NAN } else { median(v) }).collect();
+    // The reference: the quasi-static solver's unit.
+    let reference = ns[1];
     println!("step({BUDGET}) to the end; median of {ROUNDS} rounds");
     println!();
-    println!("| run | units of work | calls | time in step | µs per call | ns per unit | ÷ mud quasi-static's |");
-    println!("|---|---|---|---|---|---|---|");
-    for (i, name) in names.iter().enumerate() {
-        let s = last[i].as_ref().expect("a round ran");
+    println!(
+        "| run | phase | units of work | calls | time | ns per unit | ÷ quasi-static solver's | ms per 10 000 units |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for (i, (run, phase)) in rows.iter().enumerate() {
+        let s = &last[i];
         println!(
-            "| {name} | {} | {} | {:.2} ms | {:.1} | {:.2} | {:.2} |",
+            "| {run} | {phase} | {} | {} | {:.2} ms | {:.2} | {:.2} | {:.3} |",
             s.work,
             s.calls,
             ns[i] * s.work as f64 / 1e6,
-            ns[i] * s.work as f64 / 1e3 / s.calls as f64,
             ns[i],
-            ns[i] / ns[0]
+            ns[i] / reference,
+            ns[i] * 10_000.0 / 1e6
         );
     }
 }

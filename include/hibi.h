@@ -558,6 +558,13 @@
 typedef struct hibi_glass hibi_glass;
 
 /**
+ * A budgeted build of a plate's fragments, in caller memory
+ * (`hibi_glass_fragment_build_create_in`). Opaque; nothing to free (the memory stays the
+ * caller's).
+ */
+typedef struct hibi_glass_fragment_build hibi_glass_fragment_build;
+
+/**
  * A drying-mud run. Opaque.
  */
 typedef struct hibi_mud hibi_mud;
@@ -840,6 +847,33 @@ typedef struct hibi_vec2 {
    */
   float y;
 } hibi_vec2;
+
+/**
+ * Where a fragment build stands.
+ */
+typedef struct hibi_glass_fragment_progress {
+  /**
+   * Rings found so far (all of them once finished).
+   */
+  uint32_t rings;
+  /**
+   * Their points.
+   */
+  uint32_t points;
+  /**
+   * 1 when every ring is found and every hole knows its outer ring: the rings and points
+   * can then be read (`hibi_glass_fragment_build_rings`, `hibi_glass_fragment_build_points`).
+   */
+  uint32_t finished;
+  /**
+   * Always 0: the struct has no padding, so every byte a call writes is defined.
+   */
+  uint32_t reserved;
+  /**
+   * Work done since the build (re)started, in the units of the step's budget.
+   */
+  uint64_t work;
+} hibi_glass_fragment_progress;
 
 /**
  * How to draw a raster. Defaults from `hibi_glass_render_params_default`.
@@ -1844,6 +1878,85 @@ hibi_status hibi_glass_fragments(const struct hibi_glass *glass,
                                  size_t points_len,
                                  size_t *rings_written,
                                  size_t *points_written);
+
+/**
+ * Writes the bytes of caller memory a fragment build of `glass` needs (for
+ * `hibi_glass_fragment_build_create_in`; aligned to `hibi_glass_memory_align()`). It follows
+ * the plate's vertex capacity, so one block serves the plate at any point of its growth.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `size` NULL or writable.
+ */
+hibi_status hibi_glass_fragment_build_size(const struct hibi_glass *glass, size_t *size);
+
+/**
+ * Makes a build of `glass`'s fragments in caller memory of at least
+ * `hibi_glass_fragment_build_size` bytes aligned to `hibi_glass_memory_align()`, in the same
+ * work at any size (nothing is written but the build's header); `hibi_glass_fragment_build_step`
+ * does the work. The build yields the rings and points `hibi_glass_fragments` writes, bit for
+ * bit, read in ranges once finished. Nothing is written on failure; there is nothing to
+ * destroy.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `memory` NULL or writable for `memory_size` bytes and
+ * untouched while the build is used; `out` NULL or writable.
+ */
+hibi_status hibi_glass_fragment_build_create_in(const struct hibi_glass *glass,
+                                                void *memory,
+                                                size_t memory_size,
+                                                struct hibi_glass_fragment_build **out);
+
+/**
+ * Goes on with `build` on `glass` until about `budget` units of work are done in this call,
+ * or it is finished; writes where it stands to `*progress` unless it is NULL. A unit is an
+ * array element counted or tested (16 where a pass only clears or fills), a step of a face
+ * walk (and one more per edge at the vertex it reaches), a level of the border's sort, or a
+ * point of a ring tested for a hole; a call does at least one piece and overruns the budget
+ * by less than one: one unit and one per edge at a vertex. The result does not depend on the
+ * budgets. A plate whose network changed since the build began (stepped, or hit again)
+ * starts the build over (its work from 0). Steps of one build must not run at once; the plate
+ * is only read.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `glass` NULL or a live plate not changed during the
+ * call; `progress` optional: NULL (not written) or writable.
+ */
+hibi_status hibi_glass_fragment_build_step(struct hibi_glass_fragment_build *build,
+                                           const struct hibi_glass *glass,
+                                           uint64_t budget,
+                                           struct hibi_glass_fragment_progress *progress);
+
+/**
+ * Writes the rings of a finished `build` from ring `first` on into `rings[0..rings_len]`:
+ * as many as there are, at most `rings_len` (none before the build is finished, or from a
+ * `first` at or past the ring count), and how many into `*written`. The rings
+ * `[first, first + rings_len)` of `hibi_glass_fragments`: ranges read one after another
+ * concatenate to its rings, and each ring's `first_point` indexes the whole points list
+ * (`hibi_glass_fragment_build_points`).
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `rings` NULL (only with `rings_len` 0) or writable
+ * for `rings_len` rings; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_glass_fragment_build_rings(const struct hibi_glass_fragment_build *build,
+                                            size_t first,
+                                            struct hibi_ring *rings,
+                                            size_t rings_len,
+                                            size_t *written);
+
+/**
+ * Writes the ring points of a finished `build` from point `first` on into
+ * `points[0..points_len]`, as `hibi_glass_fragment_build_rings` writes rings.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `points` NULL (only with `points_len` 0) or writable
+ * for `points_len` points; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_glass_fragment_build_points(const struct hibi_glass_fragment_build *build,
+                                             size_t first,
+                                             struct hibi_vec2 *points,
+                                             size_t points_len,
+                                             size_t *written);
 
 /**
  * Default drawing: 640 × 640, 1.2-pixel lines.

@@ -922,6 +922,74 @@ private:
     std::unique_ptr<hibi_glass, detail::GlassDelete> handle_;
 };
 
+/// A budgeted build of a plate's fragments in memory it owns (hibi_glass_fragment_build_*):
+/// made in the same work at any size, stepped with the plate until finished, then read in
+/// ranges. The rings and points are those of Glass::fragments, bit for bit.
+class FragmentBuild {
+public:
+    using Progress = hibi_glass_fragment_progress;
+
+    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
+    FragmentBuild() noexcept = default;
+    FragmentBuild(FragmentBuild &&other) noexcept
+        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
+    FragmentBuild &operator=(FragmentBuild &&other) noexcept {
+        if (this != &other) {
+            memory_ = std::move(other.memory_);
+            handle_ = std::exchange(other.handle_, nullptr);
+        }
+        return *this;
+    }
+    /// A build of `glass`'s fragments.
+    static Result<FragmentBuild> try_create(const Glass &glass) {
+        std::size_t size = 0;
+        hibi_status status = hibi_glass_fragment_build_size(glass.get(), &size);
+        if (status != HIBI_OK) return Result<FragmentBuild>(status, hibi_error_argument());
+        FragmentBuild out;
+        out.memory_ = Buffer(size, Glass::memory_align());
+        if (out.memory_.data() == nullptr) return Result<FragmentBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
+        status = hibi_glass_fragment_build_create_in(glass.get(), out.memory_.data(), out.memory_.size(),
+                                                     &out.handle_);
+        return detail::result(status, std::move(out));
+    }
+    static detail::Returned<FragmentBuild> create(const Glass &glass) { return detail::returned(try_create(glass)); }
+
+    /// Goes on until about `budget` units are done in this call, or the build is finished
+    /// (hibi_glass_fragment_build_step).
+    Result<Progress> try_step(const Glass &glass, std::uint64_t budget) noexcept {
+        Progress progress{};
+        return detail::result(hibi_glass_fragment_build_step(handle_, glass.get(), budget, &progress), progress);
+    }
+    detail::Returned<Progress> step(const Glass &glass, std::uint64_t budget) {
+        return detail::returned(try_step(glass, budget));
+    }
+    /// Copies the rings from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_rings(std::size_t first, Span<hibi_ring> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_glass_fragment_build_rings(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> rings(std::size_t first, Span<hibi_ring> out) const {
+        return detail::returned(try_rings(first, out));
+    }
+    /// Copies the points from `first` on into `out`, as try_rings does.
+    Result<std::size_t> try_points(std::size_t first, Span<hibi_vec2> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_glass_fragment_build_points(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> points(std::size_t first, Span<hibi_vec2> out) const {
+        return detail::returned(try_points(first, out));
+    }
+
+    hibi_glass_fragment_build *get() const noexcept { return handle_; }
+
+private:
+    Buffer memory_;
+    hibi_glass_fragment_build *handle_ = nullptr;
+};
+
 /// Model C, skin from hierarchical Voronoi cells (hibi_skin).
 class Skin {
 public:

@@ -940,7 +940,11 @@ fn check_wrapper(output: &str, standard: &str) {
     }
     assert!(line(output, "mud cells: ").starts_with("mud cells: some rings, area "), "{output}");
     assert!(line(output, "glass fragments").starts_with("glass fragments match their counts: yes, area 40000.0"));
-    assert_eq!(output.lines().count(), expected.len() + 4, "{output}");
+    assert_eq!(
+        line(output, "glass fragment build"),
+        "glass fragment build in ranges: same as fragments: yes, steps: yes"
+    );
+    assert_eq!(output.lines().count(), expected.len() + 5, "{output}");
 }
 
 #[test]

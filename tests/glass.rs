@@ -1,8 +1,8 @@
 //! Model B against the paper's facts (Agui et al.) and hibi's own acceptance criteria.
 
 use hibi_core::glass::{
-    Crack, CrackEnd, CrackKind, CrackPoint, CrackSlot, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassParams,
-    GlassRender, STEP_PIECE, Vertex,
+    Crack, CrackEnd, CrackKind, CrackPoint, CrackSlot, Edge, FragmentBuild, Glass, GlassBuffers, GlassError,
+    GlassLayers, GlassParams, GlassRender, STEP_PIECE, Vertex,
 };
 use hibi_core::polygon::Ring;
 use hibi_tests::fnv1a64;
@@ -1217,5 +1217,127 @@ fn every_run_ends_within_its_time_limit() {
                 );
             }
         }
+    }
+}
+
+/// The largest piece of a fragment build's step on `g`, in units: one, and one per half-edge
+/// around the vertex a walk reaches (its crack edges, and two border edges).
+fn fragment_piece(g: &Glass) -> u64 {
+    // (Edges counted at their ends' positions: vertices that share a position are counted
+    // together, which can only raise the bound.)
+    let mut degree = std::collections::HashMap::<[u32; 2], u64>::new();
+    for i in 0..g.crack_count() {
+        let mut last: Option<[f32; 2]> = None;
+        g.for_each_point(i, |q| {
+            if let Some(a) = last {
+                for end in [a, q.at] {
+                    *degree.entry(end.map(f32::to_bits)).or_default() += 1;
+                }
+            }
+            last = Some(q.at);
+        });
+    }
+    2 + 2 + degree.into_values().max().unwrap_or(0)
+}
+
+/// A budgeted fragment build ([`FragmentBuild`]) builds, stepped with any budget, the rings and
+/// points `Glass::fragments` writes, bit for bit; each call's work is within its budget and
+/// one piece; rings and points copied out in ranges of any length concatenate to the whole;
+/// a range past the end is refused, nothing written; and a build whose plate grew meanwhile
+/// starts over and builds the new network's fragments. Plates: defaults at several seeds, three
+/// impacts, one out of capacity whose fragments hold a hole, and one part way through growth.
+#[test]
+fn a_budgeted_fragment_build_is_the_fragments_and_its_ranges_concatenate_to_them() {
+    let mut plates: Vec<(GlassParams, Vec<[f32; 2]>)> = (0..4)
+        .map(|seed| {
+            (
+                GlassParams { seed, width: 320.0, height: 320.0, impact: [160.0, 160.0], ..GlassParams::default() },
+                vec![],
+            )
+        })
+        .collect();
+    plates.push((GlassParams { seed: 5, ..GlassParams::default() }, vec![[150.0, 450.0], [500.0, 120.0]]));
+    plates.push((GlassParams { seed: 5, max_vertices: 400, ..GlassParams::default() }, vec![]));
+    let mut holes = 0;
+    for (p, impacts) in &plates {
+        with_plate(p, |g| {
+            for &at in impacts {
+                g.impact(at).unwrap();
+                while !g.step(100_000).finished {}
+            }
+            let whole = fragments(g);
+            holes += whole.iter().filter(|(r, _)| r.area < 0.0).count();
+            let (rings, points): (Vec<Ring>, Vec<[f32; 2]>) = {
+                let (r, p) = g.fragment_counts(&mut scratch(g)).unwrap();
+                let mut out = (vec![Ring::default(); r], vec![[0.0f32; 2]; p]);
+                g.fragments(&mut scratch(g), &mut out.0, &mut out.1).unwrap();
+                out
+            };
+            let piece = fragment_piece(g);
+            let m = g.fragment_build_memory();
+            for budget in [1, 7, 1000, u64::MAX] {
+                let mut store = m.allocate();
+                let mut build = FragmentBuild::new(g, store.buffers()).expect("its memory");
+                assert!(build.rings().is_empty() && !build.progress().finished);
+                let mut before = 0;
+                loop {
+                    let progress = build.step(g, budget).expect("the plate it was made for");
+                    let done = progress.work - before;
+                    assert!(
+                        done >= 1 && done < budget.max(1).saturating_add(piece),
+                        "{p:?}: {done} units for budget {budget}"
+                    );
+                    before = progress.work;
+                    if progress.finished {
+                        assert_eq!((progress.rings, progress.points), (rings.len(), points.len()));
+                        break;
+                    }
+                    assert!(build.rings().is_empty(), "nothing to read before the end");
+                }
+                assert!(
+                    build.rings() == rings.as_slice() && build.points() == points.as_slice(),
+                    "{p:?}, budget {budget}"
+                );
+                // Ranges of any length, concatenated.
+                for count in [1, 3, 64] {
+                    let (mut r_all, mut p_all) = (Vec::new(), Vec::new());
+                    for first in (0..rings.len()).step_by(count) {
+                        let mut out = vec![Ring::default(); count.min(rings.len() - first)];
+                        build.copy_rings(first, &mut out).unwrap();
+                        r_all.extend(out);
+                    }
+                    for first in (0..points.len()).step_by(count) {
+                        let mut out = vec![[0.0f32; 2]; count.min(points.len() - first)];
+                        build.copy_points(first, &mut out).unwrap();
+                        p_all.extend(out);
+                    }
+                    assert!(r_all == rings && p_all == points, "ranges of {count}");
+                }
+                let mut past = vec![Ring { area: 7.0, ..Ring::default() }; 2];
+                let refused = build.copy_rings(rings.len() - 1, &mut past);
+                assert_eq!(refused, Err(GlassError::BufferTooSmall { needed: rings.len() }));
+                assert!(past.iter().all(|r| r.area == 7.0), "nothing written");
+            }
+        });
+    }
+    assert!(holes > 0, "a plate with a hole");
+    // A build begun on a plate part way through growth, which then grows on, starts over.
+    let p = GlassParams { seed: 6, ..GlassParams::default() };
+    let mut memory = p.memory().unwrap().allocate();
+    let mut g = Glass::new(&p, memory.buffers()).unwrap();
+    g.step(20_000);
+    let mut store = g.fragment_build_memory().allocate();
+    let mut build = FragmentBuild::new(&g, store.buffers()).unwrap();
+    let early = build.step(&g, 500).unwrap();
+    assert!(!early.finished && early.work >= 500);
+    while !g.step(100_000).finished {}
+    let restarted = build.step(&g, 10).unwrap();
+    assert!(restarted.work < 10 + fragment_piece(&g), "{restarted:?}: started over");
+    let end = build.run(&g).unwrap();
+    assert!(end.finished);
+    let whole = fragments_of(&g);
+    assert_eq!(build.rings().len(), whole.len());
+    for (r, (ring, pts)) in build.rings().iter().zip(&whole) {
+        assert!(r == ring && &build.points()[r.first_point as usize..][..r.point_count as usize] == pts.as_slice());
     }
 }

@@ -21,7 +21,7 @@
 use std::hint::black_box;
 use std::path::PathBuf;
 
-use hibi_core::glass::{Glass, GlassParams};
+use hibi_core::glass::{FragmentBuild, Glass, GlassParams};
 use hibi_core::mud::{Mud, MudParams, MudProgress, Solver, Topology};
 use hibi_core::scalar::{Q16, Scalar};
 use hibi_core::skin::{Skin, SkinParams};
@@ -50,17 +50,29 @@ trait Stepper {
     fn step(&mut self, budget: u64) -> Stepped;
     /// Glass: the time step; mud: whether the network's tracing is under way; skin: the cells
     /// built (high 32 bits) and the level-0 centre points done (low), and the newest cell's
-    /// level.
+    /// level (`u32::MAX` while the setup is under way).
     fn observe(&self) -> (u64, u32);
 }
 
-impl Stepper for Glass<'_> {
+/// A glass plate grown to its end, then its fragments built in steps ([`FragmentBuild`]): the
+/// work is the plate's and the build's together.
+struct GlassRun<'g, 'b> {
+    glass: Glass<'g>,
+    fragments: FragmentBuild<'b>,
+}
+
+impl Stepper for GlassRun<'_, '_> {
     fn step(&mut self, budget: u64) -> Stepped {
-        let p = Glass::step(self, budget);
-        (p.work, p.finished)
+        if !self.glass.progress().finished {
+            return (self.glass.step(budget).work, false);
+        }
+        let f = self.fragments.step(&self.glass, budget).expect("the plate it was made for");
+        (self.glass.progress().work + f.work, f.finished)
     }
+    /// The time step, and whether the plate has finished growing (the fragment build's calls).
     fn observe(&self) -> (u64, u32) {
-        (u64::from(self.progress().time), 0)
+        let p = self.glass.progress();
+        (u64::from(p.time), u32::from(p.finished))
     }
 }
 
@@ -97,7 +109,7 @@ impl Stepper for Skin<'_> {
     }
     fn observe(&self) -> (u64, u32) {
         let p = self.progress();
-        let level = self.cells().last().map_or(0, |c| c.level);
+        let level = if self.is_setting_up() { u32::MAX } else { self.cells().last().map_or(0, |c| c.level) };
         ((u64::from(p.cells) << 32) | u64::from(p.roots), level)
     }
 }
@@ -115,11 +127,20 @@ macro_rules! phase_steps {
             }
         )*
         /// Phase `k`'s step.
-        const PHASE_STEPS: [fn(&mut dyn Stepper, u64) -> Stepped; 4] = [$($name),*];
+        const PHASE_STEPS: [fn(&mut dyn Stepper, u64) -> Stepped; PHASES] = [$($name),*];
     };
 }
 
-phase_steps!(0 hibi_unit_cost_phase_0, 1 hibi_unit_cost_phase_1, 2 hibi_unit_cost_phase_2, 3 hibi_unit_cost_phase_3);
+/// The most phases a model's run has.
+const PHASES: usize = 5;
+
+phase_steps!(
+    0 hibi_unit_cost_phase_0,
+    1 hibi_unit_cost_phase_1,
+    2 hibi_unit_cost_phase_2,
+    3 hibi_unit_cost_phase_3,
+    4 hibi_unit_cost_phase_4
+);
 
 /// What a case runs.
 #[derive(Clone, Debug)]
@@ -150,7 +171,10 @@ fn with_model<R>(params: &Params, f: impl FnOnce(&mut dyn Stepper) -> R) -> R {
     match params {
         Params::Glass(p) => {
             let mut memory = p.memory().expect("valid parameters").allocate();
-            f(&mut Glass::new(p, memory.buffers()).expect("memory suffices"))
+            let glass = Glass::new(p, memory.buffers()).expect("memory suffices");
+            let mut build_memory = glass.fragment_build_memory().allocate();
+            let fragments = FragmentBuild::new(&glass, build_memory.buffers()).expect("memory suffices");
+            f(&mut GlassRun { glass, fragments })
         }
         Params::Mud(p, false) => {
             let mut memory = p.memory().expect("valid parameters").allocate::<f32>();
@@ -179,13 +203,14 @@ fn extend(schedule: &mut Schedule, phase: usize, end: u64) {
 }
 
 /// Glass's phases.
-const GLASS_PHASES: [&str; 4] = ["emptying the grids", "growth", "sleeping steps", "end of impact"];
+const GLASS_PHASES: [&str; 5] = ["emptying the grids", "growth", "sleeping steps", "end of impact", "fragment build"];
 
 /// Glass: the grids' cells are emptied 64 a unit (the grid as `Glass::new` lays it out: cells
 /// of 16 px, at most 256 a side); then the time steps. A time step that no crack was awake in
 /// ends with the clock moved on past the steps that would do the same nothing: the calls of
 /// such a step are the sleeping steps. The calls from the last time step's start are the end
 /// of the impact (the check that every driving crack has stopped, and the stop of the rest).
+/// The calls after the plate has finished growing build its fragments.
 fn glass_schedule(p: &GlassParams, model: &mut dyn Stepper) -> Schedule {
     let cell = 16f32.max(p.width / 256.0).max(p.height / 256.0).max(1.0);
     let cells = ((p.width / cell).ceil() as u64).max(1) * ((p.height / cell).ceil() as u64).max(1);
@@ -196,7 +221,9 @@ fn glass_schedule(p: &GlassParams, model: &mut dyn Stepper) -> Schedule {
     // Per call: the work after it and the time step it rose to (0 if it did not).
     let mut calls = Vec::new();
     let mut time = 0;
+    let mut building = Vec::new();
     while !finished && work < CAP {
+        building.push(model.observe().1 == 1);
         (work, finished) = model.step(64);
         let now = model.observe().0;
         calls.push((work, now - time));
@@ -217,9 +244,13 @@ fn glass_schedule(p: &GlassParams, model: &mut dyn Stepper) -> Schedule {
             }
         }
     }
-    if finished && let Some(last) = calls.iter().rposition(|c| c.1 > 0) {
-        phases[last..].fill(3);
+    let grown = building.iter().position(|&b| b).unwrap_or(calls.len());
+    if grown < calls.len()
+        && let Some(last) = calls[..grown].iter().rposition(|c| c.1 > 0)
+    {
+        phases[last..grown].fill(3);
     }
+    phases[grown..].fill(4);
     for (&(end, _), &phase) in calls.iter().zip(&phases) {
         extend(&mut schedule, phase, end);
     }
@@ -254,19 +285,24 @@ fn mud_schedule(p: &MudParams, model: &mut dyn Stepper) -> Schedule {
 }
 
 /// Skin's phases.
-const SKIN_PHASES: [&str; 3] = ["level-0 cells", "finer cells", "divisions"];
+const SKIN_PHASES: [&str; 4] = ["level-0 cells", "finer cells", "divisions", "setup"];
 
-/// Skin: one piece a call (a budget of one unit). A call that builds a cell is of its level's
-/// phase (level 0, or finer); one that builds none is a level-0 cell's when it finishes a
-/// level-0 centre point (one whose cell misses the surface), else a division's (a centre
-/// point tried in a parent being divided, or a piece of its children's bucketing).
+/// Skin: one piece a call (a budget of one unit). A call made while the setup is under way is
+/// the setup's (a sample of the profile tables, or a table's completion); a call that builds
+/// a cell is of its level's phase (level 0, or finer); one that builds none is a level-0
+/// cell's when it finishes a level-0 centre point (one whose cell misses the surface), else a
+/// division's (a centre point tried in a parent being divided, or a piece of its children's
+/// bucketing).
 fn skin_schedule(model: &mut dyn Stepper) -> Schedule {
     let mut schedule = Vec::new();
     let (mut work, mut finished, mut seen) = (0, false, 0);
     while !finished && work < CAP {
+        let setting_up = model.observe().1 == u32::MAX;
         (work, finished) = model.step(1);
         let (now, level) = model.observe();
-        let phase = if now >> 32 > seen >> 32 {
+        let phase = if setting_up {
+            3
+        } else if now >> 32 > seen >> 32 {
             if level == 0 { 0 } else { 1 }
         } else if now > seen {
             0
@@ -304,8 +340,8 @@ fn run_case(test: &str, k: usize, params: &Params) {
             (phase.parse().expect("a phase"), end.parse().expect("an end"))
         })
         .collect();
-    let mut counted = [0u64; 4];
-    let mut whole = [true; 4];
+    let mut counted = [0u64; PHASES];
+    let mut whole = [true; PHASES];
     with_model(params, |model| {
         let mut work = 0;
         let mut finished = false;
@@ -331,7 +367,7 @@ fn run_case(test: &str, k: usize, params: &Params) {
             }
         }
     });
-    for phase in 0..4 {
+    for phase in 0..PHASES {
         if counted[phase] > 0 {
             println!("\nunit_cost phase {phase} units {} whole {}", counted[phase], whole[phase]);
         }

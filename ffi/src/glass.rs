@@ -21,8 +21,9 @@ use core::ffi::{CStr, c_char, c_void};
 use core::mem::{align_of, size_of};
 
 use hibi_core::glass::{
-    Crack, CrackPoint, CrackSlot, Edge, Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams,
-    GlassProgress, GlassRender, ImpactCounts, Vertex, preset,
+    Crack, CrackPoint, CrackSlot, Edge, FragmentBuild, FragmentBuildBuffers, FragmentBuildMemory, FragmentProgress,
+    Glass, GlassBuffers, GlassError, GlassLayers, GlassMemory, GlassParams, GlassProgress, GlassRender, ImpactCounts,
+    Vertex, preset,
 };
 
 use crate::constants::param_status;
@@ -497,6 +498,215 @@ polygon_query! {
     }
 }
 
+/// A budgeted build of a plate's fragments, in caller memory
+/// (`hibi_glass_fragment_build_create_in`). Opaque; nothing to free (the memory stays the
+/// caller's).
+pub struct hibi_glass_fragment_build {
+    build: FragmentBuild<'static>,
+}
+
+/// Where a fragment build stands.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct hibi_glass_fragment_progress {
+    /// Rings found so far (all of them once finished).
+    pub rings: u32,
+    /// Their points.
+    pub points: u32,
+    /// 1 when every ring is found and every hole knows its outer ring: the rings and points
+    /// can then be read (`hibi_glass_fragment_build_rings`, `hibi_glass_fragment_build_points`).
+    pub finished: u32,
+    /// Always 0: the struct has no padding, so every byte a call writes is defined.
+    pub reserved: u32,
+    /// Work done since the build (re)started, in the units of the step's budget.
+    pub work: u64,
+}
+
+impl hibi_glass_fragment_progress {
+    /// A core progress as the C struct (the counts are below 2^31: a plate's rings and
+    /// points are bounded by four times its vertex capacity of at most 2^28, and eight more).
+    fn of(p: &FragmentProgress) -> Self {
+        hibi_glass_fragment_progress {
+            rings: p.rings as u32,
+            points: p.points as u32,
+            finished: u32::from(p.finished),
+            reserved: 0,
+            work: p.work,
+        }
+    }
+}
+
+// SAFETY: a ring is an f64 and four u32 (24 bytes, no padding, checked below).
+unsafe impl AnyBits for hibi_core::polygon::Ring {}
+const _: () = assert!(size_of::<hibi_core::polygon::Ring>() == 24, "only f64 and u32 fields");
+
+/// A fragment build's block: its header, then its scratch words, rings and points, each taken
+/// as it is (the build reads no element it has not written).
+fn fragment_build_arrays(
+    m: &FragmentBuildMemory,
+    arena: &mut Arena,
+) -> (*mut hibi_glass_fragment_build, FragmentBuildBuffers<'static>) {
+    let header = arena.reserve::<hibi_glass_fragment_build>();
+    let buffers = FragmentBuildBuffers {
+        words: arena.take_as_is(m.words),
+        rings: arena.take_as_is(m.rings),
+        points: arena.take_as_is(m.points),
+    };
+    (header, buffers)
+}
+
+/// Writes the bytes of caller memory a fragment build of `glass` needs (for
+/// `hibi_glass_fragment_build_create_in`; aligned to `hibi_glass_memory_align()`). It follows
+/// the plate's vertex capacity, so one block serves the plate at any point of its growth.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `size` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_build_size(glass: *const hibi_glass, size: *mut usize) -> hibi_status {
+    let read = |glass: &hibi_glass| {
+        let m = glass.glass.fragment_build_memory();
+        object::scratch_size(|arena| fragment_build_arrays(&m, arena))
+    };
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(glass, c"glass", (size, c"size"), read) })
+}
+
+/// Makes a build of `glass`'s fragments in caller memory of at least
+/// `hibi_glass_fragment_build_size` bytes aligned to `hibi_glass_memory_align()`, in the same
+/// work at any size (nothing is written but the build's header); `hibi_glass_fragment_build_step`
+/// does the work. The build yields the rings and points `hibi_glass_fragments` writes, bit for
+/// bit, read in ranges once finished. Nothing is written on failure; there is nothing to
+/// destroy.
+///
+/// # Safety
+/// `glass` must be NULL or a live plate; `memory` NULL or writable for `memory_size` bytes and
+/// untouched while the build is used; `out` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_build_create_in(
+    glass: *const hibi_glass,
+    memory: *mut c_void,
+    memory_size: usize,
+    out: *mut *mut hibi_glass_fragment_build,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        check_pointer(out, c"out")?;
+        let m = glass.glass.fragment_build_memory();
+        // SAFETY: the caller's contract.
+        let (header, buffers) =
+            unsafe { object::caller_arrays(memory, memory_size, |arena| fragment_build_arrays(&m, arena)) }?;
+        let build = FragmentBuild::new(&glass.glass, buffers).map_err(glass_status)?;
+        // SAFETY: the header's room at the block's start, aligned (`caller_arrays` checked the
+        // block against this layout).
+        unsafe { header.write(hibi_glass_fragment_build { build }) };
+        // SAFETY: checked; the caller's contract.
+        unsafe { write_out(out, c"out", header) }
+    })
+}
+
+/// Goes on with `build` on `glass` until about `budget` units of work are done in this call,
+/// or it is finished; writes where it stands to `*progress` unless it is NULL. A unit is an
+/// array element counted or tested (16 where a pass only clears or fills), a step of a face
+/// walk (and one more per edge at the vertex it reaches), a level of the border's sort, or a
+/// point of a ring tested for a hole; a call does at least one piece and overruns the budget
+/// by less than one: one unit and one per edge at a vertex. The result does not depend on the
+/// budgets. A plate whose network changed since the build began (stepped, or hit again)
+/// starts the build over (its work from 0). Steps of one build must not run at once; the plate
+/// is only read.
+///
+/// # Safety
+/// `build` must be NULL or a live build; `glass` NULL or a live plate not changed during the
+/// call; `progress` optional: NULL (not written) or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_build_step(
+    build: *mut hibi_glass_fragment_build,
+    glass: *const hibi_glass,
+    budget: u64,
+    progress: *mut hibi_glass_fragment_progress,
+) -> hibi_status {
+    let step = |build: &mut hibi_glass_fragment_build| {
+        // SAFETY: the caller's contract.
+        let glass = unsafe { object_ref(glass, c"glass") }?;
+        let p = build.build.step(&glass.glass, budget).map_err(glass_status)?;
+        Ok(hibi_glass_fragment_progress::of(&p))
+    };
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { update(build, c"build", (progress, c"progress"), step) })
+}
+
+/// Copies what a finished build holds from index `first` into `out[0..len]`, as many as
+/// there are (none before the build is finished, or from `first` past the end), and writes how
+/// many to `*written`.
+///
+/// # Safety
+/// As the callers'.
+unsafe fn copy_from<T: Copy>(
+    all: &[T],
+    first: usize,
+    (out, len, name): (*mut T, usize, &'static CStr),
+    written: *mut usize,
+) -> Result<(), hibi_status> {
+    check_pointer(written, c"written")?;
+    // SAFETY: the caller's contract.
+    let out = unsafe { buffer(out, len, name) }?;
+    let from = all.get(first..).unwrap_or(&[]);
+    let n = from.len().min(out.len());
+    out[..n].copy_from_slice(&from[..n]);
+    // SAFETY: checked; the caller's contract.
+    unsafe { write_out(written, c"written", n) }
+}
+
+/// Writes the rings of a finished `build` from ring `first` on into `rings[0..rings_len]`:
+/// as many as there are, at most `rings_len` (none before the build is finished, or from a
+/// `first` at or past the ring count), and how many into `*written`. The rings
+/// `[first, first + rings_len)` of `hibi_glass_fragments`: ranges read one after another
+/// concatenate to its rings, and each ring's `first_point` indexes the whole points list
+/// (`hibi_glass_fragment_build_points`).
+///
+/// # Safety
+/// `build` must be NULL or a live build; `rings` NULL (only with `rings_len` 0) or writable
+/// for `rings_len` rings; `written` NULL (refused) or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_build_rings(
+    build: *const hibi_glass_fragment_build,
+    first: usize,
+    rings: *mut hibi_core::polygon::Ring,
+    rings_len: usize,
+    written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let build = unsafe { object_ref(build, c"build") }?;
+        // SAFETY: the caller's contract.
+        unsafe { copy_from(build.build.rings(), first, (rings, rings_len, c"rings"), written) }
+    })
+}
+
+/// Writes the ring points of a finished `build` from point `first` on into
+/// `points[0..points_len]`, as `hibi_glass_fragment_build_rings` writes rings.
+///
+/// # Safety
+/// `build` must be NULL or a live build; `points` NULL (only with `points_len` 0) or writable
+/// for `points_len` points; `written` NULL (refused) or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_glass_fragment_build_points(
+    build: *const hibi_glass_fragment_build,
+    first: usize,
+    points: *mut hibi_vec2,
+    points_len: usize,
+    written: *mut usize,
+) -> hibi_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let build = unsafe { object_ref(build, c"build") }?;
+        // SAFETY: hibi_vec2 is laid out as [f32; 2] (asserted above).
+        let points = points.cast::<[f32; 2]>();
+        // SAFETY: the caller's contract.
+        unsafe { copy_from(build.build.points(), first, (points, points_len, c"points"), written) }
+    })
+}
+
 /// Render layer: crack coverage, `uint8_t` per pixel, 0 (none) to 255.
 pub const HIBI_GLASS_LAYER_MASK: u32 = 0;
 /// Render layer: the step at which the crack front passed, `float` per pixel, +infinity where
@@ -688,6 +898,96 @@ mod tests {
             }
             assert_eq!(hibi_glass_fragment_counts(glass, sp, ss - 1, r, n), HIBI_ERROR_BUFFER_TOO_SMALL);
             assert_eq!(argument(), c"scratch");
+            hibi_glass_destroy(glass);
+        }
+    }
+
+    /// A fragment build in caller memory of any bytes, stepped with a small budget, gives in
+    /// ranges the rings and points `hibi_glass_fragments` writes; refused calls name their
+    /// argument and write nothing.
+    #[test]
+    fn a_fragment_build_gives_the_fragments_in_ranges() {
+        let mut p = hibi_glass_params_default();
+        (p.width, p.height, p.impact) = (200.0, 200.0, [100.0, 100.0]);
+        let mut glass = null_mut();
+        // SAFETY: valid pointers throughout; failing calls write nothing.
+        unsafe {
+            assert_eq!(hibi_glass_create(&p, &mut glass), HIBI_OK);
+            assert_eq!(hibi_glass_step(glass, u64::MAX, null_mut()), HIBI_OK);
+            let mut ss = 0;
+            assert_eq!(hibi_glass_scratch_size(glass, &mut ss), HIBI_OK);
+            let mut scratch = vec![0u64; ss.div_ceil(8)];
+            let sp = scratch.as_mut_ptr().cast::<c_void>();
+            let (mut rc, mut pc) = (0, 0);
+            assert_eq!(hibi_glass_fragment_counts(glass, sp, ss, &mut rc, &mut pc), HIBI_OK);
+            let mut rings = vec![hibi_core::polygon::Ring::default(); rc];
+            let mut points = vec![hibi_vec2::default(); pc];
+            let (mut r, mut n) = (0, 0);
+            let status =
+                hibi_glass_fragments(glass, sp, ss, rings.as_mut_ptr(), rc, points.as_mut_ptr(), pc, &mut r, &mut n);
+            assert_eq!(status, HIBI_OK);
+
+            let mut size = 0;
+            assert_eq!(hibi_glass_fragment_build_size(glass, &mut size), HIBI_OK);
+            let mut memory = vec![0xA5A5_A5A5_A5A5_A5A5u64; size.div_ceil(8)];
+            let base = memory.as_mut_ptr().cast::<c_void>();
+            let mut build = null_mut();
+            assert_eq!(
+                hibi_glass_fragment_build_create_in(glass, base, size - 1, &mut build),
+                HIBI_ERROR_BUFFER_TOO_SMALL
+            );
+            assert_eq!(CStr::from_ptr(crate::status::hibi_error_argument()), c"memory");
+            assert_eq!(
+                hibi_glass_fragment_build_create_in(null_mut(), base, size, &mut build),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(hibi_glass_fragment_build_create_in(glass, base, size, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert!(build.is_null() && memory.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5), "nothing written");
+            assert_eq!(hibi_glass_fragment_build_create_in(glass, base, size, &mut build), HIBI_OK);
+            let mut progress = hibi_glass_fragment_progress::default();
+            let (mut calls, mut before) = (0, 0);
+            while progress.finished == 0 {
+                assert_eq!(hibi_glass_fragment_build_step(build, glass, 50, &mut progress), HIBI_OK);
+                // (A piece: a unit, and one per edge at a vertex: at most the impact's radial
+                // cracks, two border edges, or a few where cracks meet.)
+                let radial = (*glass).glass.impact_counts().radial as u64;
+                assert!(progress.work - before < 50 + 3 + radial.max(8), "{progress:?}");
+                before = progress.work;
+                calls += 1;
+            }
+            assert!(calls > 10 && progress.reserved == 0, "{calls} calls");
+            assert_eq!((progress.rings as usize, progress.points as usize), (rc, pc));
+            let (mut got_rings, mut got_points) = (Vec::new(), Vec::new());
+            let mut out = [hibi_core::polygon::Ring::default(); 5];
+            let mut written = 99;
+            let mut first = 0;
+            loop {
+                assert_eq!(hibi_glass_fragment_build_rings(build, first, out.as_mut_ptr(), 5, &mut written), HIBI_OK);
+                if written == 0 {
+                    break;
+                }
+                got_rings.extend_from_slice(&out[..written]);
+                first += written;
+            }
+            let mut out = [hibi_vec2::default(); 7];
+            first = 0;
+            loop {
+                assert_eq!(hibi_glass_fragment_build_points(build, first, out.as_mut_ptr(), 7, &mut written), HIBI_OK);
+                if written == 0 {
+                    break;
+                }
+                got_points.extend_from_slice(&out[..written]);
+                first += written;
+            }
+            assert!(got_rings == rings);
+            assert!(got_points.iter().zip(&points).all(|(a, b)| (a.x, a.y) == (b.x, b.y)) && got_points.len() == pc);
+            assert_eq!(
+                hibi_glass_fragment_build_rings(build, 0, out.as_mut_ptr().cast(), 1, null_mut()),
+                HIBI_ERROR_NULL_POINTER
+            );
+            assert_eq!(CStr::from_ptr(crate::status::hibi_error_argument()), c"written");
+            assert_eq!(hibi_glass_fragment_build_step(null_mut(), glass, 1, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(CStr::from_ptr(crate::status::hibi_error_argument()), c"build");
             hibi_glass_destroy(glass);
         }
     }

@@ -45,6 +45,10 @@ pub(crate) unsafe trait AnyBits: Copy {}
 unsafe impl AnyBits for u32 {}
 // SAFETY: as u32.
 unsafe impl AnyBits for f32 {}
+// SAFETY: as u32.
+unsafe impl AnyBits for i64 {}
+// SAFETY: an array of values of such a type, without padding between them.
+unsafe impl<T: AnyBits, const N: usize> AnyBits for [T; N] {}
 
 /// Lays out the arrays of a block after its header. Measuring, it only counts the bytes;
 /// placing, it also hands out the arrays: [`Arena::take`] sets each element to its default,
@@ -80,6 +84,12 @@ impl Arena {
         // `create`'s allocation, or the caller's memory, which Rust sees only through a
         // pointer) and, whatever they hold, valid values of `T` (`AnyBits`).
         unsafe { core::slice::from_raw_parts_mut(first, n) }
+    }
+
+    /// Lays out room for one `T` that the caller places itself (a header): where it starts
+    /// when placing, null when measuring.
+    pub(crate) fn reserve<T>(&mut self) -> *mut T {
+        self.next::<T>(1).unwrap_or(core::ptr::null_mut())
     }
 
     /// Lays out the next `n` elements of `T`: where they start when placing, `None` when
@@ -279,6 +289,23 @@ pub(crate) unsafe fn scratch<A>(
 ) -> Result<A, hibi_status> {
     let needed = scratch_size(&carve)?;
     let base = caller_block(memory, len, needed, c"scratch")?;
+    Ok(carve(&mut Arena { base, at: 0, overflow: false }))
+}
+
+/// The arrays `carve` takes from caller memory `memory` of `len` bytes, checked (named
+/// `memory`) as in `*_create_in`; nothing is written here (`carve` takes its arrays as they
+/// are, and places its header itself).
+///
+/// # Safety
+/// `memory` must be NULL or writable for `len` bytes, and not otherwise used while the
+/// arrays live.
+pub(crate) unsafe fn caller_arrays<A>(
+    memory: *mut c_void,
+    len: usize,
+    carve: impl Fn(&mut Arena) -> A,
+) -> Result<A, hibi_status> {
+    let needed = scratch_size(&carve)?;
+    let base = caller_block(memory, len, needed, c"memory")?;
     Ok(carve(&mut Arena { base, at: 0, overflow: false }))
 }
 

@@ -25,14 +25,15 @@ use core::ffi::{c_char, c_void};
 use core::mem::size_of;
 
 use hibi_core::skin::{
-    LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError, ShadeParams, Skin,
-    SkinBuffers, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress, SkinRender, preset, shade,
+    ClipVertex, LevelParams, MAX_LEVELS, MAX_PERTURBATION_DEPTH, MAX_SEGMENTS, NO_CELL, Profile, ShadeError,
+    ShadeParams, Site, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinMemory, SkinParams, SkinProgress,
+    SkinRender, Wedge, preset, shade,
 };
 
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
 use crate::guard::{Outcome, buffer, check_pointer, guard, input, object_ref, query, update, write_out};
-use crate::object::{Arena, Object, Origin, lifecycle};
+use crate::object::{AnyBits, Arena, Object, Origin, lifecycle};
 use crate::raster::{Pixels, render};
 use crate::status::{
     HIBI_ERROR_BAD_ENUM, HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_SKIN_CAPACITY, HIBI_ERROR_SKIN_CELL_INDEX,
@@ -224,6 +225,21 @@ lifecycle!(
     hibi_skin_create, hibi_skin_create_in, hibi_skin_destroy,
 );
 
+// SAFETY: a cell is five u32 and two i64 (padding between them holds no value); a centre point
+// f64, u32 and i32 fields; a clip vertex two f64 and a u32; a wedge four f32 (sizes checked
+// below): every bit pattern of each is a value.
+unsafe impl AnyBits for SkinCell {}
+// SAFETY: as above.
+unsafe impl AnyBits for Site {}
+// SAFETY: as above.
+unsafe impl AnyBits for ClipVertex {}
+// SAFETY: as above.
+unsafe impl AnyBits for Wedge {}
+const _: () = assert!(
+    size_of::<SkinCell>() == 40 && size_of::<Site>() == 48 && size_of::<ClipVertex>() == 24 && size_of::<Wedge>() == 16,
+    "only integer and float fields"
+);
+
 impl Object for hibi_skin {
     type Input = *const hibi_skin_params;
     type Plan = (SkinParams, SkinMemory);
@@ -237,18 +253,22 @@ impl Object for hibi_skin {
         Ok((params, memory))
     }
 
+    /// The skin reads no cell, vertex, centre point, clip vertex, word, chunk box or wedge it
+    /// did not write (`Skin::step` writes each before reading it), so those arrays, which grow
+    /// with the surface, are taken as they are: creation writes only the per-level records
+    /// (at most `HIBI_SKIN_MAX_LEVELS` of each), and its work does not grow with the surface.
     fn arrays((_, m): &Self::Plan, arena: &mut Arena) -> Self::Arrays {
         SkinBuffers {
-            cells: arena.take(m.cells),
-            vertices: arena.take(m.vertices),
-            sites: arena.take(m.sites),
-            clip: arena.take(m.clip),
-            words: arena.take(m.words),
+            cells: arena.take_as_is(m.cells),
+            vertices: arena.take_as_is(m.vertices),
+            sites: arena.take_as_is(m.sites),
+            clip: arena.take_as_is(m.clip),
+            words: arena.take_as_is(m.words),
             levels: arena.take(m.levels),
             divisions: arena.take(m.divisions),
             shared_edges: arena.take(m.shared_edges),
-            boxes: arena.take(m.boxes),
-            wedges: arena.take(m.wedges),
+            boxes: arena.take_as_is(m.boxes),
+            wedges: arena.take_as_is(m.wedges),
         }
     }
 
@@ -590,29 +610,37 @@ mod tests {
         let outlines = |budget: u64| {
             let mut skin = null_mut();
             let mut progress = hibi_skin_progress::default();
-            let mut steps = 0;
+            let (mut steps, mut setup_steps, mut setup_work) = (0, 0, 0);
             // SAFETY: valid pointers throughout.
             unsafe {
                 assert_eq!(hibi_skin_create(&p, &mut skin), HIBI_OK);
                 while progress.finished == 0 {
+                    let setting_up = (*skin).skin.is_setting_up();
+                    let before = progress.work;
                     assert_eq!(hibi_skin_step(skin, budget, &mut progress), HIBI_OK);
                     steps += 1;
+                    if setting_up {
+                        setup_steps += 1;
+                        setup_work += progress.work - before;
+                    }
                 }
                 let skin = &*skin;
                 let cells: Vec<_> = skin.skin.cells().iter().map(|c| (c.level, c.parent, c.vertex_count)).collect();
                 let vertices = skin.skin.vertices().to_vec();
                 hibi_skin_destroy(skin as *const hibi_skin as *mut hibi_skin);
-                (cells, vertices, steps, progress)
+                (cells, vertices, steps, progress, (setup_steps, setup_work))
             }
         };
-        let (cells, vertices, one_go, done) = outlines(u64::MAX);
-        let (cells_1, vertices_1, many, done_1) = outlines(1);
+        let (cells, vertices, one_go, done, _) = outlines(u64::MAX);
+        let (cells_1, vertices_1, many, done_1, (setup_steps, setup_work)) = outlines(1);
         assert_eq!(one_go, 1);
-        // A budget-1 step builds one cell, or does one unit that builds none (a level-0 centre
-        // point whose cell misses the surface, or a unit of a division).
+        // A budget-1 step does one piece of the setup (a sample of the profile tables, or a
+        // table's completion), builds one cell, or does one unit that builds none (a level-0
+        // centre point whose cell misses the surface, or a unit of a division).
+        assert!(setup_steps > 256 && setup_work > setup_steps, "{setup_steps} setup steps, {setup_work} units");
         let level0 = cells.iter().filter(|c| c.0 == 0).count() as u64;
         assert!(level0 < u64::from(done.cells), "two levels");
-        let due = u64::from(done.cells) - level0 + done.work - vertices.len() as u64;
+        let due = setup_steps + u64::from(done.cells) - level0 + done.work - setup_work - vertices.len() as u64;
         assert_eq!(many as u64, due, "{many} steps of one piece each");
         assert!(cells == cells_1 && vertices == vertices_1);
         assert_eq!((done.cells, done.roots, done.work), (done_1.cells, done_1.roots, done_1.work));

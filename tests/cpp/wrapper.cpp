@@ -295,6 +295,30 @@ void glass() {
                 yes(fragments.rings.size() == counts.first && fragments.points.size() == counts.second &&
                     counts.first > 0),
                 area);
+    {
+        // The same fragments built in budgeted steps and read in ranges of 5 rings and 7 points.
+        hibi::FragmentBuild build = hibi::FragmentBuild::create(glass);
+        int steps = 0;
+        while (!build.step(glass, 100).finished) steps++;
+        std::vector<hibi_ring> rings;
+        std::vector<hibi_vec2> points;
+        hibi_ring ring_range[5];
+        hibi_vec2 point_range[7];
+        for (std::size_t n; (n = build.rings(rings.size(), hibi::Span<hibi_ring>(ring_range, 5))) > 0;)
+            rings.insert(rings.end(), ring_range, ring_range + n);
+        bool read = true;
+        for (;;) {
+            hibi::Result<std::size_t> n = build.try_points(points.size(), hibi::Span<hibi_vec2>(point_range, 7));
+            if (!n || *n == 0) {
+                read = n.ok();
+                break;
+            }
+            points.insert(points.end(), point_range, point_range + *n);
+        }
+        std::printf("glass fragment build in ranges: same as fragments: %s, steps: %s\n",
+                    yes(same_rings(rings, fragments.rings) && same_bytes(points, fragments.points) && read),
+                    yes(steps > 1));
+    }
 
     hibi::Glass::RenderParams render = hibi::Glass::default_render();
     render.width = 100;

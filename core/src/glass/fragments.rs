@@ -19,22 +19,22 @@ use crate::polygon::{NOT_A_HOLE, Ring};
 /// Caller words the fragment walk works in, sized for the plate's vertex capacity.
 pub(super) struct FragmentScratch<'a> {
     /// Per vertex (and the four corners): edges left after pruning, plus 2 on the border.
-    degree: &'a mut [u32],
+    pub(super) degree: &'a mut [u32],
     /// First the stack of dead ends to prune, then the border's vertices in perimeter order.
-    border: &'a mut [u32],
+    pub(super) border: &'a mut [u32],
     /// Per vertex: its index in `border`, NONE off the border.
-    border_index: &'a mut [u32],
+    pub(super) border_index: &'a mut [u32],
     /// One bit per crack edge: not pruned.
-    alive: &'a mut [u32],
+    pub(super) alive: &'a mut [u32],
     /// One bit per half-edge: walked.
-    visited: &'a mut [u32],
+    pub(super) visited: &'a mut [u32],
 }
 
-fn bit(bits: &[u32], i: usize) -> bool {
+pub(super) fn bit(bits: &[u32], i: usize) -> bool {
     bits[i / 32] & (1 << (i % 32)) != 0
 }
 
-fn set_bit(bits: &mut [u32], i: usize, on: bool) {
+pub(super) fn set_bit(bits: &mut [u32], i: usize, on: bool) {
     if on {
         bits[i / 32] |= 1 << (i % 32);
     } else {
@@ -53,7 +53,7 @@ impl<'a> FragmentScratch<'a> {
 
     /// The scratch in the caller's `words` for a plate of `vertices` vertices, or how many
     /// words it needs if `words` is shorter.
-    fn new(mut words: &'a mut [u32], vertices: usize) -> Result<Self, GlassError> {
+    pub(super) fn new(mut words: &'a mut [u32], vertices: usize) -> Result<Self, GlassError> {
         let needed = Self::words(vertices).unwrap_or(usize::MAX);
         if words.len() < needed {
             return Err(GlassError::BufferTooSmall { needed });
@@ -78,7 +78,7 @@ impl<'a> FragmentScratch<'a> {
 /// Compared exactly: one f64 distance along the whole perimeter, such as 2·W + H − x on the top
 /// side, rounds away differences below 2·W·2⁻⁵³ (or below the spacing of f64 near 2·W + H, for
 /// points near a corner), and a border out of order joins the wrong ends, losing fragments.
-fn perimeter(p: [f32; 2], w: f32, h: f32) -> (u8, f32) {
+pub(super) fn perimeter(p: [f32; 2], w: f32, h: f32) -> (u8, f32) {
     if p[1] == 0.0 {
         (0, p[0])
     } else if p[0] == w {
@@ -92,16 +92,16 @@ fn perimeter(p: [f32; 2], w: f32, h: f32) -> (u8, f32) {
 
 /// The pruned cracks plus the plate's border: border edge `k` runs from `border[k]` to
 /// `border[k + 1]` (counter-clockwise), with edge index `edge_count + k`.
-struct PlateGraph<'g> {
-    cracks: CrackGraph<'g>,
-    alive: &'g [u32],
-    border: &'g [u32],
-    border_index: &'g [u32],
-    corners: [[f32; 2]; 4],
+pub(super) struct PlateGraph<'g> {
+    pub(super) cracks: CrackGraph<'g>,
+    pub(super) alive: &'g [u32],
+    pub(super) border: &'g [u32],
+    pub(super) border_index: &'g [u32],
+    pub(super) corners: [[f32; 2]; 4],
 }
 
 impl PlateGraph<'_> {
-    fn edge_count(&self) -> u32 {
+    pub(super) fn edge_count(&self) -> u32 {
         self.cracks.edges.len() as u32
     }
 }

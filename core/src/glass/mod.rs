@@ -786,12 +786,16 @@ impl<'a> Glass<'a> {
 }
 
 mod faces;
+mod fragment_build;
 mod fragments;
 mod growth;
 mod output;
 mod render;
 mod scan;
 
+#[cfg(feature = "alloc")]
+pub use fragment_build::FragmentBuildStore;
+pub use fragment_build::{FragmentBuild, FragmentBuildBuffers, FragmentBuildMemory, FragmentProgress};
 use fragments::FragmentScratch;
 pub use growth::STEP_PIECE;
 pub use output::CrackPoint;

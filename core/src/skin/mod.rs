@@ -693,6 +693,9 @@ pub struct Skin<'a, S: Scalar = f32> {
     /// The division under way, if any: the cell last built is being divided, and its
     /// children's entry opens when the division is done.
     dividing: Option<Dividing>,
+    /// The setup under way (each level's profile table), until it is done: the first
+    /// [`Skin::step`] calls do it, within their budgets, before any cell.
+    setup: Option<Setup>,
     /// Level-0 cells whose trees are built.
     done: u32,
     finished: bool,
@@ -740,6 +743,67 @@ struct Dividing {
     count: u16,
     /// The bucketing, once the centre points are all listed (if they need one).
     filling: Option<nearest::Filling>,
+}
+
+/// The setup, which the first [`Skin::step`] calls do (so that [`Skin::new`] does the same
+/// work at any size and level count): each level's profile table ([`ProfileTable`]), sampled
+/// one sample a piece, then completed one level a piece. Levels whose profiles place their
+/// samples alike (a run of them: [`ProfileTable::shares_places`]) share each sample's place,
+/// found once for the run.
+#[derive(Clone, Copy, Debug)]
+enum Setup {
+    /// Sample `sample` of the levels `first..end` (a run).
+    Sampling { first: u8, end: u8, sample: u16 },
+    /// The completion of level `level`'s table.
+    Finishing { level: u8 },
+}
+
+/// Units one sample of a run of levels counts ([`Setup::Sampling`]): its place on the curve
+/// (a bisection of 48 halvings, a Bézier evaluation each) and each level's sample there.
+const SETUP_SAMPLE_UNITS: u64 = 2;
+/// Units the completion of one level's table counts ([`Setup::Finishing`]: a pass over its
+/// [`SAMPLES`] + 1 samples).
+const SETUP_FINISH_UNITS: u64 = 4;
+
+impl Setup {
+    /// The end of the run of levels that starts at `first`.
+    fn run_end(p: &SkinParams, first: usize) -> u8 {
+        let levels = p.levels as usize;
+        let mut end = first + 1;
+        while end < levels && ProfileTable::shares_places(&p.level[end - 1].profile, &p.level[end].profile) {
+            end += 1;
+        }
+        end as u8
+    }
+
+    /// Does this piece into `levels` (the tables); returns the units it counts and the setup
+    /// after it (None when done).
+    fn piece(self, p: &SkinParams, levels: &mut [SkinLevel]) -> (u64, Option<Setup>) {
+        let profile = |l: usize| &p.level[l].profile;
+        match self {
+            Setup::Sampling { first, end, sample } => {
+                let (first, end, k) = (usize::from(first), usize::from(end), usize::from(sample));
+                let (s, t) = ProfileTable::place(profile(first), k);
+                for (l, level) in levels.iter_mut().enumerate().take(end).skip(first) {
+                    level.table.sample_at(profile(l), k, s, t);
+                }
+                let next = if k < SAMPLES {
+                    Setup::Sampling { first: first as u8, end: end as u8, sample: sample + 1 }
+                } else if end < levels.len() {
+                    Setup::Sampling { first: end as u8, end: Setup::run_end(p, end), sample: 0 }
+                } else {
+                    Setup::Finishing { level: 0 }
+                };
+                (SETUP_SAMPLE_UNITS, Some(next))
+            }
+            Setup::Finishing { level } => {
+                let l = usize::from(level);
+                levels[l].table.finish(profile(l));
+                let next = (l + 1 < levels.len()).then_some(Setup::Finishing { level: level + 1 });
+                (SETUP_FINISH_UNITS, next)
+            }
+        }
+    }
 }
 
 // (`Skin::step` states the bucketing's threshold and piece.)
@@ -1023,8 +1087,11 @@ enum ParentOutline {
 
 impl<'a, S: Scalar> Skin<'a, S> {
     /// Sets up a skin of `params` in caller memory of at least [`SkinParams::memory`]
-    /// elements; [`Skin::step`] builds its cells. Nothing is written to the buffers on
-    /// failure.
+    /// elements; [`Skin::step`] builds its cells. The work is the same at any size and level
+    /// count: the first steps sample the levels' profile tables ([`Skin::is_setting_up`]).
+    /// Nothing is written to the buffers on failure (and on success only the level records
+    /// and the shared-edge records, a few per level: every other array is written by the
+    /// steps before it is read, and may hold any bytes).
     pub fn new(params: &SkinParams, buffers: SkinBuffers<'a>) -> Result<Self, SkinError> {
         Skin::new_in(params, buffers, Layout::of(params))
     }
@@ -1055,26 +1122,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
         let (clip, rest) = buffers.clip.split_at_mut(layout.clip);
         let (spare, parent_frames) = rest.split_at_mut(layout.clip);
         let levels = &mut buffers.levels[..params.levels as usize];
-        // One table per level; levels whose profiles place their samples alike (a run of
-        // them) share each sample's place, found once for the run.
-        let profile = |l: usize| &params.level[l].profile;
-        let mut first = 0;
-        while first < levels.len() {
-            let mut end = first + 1;
-            while end < levels.len() && ProfileTable::shares_places(profile(end - 1), profile(end)) {
-                end += 1;
-            }
-            for k in 0..=SAMPLES {
-                let (s, t) = ProfileTable::place(profile(first), k);
-                for (l, level) in levels.iter_mut().enumerate().take(end).skip(first) {
-                    level.table.sample_at(profile(l), k, s, t);
-                }
-            }
-            first = end;
-        }
-        for (l, level) in levels.iter_mut().enumerate() {
-            level.table.finish(profile(l));
-        }
+        // (The profile tables are sampled by the first steps: `Setup`.)
         // (A division is left as it is: its grid is filled for each parent before the parent's
         // children read it, and its crossing scratch written for each edge before it is read.)
         let divisions = &mut buffers.divisions[..m.divisions];
@@ -1110,6 +1158,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             siblings: [Siblings::default(); MAX_LEVELS - 1],
             open: 0,
             dividing: None,
+            setup: Some(Setup::Sampling { first: 0, end: Setup::run_end(params, 0), sample: 0 }),
             done: 0,
             finished: false,
             capacity_reached: false,
@@ -1119,7 +1168,9 @@ impl<'a, S: Scalar> Skin<'a, S> {
     }
 
     /// Builds cells, one at a time at any level, until about `budget` units of work have been
-    /// done in this call. The units are outline vertices written; one per level-0 centre point
+    /// done in this call. The first calls do the setup: each level's profile table, 2 units a
+    /// sample of its 257 (levels that place their samples alike share one) and 4 units a level
+    /// to complete it ([`Skin::is_setting_up`]). Then the units are outline vertices written; one per level-0 centre point
     /// tried (whether or not its cell reaches the surface); and, as a cell is divided into the
     /// next level's, one per centre point tried in its bounding box (whether or not it falls
     /// inside the cell) and, for a cell of more than 96 children, one per piece of bucketing
@@ -1167,13 +1218,20 @@ impl<'a, S: Scalar> Skin<'a, S> {
         }
     }
 
-    /// Does the next piece of the depth-first walk and counts its work: with a division under
+    /// Does the next piece and counts its work: a piece of the setup while it is under way;
+    /// else the next piece of the depth-first walk: with a division under
     /// way, its next centre points tried or pieces of bucketing (up to `room` units, at least
     /// one), opening the children once it is done; else the next cell, the next child of the
     /// finest open parent or else the level-0 cell of `next`: prepares its division if it has
     /// children, or else closes each parent whose children are all built, and with the last
     /// the level-0 cell's tree (moving `next` on, and finishing after the last).
     fn advance(&mut self, room: u64) -> Result<(), Full> {
+        if let Some(setup) = self.setup {
+            let (units, next) = setup.piece(&self.params, self.build.levels);
+            self.work += units;
+            self.setup = next;
+            return Ok(());
+        }
         if let Some(mut d) = self.dividing {
             let done = self.build.divide(&mut d, room, &mut self.work)?;
             self.dividing = Some(d);
@@ -1265,6 +1323,12 @@ impl<'a, S: Scalar> Skin<'a, S> {
             ParentOutline::Box([[0, 0], [w, 0], [w, h], [0, h]])
         };
         self.build.cell(0, site, (0, at), (parent, NO_CELL))
+    }
+
+    /// Whether the setup (each level's profile table, sampled by the first [`Skin::step`]
+    /// calls) is still under way: no cell is built until it is done.
+    pub fn is_setting_up(&self) -> bool {
+        self.setup.is_some()
     }
 
     /// The parameters.
@@ -1396,11 +1460,21 @@ mod tests {
                 let mut store = m.allocate();
                 let mut skin: Skin = Skin::new(&p, store.buffers()).expect("its need");
                 let (mut before, mut calls) = (skin.progress(), 0u32);
+                let (mut setup_calls, mut setup_work) = (0u64, 0u64);
                 while !before.finished {
+                    let setting_up = skin.is_setting_up();
                     let now = skin.step(budget);
                     let done = now.work - before.work;
                     assert!(done > 0 && done < budget + MAX_OUTLINE as u64 + 1, "case {case}: {done} for {budget}");
-                    if budget == 1 {
+                    if budget == 1 && setting_up {
+                        // A sample or a level's completion, no cell.
+                        assert!(
+                            now.cells == 0 && [SETUP_SAMPLE_UNITS, SETUP_FINISH_UNITS].contains(&done),
+                            "case {case}"
+                        );
+                        setup_calls += 1;
+                        setup_work += done;
+                    } else if budget == 1 {
                         let cells = now.cells - before.cells;
                         assert!(cells <= 1, "case {case}: {cells} cells in one call");
                         // One cell's work: its vertices, and one unit more for a level-0 cell;
@@ -1421,7 +1495,19 @@ mod tests {
                 if budget == 1 {
                     // A call for each cell, and one for each unit outside the cells.
                     let vertices = skin.vertices().len() as u64;
-                    let calls_due = u64::from(end.cells - level0) + end.work - vertices;
+                    // (The setup: one call a piece, each sample of each run of levels and each
+                    // level's completion.)
+                    let runs = {
+                        let mut runs = 1;
+                        for l in 1..p.levels as usize {
+                            if !ProfileTable::shares_places(&p.level[l - 1].profile, &p.level[l].profile) {
+                                runs += 1;
+                            }
+                        }
+                        runs
+                    };
+                    assert_eq!(setup_calls, runs * (SAMPLES as u64 + 1) + u64::from(p.levels), "case {case}");
+                    let calls_due = setup_calls + u64::from(end.cells - level0) + end.work - setup_work - vertices;
                     assert_eq!(u64::from(calls), calls_due, "case {case}: one piece a call");
                 }
             }
