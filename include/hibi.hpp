@@ -50,6 +50,10 @@
  *   one object; step, impact, moves and destruction need it to themselves. The const calls
  *   that need working memory (Glass::fragment_counts, Glass::fragments) take a Scratch: one
  *   per thread.
+ * - Pieces for a physics engine are free functions over rings and points (a fragments' or
+ *   cells' rings and points, or any in that shape): pieces_scratch_size, piece_counts,
+ *   triangulate and convex_pieces, with views of uint32_t scratch and of the output, or
+ *   returning vectors.
  * - The C types are used as they are (hibi_mud_params, hibi_mud_segment, ...): a params
  *   struct comes from hibi::Mud::default_params() or ::preset(name) and its fields are
  *   changed in place, exactly as in C.
@@ -1187,6 +1191,100 @@ private:
     std::uint32_t width_ = 0;
     std::uint32_t height_ = 0;
 };
+
+/// Pieces for a physics engine (hibi_pieces_*, hibi_triangulate, hibi_convex_pieces): the
+/// triangles and convex pieces of polygons given as rings over points, such as
+/// Glass::fragments and Mud::cells write. How many of each (hibi_pieces_counts).
+struct PieceCounts {
+    std::size_t triangles = 0;
+    std::size_t pieces = 0;
+};
+
+/// The uint32_t words of scratch the piece calls need (hibi_pieces_scratch_size); checks the
+/// rings.
+inline Result<std::size_t> try_pieces_scratch_size(Span<const hibi_ring> rings,
+                                                   Span<const hibi_vec2> points) noexcept {
+    std::size_t words = 0;
+    return detail::result(hibi_pieces_scratch_size(rings.data(), rings.size(), points.data(), points.size(), &words),
+                          words);
+}
+inline detail::Returned<std::size_t> pieces_scratch_size(Span<const hibi_ring> rings, Span<const hibi_vec2> points) {
+    return detail::returned(try_pieces_scratch_size(rings, points));
+}
+/// How many triangles and convex pieces the rings make (hibi_pieces_counts), working in
+/// `scratch` (at least pieces_scratch_size words).
+inline Result<PieceCounts> try_piece_counts(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                            Span<std::uint32_t> scratch) noexcept {
+    PieceCounts counts;
+    return detail::result(hibi_pieces_counts(rings.data(), rings.size(), points.data(), points.size(), scratch.data(),
+                                             scratch.size(), &counts.triangles, &counts.pieces),
+                          counts);
+}
+inline detail::Returned<PieceCounts> piece_counts(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                                  Span<std::uint32_t> scratch) {
+    return detail::returned(try_piece_counts(rings, points, scratch));
+}
+/// Writes the triangles into the view (at least piece_counts().triangles); returns how many.
+inline Result<std::size_t> try_triangulate(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                           Span<std::uint32_t> scratch, Span<hibi_triangle> out) noexcept {
+    std::size_t written = 0;
+    return detail::result(hibi_triangulate(rings.data(), rings.size(), points.data(), points.size(), scratch.data(),
+                                           scratch.size(), out.data(), out.size(), &written),
+                          written);
+}
+inline detail::Returned<std::size_t> triangulate(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                                 Span<std::uint32_t> scratch, Span<hibi_triangle> out) {
+    return detail::returned(try_triangulate(rings, points, scratch, out));
+}
+/// Writes the convex pieces into the view (at least piece_counts().pieces); returns how many.
+inline Result<std::size_t> try_convex_pieces(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                             Span<std::uint32_t> scratch, Span<hibi_convex_piece> out) noexcept {
+    std::size_t written = 0;
+    return detail::result(hibi_convex_pieces(rings.data(), rings.size(), points.data(), points.size(), scratch.data(),
+                                             scratch.size(), out.data(), out.size(), &written),
+                          written);
+}
+inline detail::Returned<std::size_t> convex_pieces(Span<const hibi_ring> rings, Span<const hibi_vec2> points,
+                                                   Span<std::uint32_t> scratch, Span<hibi_convex_piece> out) {
+    return detail::returned(try_convex_pieces(rings, points, scratch, out));
+}
+
+namespace detail {
+/// The pieces of the rings in vectors: scratch and output sized by the count calls, then
+/// `write` (try_triangulate or try_convex_pieces) into them.
+template <class Piece, class Write>
+Result<std::vector<Piece>> pieces(Span<const hibi_ring> rings, Span<const hibi_vec2> points, bool triangles,
+                                  Write write) {
+    Result<std::size_t> words = try_pieces_scratch_size(rings, points);
+    if (!words) return failure<std::vector<Piece>>(words);
+    std::vector<std::uint32_t> scratch(*words);
+    Result<PieceCounts> counts = try_piece_counts(rings, points, Span<std::uint32_t>(scratch));
+    if (!counts) return failure<std::vector<Piece>>(counts);
+    std::vector<Piece> out(triangles ? counts->triangles : counts->pieces);
+    Result<std::size_t> written = write(rings, points, Span<std::uint32_t>(scratch), Span<Piece>(out));
+    if (!written) return failure<std::vector<Piece>>(written);
+    out.resize(*written);
+    return Result<std::vector<Piece>>(std::move(out));
+}
+}  // namespace detail
+
+/// The triangles in a vector (scratch and output allocated here).
+inline Result<std::vector<hibi_triangle>> try_triangulate(Span<const hibi_ring> rings, Span<const hibi_vec2> points) {
+    return detail::pieces<hibi_triangle>(rings, points, true, [](auto... a) { return try_triangulate(a...); });
+}
+inline detail::Returned<std::vector<hibi_triangle>> triangulate(Span<const hibi_ring> rings,
+                                                                Span<const hibi_vec2> points) {
+    return detail::returned(try_triangulate(rings, points));
+}
+/// The convex pieces in a vector (scratch and output allocated here).
+inline Result<std::vector<hibi_convex_piece>> try_convex_pieces(Span<const hibi_ring> rings,
+                                                                Span<const hibi_vec2> points) {
+    return detail::pieces<hibi_convex_piece>(rings, points, false, [](auto... a) { return try_convex_pieces(a...); });
+}
+inline detail::Returned<std::vector<hibi_convex_piece>> convex_pieces(Span<const hibi_ring> rings,
+                                                                      Span<const hibi_vec2> points) {
+    return detail::returned(try_convex_pieces(rings, points));
+}
 
 #if !HIBI_EXCEPTIONS
 }  // inline namespace results

@@ -470,6 +470,51 @@ void glass() {
            fragments.ok() && same_rings(fragments->rings, c_rings) && same_bytes(fragments->points, c_ring_points),
            failure(glass.try_fragments(none)));
 
+    // The fragments' pieces: each twin equals its C call; a ring past the points, a short
+    // scratch and short views are refused.
+    {
+        std::size_t c_words = 0, c_tri = 0, c_conv = 0, w = 0;
+        must(hibi_pieces_scratch_size(c_rings.data(), cr, c_ring_points.data(), cp, &c_words));
+        std::vector<std::uint32_t> words(c_words);
+        must(hibi_pieces_counts(c_rings.data(), cr, c_ring_points.data(), cp, words.data(), c_words, &c_tri, &c_conv));
+        std::vector<hibi_triangle> c_triangles(c_tri);
+        std::vector<hibi_convex_piece> c_pieces(c_conv);
+        must(hibi_triangulate(c_rings.data(), cr, c_ring_points.data(), cp, words.data(), c_words, c_triangles.data(),
+                              c_tri, &w));
+        must(hibi_convex_pieces(c_rings.data(), cr, c_ring_points.data(), cp, words.data(), c_words, c_pieces.data(),
+                                c_conv, &w));
+        std::vector<hibi_ring> past(1, c_rings[0]);
+        past[0].first_point = static_cast<std::uint32_t>(cp);
+        hibi::Result<std::size_t> size = hibi::try_pieces_scratch_size(c_rings, c_ring_points);
+        report("pieces try_pieces_scratch_size", size.ok() && *size == c_words,
+               failure(hibi::try_pieces_scratch_size(past, c_ring_points)));
+        std::vector<std::uint32_t> scratch_words(c_words), short_words(c_words - 1);
+        hibi::Result<hibi::PieceCounts> counts_of = hibi::try_piece_counts(c_rings, c_ring_points, scratch_words);
+        report("pieces try_piece_counts",
+               counts_of.ok() && counts_of->triangles == c_tri && counts_of->pieces == c_conv && c_conv < c_tri,
+               failure(hibi::try_piece_counts(c_rings, c_ring_points, short_words)));
+        Block<hibi_triangle> triangles(c_tri);
+        hibi::Result<std::size_t> tw = hibi::try_triangulate(c_rings, c_ring_points, scratch_words, triangles.view(c_tri));
+        bool triangles_ok = tw.ok() && *tw == c_tri && same_bytes(triangles.copy(c_tri), c_triangles);
+        triangles.fill();
+        hibi::Result<std::size_t> short_triangles =
+            hibi::try_triangulate(c_rings, c_ring_points, scratch_words, triangles.view(c_tri - 1));
+        report("pieces try_triangulate(views)", triangles_ok && triangles.untouched(), failure(short_triangles));
+        hibi::Result<std::vector<hibi_triangle>> all_triangles = hibi::try_triangulate(c_rings, c_ring_points);
+        report("pieces try_triangulate()", all_triangles.ok() && same_bytes(*all_triangles, c_triangles),
+               failure(hibi::try_triangulate(past, c_ring_points)));
+        Block<hibi_convex_piece> pieces(c_conv);
+        hibi::Result<std::size_t> pw = hibi::try_convex_pieces(c_rings, c_ring_points, scratch_words, pieces.view(c_conv));
+        bool pieces_ok = pw.ok() && *pw == c_conv && same_bytes(pieces.copy(c_conv), c_pieces);
+        pieces.fill();
+        hibi::Result<std::size_t> short_pieces =
+            hibi::try_convex_pieces(c_rings, c_ring_points, scratch_words, pieces.view(c_conv - 1));
+        report("pieces try_convex_pieces(views)", pieces_ok && pieces.untouched(), failure(short_pieces));
+        hibi::Result<std::vector<hibi_convex_piece>> all_pieces = hibi::try_convex_pieces(c_rings, c_ring_points);
+        report("pieces try_convex_pieces()", all_pieces.ok() && same_bytes(*all_pieces, c_pieces),
+               failure(hibi::try_convex_pieces(past, c_ring_points)));
+    }
+
     hibi::Glass::RenderParams render = hibi::Glass::default_render();
     render.width = 64;
     render.height = 64;
