@@ -3,6 +3,10 @@
 //!
 //! - glass fragments cover the plate: their signed ring areas sum to width × height (within
 //!   10⁻⁴, in f64);
+//! - the pieces for a physics engine (`hibi_triangulate`, `hibi_convex_pieces`) of glass
+//!   fragments and mud cells: counter-clockwise triangles, strictly convex pieces of 3 to 8
+//!   points, each polygon's adding up to its area (outer ring minus holes; within 10⁻⁶), a
+//!   glass plate's to width × height (within 10⁻⁴);
 //! - no NaN or infinity in any output (mud segments, network and cells; glass polylines and
 //!   fragments; skin cells and outlines; every float raster, except the break-time layers'
 //!   documented +infinity where no crack is);
@@ -38,7 +42,7 @@ use core::ffi::c_void;
 use hibi::*;
 use hibi_core::glass::{CrackPoint, Glass, GlassParams, GlassProgress};
 use hibi_core::mud::{CrackSegment, NetworkEdge, NetworkPoint, NetworkVertex};
-use hibi_core::polygon::Ring;
+use hibi_core::polygon::{ConvexPiece, Ring, Triangle};
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
@@ -233,6 +237,57 @@ fn rings_are_consistent(rings: &[Ring], points: usize, wrapping_cells: bool) {
     }
 }
 
+/// The pieces a physics engine takes, cut from `rings` over `points` through the C API: every
+/// triangle counter-clockwise, every convex piece strictly convex with 3 to 8 points, and each
+/// polygon's triangles and pieces adding up to its outer ring's area minus its holes' (within
+/// 10⁻⁶ of the outer ring's area, or 10⁻⁹ of the plate's for a sliver); returns the pieces'
+/// total area.
+fn pieces_add_up(rings: &[Ring], points: &[hibi_vec2], plate: f64) -> f64 {
+    let (rp, pp) = (rings.as_ptr(), points.as_ptr());
+    let (mut words, mut triangles, mut pieces, mut written) = (0, 0, 0, 0);
+    // SAFETY: valid buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_pieces_scratch_size(rp, rings.len(), pp, points.len(), &mut words), HIBI_OK);
+        let mut scratch = vec![0u32; words];
+        let s = scratch.as_mut_ptr();
+        let status = hibi_pieces_counts(rp, rings.len(), pp, points.len(), s, words, &mut triangles, &mut pieces);
+        assert_eq!(status, HIBI_OK);
+        let mut tri = vec![Triangle::default(); triangles];
+        let status =
+            hibi_triangulate(rp, rings.len(), pp, points.len(), s, words, tri.as_mut_ptr(), triangles, &mut written);
+        assert_eq!((status, written), (HIBI_OK, triangles));
+        let mut convex = vec![ConvexPiece::default(); pieces];
+        let status =
+            hibi_convex_pieces(rp, rings.len(), pp, points.len(), s, words, convex.as_mut_ptr(), pieces, &mut written);
+        assert_eq!((status, written), (HIBI_OK, pieces));
+        let at = |i: u32| [f64::from(points[i as usize].x), f64::from(points[i as usize].y)];
+        let twice =
+            |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        let (mut by_triangle, mut by_piece) = (vec![0.0; rings.len()], vec![0.0; rings.len()]);
+        for t in &tri {
+            let [a, b, c] = t.points.map(at);
+            assert!(twice(a, b, c) > 0.0, "{t:?}");
+            by_triangle[t.ring as usize] += twice(a, b, c) / 2.0;
+        }
+        for piece in &convex {
+            let n = piece.point_count as usize;
+            assert!((3..=HIBI_PIECE_MAX_POINTS as usize).contains(&n), "{piece:?}");
+            let q: Vec<[f64; 2]> = piece.points[..n].iter().map(|&i| at(i)).collect();
+            for j in 0..n {
+                assert!(twice(q[j], q[(j + 1) % n], q[(j + 2) % n]) > 0.0, "not strictly convex: {q:?}");
+                by_piece[piece.ring as usize] += twice([0.0; 2], q[j], q[(j + 1) % n]) / 2.0;
+            }
+        }
+        for (i, ring) in rings.iter().enumerate().filter(|(_, r)| r.hole_of == HIBI_RING_NOT_A_HOLE) {
+            let want = ring.area + rings.iter().filter(|h| h.hole_of as usize == i).map(|h| h.area).sum::<f64>();
+            let tolerance = 1e-6 * ring.area.abs() + 1e-9 * plate;
+            assert!((by_triangle[i] - want).abs() <= tolerance, "ring {i}: triangles {} of {want}", by_triangle[i]);
+            assert!((by_piece[i] - want).abs() <= tolerance, "ring {i}: pieces {} of {want}", by_piece[i]);
+        }
+        by_piece.iter().sum()
+    }
+}
+
 fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_render_params) {
     let mut n = 0;
     // SAFETY (every call below): a live run, buffers of the lengths passed.
@@ -290,6 +345,9 @@ fn mud_outputs_in_range(mud: &Mud, end: &hibi_mud_progress, render: &hibi_mud_re
         assert!(rings.iter().all(|x| x.area.is_finite()));
         assert!(ring_points.iter().all(|x| finite(&[x.x, x.y])));
         rings_are_consistent(&rings, q, mud.1);
+        let mut extent = hibi_vec2::default();
+        assert_eq!(hibi_mud_extent(mud.0, &mut extent), HIBI_OK);
+        pieces_add_up(&rings, &ring_points, f64::from(extent.x) * f64::from(extent.y));
         let mut stats = hibi_mud_crack_statistics::default();
         assert_eq!(hibi_mud_statistics(mud.0, &mut stats), HIBI_OK);
         let s = stats;
@@ -524,6 +582,8 @@ fn glass_outputs_in_range(p: &hibi_glass_params, end: &GlassProgress, render: &h
             "fragments cover {covered} of a {plate} plate ({} rings)",
             rings.len()
         );
+        let pieces = pieces_add_up(&rings, &points, plate);
+        assert!(((pieces - plate) / plate).abs() <= 1e-4, "the pieces cover {pieces} of a {plate} plate");
         let pixels = (render.width * render.height) as usize;
         let mut mask = vec![0u8; pixels];
         let status = hibi_glass_render(glass, render, HIBI_GLASS_LAYER_MASK, mask.as_mut_ptr().cast(), pixels);
