@@ -97,6 +97,34 @@ fn glass_fragments_pieces_add_up_to_the_plate() {
     assert!(worst <= 1e-6, "{worst}");
 }
 
+/// Whatever the cracks so far: a plate's fragments at every stage of its growth.
+#[test]
+fn glass_pieces_add_up_while_the_plate_cracks() {
+    let mut worst = 0.0f64;
+    let mut stages = 0;
+    for seed in [3u64, 11] {
+        let params = GlassParams { seed, width: 300.0, height: 200.0, impact: [140.0, 90.0], ..GlassParams::default() };
+        let m = params.memory().unwrap();
+        let mut memory = m.allocate();
+        let mut g = Glass::new(&params, memory.buffers()).unwrap();
+        let mut scratch = vec![0u32; m.scratch];
+        loop {
+            let finished = g.step(3_000).finished;
+            let (r, p) = g.fragment_counts(&mut scratch).unwrap();
+            let (mut rings, mut points) = (vec![Ring::default(); r], vec![[0.0f32; 2]; p]);
+            g.fragments(&mut scratch, &mut rings, &mut points).unwrap();
+            let (w, _) = check(&rings, &points);
+            worst = worst.max(w);
+            stages += 1;
+            if finished {
+                break;
+            }
+        }
+    }
+    println!("glass while cracking: {stages} stages, worst relative area error {worst:e}");
+    assert!(stages > 10 && worst <= 1e-6, "{stages} {worst}");
+}
+
 #[test]
 fn mud_cells_pieces_add_up_to_the_cells() {
     let mut totals = [0usize; 3];

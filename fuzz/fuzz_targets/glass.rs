@@ -2,7 +2,8 @@
 //! `hibi_glass_create_in` (any memory length and alignment), then any sequence of impacts
 //! (any point), steps (any budgets), crack queries and polylines, fragments and fragment
 //! counts (any scratch and buffer lengths) and renders (both layers, any render params and
-//! pixel lengths). Fragments must cover the plate: their signed areas sum to its area.
+//! pixel lengths). Fragments must cover the plate: their signed areas sum to its area, and so
+//! do the areas of their convex pieces for a physics engine (`hibi_convex_pieces`).
 #![no_main]
 
 use core::ptr::null;
@@ -165,15 +166,49 @@ fn fragments(u: &mut Unstructured, g: &Plate) -> Result<()> {
         // area, holes take theirs off.
         let plate = f64::from(g.width) * f64::from(g.height);
         assert!(((covered - plate) / plate).abs() <= 1e-4, "fragments cover {covered} of a {plate} plate ({r} rings)");
+        let mut points = Vec::with_capacity(p);
         for i in 0..p {
             let x: hibi_vec2 = pb.get(i);
             assert!(finite(&[x.x, x.y]), "{x:?}");
+            points.push(x);
         }
+        let rings: Vec<Ring> = (0..r).map(|i| rb.get(i)).collect();
+        pieces_cover(&rings, &points, plate);
     } else {
         assert!(!(outs && a.1 && b.1), "fragments refused buffers that fit: {status}");
         assert!(rb.untouched() && pb.untouched() && rw == WRITTEN && pw == WRITTEN, "a failing call wrote");
     }
     Ok(())
+}
+
+/// The fragments' convex pieces for a physics engine cover the plate too, each of 3 to 8
+/// points.
+fn pieces_cover(rings: &[Ring], points: &[hibi_vec2], plate: f64) {
+    let (rp, pp) = (rings.as_ptr(), points.as_ptr());
+    let (mut words, mut triangles, mut pieces, mut written) = (0, 0, 0, 0);
+    // SAFETY: valid buffers of the lengths passed.
+    assert!(check(unsafe { hibi_pieces_scratch_size(rp, rings.len(), pp, points.len(), &mut words) }));
+    let mut s = vec![0u32; words];
+    // SAFETY: as above; the scratch holds `words` words.
+    let status = unsafe {
+        hibi_pieces_counts(rp, rings.len(), pp, points.len(), s.as_mut_ptr(), words, &mut triangles, &mut pieces)
+    };
+    assert!(check(status));
+    let mut out = vec![hibi_core::polygon::ConvexPiece::default(); pieces];
+    let (sp, op) = (s.as_mut_ptr(), out.as_mut_ptr());
+    // SAFETY: as above; `out` holds `pieces` entries.
+    let status = unsafe { hibi_convex_pieces(rp, rings.len(), pp, points.len(), sp, words, op, pieces, &mut written) };
+    assert!(check(status) && written == pieces && pieces <= triangles);
+    let mut covered = 0.0f64;
+    for piece in &out {
+        let n = piece.point_count as usize;
+        assert!((3..=8).contains(&n), "{piece:?}");
+        for k in 0..n {
+            let (a, b) = (points[piece.points[k] as usize], points[piece.points[(k + 1) % n] as usize]);
+            covered += 0.5 * (f64::from(a.x) * f64::from(b.y) - f64::from(b.x) * f64::from(a.y));
+        }
+    }
+    assert!(((covered - plate) / plate).abs() <= 1e-4, "pieces cover {covered} of a {plate} plate");
 }
 
 fn render(u: &mut Unstructured, g: &Plate) -> Result<()> {
