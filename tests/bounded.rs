@@ -9,13 +9,17 @@
 //! NaN and infinity in every float field, and the out-of-range ends, are refused through the C
 //! ABI with the field's status, nothing written.
 //!
+//! Each glass plate's fragments are then built in steps of the same budgets (`FragmentBuild`),
+//! each call within its budget and one step of a face walk.
+//!
 //! Create and render report no work count: `tests/c_examples.rs`
 //! (`c_create_and_render_work_does_not_grow_with_extreme_floats`) counts their instructions
 //! under Callgrind instead, extreme values against moderate twins of the same sizes.
 
 use hibi::*;
-use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+use hibi_core::glass::{FragmentBuild, Glass, GlassLayers, GlassParams, GlassRender};
 use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender, Solver};
+use hibi_core::polygon::Ring;
 use hibi_core::skin::{Skin, SkinLayers, SkinParams, SkinRender};
 
 /// An extreme value: its name and how to set it.
@@ -188,7 +192,46 @@ fn glass_case(name: &str, params: &GlassParams, budget: u64) -> (u64, bool) {
     let mut time = vec![0f32; 32 * 32];
     let render = GlassRender { width: 32, height: 32, ..GlassRender::default() };
     glass.render(&render, GlassLayers { time: Some(&mut time), ..GlassLayers::default() }).expect("renders");
+    fragment_build_case(name, &glass, budget);
     result
+}
+
+/// The plate's fragments built in steps of `budget` ([`FragmentBuild`]): each call within the
+/// budget and one piece (a step of a face walk: one unit, and one per half-edge around the
+/// vertex it reaches, at most its crack edges and two border edges), and, once finished, the
+/// rings `Glass::fragments` writes.
+fn fragment_build_case(name: &str, glass: &Glass, budget: u64) {
+    // Edges counted at their ends' positions (vertices sharing a position counted together,
+    // which can only raise the bound).
+    let mut degree = std::collections::HashMap::<[u32; 2], u64>::new();
+    for i in 0..glass.crack_count() {
+        let mut last: Option<[f32; 2]> = None;
+        glass.for_each_point(i, |q| {
+            if let Some(a) = last {
+                for end in [a, q.at] {
+                    *degree.entry(end.map(f32::to_bits)).or_default() += 1;
+                }
+            }
+            last = Some(q.at);
+        });
+    }
+    let piece = 3 + degree.into_values().max().unwrap_or(0);
+    let mut store = glass.fragment_build_memory().allocate();
+    let mut build = FragmentBuild::new(glass, store.buffers()).expect("its memory");
+    let mut work = 0;
+    let (_, finished) = bounded(&format!("{name}, fragment build"), budget, piece, |b| {
+        let p = build.step(glass, b).expect("the plate it was made for");
+        let done = p.work - work;
+        work = p.work;
+        (done, p.finished)
+    });
+    if finished {
+        let mut scratch = vec![0u32; glass.params().memory().expect("valid").scratch];
+        let (rings, points) = glass.fragment_counts(&mut scratch).expect("scratch fits");
+        let mut out = (vec![Ring::default(); rings], vec![[0.0f32; 2]; points]);
+        glass.fragments(&mut scratch, &mut out.0, &mut out.1).expect("buffers fit");
+        assert!(build.rings() == out.0.as_slice() && build.points() == out.1.as_slice(), "{name}: the fragments");
+    }
 }
 
 #[test]
