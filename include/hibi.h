@@ -13,8 +13,9 @@
  * Pointers: "NULL or ..." in a function's Safety notes means NULL is safe to pass. Every
  * pointer is required (NULL gives HIBI_ERROR_NULL_POINTER and the call does nothing;
  * hibi_error_argument() then names it) except the few outputs marked "optional" (the step
- * functions' progress, hibi_glass_impact's counts), which are skipped when NULL. A buffer
- * of length 0 may be NULL. The *_written counts are required.
+ * functions' progress, hibi_glass_impact's counts), which are skipped when NULL, the layered
+ * renders' tile (NULL: the whole image) and the layers in a hibi_layers (NULL: not drawn). A
+ * buffer of length 0 may be NULL. The *_written counts are required.
  *
  * Threads: objects are independent; calls on different objects may run on any threads at
  * once. On one object, the functions that take a const pointer (counts, queries, renders,
@@ -891,7 +892,98 @@ typedef struct hibi_glass_render_params {
    * Width of a crack line in pixels (default 1.2).
    */
   float line_width;
+  /**
+   * Depth of a fully covered crack in pixels, for the normals (default 2).
+   */
+  float bump;
+  /**
+   * Draw the cracks as far as they had grown at this time step (default +infinity: all
+   * of them).
+   */
+  float until;
 } hibi_glass_render_params;
+
+/**
+ * A rectangle of an image's pixels: `width` columns from column `x`, `height` rows from row
+ * `y`. A render of a tile writes `width × height` pixels, each equal, bit for bit, to the same
+ * pixel of the whole image's render; so an engine can spread a large render over frames, or
+ * draw only what is on screen. In C: `hibi_tile`.
+ */
+typedef struct hibi_tile {
+  /**
+   * First column.
+   */
+  uint32_t x;
+  /**
+   * First row.
+   */
+  uint32_t y;
+  /**
+   * Columns.
+   */
+  uint32_t width;
+  /**
+   * Rows.
+   */
+  uint32_t height;
+} hibi_tile;
+
+/**
+ * The rasters one layered render writes (`hibi_mud_render_layers`, `hibi_glass_render_layers`,
+ * `hibi_skin_render_layers`): any of them, each NULL (not drawn) or `pixels_len` pixels of the
+ * tile, row-major, row 0 at the top. One pass draws every layer given. A model refuses a
+ * layer it does not draw with `HIBI_ERROR_RENDER_NO_LAYER` (mud and glass have no `cell`,
+ * skin no `time`).
+ */
+typedef struct hibi_layers {
+  /**
+   * Coverage, one `uint8_t` per pixel, 0 (none) to 255 (full); skin: the furrow net.
+   */
+  uint8_t *mask;
+  /**
+   * Height, one `float` per pixel.
+   */
+  float *height;
+  /**
+   * Height, one `uint16_t` per pixel, 0 to 65535 over the model's height range.
+   */
+  uint16_t *height16;
+  /**
+   * Unit tangent-space normal, three `float`s per pixel (x right, y up, z out).
+   */
+  float *normal;
+  /**
+   * The normal as 8-bit RGB, three bytes per pixel: round((c + 1) / 2 · 255).
+   */
+  uint8_t *normal_rgb8;
+  /**
+   * Time, one `float` per pixel (mud: break time; glass: the step the front passed);
+   * +infinity where no crack covers at least half of the pixel.
+   */
+  float *time;
+  /**
+   * Skin: the cell index at `cell_level`, one `uint32_t` per pixel.
+   */
+  uint32_t *cell;
+  /**
+   * A shaded preview, four bytes per pixel: 8-bit sRGB and alpha 255.
+   */
+  uint8_t *preview;
+  /**
+   * Pixels each non-NULL layer holds (at least the tile's width × height).
+   */
+  size_t pixels_len;
+  /**
+   * Working memory of `hibi_render_scratch_len` `uint32_t`s: needed for `height16`,
+   * `normal`, `normal_rgb8` and `preview` of mud and glass, and for skin's `mask`; NULL
+   * otherwise.
+   */
+  uint32_t *scratch;
+  /**
+   * `uint32_t`s at `scratch`.
+   */
+  size_t scratch_len;
+} hibi_layers;
 
 /**
  * The parameters of a drying-mud run, in the paper's units (cm, g, s). Get them from
@@ -1209,6 +1301,15 @@ typedef struct hibi_mud_render_params {
    * Where the raster's top-left corner sits in the domain, lattice units (default 0, 0).
    */
   float offset[2];
+  /**
+   * Depth of the widest groove in pixels, for the normals and the preview (default 2).
+   */
+  float bump;
+  /**
+   * Draw the cracks as far as they had broken at this time, long steps (default
+   * +infinity: all of them).
+   */
+  float until;
 } hibi_mud_render_params;
 
 /**
@@ -1352,6 +1453,33 @@ typedef struct hibi_skin_params {
 } hibi_skin_params;
 
 /**
+ * Light and palette for `hibi_skin_shade`. Defaults from `hibi_skin_shade_params_default`.
+ */
+typedef struct hibi_skin_shade_params {
+  /**
+   * Direction towards the light (x right, y up, z out of the surface); need not be unit
+   * (default from the upper left).
+   */
+  float light[3];
+  /**
+   * Ridge-top colour, linear RGB in [0, 1].
+   */
+  float ridge[3];
+  /**
+   * Furrow colour, linear RGB in [0, 1].
+   */
+  float furrow[3];
+  /**
+   * Light that reaches every pixel, in [0, 1] (default 0.35).
+   */
+  float ambient;
+  /**
+   * Strength of the highlight (Blinn–Phong), >= 0 (default 0.12).
+   */
+  float specular;
+} hibi_skin_shade_params;
+
+/**
  * How to draw a skin's maps: which level the cell layer shows. Defaults from
  * `hibi_skin_render_params_default`.
  */
@@ -1360,6 +1488,10 @@ typedef struct hibi_skin_render_params {
    * The level `HIBI_SKIN_LAYER_CELLS` shows (below `levels`; default 0, the coarsest).
    */
   uint32_t cell_level;
+  /**
+   * Light and palette of the preview layer (default `hibi_skin_shade_params_default()`).
+   */
+  struct hibi_skin_shade_params shade;
 } hibi_skin_render_params;
 
 /**
@@ -1396,33 +1528,6 @@ typedef struct hibi_skin_progress {
    */
   uint64_t work;
 } hibi_skin_progress;
-
-/**
- * Light and palette for `hibi_skin_shade`. Defaults from `hibi_skin_shade_params_default`.
- */
-typedef struct hibi_skin_shade_params {
-  /**
-   * Direction towards the light (x right, y up, z out of the surface); need not be unit
-   * (default from the upper left).
-   */
-  float light[3];
-  /**
-   * Ridge-top colour, linear RGB in [0, 1].
-   */
-  float ridge[3];
-  /**
-   * Furrow colour, linear RGB in [0, 1].
-   */
-  float furrow[3];
-  /**
-   * Light that reaches every pixel, in [0, 1] (default 0.35).
-   */
-  float ambient;
-  /**
-   * Strength of the highlight (Blinn–Phong), >= 0 (default 0.12).
-   */
-  float specular;
-} hibi_skin_shade_params;
 
 /**
  * One cell of the hierarchy.
@@ -1554,6 +1659,27 @@ typedef struct hibi_skin_cell {
  * `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
  */
 #define HIBI_ERROR_RENDER_LAYER 773
+
+/**
+ * Layered render: the model does not draw a layer that was given (mud and glass have no
+ * `cell`, skin no `time`); `hibi_error_argument()` names it.
+ */
+#define HIBI_ERROR_RENDER_NO_LAYER 775
+
+/**
+ * Layered render: the tile is empty or reaches past the image.
+ */
+#define HIBI_ERROR_RENDER_TILE 776
+
+/**
+ * Render: `bump` must be finite and >= 0.
+ */
+#define HIBI_ERROR_RENDER_BUMP 777
+
+/**
+ * Render: `until` must not be NaN (+infinity draws every crack).
+ */
+#define HIBI_ERROR_RENDER_UNTIL 778
 
 /**
  * Glass parameters: the struct did not come from `hibi_glass_params_default`.
@@ -1980,6 +2106,23 @@ hibi_status hibi_glass_render(const struct hibi_glass *glass,
                               size_t pixels_len);
 
 /**
+ * Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, time,
+ * preview; see `hibi_layers`) of `tile` (NULL: the whole `width × height` image) in one
+ * pass, each pixel bit for bit as the whole image has it. Nothing is written on failure;
+ * `hibi_error_argument()` names a refused layer (`"layers.cell"`, ...) or `"tile"`.
+ *
+ * # Safety
+ * `glass` must be NULL or a live plate; `render` and `layers` NULL or
+ * readable; `tile` NULL (the whole image) or readable; each non-NULL pointer of
+ * `layers` writable for `pixels_len` pixels of its layer (`scratch` for `scratch_len`
+ * values), none overlapping another, the object, `render` or `layers`.
+ */
+hibi_status hibi_glass_render_layers(const struct hibi_glass *glass,
+                                     const struct hibi_glass_render_params *render,
+                                     const struct hibi_tile *tile,
+                                     const struct hibi_layers *layers);
+
+/**
  * The default parameters (the paper's, and ours where it gives none; see each field),
  * with the cookie set.
  */
@@ -2237,6 +2380,23 @@ hibi_status hibi_mud_render(const struct hibi_mud *mud,
                             size_t pixels_len);
 
 /**
+ * Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, time,
+ * preview; see `hibi_layers`) of `tile` (NULL: the whole `width × height` image) in one
+ * pass, each pixel bit for bit as the whole image has it. Nothing is written on failure;
+ * `hibi_error_argument()` names a refused layer (`"layers.normal"`, ...) or `"tile"`.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `render` and `layers` NULL or
+ * readable; `tile` NULL (the whole image) or readable; each non-NULL pointer of
+ * `layers` writable for `pixels_len` pixels of its layer (`scratch` for `scratch_len`
+ * values), none overlapping another, the object, `render` or `layers`.
+ */
+hibi_status hibi_mud_render_layers(const struct hibi_mud *mud,
+                                   const struct hibi_mud_render_params *render,
+                                   const struct hibi_tile *tile,
+                                   const struct hibi_layers *layers);
+
+/**
  * Checks the rings `rings[0..rings_len]` over the points `points[0..points_len]` (glass
  * fragments or mud cells as `hibi_glass_fragments` and `hibi_mud_cells` write them, or any
  * polygons in that shape) and writes into `*scratch_len` how many `uint32_t` words of scratch
@@ -2333,6 +2493,15 @@ hibi_status hibi_convex_pieces(const struct hibi_ring *rings,
                                struct hibi_convex_piece *pieces,
                                size_t pieces_len,
                                size_t *written);
+
+/**
+ * Writes the `uint32_t`s of scratch a layered render of a `width` × `height` tile works in
+ * (the tile and a one-pixel margin).
+ *
+ * # Safety
+ * `len` must be NULL or writable.
+ */
+hibi_status hibi_render_scratch_len(uint32_t width, uint32_t height, size_t *len);
 
 /**
  * Bytes a `hibi_rng` needs in caller memory (for `hibi_rng_create_in`).
@@ -2511,6 +2680,24 @@ hibi_status hibi_skin_render(const struct hibi_skin *skin,
                              uint32_t layer,
                              void *pixels,
                              size_t pixels_len);
+
+/**
+ * Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, cell,
+ * preview; see `hibi_layers`) of `tile` (NULL: the whole surface, the params' `width ×
+ * height`) in one pass, each pixel bit for bit as the whole surface has it. The skin is
+ * only read: several threads may render one skin at once. Nothing is written on failure;
+ * `hibi_error_argument()` names a refused layer (`"layers.time"`, ...) or `"tile"`.
+ *
+ * # Safety
+ * `skin` must be NULL or a live skin; `render` and `layers` NULL or
+ * readable; `tile` NULL (the whole image) or readable; each non-NULL pointer of
+ * `layers` writable for `pixels_len` pixels of its layer (`scratch` for `scratch_len`
+ * values), none overlapping another, the object, `render` or `layers`.
+ */
+hibi_status hibi_skin_render_layers(const struct hibi_skin *skin,
+                                    const struct hibi_skin_render_params *render,
+                                    const struct hibi_tile *tile,
+                                    const struct hibi_layers *layers);
 
 /**
  * Advances the build by about `budget` units of work: outline vertices written, one per

@@ -358,6 +358,66 @@ private:
 /// Working memory of the const calls that need it (one per thread); from scratch().
 using Scratch = Buffer;
 
+/// The layers a layered render (render_layers) can draw, as flags for hibi::Layers.
+namespace layer {
+constexpr unsigned mask = 1u, height = 2u, height16 = 4u, normal = 8u, normal_rgb8 = 16u, time = 32u, cell = 64u,
+                   preview = 128u;
+}  // namespace layer
+
+/// Owned buffers for one layered render (render_layers) of a width x height image or tile:
+/// a vector per layer asked for (the others empty), and the scratch they need. Its members
+/// are plain vectors, read them after the render; c() is the hibi_layers over them.
+class Layers {
+public:
+    /// Buffers for the layers in `which` (hibi::layer flags, or-ed).
+    Layers(std::uint32_t width, std::uint32_t height, unsigned which)
+        : width_(width), height_(height) {
+        const std::size_t n = static_cast<std::size_t>(width) * height;
+        auto size = [&](unsigned flag, std::size_t per) { return (which & flag) ? n * per : 0; };
+        mask.resize(size(layer::mask, 1));
+        height16.resize(size(layer::height16, 1));
+        this->height.resize(size(layer::height, 1));
+        normal.resize(size(layer::normal, 3));
+        normal_rgb8.resize(size(layer::normal_rgb8, 3));
+        time.resize(size(layer::time, 1));
+        cell.resize(size(layer::cell, 1));
+        preview.resize(size(layer::preview, 4));
+        std::size_t len = 0;
+        if (hibi_render_scratch_len(width, height, &len) == HIBI_OK) scratch.resize(len);
+    }
+
+    std::vector<std::uint8_t> mask;
+    std::vector<float> height;
+    std::vector<std::uint16_t> height16;
+    std::vector<float> normal;
+    std::vector<std::uint8_t> normal_rgb8;
+    std::vector<float> time;
+    std::vector<std::uint32_t> cell;
+    std::vector<std::uint8_t> preview;
+    std::vector<std::uint32_t> scratch;
+
+    /// The C struct over these buffers (an empty vector is a layer not drawn).
+    hibi_layers c() noexcept {
+        auto at = [](auto &v) { return v.empty() ? nullptr : v.data(); };
+        hibi_layers out{};
+        out.mask = at(mask);
+        out.height = at(height);
+        out.height16 = at(height16);
+        out.normal = at(normal);
+        out.normal_rgb8 = at(normal_rgb8);
+        out.time = at(time);
+        out.cell = at(cell);
+        out.preview = at(preview);
+        out.pixels_len = static_cast<std::size_t>(width_) * height_;
+        out.scratch = at(scratch);
+        out.scratch_len = scratch.size();
+        return out;
+    }
+
+private:
+    std::uint32_t width_, height_;
+};
+
 namespace detail {
 struct MudDelete {
     void operator()(hibi_mud *p) const noexcept { hibi_mud_destroy(p); }
@@ -699,6 +759,25 @@ public:
         return detail::returned(try_render_time(params));
     }
 
+    /// Draws every layer `layers` gives of `tile` (nullptr: the whole image) in one pass
+    /// (hibi_mud_render_layers).
+    Status try_render_layers(const RenderParams &render, const hibi_layers &layers,
+                             const hibi_tile *tile = nullptr) const noexcept {
+        return detail::status(hibi_mud_render_layers(handle_.get(), &render, tile, &layers));
+    }
+    Status try_render_layers(const RenderParams &render, Layers &layers, const hibi_tile *tile = nullptr) const noexcept {
+        const hibi_layers c = layers.c();
+        return try_render_layers(render, c, tile);
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, const hibi_layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, Layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
+    }
+
     hibi_mud *get() const noexcept { return handle_.get(); }
 
 private:
@@ -905,6 +984,25 @@ public:
     }
     detail::Returned<std::vector<float>> render_time(const RenderParams &params) const {
         return detail::returned(try_render_time(params));
+    }
+
+    /// Draws every layer `layers` gives of `tile` (nullptr: the whole image) in one pass
+    /// (hibi_glass_render_layers).
+    Status try_render_layers(const RenderParams &render, const hibi_layers &layers,
+                             const hibi_tile *tile = nullptr) const noexcept {
+        return detail::status(hibi_glass_render_layers(handle_.get(), &render, tile, &layers));
+    }
+    Status try_render_layers(const RenderParams &render, Layers &layers, const hibi_tile *tile = nullptr) const noexcept {
+        const hibi_layers c = layers.c();
+        return try_render_layers(render, c, tile);
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, const hibi_layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, Layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
     }
 
     hibi_glass *get() const noexcept { return handle_.get(); }
@@ -1166,6 +1264,25 @@ public:
     static detail::Returned<std::vector<std::uint8_t>> shade(Span<const float> height, Span<const float> normal,
                                                              const ShadeParams &params) {
         return detail::returned(try_shade(height, normal, params));
+    }
+
+    /// Draws every layer `layers` gives of `tile` (nullptr: the whole image) in one pass
+    /// (hibi_skin_render_layers).
+    Status try_render_layers(const RenderParams &render, const hibi_layers &layers,
+                             const hibi_tile *tile = nullptr) const noexcept {
+        return detail::status(hibi_skin_render_layers(handle_.get(), &render, tile, &layers));
+    }
+    Status try_render_layers(const RenderParams &render, Layers &layers, const hibi_tile *tile = nullptr) const noexcept {
+        const hibi_layers c = layers.c();
+        return try_render_layers(render, c, tile);
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, const hibi_layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
+    }
+    detail::Returned<void> render_layers(const RenderParams &render, Layers &layers,
+                                         const hibi_tile *tile = nullptr) const {
+        return detail::returned(try_render_layers(render, layers, tile));
     }
 
     hibi_skin *get() const noexcept { return handle_.get(); }

@@ -312,7 +312,7 @@ fn skin_case(name: &str, params: &SkinParams, budget: u64) -> (u64, bool) {
     });
     let mut height = vec![0f32; (params.width * params.height) as usize];
     let layers = SkinLayers { height: Some(&mut height), ..SkinLayers::default() };
-    skin.render(&SkinRender { cell_level: 0 }, layers).expect("renders");
+    skin.render(&SkinRender { cell_level: 0, ..SkinRender::default() }, layers).expect("renders");
     assert!(height.iter().all(|h| h.is_finite()), "{name}: height not finite");
     result
 }

@@ -419,7 +419,7 @@ fn expected_skin() -> (Vec<u8>, [usize; 3], (u32, u32)) {
     let mut rgb = vec![[0u8; 3]; pixels];
     shade(&height, &normal, &ShadeParams::default(), &mut rgb).unwrap();
     let layers = SkinLayers { cell: Some(&mut map), ..SkinLayers::default() };
-    skin.render(&SkinRender { cell_level: 2 }, layers).unwrap();
+    skin.render(&SkinRender { cell_level: 2, ..SkinRender::default() }, layers).unwrap();
     let mut per_level = [0; 3];
     for c in skin.cells() {
         per_level[c.level as usize] += 1;
@@ -1052,6 +1052,7 @@ fn check_results(output: &str, flags: &[&str], standard: &str) {
         "mud try_render_height(): yes; status 1 [mud]",
         "mud try_render_time(): yes; status 1 [mud]",
         "mud caller memory, same mask: yes",
+        "mud try_render_layers: yes; status 775 [layers.cell]",
         "glass try_preset: yes; status 1093 []",
         "glass try_memory_size: yes; status 1024 []",
         "glass try_create: yes; status 1025 []",
@@ -1078,6 +1079,7 @@ fn check_results(output: &str, flags: &[&str], standard: &str) {
         "glass try_render_time(view): yes; status 3 [pixels]",
         "glass try_render_mask(): yes; status 1 [glass]",
         "glass try_render_time(): yes; status 1 [glass]",
+        "glass try_render_layers: yes; status 775 [layers.cell]",
         "glass try_impact: yes; status 1089 []",
         "skin try_preset: yes; status 1348 []",
         "skin try_memory_size: yes; status 1280 []",
@@ -1096,6 +1098,7 @@ fn check_results(output: &str, flags: &[&str], standard: &str) {
         "skin try_render_height(): yes; status 1 [skin]",
         "skin try_render_normal(): yes; status 1 [skin]",
         "skin try_render_cells(): yes; status 1346 []",
+        "skin try_render_layers: yes; status 775 [layers.time]",
         "skin try_shade(views): yes; status 3 [rgb]",
         "skin try_shade(): yes; status 3 [normal]",
     ];
@@ -1427,4 +1430,146 @@ fn c_explicit_mud_runs_end_where_f32_cannot_settle() {
         "hexagonal 4x4, break stretch 3, gamma 0.99: status 0, finished 1, growth 100 or more: yes, broken 33",
     ];
     assert_eq!(output.lines().collect::<Vec<_>>(), expected, "{output}");
+}
+
+/// The layers the C program `tests/c/every_layer.c` wrote into `dir` for `model`.
+fn c_layer(dir: &Path, model: &str, layer: &str) -> Vec<u8> {
+    std::fs::read(dir.join(format!("{model}.{layer}"))).unwrap_or_else(|e| panic!("{model}.{layer}: {e}"))
+}
+
+/// Every [`hibi_tests::EveryLayer`] layer as the bytes C holds it in, by its C name.
+fn rust_layers(every: &hibi_tests::EveryLayer, crack: bool) -> Vec<(&'static str, Vec<u8>)> {
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let mut out = vec![
+        ("mask", every.mask.clone()),
+        ("height", floats(&every.height)),
+        ("height16", every.height16.iter().flat_map(|x| x.to_le_bytes()).collect()),
+        ("normal", floats(&every.normal.concat())),
+        ("normal_rgb8", every.normal_rgb8.concat()),
+        ("preview", every.preview.concat()),
+    ];
+    if crack {
+        out.push(("time", floats(&every.time)));
+    } else {
+        out.push(("cell", every.cell.iter().flat_map(|x| x.to_le_bytes()).collect()));
+    }
+    out
+}
+
+/// A PNG the command line wrote: width, height and its samples (16-bit ones big-endian, as
+/// PNG stores them).
+fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file)).read_info().expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size().expect("a size")];
+    let info = reader.next_frame(&mut buf).expect("a frame");
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// Runs the command line for `model` with `args` and each layer, and checks each PNG's pixels
+/// against the layers C drew (the time layer as the command line encodes it: 0 at the earliest
+/// break, 65534 at the latest, 65535 where nothing broke).
+fn cli_pictures_equal_c_layers(dir: &Path, model: &str, args: &[&str], layers: &[&str]) {
+    let hibi = hibi_tests::cli_dir().join("hibi");
+    for &layer in layers {
+        let png = dir.join(format!("cli-{model}-{layer}.png"));
+        let status = std::process::Command::new(&hibi)
+            .arg(model)
+            .args(args)
+            .args(["--quiet", "--layer", layer, "--output"])
+            .arg(&png)
+            .status()
+            .expect("run hibi");
+        assert!(status.success(), "hibi {model} {args:?} --layer {layer}");
+        let (_, _, pixels) = read_png(&png);
+        let expected: Vec<u8> = match layer {
+            "mask" => c_layer(dir, model, "mask"),
+            "height" => c_layer(dir, model, "height16").chunks(2).flat_map(|b| [b[1], b[0]]).collect(),
+            "normal" => c_layer(dir, model, "normal_rgb8"),
+            "shaded" => c_layer(dir, model, "preview").chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect(),
+            "time" => {
+                let t: Vec<f32> =
+                    c_layer(dir, model, "time").chunks(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+                let finite = t.iter().copied().filter(|t| t.is_finite());
+                let (first, last) = finite.fold((f32::MAX, f32::MIN), |(a, b), t| (a.min(t), b.max(t)));
+                let span = if last > first { last - first } else { 1.0 };
+                let code = |t: f32| if t.is_finite() { ((t - first) / span * 65534.0).round() as u16 } else { 65535 };
+                t.iter().flat_map(|&t| code(t).to_be_bytes()).collect()
+            }
+            other => unreachable!("{other}"),
+        };
+        assert!(pixels == expected, "hibi {model} --layer {layer}: the PNG's pixels differ from C's layer");
+    }
+}
+
+/// One call draws every layer of every model from C; each layer's bytes equal Rust's render of
+/// the same scene, and the command line's PNG of each layer has the same pixels; a tile of each
+/// model equals the whole image there; layers a model lacks and tiles past the edge are refused
+/// by name.
+#[test]
+fn c_renders_every_layer_of_every_model_in_one_call() {
+    use hibi_core::glass::{Glass, GlassParams, GlassRender};
+    use hibi_core::mud::{Mud, MudParams, MudRender};
+    use hibi_core::skin::{Skin, SkinParams, SkinRender};
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("every_layer");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a directory for the layers");
+    let output = regression("tests/c/every_layer.c");
+    // Again, writing the layers.
+    let (written, stderr) = build_and_run_capturing(
+        &c_compiler(),
+        "c99",
+        "tests/c/every_layer.c",
+        Linkage::Sanitized,
+        &[dir.to_str().expect("a UTF-8 path")],
+    );
+    assert!(stderr.is_empty() && written == output, "{stderr}");
+    for model in ["mud", "glass", "skin"] {
+        assert_eq!(line(&output, &format!("{model} tile equal")), format!("{model} tile equal: yes"));
+    }
+    assert_eq!(line(&output, "mud cell layer"), "mud cell layer: status 775, layers.cell");
+    assert_eq!(line(&output, "glass tile past"), "glass tile past the edge: status 776, tile");
+    assert_eq!(line(&output, "skin mask without"), "skin mask without scratch: status 3, layers.scratch");
+
+    // Rust, the same scenes.
+    let params = MudParams { columns: 32, rows: 32, ..MudParams::default() };
+    let mut store = params.memory().unwrap().allocate::<f32>();
+    let mut mud = Mud::new(&params, store.buffers()).unwrap();
+    mud.run().unwrap();
+    let render = MudRender::fit(mud.extent(), 128);
+    let mut every = hibi_tests::EveryLayer::new(render.width, render.height);
+    mud.render(&render, every.layers(true)).unwrap();
+    assert!(line(&output, "mud ").starts_with(&format!("mud {}x{}:", render.width, render.height)));
+    for (name, bytes) in rust_layers(&every, true) {
+        assert!(c_layer(&dir, "mud", name) == bytes, "mud {name}: C's bytes differ from Rust's");
+    }
+    let size = format!("{}x{}", render.width, render.height);
+    let mud_args = ["--columns", "32", "--rows", "32", "--size", &size];
+    cli_pictures_equal_c_layers(&dir, "mud", &mud_args, &["mask", "height", "normal", "time", "shaded"]);
+
+    let params = GlassParams { width: 160.0, height: 120.0, impact: [70.0, 50.0], ..GlassParams::default() };
+    let mut store = params.memory().unwrap().allocate();
+    let mut glass = Glass::new(&params, store.buffers()).unwrap();
+    glass.run();
+    let render = GlassRender { width: 160, height: 120, ..GlassRender::default() };
+    let mut every = hibi_tests::EveryLayer::new(160, 120);
+    glass.render(&render, every.layers(true)).unwrap();
+    for (name, bytes) in rust_layers(&every, true) {
+        assert!(c_layer(&dir, "glass", name) == bytes, "glass {name}: C's bytes differ from Rust's");
+    }
+    let glass_args = ["--width", "160", "--height", "120", "--impact", "70,50", "--size", "160x120"];
+    cli_pictures_equal_c_layers(&dir, "glass", &glass_args, &["mask", "height", "normal", "time", "shaded"]);
+
+    let params = SkinParams { width: 120, height: 100, ..hibi_core::skin::preset("fig19a").unwrap() };
+    let mut store = params.memory().unwrap().allocate();
+    let mut skin = Skin::<f32>::new(&params, store.buffers()).unwrap();
+    skin.run();
+    let mut every = hibi_tests::EveryLayer::new(120, 100);
+    skin.render(&SkinRender { cell_level: 1, ..SkinRender::default() }, every.layers(false)).unwrap();
+    for (name, bytes) in rust_layers(&every, false) {
+        assert!(c_layer(&dir, "skin", name) == bytes, "skin {name}: C's bytes differ from Rust's");
+    }
+    let skin_args = ["--preset", "fig19a", "--size", "120x100"];
+    cli_pictures_equal_c_layers(&dir, "skin", &skin_args, &["mask", "height", "normal", "shaded"]);
 }

@@ -732,26 +732,10 @@ fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// The `hibi` tool in this test's profile, built once in a target directory of its own.
-fn cli_dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let target = workspace_root().join("target/docs-cli");
-        let mut cargo = std::process::Command::new(env!("CARGO"));
-        cargo.args(["build", "-p", "hibi-cli", "--target-dir"]).arg(&target);
-        if !cfg!(debug_assertions) {
-            cargo.arg("--release");
-        }
-        let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
-        assert!(status.success(), "cargo build -p hibi-cli failed");
-        target.join(if cfg!(debug_assertions) { "debug" } else { "release" })
-    })
-}
-
 #[test]
 fn sh_blocks_run() {
     let mut failures = Vec::new();
-    let path = format!("{}:{}", cli_dir().display(), std::env::var("PATH").unwrap_or_default());
+    let path = format!("{}:{}", hibi_tests::cli_dir().display(), std::env::var("PATH").unwrap_or_default());
     for (n, b) in all_blocks().into_iter().enumerate() {
         if !matches!(b.language(), "sh" | "bash") || b.not_run.is_some() {
             continue;

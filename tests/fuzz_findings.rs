@@ -488,7 +488,7 @@ fn a_cell_reaching_far_past_the_surface_renders_its_pixels_only() {
         }
         let pixels = 33 * 33;
         let (mut height, mut cells) = (vec![f32::NAN; pixels], vec![u32::MAX - 1; pixels]);
-        let render = hibi_skin_render_params { cell_level: 0 };
+        let render = hibi_skin_render_params { cell_level: 0, ..hibi_skin_render_params_default() };
         let mut skin = core::ptr::null_mut();
         let mut progress = hibi_skin_progress::default();
         // SAFETY: valid pointers, buffers of the lengths passed.
@@ -529,7 +529,7 @@ fn a_periodic_skin_stretched_past_the_fixed_point_builds_and_renders() {
     level.stretch = [1e30, 1.0];
     let pixels = 45 * 46;
     let mut height = vec![f32::NAN; pixels];
-    let render = hibi_skin_render_params { cell_level: 0 };
+    let render = hibi_skin_render_params { cell_level: 0, ..hibi_skin_render_params_default() };
     let mut skin = core::ptr::null_mut();
     let mut progress = hibi_skin_progress::default();
     // SAFETY: valid pointers, a buffer of the length passed.

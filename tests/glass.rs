@@ -142,7 +142,7 @@ fn readout(g: &Glass) -> String {
         (0..g.crack_count()).map(|i| (g.crack(i).unwrap(), points(g, i))).collect();
     let render = GlassRender { width: 64, height: 64, ..GlassRender::default() };
     let (mut mask, mut time) = (vec![0u8; 64 * 64], vec![0f32; 64 * 64]);
-    g.render(&render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time) }).unwrap();
+    g.render(&render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time), ..Default::default() }).unwrap();
     let progress = hibi_core::glass::GlassProgress { work: 0, ..g.progress() };
     let time: Vec<u32> = time.iter().map(|t| t.to_bits()).collect();
     format!("{cracks:?} {progress:?} {:?} {mask:?} {time:?} {:?}", g.impact_counts(), fragments_of(g))
@@ -404,7 +404,7 @@ fn rasters_draw_the_network_and_date_its_pixels() {
         let mut untouched = vec![9u8; 320 * 320 - 1];
         assert_eq!(
             g.render(&render, GlassLayers { mask: Some(&mut untouched), ..Default::default() }),
-            Err(RasterError::BufferTooSmall { needed: 320 * 320 })
+            Err(RasterError::BufferTooSmall { layer: hibi_core::raster::Layer::Mask, needed: 320 * 320 })
         );
         assert!(untouched.iter().all(|&v| v == 9));
         let thin = GlassRender { line_width: 0.0, ..render };

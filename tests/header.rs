@@ -26,6 +26,7 @@ fn header_is_fresh() {
         .with_src(root.join("core/src/glass/output.rs"))
         .with_src(root.join("core/src/polygon/ring.rs"))
         .with_src(root.join("core/src/polygon/pieces.rs"))
+        .with_src(root.join("core/src/raster/tile.rs"))
         .generate()
         .expect("cbindgen parses ffi/src")
         .write(&mut generated);

@@ -65,7 +65,7 @@ fn skin_in(params: &SkinParams, m: &SkinMemory, short: Option<usize>) -> Result<
     let pixels = (params.width * params.height) as usize;
     let (mut height, mut cell) = (vec![0.0; pixels], vec![0u32; pixels]);
     let layers = SkinLayers { height: Some(&mut height), cell: Some(&mut cell), ..SkinLayers::default() };
-    skin.render(&SkinRender { cell_level: params.levels - 1 }, layers)?;
+    skin.render(&SkinRender { cell_level: params.levels - 1, ..SkinRender::default() }, layers)?;
     assert!(cell.iter().all(|&c| c != hibi_core::skin::NO_CELL), "every pixel lies in a cell");
     Ok(())
 }

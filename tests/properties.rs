@@ -740,7 +740,7 @@ fn skin_outputs_in_range(skin: &Skin, p: &hibi_skin_params, end: &hibi_skin_prog
         }
         let pixels = (p.width * p.height) as usize;
         let (mut height, mut normal, mut map) = (vec![0f32; pixels], vec![0f32; 3 * pixels], vec![0u32; pixels]);
-        let render = hibi_skin_render_params { cell_level };
+        let render = hibi_skin_render_params { cell_level, ..hibi_skin_render_params_default() };
         let layers = [
             (HIBI_SKIN_LAYER_HEIGHT, height.as_mut_ptr().cast(), pixels),
             (HIBI_SKIN_LAYER_NORMAL, normal.as_mut_ptr().cast(), 3 * pixels),

@@ -244,12 +244,17 @@ fn each_map_is_the_same_alone_or_with_the_others() {
             for level in 0..p.levels {
                 let (mut alone, mut with) = (vec![0u32; n], vec![0u32; n]);
                 skin.render(
-                    &SkinRender { cell_level: level },
+                    &SkinRender { cell_level: level, ..SkinRender::default() },
                     SkinLayers { cell: Some(&mut alone), ..SkinLayers::default() },
                 )
                 .unwrap();
-                let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut with) };
-                skin.render(&SkinRender { cell_level: level }, layers).unwrap();
+                let layers = SkinLayers {
+                    height: Some(&mut h),
+                    normal: Some(&mut nm),
+                    cell: Some(&mut with),
+                    ..SkinLayers::default()
+                };
+                skin.render(&SkinRender { cell_level: level, ..SkinRender::default() }, layers).unwrap();
                 assert!(alone == owner[level as usize], "{name}: cell map of level {level}");
                 assert!(with == alone, "{name}: cell map of level {level} with the other maps");
                 assert!(bits(&h) == bits(&together_h), "{name}: heights with cell map {level}");
@@ -394,7 +399,7 @@ fn bad_input_is_refused_and_nothing_is_written() {
         assert!(short.iter().all(|&v| v == 5.0) && normal.iter().all(|v| *v == [5.0; 3]));
         let mut ids = vec![9u32; 64 * 64];
         let layers = SkinLayers { cell: Some(&mut ids), ..SkinLayers::default() };
-        assert_eq!(skin.render(&SkinRender { cell_level: 3 }, layers), Err(SkinError::Level));
+        assert_eq!(skin.render(&SkinRender { cell_level: 3, ..SkinRender::default() }, layers), Err(SkinError::Level));
         assert!(ids.iter().all(|&v| v == 9));
         let (h, n) = maps(skin);
         let mut rgb = vec![[1u8; 3]; 64 * 64];
@@ -437,8 +442,13 @@ fn a_fig19a_skin_builds_and_renders_in_a_32_kib_stack() {
             with_skin(&p, |skin| {
                 let n = (p.width * p.height) as usize;
                 let (mut h, mut nm, mut c) = (vec![0.0f32; n], vec![[0.0f32; 3]; n], vec![0u32; n]);
-                let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut nm), cell: Some(&mut c) };
-                skin.render(&SkinRender { cell_level: 2 }, layers).unwrap();
+                let layers = SkinLayers {
+                    height: Some(&mut h),
+                    normal: Some(&mut nm),
+                    cell: Some(&mut c),
+                    ..SkinLayers::default()
+                };
+                skin.render(&SkinRender { cell_level: 2, ..SkinRender::default() }, layers).unwrap();
                 assert!(c.iter().all(|&i| i != hibi_core::skin::NO_CELL));
                 skin.cells().len()
             })

@@ -62,8 +62,8 @@ const MEASURED: usize = 512 * 1024;
 /// Every public function of every model, each measured on its own (new, run, step, every
 /// output, render), on both backends where there are two.
 fn every_public_function(peaks: &mut Calls) {
-    use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
-    use hibi_core::mud::{Mud, MudLayers, MudParams, MudRender};
+    use hibi_core::glass::{Glass, GlassParams, GlassRender};
+    use hibi_core::mud::{Mud, MudParams, MudRender};
     use hibi_core::scalar::Q16;
     use hibi_core::skin::{ShadeParams, Skin, SkinLayers, SkinParams, SkinRender, preset, shade};
 
@@ -84,10 +84,9 @@ fn every_public_function(peaks: &mut Calls) {
     measured(peaks, "Mud::statistics", || mud.statistics());
     let mut segments = vec![Default::default(); mud.segment_count()];
     measured(peaks, "Mud::segments", || mud.segments(&mut segments).expect("sized"));
-    let (mut mask, mut time, mut height) = (vec![0u8; 128 * 128], vec![0.0; 128 * 128], vec![0.0; 128 * 128]);
+    let mut every = hibi_tests::EveryLayer::new(128, 128);
     let render = MudRender { width: 128, height: 128, ..MudRender::default() };
-    let layers = MudLayers { mask: Some(&mut mask), time: Some(&mut time), height: Some(&mut height) };
-    measured(peaks, "Mud::render", || mud.render(&render, layers).expect("sized"));
+    measured(peaks, "Mud::render", || mud.render(&render, every.layers(true)).expect("sized"));
     let mut store = params.memory().expect("valid").allocate::<Q16>();
     let mut mud = measured(peaks, "Mud<Q16>::new", || Mud::new(&params, store.buffers()).expect("memory suffices"));
     measured(peaks, "Mud<Q16>::run", || mud.run().expect("stable"));
@@ -113,9 +112,8 @@ fn every_public_function(peaks: &mut Calls) {
     measured(peaks, "Glass::fragment_counts", || glass.fragment_counts(&mut scratch).expect("sized"));
     measured(peaks, "Glass::fragments", || glass.fragments(&mut scratch, &mut rings, &mut points).expect("sized"));
     let render = GlassRender { width: 160, height: 160, ..GlassRender::default() };
-    let (mut mask, mut time) = (vec![0u8; 160 * 160], vec![0.0; 160 * 160]);
-    let layers = GlassLayers { mask: Some(&mut mask), time: Some(&mut time) };
-    measured(peaks, "Glass::render", || glass.render(&render, layers).expect("sized"));
+    let mut every = hibi_tests::EveryLayer::new(160, 160);
+    measured(peaks, "Glass::render", || glass.render(&render, every.layers(true)).expect("sized"));
 
     let params = SkinParams { width: 64, height: 64, ..preset("fig19a").expect("a preset") };
     let memory = measured(peaks, "SkinParams::memory", || params.memory().expect("valid"));
@@ -123,9 +121,10 @@ fn every_public_function(peaks: &mut Calls) {
     let mut skin = measured(peaks, "Skin::new", || Skin::<f32>::new(&params, store.buffers()).expect("memory"));
     measured(peaks, "Skin::step", || skin.step(1000));
     measured(peaks, "Skin::run", || skin.run());
+    let mut every = hibi_tests::EveryLayer::new(64, 64);
+    let render = SkinRender { cell_level: 2, ..SkinRender::default() };
+    measured(peaks, "Skin::render", || skin.render(&render, every.layers(false)).expect("sized"));
     let (mut height, mut normal, mut cell) = (vec![0.0; 64 * 64], vec![[0.0; 3]; 64 * 64], vec![0u32; 64 * 64]);
-    let layers = SkinLayers { height: Some(&mut height), normal: Some(&mut normal), cell: Some(&mut cell) };
-    measured(peaks, "Skin::render", || skin.render(&SkinRender { cell_level: 2 }, layers).expect("sized"));
     let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
     measured(peaks, "Skin::render (cells)", || skin.render(&SkinRender::default(), layers).expect("sized"));
     let longest = *skin.cells().iter().max_by_key(|c| c.vertex_count).expect("cells");

@@ -174,32 +174,38 @@ fn mud_piece(s: Settings, preset: &'static str, caption: &str) -> Piece {
     let params = hibi_core::mud::preset(preset).expect("a listed preset");
     let view = mud_view(&params, s.size);
     // fig9b, a 64 cm periodic plate, is also drawn at half size to be laid 2×2.
-    let views = if preset == "fig9b" { vec![view, mud_view(&params, s.size / 2)] } else { vec![view] };
-    let run = match mud::simulate(&params, &views, &Progress::hidden()) {
+    let mut wants = vec![(view, Layer::Shaded, None)];
+    if preset == "fig9b" {
+        wants.push((mud_view(&params, s.size / 2), Layer::Shaded, None));
+    }
+    if preset == "fig10" {
+        wants.push((view, Layer::Shaded, Some(GROWTH_STILLS)));
+        wants.push((view, Layer::Shaded, Some(s.frames)));
+    }
+    let run = match mud::simulate(&params, &wants, &Progress::hidden()) {
         Ok(run) => run,
         Err(_) => unreachable!("the paper's mud presets run (the gallery test renders every one)"),
     };
-    let maps = &run.maps[0];
+    let still = &run.pictures[0][0];
     let file = format!("mud-{preset}.png");
     let mut files = Vec::new();
     let mut extra = Vec::new();
     let mut extra_command = String::new();
     if preset == "fig10" {
-        for (k, frame) in maps.growth(GROWTH_STILLS).iter().enumerate() {
+        for (k, frame) in run.pictures[1].iter().enumerate() {
             let name = format!("mud-{preset}-{}.png", k + 1);
-            files.push((name.clone(), output::encode_png(&frame.layer(Layer::Shaded, 2.0))));
+            files.push((name.clone(), output::encode_png(frame)));
             extra.push(name);
         }
-        let frames: Vec<Image> = maps.growth(s.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
-        files.push((file.clone(), output::encode_apng(&frames, 80)));
+        files.push((file.clone(), output::encode_apng(&run.pictures[2], 80)));
         extra_command = format!(" --frames {}", s.frames);
     } else {
-        files.push((file.clone(), output::encode_png(&maps.layer(Layer::Shaded, 2.0))));
+        files.push((file.clone(), output::encode_png(still)));
     }
-    let comparison = matches!(preset, "fig6a" | "fig6b").then(|| maps.layer(Layer::Shaded, 2.0));
+    let comparison = matches!(preset, "fig6a" | "fig6b").then(|| still.clone());
     let extra_card = (preset == "fig9b").then(|| {
-        let half = &run.maps[1];
-        files.push(("mud-tile-2x2.png".into(), output::encode_png(&half.layer(Layer::Shaded, 2.0).tiled(2, 2))));
+        let half = &run.pictures[1][0];
+        files.push(("mud-tile-2x2.png".into(), output::encode_png(&half.tiled(2, 2))));
         Card {
             title: "A tileable texture".into(),
             caption: format!(
@@ -234,14 +240,17 @@ fn glass_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece
     let none = GlassOptions::default();
     let (params, impacts) = glass::params(Some(preset), None, &none);
     let view = glass::view(&params, Some([s.size, s.size]), &none);
-    let run = glass::simulate(&params, &impacts, &view, &Progress::hidden())?;
+    let mut wants = vec![(Layer::Shaded, None)];
+    if preset == "fig15a" {
+        wants.push((Layer::Shaded, Some(s.frames)));
+    }
+    let run = glass::simulate(&params, &impacts, &view, &wants, &Progress::hidden())?;
     let file = format!("glass-{preset}.png");
-    let mut files = vec![(file.clone(), output::encode_png(&run.maps.layer(Layer::Shaded, 2.0)))];
+    let mut files = vec![(file.clone(), output::encode_png(&run.pictures[0][0]))];
     let mut extra = Vec::new();
     if preset == "fig15a" {
-        let frames: Vec<Image> = run.maps.growth(s.frames).iter().map(|f| f.layer(Layer::Shaded, 2.0)).collect();
         let name = format!("glass-{preset}-growth.png");
-        files.push((name.clone(), output::encode_apng(&frames, 80)));
+        files.push((name.clone(), output::encode_apng(&run.pictures[1], 80)));
         extra.push(name);
     }
     let default_params = GlassParams::default();

@@ -2,11 +2,12 @@
 //! API.
 
 use hibi_core::Spread;
-use hibi_core::glass::{Glass, GlassBuffers, GlassLayers, GlassParamError, GlassParams, GlassRender, ImpactCounts};
+use hibi_core::glass::{Glass, GlassBuffers, GlassParamError, GlassParams, GlassRender, ImpactCounts};
 
 use crate::Failure;
+use crate::args::Layer;
 use crate::args::{GlassOptions, SpreadArg};
-use crate::image::{CrackMaps, Look};
+use crate::image::{Image, crack_pictures};
 use crate::mud::degrees;
 use crate::progress::Progress;
 
@@ -65,7 +66,12 @@ pub fn params(preset: Option<&str>, seed: Option<u64>, o: &GlassOptions) -> (Gla
 pub fn view(params: &GlassParams, size: Option<[u32; 2]>, o: &GlassOptions) -> GlassRender {
     let plate = [params.width, params.height].map(|v| (v.round() as u32).clamp(1, 32_768));
     let [width, height] = size.unwrap_or(plate);
-    GlassRender { width, height, line_width: o.line_width.unwrap_or(GlassRender::default().line_width) }
+    GlassRender {
+        width,
+        height,
+        line_width: o.line_width.unwrap_or(GlassRender::default().line_width),
+        ..GlassRender::default()
+    }
 }
 
 /// The options a parameter error is about.
@@ -112,10 +118,10 @@ pub fn check(params: &GlassParams, impacts: &[[f32; 2]], render: &GlassRender) -
     Ok(())
 }
 
-/// A finished plate's maps and what to say about it.
+/// A finished plate's pictures and what to say about it.
 pub struct GlassRun {
-    /// The rasters.
-    pub maps: CrackMaps,
+    /// The pictures, one list (a still, or the frames of the growth) per picture wanted.
+    pub pictures: Vec<Vec<Image>>,
     /// The counts each impact drew.
     pub counts: Vec<ImpactCounts>,
     /// Cracks on the plate.
@@ -131,12 +137,14 @@ impl GlassRun {
     }
 }
 
-/// Grows every impact to its end, reporting to `progress`, and draws the maps. The
+/// Grows every impact to its end, reporting to `progress`, and draws every picture wanted (a
+/// layer, and a still or that many frames of the growth). The
 /// parameters and raster must have passed [`check`]. Fails when a capacity runs out.
 pub fn simulate(
     params: &GlassParams,
     impacts: &[[f32; 2]],
     render: &GlassRender,
+    wants: &[(Layer, Option<u32>)],
     progress: &Progress,
 ) -> Result<GlassRun, Failure> {
     let m = params.memory().expect("checked parameters");
@@ -166,21 +174,15 @@ pub fn simulate(
             }
         }
     }
-    let pixels = render.width as usize * render.height as usize;
-    let mut mask = vec![0u8; pixels];
-    let mut time = vec![0.0f32; pixels];
-    glass.render(render, GlassLayers { mask: Some(&mut mask), time: Some(&mut time) }).expect("the raster was checked");
-    let heights = mask.iter().map(|&m| 1.0 - f32::from(m) / 255.0).collect();
-    let maps = CrackMaps {
-        width: render.width,
-        height: render.height,
-        mask,
-        heights,
-        time,
-        periodic: false,
-        look: Look::Glass,
-    };
-    Ok(GlassRun { maps, counts, cracks: glass.crack_count() })
+    let pictures = wants
+        .iter()
+        .map(|&(layer, frames)| {
+            crack_pictures(render.width, render.height, layer, frames, |until, layers| {
+                glass.render(&GlassRender { until, ..*render }, layers).expect("the raster was checked")
+            })
+        })
+        .collect();
+    Ok(GlassRun { pictures, counts, cracks: glass.crack_count() })
 }
 
 /// Every parameter as (option, value), in the order of `--help`.

@@ -22,7 +22,9 @@ use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser};
 
 use args::{Animation, Cli, Command, GlassArgs, Layer, MudArgs, Output, SkinArgs};
-use image::{CrackMaps, Image};
+use hibi_core::glass::GlassRender;
+use hibi_core::mud::MudRender;
+use image::Image;
 use output::shown;
 use progress::Progress;
 
@@ -89,21 +91,21 @@ fn check_output(path: &Path, animation: Option<&Animation>) -> Result<(), Failur
     }
 }
 
-/// Writes a crack model's picture or its growth; says what was written.
-fn write_cracks(maps: &CrackMaps, output: &Output, animation: &Animation, path: &Path) -> Result<String, Failure> {
-    let (layer, size) = (output.layer.name(), format!("{}x{}", maps.width, maps.height));
+/// Writes a crack model's picture or its growth (`pictures`: the still, or the frames); says
+/// what was written.
+fn write_cracks(pictures: &[Image], output: &Output, animation: &Animation, path: &Path) -> Result<String, Failure> {
+    let (layer, size) = (output.layer.name(), format!("{}x{}", pictures[0].width, pictures[0].height));
     let Some(count) = animation.frames else {
-        output::write_file(path, output::encode_png(&maps.layer(output.layer, output.bump)))?;
+        output::write_file(path, output::encode_png(&pictures[0]))?;
         return Ok(format!("{} ({size} {layer})", shown(path)));
     };
-    let frames: Vec<Image> = maps.growth(count).iter().map(|f| f.layer(output.layer, output.bump)).collect();
     if animation.sequence {
         let paths = output::sequence_paths(path, count);
-        let files: Vec<_> = paths.iter().cloned().zip(frames.iter().map(output::encode_png)).collect();
+        let files: Vec<_> = paths.iter().cloned().zip(pictures.iter().map(output::encode_png)).collect();
         output::write_all(&files)?;
         Ok(format!("{} ... {} ({count} frames, {size} {layer})", shown(&paths[0]), shown(&paths[paths.len() - 1])))
     } else {
-        output::write_file(path, output::encode_apng(&frames, animation.frame_delay))?;
+        output::write_file(path, output::encode_apng(pictures, animation.frame_delay))?;
         Ok(format!("{} ({count}-frame animation, {size} {layer})", shown(path)))
     }
 }
@@ -111,16 +113,16 @@ fn write_cracks(maps: &CrackMaps, output: &Output, animation: &Animation, path: 
 /// `hibi mud`.
 fn run_mud(a: &MudArgs) -> Result<(), Failure> {
     let params = mud::params(a.preset.as_deref(), a.output.seed, &a.model);
-    let render = mud::view(&params, a.output.size, &a.model);
+    let render = MudRender { bump: a.output.bump, ..mud::view(&params, a.output.size, &a.model) };
     mud::check(&params, &render)?;
     check_animation("mud", &a.output, &a.animation)?;
     let path = output_path(&a.output, "mud");
     check_output(&path, Some(&a.animation))?;
     let progress = Progress::run("mud", a.output.quiet);
-    let run = mud::simulate(&params, &[render], &progress);
+    let run = mud::simulate(&params, &[(render, a.output.layer, a.animation.frames)], &progress);
     progress.finish();
     let run = run?;
-    let written = write_cracks(&run.maps[0], &a.output, &a.animation, &path)?;
+    let written = write_cracks(&run.pictures[0], &a.output, &a.animation, &path)?;
     if !a.output.quiet {
         eprintln!("hibi: wrote {written}: {}", run.summary());
     }
@@ -130,16 +132,16 @@ fn run_mud(a: &MudArgs) -> Result<(), Failure> {
 /// `hibi glass`.
 fn run_glass(a: &GlassArgs) -> Result<(), Failure> {
     let (params, impacts) = glass::params(a.preset.as_deref(), a.output.seed, &a.model);
-    let render = glass::view(&params, a.output.size, &a.model);
+    let render = GlassRender { bump: a.output.bump, ..glass::view(&params, a.output.size, &a.model) };
     glass::check(&params, &impacts, &render)?;
     check_animation("glass", &a.output, &a.animation)?;
     let path = output_path(&a.output, "glass");
     check_output(&path, Some(&a.animation))?;
     let progress = Progress::run("glass", a.output.quiet);
-    let run = glass::simulate(&params, &impacts, &render, &progress);
+    let run = glass::simulate(&params, &impacts, &render, &[(a.output.layer, a.animation.frames)], &progress);
     progress.finish();
     let run = run?;
-    let written = write_cracks(&run.maps, &a.output, &a.animation, &path)?;
+    let written = write_cracks(&run.pictures[0], &a.output, &a.animation, &path)?;
     if !a.output.quiet {
         eprintln!("hibi: wrote {written}: {}", run.summary());
     }

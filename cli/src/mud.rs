@@ -1,13 +1,12 @@
 //! `hibi mud`: Model A, drying mud, through `hibi_core::mud`'s public API.
 
 use hibi_core::mud::{
-    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudLayers, MudParamError, MudParams, MudRender,
-    Solver, Topology,
+    Boundary, CrackStatistics, Drive, Mud, MudBuffers, MudError, MudParamError, MudParams, MudRender, Solver, Topology,
 };
 
 use crate::Failure;
-use crate::args::{BoundaryArg, DriveArg, MudOptions, SolverArg, TopologyArg};
-use crate::image::{CrackMaps, Look};
+use crate::args::{BoundaryArg, DriveArg, Layer, MudOptions, SolverArg, TopologyArg};
+use crate::image::{Image, crack_pictures};
 use crate::progress::Progress;
 
 /// The parameters: the preset's (or the defaults), then every option given.
@@ -80,6 +79,7 @@ pub fn view(params: &MudParams, size: Option<[u32; 2]>, o: &MudOptions) -> MudRe
         min_width: o.min_width.unwrap_or(fit.min_width),
         groove_depth: o.groove_depth.unwrap_or(fit.groove_depth),
         offset: o.offset.unwrap_or(fit.offset),
+        ..fit
     }
 }
 
@@ -132,10 +132,14 @@ pub fn check(params: &MudParams, render: &MudRender) -> Result<(), Failure> {
     }
 }
 
-/// A finished run's maps and what to say about it.
+/// A picture to draw of a finished run: the view, the layer, and a still (None) or that many
+/// frames of the growth.
+pub type Want = (MudRender, Layer, Option<u32>);
+
+/// A finished run's pictures and what to say about it.
 pub struct MudRun {
-    /// The rasters, one set per view asked for.
-    pub maps: Vec<CrackMaps>,
+    /// The pictures, one list (a still, or the frames) per [`Want`].
+    pub pictures: Vec<Vec<Image>>,
     /// Crack statistics of the run.
     pub statistics: CrackStatistics,
     /// The misfit the run ended at.
@@ -161,11 +165,11 @@ fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
     by_shrink.max(by_density).clamp(0.0, 1.0)
 }
 
-/// Runs `params` to its end, reporting to `progress`, and draws the maps of every view. The
+/// Runs `params` to its end, reporting to `progress`, and draws every picture wanted. The
 /// parameters and views must have passed [`check`]. Fails, naming the options, when the
 /// explicit solver's short step fails its stability test on an irregular lattice (known only
 /// once the first steps have built the lattice).
-pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) -> Result<MudRun, Failure> {
+pub fn simulate(params: &MudParams, wants: &[Want], progress: &Progress) -> Result<MudRun, Failure> {
     let memory = params.memory().expect("checked parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let failure = |error: MudError| match error {
@@ -180,28 +184,16 @@ pub fn simulate(params: &MudParams, views: &[MudRender], progress: &Progress) ->
             break;
         }
     }
-    let maps = views
+    let pictures = wants
         .iter()
-        .map(|view| {
-            let pixels = view.width as usize * view.height as usize;
-            let mut maps = CrackMaps {
-                width: view.width,
-                height: view.height,
-                mask: vec![0; pixels],
-                heights: vec![0.0; pixels],
-                time: vec![0.0; pixels],
-                periodic: params.boundary == Boundary::Periodic,
-                look: Look::Mud,
-            };
-            let drawn = "the view was checked";
-            let layers =
-                MudLayers { mask: Some(&mut maps.mask), height: Some(&mut maps.heights), time: Some(&mut maps.time) };
-            mud.render(view, layers).expect(drawn);
-            maps
+        .map(|&(view, layer, frames)| {
+            crack_pictures(view.width, view.height, layer, frames, |until, layers| {
+                mud.render(&MudRender { until, ..view }, layers).expect("the view was checked")
+            })
         })
         .collect();
     let statistics = mud.statistics();
-    Ok(MudRun { maps, statistics, shrink: mud.progress().shrink })
+    Ok(MudRun { pictures, statistics, shrink: mud.progress().shrink })
 }
 
 /// Every parameter as (option, value), in the order of `--help`.

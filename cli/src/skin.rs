@@ -3,13 +3,12 @@
 
 use hibi_core::Spread;
 use hibi_core::skin::{
-    MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinError, SkinLayers, SkinParamError,
-    SkinParams, SkinRender, shade,
+    MAX_SEGMENTS, Profile, ShadeError, ShadeParams, SiteLayout, Skin, SkinError, SkinParamError, SkinParams, SkinRender,
 };
 
 use crate::Failure;
 use crate::args::{Layer, LayoutArg, PerLevel, SkinOptions, SpreadArg};
-use crate::image::{Image, Pixels, encode_normal};
+use crate::image::{Buffers, Image};
 
 /// The paper's image size; the presets' spacings are meant for it.
 pub const PAPER_SIZE: u32 = 400;
@@ -178,62 +177,18 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
         ));
     }
     let (width, height) = (params.width, params.height);
-    let pixels = width as usize * height as usize;
     let mut counts = vec![0usize; params.levels as usize];
     for c in skin.cells() {
         counts[c.level as usize] += 1;
     }
-    let image = match layer {
-        Layer::Mask => Image { width, height, pixels: Pixels::Gray8(furrows(&skin)?) },
-        Layer::Height | Layer::Normal | Layer::Shaded => {
-            let mut h = vec![0.0f32; pixels];
-            let mut n = vec![[0.0f32; 3]; pixels];
-            let layers = SkinLayers { height: Some(&mut h), normal: Some(&mut n), ..SkinLayers::default() };
-            skin.render(&SkinRender::default(), layers).map_err(failure)?;
-            let pixels = match layer {
-                Layer::Height => {
-                    let top = h.iter().copied().fold(0.0f32, f32::max);
-                    let top = if top > 0.0 { top } else { 1.0 };
-                    Pixels::Gray16(h.iter().map(|&v| (v / top * 65535.0).round().clamp(0.0, 65535.0) as u16).collect())
-                }
-                Layer::Normal => Pixels::Rgb8(n.iter().flat_map(|&v| encode_normal(v)).collect()),
-                _ => {
-                    let mut rgb = vec![[0u8; 3]; pixels];
-                    shade(&h, &n, light, &mut rgb).map_err(failure)?;
-                    Pixels::Rgb8(rgb.into_iter().flatten().collect())
-                }
-            };
-            Image { width, height, pixels }
-        }
-        Layer::Time => unreachable!("refused by check"),
-    };
-    Ok(SkinRun { image, cells: counts })
-}
-
-/// The furrow net: 255 on the outline of every level-1 cell, fainter for finer levels (a
-/// pixel is on an outline when its right or lower neighbour lies in another cell).
-fn furrows(skin: &Skin) -> Result<Vec<u8>, Failure> {
-    let p = *skin.params();
-    let (w, h) = (p.width as usize, p.height as usize);
-    let mut mask = vec![0u8; w * h];
-    let mut cell = vec![0u32; w * h];
-    for level in 0..p.levels {
-        let layers = SkinLayers { cell: Some(&mut cell), ..SkinLayers::default() };
-        skin.render(&SkinRender { cell_level: level }, layers).map_err(failure)?;
-        let value = [255, 160, 100, 64][level as usize];
-        for y in 0..h {
-            for x in 0..w {
-                let here = cell[y * w + x];
-                let right = if x + 1 < w { Some(y * w + x + 1) } else { p.periodic.then_some(y * w) };
-                let below = if y + 1 < h { Some((y + 1) * w + x) } else { p.periodic.then_some(x) };
-                if [right, below].into_iter().flatten().any(|j| cell[j] != here) {
-                    let m = &mut mask[y * w + x];
-                    *m = (*m).max(value);
-                }
-            }
-        }
+    if layer == Layer::Time {
+        unreachable!("refused by check");
     }
-    Ok(mask)
+    let mut buffers = Buffers::new(layer, width, height);
+    let render = SkinRender { shade: *light, ..SkinRender::default() };
+    skin.render(&render, buffers.layers()).map_err(failure)?;
+    let image = buffers.picture(width, height);
+    Ok(SkinRun { image, cells: counts })
 }
 
 /// A build or render failure.

@@ -104,7 +104,7 @@ mod tests {
         assert_eq!(glass.to_string(), GlassParamError::Speed.to_string());
         let skin = crate::skin::SkinError::Shade(ShadeError::Ambient);
         assert_eq!(skin.source().map(|s| s.to_string()), Some(ShadeError::Ambient.to_string()));
-        let raster = crate::raster::RasterError::BufferTooSmall { needed: 7 };
+        let raster = crate::raster::RasterError::BufferTooSmall { layer: crate::raster::Layer::Mask, needed: 7 };
         assert!(raster.to_string().starts_with("render: ") && raster.to_string().contains('7'));
     }
 }

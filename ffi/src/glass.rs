@@ -167,6 +167,11 @@ pub struct hibi_glass_render_params {
     pub height: u32,
     /// Width of a crack line in pixels (default 1.2).
     pub line_width: f32,
+    /// Depth of a fully covered crack in pixels, for the normals (default 2).
+    pub bump: f32,
+    /// Draw the cracks as far as they had grown at this time step (default +infinity: all
+    /// of them).
+    pub until: f32,
 }
 
 impl Outcome for hibi_glass_render_params {
@@ -176,7 +181,7 @@ impl Outcome for hibi_glass_render_params {
     }
     /// A zero-sized raster, which rendering rejects.
     fn on_panic() -> Self {
-        hibi_glass_render_params { width: 0, height: 0, line_width: 0.0 }
+        hibi_glass_render_params { width: 0, height: 0, line_width: 0.0, bump: 0.0, until: 0.0 }
     }
 }
 
@@ -196,7 +201,7 @@ convert!(hibi_glass_params <=> GlassParams, cookie: PARAMS_COOKIE {
 });
 convert!(hibi_glass_progress <=> GlassProgress { time, cracks, growing, vertices, finished, capacity_reached, work });
 convert!(hibi_glass_counts <=> ImpactCounts { radial, large, rings });
-convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width });
+convert!(hibi_glass_render_params <=> GlassRender { width, height, line_width, bump, until });
 
 lifecycle!(
     hibi_glass (glass: "plate", "its first impact at `params.impact`, ready to step"),
@@ -726,12 +731,21 @@ render! {
     hibi_glass_render(glass: hibi_glass, "plate", hibi_glass_render_params) = glass_layers, crate::status::raster_status
 }
 
+crate::raster::render_layers! {
+    /// Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, time,
+    /// preview; see `hibi_layers`) of `tile` (NULL: the whole `width × height` image) in one
+    /// pass, each pixel bit for bit as the whole image has it. Nothing is written on failure;
+    /// `hibi_error_argument()` names a refused layer (`"layers.cell"`, ...) or `"tile"`.
+    hibi_glass_render_layers(glass: hibi_glass, "plate", hibi_glass_render_params) =
+        |_, r: &GlassRender| hibi_core::raster::Tile::whole(r.width, r.height), crate::raster::layers_status
+}
+
 /// Glass's layers with `layer` to be drawn into `pixels`.
 fn glass_layers(layer: u32, pixels: Pixels<'_>) -> Result<GlassLayers<'_>, hibi_status> {
     // SAFETY (every arm): the layer's type, as the header gives it for that layer.
     Ok(match layer {
-        HIBI_GLASS_LAYER_MASK => GlassLayers { mask: Some(unsafe { pixels.values() }?), time: None },
-        HIBI_GLASS_LAYER_TIME => GlassLayers { mask: None, time: Some(unsafe { pixels.values() }?) },
+        HIBI_GLASS_LAYER_MASK => GlassLayers { mask: Some(unsafe { pixels.values() }?), ..GlassLayers::default() },
+        HIBI_GLASS_LAYER_TIME => GlassLayers { time: Some(unsafe { pixels.values() }?), ..GlassLayers::default() },
         _ => return Err(HIBI_ERROR_GLASS_RENDER_LAYER),
     })
 }

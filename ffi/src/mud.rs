@@ -196,6 +196,11 @@ pub struct hibi_mud_render_params {
     pub groove_depth: f32,
     /// Where the raster's top-left corner sits in the domain, lattice units (default 0, 0).
     pub offset: [f32; 2],
+    /// Depth of the widest groove in pixels, for the normals and the preview (default 2).
+    pub bump: f32,
+    /// Draw the cracks as far as they had broken at this time, long steps (default
+    /// +infinity: all of them).
+    pub until: f32,
 }
 
 impl crate::guard::Outcome for hibi_mud_render_params {
@@ -212,6 +217,8 @@ impl crate::guard::Outcome for hibi_mud_render_params {
             min_width: 0.0,
             groove_depth: 0.0,
             offset: [0.0; 2],
+            bump: 0.0,
+            until: 0.0,
         }
     }
 }
@@ -233,7 +240,7 @@ convert!(hibi_mud_crack_statistics <=> CrackStatistics {
     crack_density, cells, mean_cell_area, cell_area_spread, junctions, dead_ends, t_junctions,
     mean_widest_junction_angle,
 });
-convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset });
+convert!(hibi_mud_render_params <=> MudRender { width, height, width_scale, min_width, groove_depth, offset, bump, until });
 
 lifecycle!(
     hibi_mud (mud: "run", "ready to step, in time independent of the lattice's size (the first steps set it up: see `hibi_mud_step`)"),
@@ -570,6 +577,15 @@ render! {
     /// `HIBI_MUD_LAYER_MASK`, `float` for `HIBI_MUD_LAYER_HEIGHT` and `HIBI_MUD_LAYER_TIME`).
     /// `pixels_len` counts values, not bytes. Nothing is written on failure.
     hibi_mud_render(mud: hibi_mud, "run", hibi_mud_render_params) = mud_layers, crate::status::raster_status
+}
+
+crate::raster::render_layers! {
+    /// Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, time,
+    /// preview; see `hibi_layers`) of `tile` (NULL: the whole `width × height` image) in one
+    /// pass, each pixel bit for bit as the whole image has it. Nothing is written on failure;
+    /// `hibi_error_argument()` names a refused layer (`"layers.normal"`, ...) or `"tile"`.
+    hibi_mud_render_layers(mud: hibi_mud, "run", hibi_mud_render_params) =
+        |_, r: &MudRender| hibi_core::raster::Tile::whole(r.width, r.height), crate::raster::layers_status
 }
 
 /// Mud's layers with `layer` to be drawn into `pixels`.

@@ -292,6 +292,7 @@ fn skin_status(error: SkinError) -> hibi_status {
         SkinError::Shade(ShadeError::Furrow) => HIBI_ERROR_SKIN_SHADE_FURROW,
         SkinError::Shade(ShadeError::Ambient) => HIBI_ERROR_SKIN_SHADE_AMBIENT,
         SkinError::Shade(ShadeError::Specular) => HIBI_ERROR_SKIN_SHADE_SPECULAR,
+        SkinError::Raster(e) => crate::raster::layers_status(e),
     }
 }
 
@@ -307,6 +308,8 @@ fn pixels_per_unit(skin: &Skin) -> f64 {
 pub struct hibi_skin_render_params {
     /// The level `HIBI_SKIN_LAYER_CELLS` shows (below `levels`; default 0, the coarsest).
     pub cell_level: u32,
+    /// Light and palette of the preview layer (default `hibi_skin_shade_params_default()`).
+    pub shade: hibi_skin_shade_params,
 }
 
 impl crate::guard::Outcome for hibi_skin_render_params {
@@ -316,11 +319,14 @@ impl crate::guard::Outcome for hibi_skin_render_params {
     }
     /// A level past every skin's (the cell layer rejects it; the others do not read it).
     fn on_panic() -> Self {
-        hibi_skin_render_params { cell_level: u32::MAX }
+        hibi_skin_render_params {
+            cell_level: u32::MAX,
+            shade: hibi_skin_shade_params::from_core(&ShadeParams::default()),
+        }
     }
 }
 
-convert!(hibi_skin_render_params <=> SkinRender { cell_level });
+convert!(hibi_skin_render_params <=> SkinRender { cell_level, shade });
 
 /// The default render params (the cell layer shows level 0).
 #[unsafe(no_mangle)]
@@ -345,6 +351,16 @@ render! {
     /// normal layer), not bytes. The skin is only read: several threads may render one skin at
     /// once. Nothing is written on failure.
     hibi_skin_render(skin: hibi_skin, "skin", hibi_skin_render_params) = skin_layers, skin_status
+}
+
+crate::raster::render_layers! {
+    /// Draws every layer `layers` gives (mask, height, height16, normal, normal_rgb8, cell,
+    /// preview; see `hibi_layers`) of `tile` (NULL: the whole surface, the params' `width ×
+    /// height`) in one pass, each pixel bit for bit as the whole surface has it. The skin is
+    /// only read: several threads may render one skin at once. Nothing is written on failure;
+    /// `hibi_error_argument()` names a refused layer (`"layers.time"`, ...) or `"tile"`.
+    hibi_skin_render_layers(skin: hibi_skin, "skin", hibi_skin_render_params) =
+        |s: &hibi_skin, _| hibi_core::raster::Tile::whole(s.skin.params().width, s.skin.params().height), skin_status
 }
 
 /// Skin's layers with `layer` to be drawn into `pixels`.

@@ -64,6 +64,15 @@ pub const HIBI_ERROR_RENDER_OFFSET: hibi_status = 772;
 pub const HIBI_ERROR_RENDER_LINE_WIDTH: hibi_status = 774;
 /// `hibi_mud_render`: `layer` is not one of the `HIBI_MUD_LAYER_*` constants.
 pub const HIBI_ERROR_RENDER_LAYER: hibi_status = 773;
+/// Layered render: the model does not draw a layer that was given (mud and glass have no
+/// `cell`, skin no `time`); `hibi_error_argument()` names it.
+pub const HIBI_ERROR_RENDER_NO_LAYER: hibi_status = 775;
+/// Layered render: the tile is empty or reaches past the image.
+pub const HIBI_ERROR_RENDER_TILE: hibi_status = 776;
+/// Render: `bump` must be finite and >= 0.
+pub const HIBI_ERROR_RENDER_BUMP: hibi_status = 777;
+/// Render: `until` must not be NaN (+infinity draws every crack).
+pub const HIBI_ERROR_RENDER_UNTIL: hibi_status = 778;
 
 /// Glass parameters: the struct did not come from `hibi_glass_params_default`.
 pub const HIBI_ERROR_GLASS_PARAMS_NOT_INITIALISED: hibi_status = 1087;
@@ -134,6 +143,10 @@ pub(crate) fn raster_status(error: RasterError) -> hibi_status {
         RasterError::GrooveDepth => HIBI_ERROR_RENDER_GROOVE_DEPTH,
         RasterError::Offset => HIBI_ERROR_RENDER_OFFSET,
         RasterError::LineWidth => HIBI_ERROR_RENDER_LINE_WIDTH,
+        RasterError::NoLayer(_) => HIBI_ERROR_RENDER_NO_LAYER,
+        RasterError::Tile => HIBI_ERROR_RENDER_TILE,
+        RasterError::Bump => HIBI_ERROR_RENDER_BUMP,
+        RasterError::Until => HIBI_ERROR_RENDER_UNTIL,
     }
 }
 
@@ -169,6 +182,10 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RENDER_GROOVE_DEPTH => RasterError::GrooveDepth.message(),
         HIBI_ERROR_RENDER_OFFSET => RasterError::Offset.message(),
         HIBI_ERROR_RENDER_LINE_WIDTH => RasterError::LineWidth.message(),
+        HIBI_ERROR_RENDER_NO_LAYER => RasterError::NoLayer(hibi_core::raster::Layer::Cell).message(),
+        HIBI_ERROR_RENDER_TILE => RasterError::Tile.message(),
+        HIBI_ERROR_RENDER_BUMP => RasterError::Bump.message(),
+        HIBI_ERROR_RENDER_UNTIL => RasterError::Until.message(),
         HIBI_ERROR_RENDER_LAYER => c"hibi_mud_render: layer is not one of the HIBI_MUD_LAYER_* constants",
         HIBI_ERROR_GLASS_RENDER_LAYER => {
             c"hibi_glass_render: layer is not HIBI_GLASS_LAYER_MASK or HIBI_GLASS_LAYER_TIME"

@@ -307,6 +307,24 @@ static void calls_and_buffers(void) {
         render.width = 0;
         row_kept("glass-render-zero-width", hibi_glass_render(glass, &render, HIBI_GLASS_LAYER_MASK, pixels, 16),
                  pixels[0] == 0xA5);
+        render.width = 4;
+        {
+            float normals[3 * 16];
+            hibi_layers layers;
+            hibi_tile tile = {3, 0, 2, 1};
+            memset(&layers, 0, sizeof layers);
+            normals[0] = KEPT;
+            layers.mask = pixels;
+            layers.pixels_len = 16;
+            row_kept("layers-tile-past-the-edge", hibi_glass_render_layers(glass, &render, &tile, &layers),
+                     pixels[0] == 0xA5);
+            layers.normal = normals;
+            row_kept("layers-normal-without-scratch", hibi_glass_render_layers(glass, &render, NULL, &layers),
+                     pixels[0] == 0xA5 && normals[0] == KEPT);
+            layers.normal = NULL;
+            render.until = NAN;
+            row_kept("glass-until-nan", hibi_glass_render_layers(glass, &render, NULL, &layers), pixels[0] == 0xA5);
+        }
     }
     {
         hibi_mud_render_params render = hibi_mud_render_params_default();
@@ -340,6 +358,21 @@ static void calls_and_buffers(void) {
         render.groove_depth = 1.0f;
         render.offset[1] = -INFINITY;
         row_kept("mud-offset-inf", hibi_mud_render(mud, &render, HIBI_MUD_LAYER_MASK, pixels, 16), pixels[0] == 0xA5);
+        render.offset[1] = 0.0f;
+        {
+            uint32_t cells[16];
+            hibi_layers layers;
+            memset(&layers, 0, sizeof layers);
+            cells[0] = 777;
+            layers.mask = pixels;
+            layers.cell = cells;
+            layers.pixels_len = 16;
+            row_kept("layers-mud-cell", hibi_mud_render_layers(mud, &render, NULL, &layers),
+                     pixels[0] == 0xA5 && cells[0] == 777);
+            layers.cell = NULL;
+            render.bump = NAN;
+            row_kept("mud-bump-nan", hibi_mud_render_layers(mud, &render, NULL, &layers), pixels[0] == 0xA5);
+        }
     }
     {
         hibi_skin_cell cell;

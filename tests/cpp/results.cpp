@@ -58,6 +58,39 @@ template <class T>
 bool same_bytes(const std::vector<T> &a, const std::vector<T> &b) {
     return a.size() == b.size() && same_bytes(a.data(), b.data(), a.size());
 }
+
+// Every layer of hibi::Layers equal, byte for byte.
+bool same_layers(const hibi::Layers &a, const hibi::Layers &b) {
+    return same_bytes(a.mask, b.mask) && same_bytes(a.height, b.height) && same_bytes(a.height16, b.height16) &&
+           same_bytes(a.normal, b.normal) && same_bytes(a.normal_rgb8, b.normal_rgb8) && same_bytes(a.time, b.time) &&
+           same_bytes(a.cell, b.cell) && same_bytes(a.preview, b.preview);
+}
+
+// Every layer a crack model (mud, glass) draws, or a skin.
+constexpr unsigned crack_layers = hibi::layer::mask | hibi::layer::height | hibi::layer::height16 |
+                                  hibi::layer::normal | hibi::layer::normal_rgb8 | hibi::layer::time |
+                                  hibi::layer::preview;
+constexpr unsigned skin_layers = (crack_layers & ~hibi::layer::time) | hibi::layer::cell;
+
+// A model's render_layers: one pass equals the C call's layers, and a layer the model lacks is
+// refused naming it, nothing written.
+template <class Model, class CModel, class Params, class CCall>
+void layered(const char *name, const Model &model, CModel *c, const Params &render, std::uint32_t width,
+             std::uint32_t height, unsigned which, unsigned lacking, CCall c_call) {
+    hibi::Layers c_layers(width, height, which);
+    const hibi_layers c_struct = c_layers.c();
+    must(c_call(c, &render, nullptr, &c_struct));
+    hibi::Layers layers(width, height, which);
+    hibi::Status drawn = model.try_render_layers(render, layers);
+    bool ok = drawn.ok() && same_layers(layers, c_layers) && !c_layers.mask.empty();
+    hibi::Layers refused(width, height, which | lacking);
+    refused.mask.assign(refused.mask.size(), 0xA5);
+    hibi::Status failed = model.try_render_layers(render, refused);
+    ok = ok && refused.mask[0] == 0xA5;
+    char label[64];
+    std::snprintf(label, sizeof label, "%s try_render_layers", name);
+    report(label, ok, failure(failed));
+}
 // Field by field: a ring record has padding.
 template <class Ring>
 bool same_rings(const std::vector<Ring> &a, const std::vector<Ring> &b) {
@@ -360,6 +393,7 @@ void mud() {
            failure(empty.try_render_time(render)));
     hibi::Result<std::vector<std::uint8_t>> placed_mask = placed->try_render_mask(render);
     std::printf("mud caller memory, same mask: %s\n", yes(placed_mask.ok() && same_bytes(*placed_mask, c_mask)));
+    layered("mud", mud, c, render, 64, 64, crack_layers, hibi::layer::cell, hibi_mud_render_layers);
     hibi_mud_destroy(c);
 }
 
@@ -547,6 +581,8 @@ void glass() {
     report("glass try_render_time()", time_vector.ok() && same_bytes(*time_vector, c_time),
            failure(empty.try_render_time(render)));
 
+    layered("glass", glass, c, render, 64, 64, crack_layers, hibi::layer::cell, hibi_glass_render_layers);
+
     hibi_glass_counts c_counts{};
     must(hibi_glass_impact(c, 40.0f, 40.0f, &c_counts));
     hibi::Result<hibi_glass_counts> impact = glass.try_impact(40.0f, 40.0f);
@@ -663,6 +699,9 @@ void skin() {
     hibi::Result<std::vector<std::uint32_t>> map_vector = skin.try_render_cells(render);
     report("skin try_render_cells()", map_vector.ok() && same_bytes(*map_vector, c_map),
            failure(skin.try_render_cells(deep)));
+
+    layered("skin", skin, c, render, static_cast<std::uint32_t>(params.width), static_cast<std::uint32_t>(params.height),
+            skin_layers, hibi::layer::time, hibi_skin_render_layers);
 
     hibi::Span<const float> h_in(c_height), n_in(c_normal);
     drawn = hibi::Skin::try_shade(h_in, n_in, light, rgb.view(3 * px));

@@ -119,6 +119,23 @@ pub fn c_library_dir() -> &'static Path {
     })
 }
 
+/// The `hibi` tool in this test's profile, built once in a target directory of its own: the
+/// directory it is in.
+pub fn cli_dir() -> &'static Path {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let target = workspace_root().join("target/docs-cli");
+        let mut cargo = std::process::Command::new(env!("CARGO"));
+        cargo.args(["build", "-p", "hibi-cli", "--target-dir"]).arg(&target);
+        if !cfg!(debug_assertions) {
+            cargo.arg("--release");
+        }
+        let status = cargo.current_dir(workspace_root()).status().expect("run cargo");
+        assert!(status.success(), "cargo build -p hibi-cli failed");
+        target.join(if cfg!(debug_assertions) { "debug" } else { "release" })
+    })
+}
+
 /// The Rust blocks of the README and the guide, run as doctests (`tests/docs.rs` checks that
 /// every page with a Rust block is here).
 #[cfg(doctest)]
@@ -196,4 +213,74 @@ fn inclusive_costs(text: &str) -> std::collections::BTreeMap<String, u64> {
         }
     }
     costs
+}
+
+/// Owned buffers for every layer a render can write, of `pixels` pixels, and the scratch of a
+/// `width × height` tile: what a test hands a render to draw everything a model has at once.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EveryLayer {
+    pub mask: Vec<u8>,
+    pub height: Vec<f32>,
+    pub height16: Vec<u16>,
+    pub normal: Vec<[f32; 3]>,
+    pub normal_rgb8: Vec<[u8; 3]>,
+    pub time: Vec<f32>,
+    pub cell: Vec<u32>,
+    pub preview: Vec<[u8; 4]>,
+    pub scratch: Vec<u32>,
+}
+
+impl EveryLayer {
+    /// Buffers for a `width × height` tile, filled with a pattern no render writes whole.
+    pub fn new(width: u32, height: u32) -> EveryLayer {
+        let pixels = width as usize * height as usize;
+        EveryLayer {
+            mask: vec![7; pixels],
+            height: vec![-7.0; pixels],
+            height16: vec![7; pixels],
+            normal: vec![[-7.0; 3]; pixels],
+            normal_rgb8: vec![[7; 3]; pixels],
+            time: vec![-7.0; pixels],
+            cell: vec![7; pixels],
+            preview: vec![[7; 4]; pixels],
+            scratch: vec![0; hibi_core::raster::scratch_len(width, height).expect("a small tile")],
+        }
+    }
+
+    /// The core's layers over these buffers: every one but `time` (`crack`: false, for skin) or
+    /// `cell` (`crack`: true, for mud and glass).
+    pub fn layers(&mut self, crack: bool) -> hibi_core::raster::Layers<'_> {
+        hibi_core::raster::Layers {
+            mask: Some(&mut self.mask),
+            height: Some(&mut self.height),
+            height16: Some(&mut self.height16),
+            normal: Some(&mut self.normal),
+            normal_rgb8: Some(&mut self.normal_rgb8),
+            time: crack.then_some(&mut self.time[..]),
+            cell: (!crack).then_some(&mut self.cell[..]),
+            preview: Some(&mut self.preview),
+            scratch: Some(&mut self.scratch),
+        }
+    }
+
+    /// The layers' pixels `(x, y)` of a `width`-wide tile, as one comparable record (floats as
+    /// bits, so that NaN and infinity compare exactly); the scratch is left out.
+    pub fn pixel(&self, width: u32, x: u32, y: u32) -> [u32; 10] {
+        let i = (y * width + x) as usize;
+        let n = self.normal[i];
+        let c = self.normal_rgb8[i];
+        let p = self.preview[i];
+        [
+            u32::from(self.mask[i]),
+            self.height[i].to_bits(),
+            u32::from(self.height16[i]),
+            n[0].to_bits(),
+            n[1].to_bits(),
+            n[2].to_bits(),
+            u32::from_le_bytes([c[0], c[1], c[2], 0]),
+            self.time[i].to_bits(),
+            self.cell[i],
+            u32::from_le_bytes(p),
+        ]
+    }
 }

@@ -5,21 +5,13 @@
 
 use super::Mud;
 use crate::raster::{
-    Frame, RasterError, Stroke, StrokeHit, check_lengths, draw_mask, draw_time, for_each_hit, pixel_count,
+    Clip, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
+    draw_time, for_each_hit, height16, normal_rgb8, pixel_count, srgb8_opaque,
 };
 use crate::scalar::Scalar;
 
-/// The rasters one [`Mud::render`] call draws: any of them, each `width × height` values,
-/// row-major.
-#[derive(Default)]
-pub struct MudLayers<'o> {
-    /// Crack coverage, 0 (none) to 255 (full).
-    pub mask: Option<&'o mut [u8]>,
-    /// Height: 1 on a cell's surface, down to 1 − `groove_depth` in the widest crack.
-    pub height: Option<&'o mut [f32]>,
-    /// Break time in long steps of the crack covering the pixel; +∞ where there is none.
-    pub time: Option<&'o mut [f32]>,
-}
+/// The rasters one [`Mud::render`] call draws: every [`Layers`] field but `cell`.
+pub type MudLayers<'o> = Layers<'o>;
 
 /// How to draw: raster size and stroke widths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,11 +29,26 @@ pub struct MudRender {
     /// Where the raster's top-left corner sits in the domain, in lattice units (pans a
     /// periodic tile; on open lattices it shifts the view).
     pub offset: [f32; 2],
+    /// Depth of the widest groove in pixels, for the normals and the preview's shading.
+    pub bump: f32,
+    /// Draw the cracks as far as they had broken at this time (long steps): only the parts
+    /// of the network whose break time is at most `until`, at the widths the run has now;
+    /// +∞ draws them all.
+    pub until: f32,
 }
 
 impl Default for MudRender {
     fn default() -> Self {
-        MudRender { width: 512, height: 512, width_scale: 1.0, min_width: 1.0, groove_depth: 1.0, offset: [0.0; 2] }
+        MudRender {
+            width: 512,
+            height: 512,
+            width_scale: 1.0,
+            min_width: 1.0,
+            groove_depth: 1.0,
+            offset: [0.0; 2],
+            bump: 2.0,
+            until: f32::INFINITY,
+        }
     }
 }
 
@@ -76,13 +83,19 @@ impl MudRender {
         if !(self.offset[0].is_finite() && self.offset[1].is_finite()) {
             return Err(RasterError::Offset);
         }
+        if !(self.bump.is_finite() && self.bump >= 0.0) {
+            return Err(RasterError::Bump);
+        }
+        if self.until.is_nan() {
+            return Err(RasterError::Until);
+        }
         pixel_count(self.width, self.height)
     }
 }
 
 impl<S: Scalar> Mud<'_, S> {
-    /// The frame that maps the (deformed-frame) domain onto the raster.
-    fn frame(&self, render: &MudRender) -> Frame {
+    /// The frame that maps the (deformed-frame) domain onto the raster, visiting `clip`.
+    fn frame(&self, render: &MudRender, clip: Clip) -> Frame {
         let (_, deep) = self.factors();
         let [w, h] = self.lattice.extent().map(|e| e * deep.to_f32());
         Frame {
@@ -90,21 +103,25 @@ impl<S: Scalar> Mud<'_, S> {
             height: render.height,
             scale: [render.width as f32 / w, render.height as f32 / h],
             period: (self.params.boundary == super::Boundary::Periodic).then_some([w, h]),
+            clip,
         }
     }
 
     /// Pixels per lattice unit (the mean of the two axes').
     fn pixels_per_unit(&self, render: &MudRender) -> f32 {
-        let frame = self.frame(render);
+        let frame = self.frame(render, Clip::whole(1, 1));
         0.5 * (frame.scale[0] + frame.scale[1])
     }
 
-    /// Calls `visit` for every pixel of every crack stroke, each widened on either side by
-    /// `margin` pixels.
-    fn draw(&self, render: &MudRender, margin: f32, mut visit: impl FnMut(StrokeHit)) {
-        let frame = self.frame(render);
-        let pixels_per_unit = self.pixels_per_unit(render);
-        let half = |w: f32| 0.5 * (w.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width) + margin;
+    /// A crack's half stroke width in pixels, from its width in lattice units.
+    fn half_width(&self, render: &MudRender, width: f32) -> f32 {
+        0.5 * (width.max(0.0) * render.width_scale * self.pixels_per_unit(render)).max(render.min_width)
+    }
+
+    /// Calls `visit` for every pixel of `clip` that a crack stroke covers (broken by
+    /// `render.until`), each stroke widened on either side by `margin` pixels.
+    fn draw(&self, render: &MudRender, clip: Clip, margin: f32, mut visit: impl FnMut(StrokeHit)) {
+        let frame = self.frame(render, clip);
         // On a periodic lattice the view wraps: reduce the offset to one period.
         let [ox, oy] = match frame.period {
             Some([w, h]) => [
@@ -113,63 +130,178 @@ impl<S: Scalar> Mud<'_, S> {
             ],
             None => render.offset,
         };
+        let cut = render.until < f32::INFINITY;
         self.for_each_network_piece(|a, b| {
             let stroke = Stroke {
                 start: [a.at[0] - ox, a.at[1] - oy],
                 end: [b.at[0] - ox, b.at[1] - oy],
-                half_width: [half(a.width), half(b.width)],
+                half_width: [self.half_width(render, a.width) + margin, self.half_width(render, b.width) + margin],
                 value: [a.time, b.time],
             };
-            for_each_hit(&frame, &stroke, &mut visit);
+            for_each_hit(&frame, &stroke, |hit| {
+                if !cut || hit.value <= render.until {
+                    visit(hit);
+                }
+            });
         });
     }
 
-    /// Draws the requested layers (see [`MudLayers`]): the mask, an anti-aliased,
-    /// width-aware coverage; the time map, for each pixel the earliest break time of the
-    /// cracks covering at least half of it; the height map, raised cells between grooves (older, wider cracks deeper; see [`BEVEL`]).
-    /// Every buffer is checked first: nothing is written on failure.
+    /// Draws the requested layers of the whole image (see [`Mud::render_tile`]).
+    #[inline(always)]
     pub fn render(&self, render: &MudRender, layers: MudLayers<'_>) -> Result<(), RasterError> {
-        let pixels = render.validate()?;
-        let MudLayers { mask, height, time } = layers;
-        check_lengths(
-            pixels,
-            [mask.as_deref().map(<[u8]>::len), height.as_deref().map(<[f32]>::len), time.as_deref().map(<[f32]>::len)],
-        )?;
-        if let Some(out) = mask {
-            draw_mask(pixels, out, |visit| self.draw(render, 0.0, visit))?;
-        }
-        if let Some(out) = time {
-            draw_time(pixels, out, |visit| self.draw(render, 0.0, visit))?;
-        }
+        self.render_tile(render, &Tile::whole(render.width, render.height), layers)
+    }
+
+    /// Draws the requested layers (every [`Layers`] field but `cell`) of `tile` of the image
+    /// `render` describes, each pixel bit for bit as the whole image has it, in one pass:
+    ///
+    /// - mask: an anti-aliased, width-aware coverage;
+    /// - time: for each pixel the earliest break time of the cracks covering at least half of
+    ///   it;
+    /// - height: raised cells between grooves (older, wider cracks deeper; see [`BEVEL`]);
+    /// - normal: the height's, by central differences, with the widest groove `bump` pixels
+    ///   deep;
+    /// - preview: dry clay lit from the upper left, dark in the cracks.
+    ///
+    /// `height16`, `normal`, `normal_rgb8` and `preview` need the scratch. Every buffer is
+    /// checked first: nothing is written on failure. The run is only read.
+    #[inline(always)]
+    pub fn render_tile(&self, render: &MudRender, tile: &Tile, layers: MudLayers<'_>) -> Result<(), RasterError> {
+        if layers.derived() { self.render_derived(render, tile, layers) } else { self.render_own(render, tile, layers) }
+    }
+
+    /// [`Mud::render_tile`] of the mask, time and height maps only (none needs the scratch).
+    fn render_own(&self, render: &MudRender, tile: &Tile, layers: MudLayers<'_>) -> Result<(), RasterError> {
+        render.validate()?;
+        tile.check_inside(render.width, render.height)?;
+        let pixels = layers.check(tile, |l| l != Layer::Cell, |_| false)?;
+        let Layers { mask, height, time, .. } = layers;
+        self.draw_own(render, tile, pixels, mask, time);
         if let Some(out) = height {
-            self.render_height(render, pixels, out);
+            let out = &mut out[..pixels];
+            out.fill(1.0);
+            self.draw_grooves(render, tile.clip(0), |i, h| out[i] = out[i].min(h));
         }
         Ok(())
     }
 
-    /// The height map: 1 on a cell's surface. Each cell's edge rounds off over
-    /// [`BEVEL`] spacings into its crack, whose floor lies `groove_depth` times
-    /// (½ + ½ · its width over the widest crack's) below the surface: raised cells between
-    /// grooves, older (wider) cracks deeper.
-    fn render_height(&self, render: &MudRender, pixels: usize, out: &mut [f32]) {
+    /// The mask and the time map of `tile` (`pixels` pixels).
+    fn draw_own(
+        &self,
+        render: &MudRender,
+        tile: &Tile,
+        pixels: usize,
+        mask: Option<&mut [u8]>,
+        time: Option<&mut [f32]>,
+    ) {
+        let clip = tile.clip(0);
+        if let Some(out) = mask {
+            draw_mask(&mut out[..pixels], |visit| self.draw(render, clip, 0.0, visit));
+        }
+        if let Some(out) = time {
+            draw_time(&mut out[..pixels], |visit| self.draw(render, clip, 0.0, visit));
+        }
+    }
+
+    /// [`Mud::render_tile`] with a layer derived from the height (`height16`, the normals, the
+    /// preview): the heights of the tile and its margin in the scratch first.
+    fn render_derived(&self, render: &MudRender, tile: &Tile, layers: MudLayers<'_>) -> Result<(), RasterError> {
+        render.validate()?;
+        tile.check_inside(render.width, render.height)?;
+        let pixels = layers.check(tile, |l| l != Layer::Cell, |_| true)?;
+        let clip = tile.clip(0);
+        let Layers { mask, height, height16: mut h16, normal, normal_rgb8: mut n8, time, preview, scratch, .. } =
+            layers;
+        self.draw_own(render, tile, pixels, mask, time);
+        // (Checked: the derived layers need the scratch.)
+        let Some(scratch) = scratch else {
+            return Err(RasterError::BufferTooSmall { layer: Layer::Scratch, needed: 0 });
+        };
+        let periodic = self.params.boundary == super::Boundary::Periodic;
+        let mut window = HeightWindow::new(scratch, *tile, [render.width, render.height], periodic, 1.0);
+        let window_clip = window.clip();
+        self.draw_grooves(render, window_clip, |i, h| {
+            let lower = window.at(i).min(h);
+            window.set(i, lower);
+        });
+        let mut preview = preview.map(|p| &mut p[..pixels]);
+        if let Some(p) = preview.as_deref_mut() {
+            p.fill([0; 4]);
+            self.draw(render, clip, 0.0, |hit| p[hit.pixel][3] = p[hit.pixel][3].max(coverage_code(hit.coverage)));
+        }
+        let (mut height, mut normal) = (height, normal);
+        let wants_normal = normal.is_some() || n8.is_some() || preview.is_some();
+        let light = preview_light();
+        for y in 0..tile.height {
+            for x in 0..tile.width {
+                let i = y as usize * tile.width as usize + x as usize;
+                let h = window.inside(x, y);
+                if let Some(out) = height.as_deref_mut() {
+                    out[i] = h;
+                }
+                if let Some(out) = h16.as_deref_mut() {
+                    out[i] = height16(h);
+                }
+                if !wants_normal {
+                    continue;
+                }
+                let n = window.normal(x, y, render.bump);
+                if let Some(out) = normal.as_deref_mut() {
+                    out[i] = n;
+                }
+                if let Some(out) = n8.as_deref_mut() {
+                    out[i] = normal_rgb8(n);
+                }
+                if let Some(out) = preview.as_deref_mut() {
+                    out[i] = clay(n, light, f32::from(out[i][3]) / 255.0);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Calls `lower(index, height)` for every pixel of `clip` in a groove: the height map is
+    /// 1 on a cell's surface, and each cell's edge rounds off over [`BEVEL`] spacings into its
+    /// crack, whose floor lies `groove_depth` times (½ + ½ · its width over the widest crack's)
+    /// below the surface: raised cells between grooves, older (wider) cracks deeper. A pixel's
+    /// height is the lowest it is given.
+    fn draw_grooves(&self, render: &MudRender, clip: Clip, mut lower: impl FnMut(usize, f32)) {
         let mut widest = 0.0f32;
-        self.draw(render, 0.0, |hit| widest = widest.max(hit.half_width));
-        out[..pixels].fill(1.0);
+        self.for_each_network_piece(|a, b| {
+            widest = widest.max(self.half_width(render, a.width)).max(self.half_width(render, b.width));
+        });
         if widest <= 0.0 {
             return;
         }
         let bevel = BEVEL * self.pixels_per_unit(render);
-        self.draw(render, bevel, |hit| {
+        self.draw(render, clip, bevel, |hit| {
             let crack = hit.half_width - bevel;
             let from_axis = hit.depth * hit.half_width;
             // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
             let edge = if from_axis <= crack { 1.0 } else { (1.0 - (from_axis - crack) / bevel).max(0.0) };
             let floor = render.groove_depth * (0.5 + 0.5 * crack / widest);
             let groove = floor * edge * edge * hit.coverage;
-            out[hit.pixel] = out[hit.pixel].min(1.0 - groove);
+            lower(hit.pixel, 1.0 - groove);
         });
     }
 }
 
 /// How far a cell's edge rounds off into its crack in the height map [lattice spacings].
 pub const BEVEL: f32 = 0.6;
+
+/// The preview's light: from the upper left (x right, y up, z out), unit length.
+fn preview_light() -> [f32; 3] {
+    let l = [-0.5f32, 0.6, 0.62];
+    let length = libm::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    l.map(|c| c / length)
+}
+
+/// The preview's colour of a pixel with normal `n` and crack coverage `coverage`: dry clay
+/// (linear RGB 0.40, 0.27, 0.16) blending into a dark crack floor (0.035, 0.025, 0.018), lit by
+/// Lambert's law with ambient 0.35.
+fn clay(n: [f32; 3], light: [f32; 3], coverage: f32) -> [u8; 4] {
+    let (clay, crack, ambient) = ([0.40f32, 0.27, 0.16], [0.035f32, 0.025, 0.018], 0.35f32);
+    let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
+    let lit = ambient + (1.0 - ambient) * diffuse;
+    srgb8_opaque(core::array::from_fn(|k| (clay[k] + (crack[k] - clay[k]) * coverage) * lit / 0.75))
+}

@@ -4,24 +4,39 @@
 //! Rasters are computed in `f32` whatever backend the model ran on: the inputs are the
 //! models' `f32` outputs, and IEEE `f32` arithmetic gives the same pixels everywhere.
 
+mod encode;
 mod layers;
 mod regions;
 mod stroke;
+mod tile;
 
-pub use layers::{draw_mask, draw_time};
+pub use encode::{HeightWindow, height16, normal_rgb8, srgb8, srgb8_opaque};
+pub use layers::{Layer, Layers, coverage_code, draw_mask, draw_time, scratch_len};
 pub use regions::label_regions;
-pub use stroke::{Frame, Stroke, StrokeHit, for_each_hit};
+pub use stroke::{Clip, Frame, Stroke, StrokeHit, for_each_hit};
+pub use tile::Tile;
 
 /// Why a raster could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RasterError {
     /// Width or height is zero, or their product overflows.
     Size,
-    /// The pixel buffer holds fewer than width × height values.
+    /// A layer (or the scratch) holds fewer values than the tile has pixels (the scratch:
+    /// than [`scratch_len`]).
     BufferTooSmall {
-        /// Pixels the buffer must hold.
+        /// The layer that is short.
+        layer: Layer,
+        /// Values it must hold.
         needed: usize,
     },
+    /// A layer this model does not draw was asked for.
+    NoLayer(Layer),
+    /// The tile is empty or reaches past the image.
+    Tile,
+    /// `bump` is not finite or negative.
+    Bump,
+    /// `until` is NaN.
+    Until,
     /// `width_scale` is not finite or negative.
     WidthScale,
     /// `min_width` is not finite or negative.
@@ -39,12 +54,16 @@ impl RasterError {
     pub const fn message(self) -> &'static core::ffi::CStr {
         match self {
             RasterError::Size => c"render: width and height must be > 0 and their product must fit in memory",
-            RasterError::BufferTooSmall { .. } => c"render: the pixel buffer is smaller than width x height",
+            RasterError::BufferTooSmall { .. } => c"render: a layer or the scratch is smaller than the tile needs",
             RasterError::WidthScale => c"render: width_scale must be finite and >= 0",
             RasterError::MinWidth => c"render: min_width must be finite and >= 0",
             RasterError::GrooveDepth => c"render: groove_depth must be finite and >= 0",
             RasterError::Offset => c"render: offset must be finite",
             RasterError::LineWidth => c"render: line_width must be finite and > 0",
+            RasterError::NoLayer(_) => c"render: this model does not draw a layer that was asked for",
+            RasterError::Tile => c"render: the tile must be non-empty and lie inside the image",
+            RasterError::Bump => c"render: bump must be finite and >= 0",
+            RasterError::Until => c"render: until must be a number (+infinity draws every crack)",
         }
     }
 }
@@ -52,23 +71,16 @@ impl RasterError {
 impl core::fmt::Display for RasterError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            RasterError::BufferTooSmall { needed } => {
-                write!(f, "render: the pixel buffer is smaller than width x height ({needed} needed)")
+            RasterError::BufferTooSmall { layer, needed } => {
+                write!(f, "render: layer {} is too small ({needed} values needed)", layer.name())
             }
+            RasterError::NoLayer(layer) => write!(f, "render: this model has no {} layer", layer.name()),
             e => f.write_str(e.message().to_str().unwrap_or("render error")),
         }
     }
 }
 
 impl core::error::Error for RasterError {}
-
-/// Checks that every present buffer of a render holds `pixels` values, before any is written.
-pub fn check_lengths<const N: usize>(pixels: usize, lengths: [Option<usize>; N]) -> Result<(), RasterError> {
-    if lengths.into_iter().flatten().any(|n| n < pixels) {
-        return Err(RasterError::BufferTooSmall { needed: pixels });
-    }
-    Ok(())
-}
 
 /// The number of pixels of a `width` × `height` raster, checked.
 pub fn pixel_count(width: u32, height: u32) -> Result<usize, RasterError> {

@@ -34,7 +34,7 @@ pub fn label_regions(
 ) -> Result<u32, RasterError> {
     let pixels = pixel_count(width, height)?;
     if labels.len() < pixels {
-        return Err(RasterError::BufferTooSmall { needed: pixels });
+        return Err(RasterError::BufferTooSmall { layer: super::Layer::Cell, needed: pixels });
     }
     let labels = &mut labels[..pixels];
     let (w, h) = (width as usize, height as usize);
@@ -105,7 +105,7 @@ mod tests {
         assert_eq!(label_regions(5, 5, true, |i| !closed(i), &mut labels), Ok(1));
         assert_eq!(
             label_regions(5, 5, true, |_| true, &mut labels[..24]),
-            Err(RasterError::BufferTooSmall { needed: 25 })
+            Err(RasterError::BufferTooSmall { layer: super::super::Layer::Cell, needed: 25 })
         );
     }
 }

@@ -25,6 +25,31 @@ pub struct Frame {
     pub scale: [f32; 2],
     /// The domain's period (width, height) in domain units when it wraps around.
     pub period: Option<[f32; 2]>,
+    /// The pixels drawn, and how a hit's index counts them.
+    pub clip: Clip,
+}
+
+/// The rectangle of pixels a drawing visits, in the raster's pixel coordinates: `width`
+/// columns from `x` and `height` rows from `y`; a hit's index counts row-major within it. On
+/// a periodic frame it may reach past the raster's edges (the strokes' wrapped copies land
+/// there); on an open one only the pixels on the raster are visited.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Clip {
+    /// First column.
+    pub x: i64,
+    /// First row.
+    pub y: i64,
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+}
+
+impl Clip {
+    /// The whole `width` × `height` raster.
+    pub const fn whole(width: u32, height: u32) -> Clip {
+        Clip { x: 0, y: 0, width, height }
+    }
 }
 
 /// What a stroke leaves on one pixel.
@@ -61,17 +86,27 @@ pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(Stroke
 /// Draws one copy of a stroke whose ends are `a` and `b` in pixels.
 fn draw_capsule(frame: &Frame, a: [f32; 2], b: [f32; 2], stroke: &Stroke, visit: &mut impl FnMut(StrokeHit)) {
     let reach = stroke.half_width[0].max(stroke.half_width[1]) + 1.0;
-    let x0 = libm::floorf(a[0].min(b[0]) - reach).max(0.0);
-    let x1 = libm::floorf(a[0].max(b[0]) + reach).min(frame.width as f32 - 1.0);
-    let y0 = libm::floorf(a[1].min(b[1]) - reach).max(0.0);
-    let y1 = libm::floorf(a[1].max(b[1]) + reach).min(frame.height as f32 - 1.0);
+    let clip = frame.clip;
+    // The clip's first and last column and row, within the raster when it does not wrap.
+    let (mut left, mut right) = (clip.x, clip.x + i64::from(clip.width) - 1);
+    let (mut top, mut bottom) = (clip.y, clip.y + i64::from(clip.height) - 1);
+    if frame.period.is_none() {
+        (left, right) = (left.max(0), right.min(i64::from(frame.width) - 1));
+        (top, bottom) = (top.max(0), bottom.min(i64::from(frame.height) - 1));
+    }
+    let x0 = libm::floorf(a[0].min(b[0]) - reach).max(left as f32);
+    let x1 = libm::floorf(a[0].max(b[0]) + reach).min(right as f32);
+    let y0 = libm::floorf(a[1].min(b[1]) - reach).max(top as f32);
+    let y1 = libm::floorf(a[1].max(b[1]) + reach).min(bottom as f32);
     if !(x0 <= x1 && y0 <= y1) {
         return;
     }
     let d = [b[0] - a[0], b[1] - a[1]];
     let dd = d[0] * d[0] + d[1] * d[1];
-    for y in y0 as u32..=y1 as u32 {
-        for x in x0 as u32..=x1 as u32 {
+    let columns = clip.width as usize;
+    for y in y0 as i64..=y1 as i64 {
+        let row = (y - clip.y) as usize * columns;
+        for x in x0 as i64..=x1 as i64 {
             let p = [x as f32 + 0.5 - a[0], y as f32 + 0.5 - a[1]];
             let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
             let q = [p[0] - d[0] * t, p[1] - d[1] * t];
@@ -82,7 +117,7 @@ fn draw_capsule(frame: &Frame, a: [f32; 2], b: [f32; 2], stroke: &Stroke, visit:
                 continue;
             }
             visit(StrokeHit {
-                pixel: y as usize * frame.width as usize + x as usize,
+                pixel: row + (x - clip.x) as usize,
                 coverage,
                 depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
                 half_width,
@@ -97,7 +132,7 @@ mod tests {
     use super::*;
 
     fn frame(period: Option<[f32; 2]>) -> Frame {
-        Frame { width: 16, height: 8, scale: [1.0, 1.0], period }
+        Frame { width: 16, height: 8, scale: [1.0, 1.0], period, clip: Clip::whole(16, 8) }
     }
 
     #[test]

@@ -48,7 +48,7 @@ pub use params::{
 pub use presets::{PRESETS, preset};
 pub use shade::{ShadeError, ShadeParams, shade};
 pub use sites::Site;
-pub use surface::{SkinLayers, SkinRender, Wedge};
+pub use surface::{FURROWS, SkinLayers, SkinRender, Wedge};
 
 use cell::{Builder, Frame, Parent};
 use grid::EdgeGrid;
@@ -500,6 +500,8 @@ pub enum SkinError {
     Level,
     /// A shading parameter is out of range.
     Shade(ShadeError),
+    /// A render's tile or layers are refused.
+    Raster(crate::raster::RasterError),
 }
 
 impl From<SkinParamError> for SkinError {
@@ -515,6 +517,7 @@ impl core::fmt::Display for SkinError {
             SkinError::BufferTooSmall { needed } => write!(f, "skin: a caller buffer is too small ({needed} needed)"),
             SkinError::Level => f.write_str("skin: the cell-map level must be below levels"),
             SkinError::Shade(e) => e.fmt(f),
+            SkinError::Raster(e) => e.fmt(f),
         }
     }
 }
@@ -524,6 +527,7 @@ impl core::error::Error for SkinError {
         match self {
             SkinError::Param(e) => Some(e),
             SkinError::Shade(e) => Some(e),
+            SkinError::Raster(e) => Some(e),
             _ => None,
         }
     }

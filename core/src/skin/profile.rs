@@ -144,6 +144,11 @@ impl ProfileTable {
         ((k + ROUND).to_bits().wrapping_sub(ROUND.to_bits()), f - k)
     }
 
+    /// The lowest and highest sampled height.
+    pub(super) fn range(&self) -> [f32; 2] {
+        self.samples.iter().fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], s| [lo.min(s[0]), hi.max(s[0])])
+    }
+
     /// Height and slope at both ends of interval `k` (what [`blend`] weighs), apart so that a
     /// batch of lookups reads its samples in one loop and does its arithmetic in another.
     #[inline(always)]

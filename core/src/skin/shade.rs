@@ -94,10 +94,7 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
     let Some(light) = light_direction(params.light) else {
         return Err(SkinError::Shade(ShadeError::Light));
     };
-    // Blinn's half vector between the light and a viewer straight above.
-    let h = [light[0], light[1], light[2] + 1.0];
-    let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    let half = [h[0] / hl, h[1] / hl, h[2] / hl];
+    let light = Light::new(light);
     let (mut low, mut high) = (f32::INFINITY, f32::NEG_INFINITY);
     for &z in &height[..pixels] {
         low = low.min(z);
@@ -105,24 +102,46 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
     }
     let span = if high > low { high - low } else { 1.0 };
     for i in 0..pixels {
-        let n = normal[i];
-        let t = ((height[i] - low) / span).clamp(0.0, 1.0);
-        let t = libm::sqrtf(t);
-        let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
-        let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
-        let lit = params.ambient + (1.0 - params.ambient) * diffuse;
-        out[i] = core::array::from_fn(|k| {
-            let albedo = params.furrow[k] + (params.ridge[k] - params.furrow[k]) * t;
-            encode_srgb((albedo * lit + params.specular * gloss).clamp(0.0, 1.0))
-        });
+        let [r, g, b, _] = light.shade(normal[i], (height[i] - low) / span, params);
+        out[i] = [r, g, b];
     }
     Ok(())
 }
 
-/// Linear [0, 1] to an 8-bit sRGB code.
-fn encode_srgb(v: f32) -> u8 {
-    let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * libm::powf(v, 1.0 / 2.4) - 0.055 };
-    libm::roundf(s * 255.0) as u8
+/// The light of a shading: its unit direction and Blinn's half vector between it and a viewer
+/// straight above.
+pub(super) struct Light {
+    light: [f32; 3],
+    half: [f32; 3],
+}
+
+impl Light {
+    /// From a unit direction towards the light.
+    fn new(light: [f32; 3]) -> Light {
+        let h = [light[0], light[1], light[2] + 1.0];
+        let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        Light { light, half: [h[0] / hl, h[1] / hl, h[2] / hl] }
+    }
+
+    /// The light of checked shading parameters.
+    pub(super) fn of(params: &ShadeParams) -> Option<Light> {
+        light_direction(params.light).map(Light::new)
+    }
+
+    /// One pixel: normal `n`, height `t` as a fraction of the height range (clamped to
+    /// [0, 1]), as 8-bit sRGB with alpha 255. The albedo runs from the furrow colour to the
+    /// ridge colour with √t; Lambert's diffuse term plus ambient, and a Blinn–Phong highlight.
+    pub(super) fn shade(&self, n: [f32; 3], t: f32, params: &ShadeParams) -> [u8; 4] {
+        let (light, half) = (self.light, self.half);
+        let t = libm::sqrtf(t.clamp(0.0, 1.0));
+        let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
+        let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
+        let lit = params.ambient + (1.0 - params.ambient) * diffuse;
+        crate::raster::srgb8_opaque(core::array::from_fn(|k| {
+            let albedo = params.furrow[k] + (params.ridge[k] - params.furrow[k]) * t;
+            (albedo * lit + params.specular * gloss).clamp(0.0, 1.0)
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -26,30 +26,27 @@ use core::ops::Range;
 
 use super::profile::{ProfileTable, blend};
 use super::scan::{Held, held};
+use super::shade::{Light, ShadeParams};
 use super::{MAX_LEVELS, Skin, SkinCell, SkinError};
 use crate::geom::pseudo_angle;
+use crate::raster::{Layer, Layers, Tile, height16, normal_rgb8};
 use crate::scalar::Scalar;
 
-/// The maps one [`Skin::render`] call writes; each is optional and `width × height` long,
-/// row-major.
-#[derive(Default)]
-pub struct SkinLayers<'o> {
-    /// Height, the sum over levels of the profile heights (profile units).
-    pub height: Option<&'o mut [f32]>,
-    /// Unit tangent-space normal (x right, y up, z out of the surface), as in OpenGL normal
-    /// maps.
-    pub normal: Option<&'o mut [[f32; 3]]>,
-    /// For each pixel, the index in [`Skin::cells`] of its cell at [`SkinRender::cell_level`].
-    pub cell: Option<&'o mut [u32]>,
-}
+/// The maps one [`Skin::render`] call writes: every [`Layers`] field but `time`.
+pub type SkinLayers<'o> = Layers<'o>;
 
-/// How to draw: the rasters are the surface's `width × height` pixels; this picks what the
-/// cell map shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How to draw: the rasters are the surface's `width × height` pixels (or a tile of them);
+/// this picks what the cell map shows and how the preview is lit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SkinRender {
     /// The level the cell map is taken from (below `levels`; default 0, the coarsest).
     pub cell_level: u32,
+    /// Light and palette of the preview.
+    pub shade: ShadeParams,
 }
+
+/// The furrow mask's value for an outline of each level, coarsest first.
+pub const FURROWS: [u8; MAX_LEVELS] = [255, 160, 100, 64];
 
 /// Per outline edge of a cell: g (so that u = (p − p0)·g), 1 / apothem, and the pseudo-angle
 /// of the edge's first vertex seen from the centre; made once, as the cell is built.
@@ -218,6 +215,54 @@ impl Sink for Both<'_> {
     fn set(&mut self, i: usize, z: f32, normal: [f32; 3]) {
         self.0[i] = z;
         self.1[i] = normal;
+    }
+}
+
+/// Any set of maps, in the formats an engine uploads: heights (`f32`, 16-bit over
+/// `range`), normals (`f32`, 8-bit RGB) and the shaded preview.
+struct Outputs<'o> {
+    height: Option<&'o mut [f32]>,
+    height16: Option<&'o mut [u16]>,
+    normal: Option<&'o mut [[f32; 3]]>,
+    normal_rgb8: Option<&'o mut [[u8; 3]]>,
+    preview: Option<(&'o mut [[u8; 4]], Light, &'o ShadeParams)>,
+    /// The lowest height and 1 / the height range.
+    low: f32,
+    per_span: f32,
+}
+
+impl Outputs<'_> {
+    /// Whether any map the outputs hold needs the heights and normals.
+    fn shades(&self) -> bool {
+        self.height.is_some()
+            || self.height16.is_some()
+            || self.normal.is_some()
+            || self.normal_rgb8.is_some()
+            || self.preview.is_some()
+    }
+}
+
+impl Sink for Outputs<'_> {
+    const SHADES: bool = true;
+    const NORMALS: bool = true;
+    #[inline]
+    fn set(&mut self, i: usize, z: f32, normal: [f32; 3]) {
+        let t = (z - self.low) * self.per_span;
+        if let Some(out) = self.height.as_deref_mut() {
+            out[i] = z;
+        }
+        if let Some(out) = self.height16.as_deref_mut() {
+            out[i] = height16(t);
+        }
+        if let Some(out) = self.normal.as_deref_mut() {
+            out[i] = normal;
+        }
+        if let Some(out) = self.normal_rgb8.as_deref_mut() {
+            out[i] = normal_rgb8(normal);
+        }
+        if let Some((out, light, params)) = self.preview.as_mut() {
+            out[i] = light.shade(normal, t, params);
+        }
     }
 }
 
@@ -442,45 +487,175 @@ impl<S: Scalar> Ridge<'_, S> {
 }
 
 impl<S: Scalar> Skin<'_, S> {
-    /// Writes the requested maps. Every buffer is checked first: if one is too short, or the
-    /// cell level is not below `levels`, nothing is written. The skin is only read (renders
-    /// of one skin may run at once), and its working memory is on the stack (about 12 KiB in
-    /// all: `tests/stack.rs`).
+    /// Writes the requested maps of the whole surface (see [`Skin::render_tile`]).
+    #[inline(always)]
     pub fn render(&self, render: &SkinRender, layers: SkinLayers) -> Result<(), SkinError> {
-        let pixels = self.params.width as usize * self.params.height as usize;
-        let SkinLayers { height, normal, cell } = layers;
-        let cell_level = render.cell_level;
-        let lengths =
-            [height.as_ref().map(|b| b.len()), normal.as_ref().map(|b| b.len()), cell.as_ref().map(|b| b.len())];
-        if lengths.iter().flatten().any(|&n| n < pixels) {
-            return Err(SkinError::BufferTooSmall { needed: pixels });
+        self.render_tile(render, &Tile::whole(self.params.width, self.params.height), layers)
+    }
+
+    /// The lowest and highest height the surface can have: the sums over the levels of their
+    /// profiles' lowest and highest sampled points (what `height16` and the preview scale).
+    pub fn height_range(&self) -> [f32; 2] {
+        let levels = &self.build.levels[..self.params.levels as usize];
+        levels.iter().fold([0.0, 0.0], |[lo, hi], l| {
+            let [a, b] = l.table.range();
+            [lo + a, hi + b]
+        })
+    }
+
+    /// Writes the requested maps (every [`Layers`] field but `time`) of `tile` of the surface,
+    /// each pixel bit for bit as the whole surface has it, in one pass: the height (the sum
+    /// over levels of the profile heights; `height16` over [`Skin::height_range`]); the normal
+    /// (the profiles' slopes, Fig. 10); the cell map (for each pixel the index in
+    /// [`Skin::cells`] of its cell at `cell_level`); the furrow mask ([`FURROWS`]: a pixel on
+    /// the outline of a cell of a level, where its right or lower neighbour lies in another
+    /// cell of that level; it needs the scratch); the shaded preview ([`super::shade`]'s
+    /// lighting, the height scaled over [`Skin::height_range`]).
+    ///
+    /// Every buffer is checked first: if one is too short, the cell level is not below
+    /// `levels`, or the preview's shading is out of range, nothing is written. The skin is only
+    /// read (renders of one skin may run at once), and its working memory is on the stack
+    /// (about 12 KiB in all: `tests/stack.rs`).
+    #[inline(always)]
+    pub fn render_tile(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
+        if layers.derived() || layers.mask.is_some() {
+            self.render_derived(render, tile, layers)
+        } else {
+            self.render_own(render, tile, layers)
         }
-        if cell.is_some() && cell_level >= self.params.levels {
+    }
+
+    /// Checks a render's tile, layers and cell level; the tile's pixel count.
+    fn check_render(&self, render: &SkinRender, tile: &Tile, layers: &SkinLayers) -> Result<usize, SkinError> {
+        tile.check_inside(self.params.width, self.params.height).map_err(SkinError::Raster)?;
+        let pixels = layers.check(tile, |l| l != Layer::Time, |l| l.mask.is_some()).map_err(SkinError::Raster)?;
+        if layers.cell.is_some() && render.cell_level >= self.params.levels {
             return Err(SkinError::Level);
         }
+        Ok(pixels)
+    }
+
+    /// [`Skin::render_tile`] of the height, normal and cell maps only.
+    fn render_own(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
+        let pixels = self.check_render(render, tile, &layers)?;
+        let Layers { height, normal, cell, .. } = layers;
         let cell = cell.map(|c| {
             c[..pixels].fill(u32::MAX);
-            (&mut c[..pixels], cell_level)
+            (&mut c[..pixels], render.cell_level)
         });
         // (Every pixel lies in a cell and is set; the fill is what a pixel in none would read.)
         let flat = unit_normal([0.0; 2]);
         match (height.map(|h| &mut h[..pixels]), normal.map(|n| &mut n[..pixels])) {
-            (None, None) => self.draw(&mut NoMaps, cell),
+            (None, None) => self.draw(&mut NoMaps, cell, tile),
             (Some(h), None) => {
                 h.fill(0.0);
-                self.draw(&mut Heights(h), cell);
+                self.draw(&mut Heights(h), cell, tile);
             }
             (None, Some(n)) => {
                 n.fill(flat);
-                self.draw(&mut Normals(n), cell);
+                self.draw(&mut Normals(n), cell, tile);
             }
             (Some(h), Some(n)) => {
                 h.fill(0.0);
                 n.fill(flat);
-                self.draw(&mut Both(h, n), cell);
+                self.draw(&mut Both(h, n), cell, tile);
             }
         }
         Ok(())
+    }
+
+    /// [`Skin::render_tile`] with a derived layer (`height16`, `normal_rgb8`, the preview, the
+    /// furrow mask).
+    fn render_derived(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
+        let pixels = self.check_render(render, tile, &layers)?;
+        let light = match layers.preview {
+            Some(_) => {
+                render.shade.validate().map_err(SkinError::Shade)?;
+                Light::of(&render.shade)
+            }
+            None => None,
+        };
+        let Layers { mask, height, height16, normal, normal_rgb8, cell, preview, scratch, .. } = layers;
+        let cell = cell.map(|c| {
+            c[..pixels].fill(u32::MAX);
+            (&mut c[..pixels], render.cell_level)
+        });
+        let [low, high] = self.height_range();
+        let per_span = if high > low { 1.0 / (high - low) } else { 1.0 };
+        let mut outputs = Outputs {
+            height: height.map(|h| &mut h[..pixels]),
+            height16: height16.map(|h| &mut h[..pixels]),
+            normal: normal.map(|n| &mut n[..pixels]),
+            normal_rgb8: normal_rgb8.map(|n| &mut n[..pixels]),
+            preview: preview.zip(light).map(|(p, l)| (&mut p[..pixels], l, &render.shade)),
+            low,
+            per_span,
+        };
+        if outputs.shades() {
+            self.draw(&mut outputs, cell, tile);
+        } else {
+            self.draw(&mut NoMaps, cell, tile);
+        }
+        if let (Some(mask), Some(scratch)) = (mask, scratch) {
+            self.draw_furrows(tile, &mut mask[..pixels], scratch);
+        }
+        Ok(())
+    }
+
+    /// The furrow mask of `tile` ([`FURROWS`]), working in `scratch`: per level, the cell map of
+    /// the tile with one more column on the right and one more row below (wrapping on a
+    /// periodic surface, absent past an open one's edge), then the outlines it shows.
+    fn draw_furrows(&self, tile: &Tile, mask: &mut [u8], scratch: &mut [u32]) {
+        let (w, h) = (self.params.width, self.params.height);
+        let periodic = self.params.periodic;
+        let (tw, th) = (tile.width as usize, tile.height as usize);
+        let columns = tw + 1;
+        let map = &mut scratch[..columns * (th + 1)];
+        // The surface column (row) of the margin, if there is one.
+        let beyond = |start: u32, length: u32, size: u32| match start + length {
+            end if end < size => Some(end),
+            _ if periodic => Some(0),
+            _ => None,
+        };
+        let (margin_x, margin_y) = (beyond(tile.x, tile.width, w), beyond(tile.y, tile.height, h));
+        mask.fill(0);
+        let mut held = held();
+        for level in 0..self.params.levels {
+            map.fill(u32::MAX);
+            for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
+                self.for_each_run(c, &mut held, |_, x0, x1, wx, wy| {
+                    let n = (x1 - x0) as u32;
+                    let mut put_row = |r: usize| {
+                        let (s, e) = (wx.max(tile.x), (wx + n).min(tile.x + tile.width));
+                        if s < e {
+                            let at = r * columns + (s - tile.x) as usize;
+                            map[at..at + (e - s) as usize].fill(index as u32);
+                        }
+                        if margin_x.is_some_and(|m| (wx..wx + n).contains(&m)) {
+                            map[r * columns + tw] = index as u32;
+                        }
+                    };
+                    if (tile.y..tile.y + tile.height).contains(&wy) {
+                        put_row((wy - tile.y) as usize);
+                    }
+                    if margin_y == Some(wy) {
+                        put_row(th);
+                    }
+                });
+            }
+            let value = FURROWS[level as usize];
+            for y in 0..th {
+                for x in 0..tw {
+                    let here = map[y * columns + x];
+                    let right = (x + 1 < tw || margin_x.is_some()).then(|| map[y * columns + x + 1]);
+                    let below = (y + 1 < th || margin_y.is_some()).then(|| map[(y + 1) * columns + x]);
+                    if [right, below].into_iter().flatten().any(|other| other != here) {
+                        let m = &mut mask[y * tw + x];
+                        *m = (*m).max(value);
+                    }
+                }
+            }
+        }
     }
 
     /// Sets every pixel's height and normal in `sink`, summed over the levels, and writes the
@@ -490,16 +665,16 @@ impl<S: Scalar> Skin<'_, S> {
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
     /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
     /// while its descendants are drawn.
-    fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>) {
-        let width = self.params.width as usize;
+    fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>, tile: &Tile) {
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
             let Some((map, level)) = cell else { return };
             let mut held = held();
             for (index, c) in self.cells().iter().enumerate().filter(|(_, c)| c.level == level) {
                 self.for_each_run(c, &mut held, |_, x0, x1, wx, wy| {
-                    let i0 = wy as usize * width + wx as usize;
-                    map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
+                    if let Some((x0, x1, i0)) = clip_run(tile, x0, x1, wx, wy) {
+                        map[i0..i0 + (x1 - x0) as usize].fill(index as u32);
+                    }
                 });
             }
             return;
@@ -533,7 +708,7 @@ impl<S: Scalar> Skin<'_, S> {
             let view = Fans { wedges, at: &fans, finest };
             let mut map = cell.as_mut().map(|(map, level)| (&mut **map, fans[*level as usize].cell));
             self.for_each_run(c, &mut held, |y, x0, x1, wx, wy| {
-                let i0 = wy as usize * width + wx as usize;
+                let Some((x0, x1, i0)) = clip_run(tile, x0, x1, wx, wy) else { return };
                 if let Some((map, owner)) = map.as_mut() {
                     map[i0..i0 + (x1 - x0) as usize].fill(*owner);
                 }
@@ -594,6 +769,22 @@ impl<S: Scalar> Skin<'_, S> {
             }
         });
     }
+}
+
+/// The part of a run (`x0..x1` unwrapped, starting at surface column `wx` of row `wy`) in
+/// `tile`: its unwrapped columns and the tile index of its first pixel.
+fn clip_run(tile: &Tile, x0: i64, x1: i64, wx: u32, wy: u32) -> Option<(i64, i64, usize)> {
+    if !(tile.y..tile.y + tile.height).contains(&wy) {
+        return None;
+    }
+    let n = (x1 - x0) as u32;
+    let (s, e) = (wx.max(tile.x), (wx + n).min(tile.x + tile.width));
+    if s >= e {
+        return None;
+    }
+    let start = x0 + i64::from(s - wx);
+    let i0 = (wy - tile.y) as usize * tile.width as usize + (s - tile.x) as usize;
+    Some((start, start + i64::from(e - s), i0))
 }
 
 /// Fills `slots` (one more than `outline`'s length) with the fan of the cell of this

@@ -564,9 +564,9 @@ fn glass(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
     let render = GlassRender { width: PLATE, height: PLATE, ..GlassRender::default() };
     let pixels = (PLATE * PLATE) as usize;
     let refused = |_| Failure("glass: render refused");
-    let mask = glass.render(&render, GlassLayers { mask: Some(&mut out.mask[..pixels]), time: None });
+    let mask = glass.render(&render, GlassLayers { mask: Some(&mut out.mask[..pixels]), ..GlassLayers::default() });
     emit(names[2], mask.map_err(refused).map(|()| fnv1a64(&out.mask[..pixels])));
-    let time = glass.render(&render, GlassLayers { mask: None, time: Some(&mut out.floats[..pixels]) });
+    let time = glass.render(&render, GlassLayers { time: Some(&mut out.floats[..pixels]), ..GlassLayers::default() });
     emit(names[3], time.map_err(refused).map(|()| floats_hash(&out.floats[..pixels])));
 }
 
@@ -648,7 +648,8 @@ fn skin(memory: &mut Memory, emit: &mut dyn FnMut(&'static str, Outcome)) {
         let mut h = Fnv::new();
         for level in 0..params.levels {
             let layers = SkinLayers { cell: Some(&mut **cell_map), ..SkinLayers::default() };
-            skin.render(&SkinRender { cell_level: level }, layers).map_err(|_| Failure("skin: cell map refused"))?;
+            skin.render(&SkinRender { cell_level: level, ..SkinRender::default() }, layers)
+                .map_err(|_| Failure("skin: cell map refused"))?;
             cell_map.iter().for_each(|&c| h.u32(c));
         }
         Ok(h.finish())
@@ -852,7 +853,7 @@ fn small_glass(arena: &mut [u64], emit: &mut dyn FnMut(&'static str, Outcome)) {
     let mask = arena.take::<u8>(pixels, "glass: arena too small for the mask").and_then(|mask| {
         let render = GlassRender { width: SMALL_MASK, height: SMALL_MASK, ..GlassRender::default() };
         glass
-            .render(&render, GlassLayers { mask: Some(&mut *mask), time: None })
+            .render(&render, GlassLayers { mask: Some(&mut *mask), ..GlassLayers::default() })
             .map_err(|_| Failure("glass: render refused"))?;
         Ok(fnv1a64(mask))
     });

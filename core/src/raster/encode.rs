@@ -1,0 +1,96 @@
+//! Formats an engine uploads, and normals from a height field: what every model's render
+//! turns its heights, normals and colours into.
+
+use super::{Clip, Tile};
+
+/// A height in [0, 1] (clamped) as 16 bits: round(h · 65535).
+pub fn height16(h: f32) -> u16 {
+    libm::roundf(h.clamp(0.0, 1.0) * 65535.0) as u16
+}
+
+/// A unit normal as an 8-bit RGB texel: each component c as round((c · ½ + ½) · 255).
+pub fn normal_rgb8(n: [f32; 3]) -> [u8; 3] {
+    n.map(|c| libm::roundf((c * 0.5 + 0.5) * 255.0).clamp(0.0, 255.0) as u8)
+}
+
+/// Linear [0, 1] (clamped) to an 8-bit sRGB code (IEC 61966-2-1).
+pub fn srgb8(v: f32) -> u8 {
+    let v = v.clamp(0.0, 1.0);
+    let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * libm::powf(v, 1.0 / 2.4) - 0.055 };
+    libm::roundf(s * 255.0) as u8
+}
+
+/// Linear RGB as an opaque 8-bit sRGB RGBA texel.
+pub fn srgb8_opaque(c: [f32; 3]) -> [u8; 4] {
+    [srgb8(c[0]), srgb8(c[1]), srgb8(c[2]), 255]
+}
+
+/// The heights of a tile and a one-pixel margin around it, kept as `f32` bits in a render's
+/// scratch; the margin is what the tile's normals read across its edges.
+pub struct HeightWindow<'s> {
+    heights: &'s mut [u32],
+    tile: Tile,
+    /// The image's width and height.
+    image: [u32; 2],
+    periodic: bool,
+}
+
+impl<'s> HeightWindow<'s> {
+    /// A window over `scratch` (at least [`super::scratch_len`] values) for `tile` of an image
+    /// `image` pixels wide and high, every height `fill`.
+    pub fn new(scratch: &'s mut [u32], tile: Tile, image: [u32; 2], periodic: bool, fill: f32) -> Self {
+        let len = (tile.width as usize + 2) * (tile.height as usize + 2);
+        let heights = &mut scratch[..len];
+        heights.fill(fill.to_bits());
+        HeightWindow { heights, tile, image, periodic }
+    }
+
+    /// The clip a drawing into the window visits.
+    pub fn clip(&self) -> Clip {
+        self.tile.clip(1)
+    }
+
+    /// The height at a clip index.
+    pub fn at(&self, i: usize) -> f32 {
+        f32::from_bits(self.heights[i])
+    }
+
+    /// Sets the height at a clip index.
+    pub fn set(&mut self, i: usize, h: f32) {
+        self.heights[i] = h.to_bits();
+    }
+
+    /// The height of the tile's pixel (column, row within the tile).
+    pub fn inside(&self, x: u32, y: u32) -> f32 {
+        self.at((y as usize + 1) * (self.tile.width as usize + 2) + x as usize + 1)
+    }
+
+    /// The unit normal (x right, y up, z out) of the tile's pixel (column, row within the
+    /// tile), by central differences of the heights scaled by `bump` (pixels per unit of
+    /// height): across the edge of a periodic image (more than two pixels on that axis) from
+    /// the margin, one-sided at an open image's edges.
+    pub fn normal(&self, x: u32, y: u32, bump: f32) -> [f32; 3] {
+        let columns = self.tile.width as usize + 2;
+        // The neighbours of image coordinate i among n (as offsets from i) and their distance.
+        let around = |i: u32, n: u32| -> (i64, i64, f32) {
+            if self.periodic && n > 2 {
+                (-1, 1, 2.0)
+            } else {
+                let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+                (i64::from(a) - i64::from(i), i64::from(b) - i64::from(i), (b - a).max(1) as f32)
+            }
+        };
+        let (ix, iy) = (self.tile.x + x, self.tile.y + y);
+        let (left, right, dx) = around(ix, self.image[0]);
+        let (up, down, dy) = around(iy, self.image[1]);
+        let at = |dx: i64, dy: i64| {
+            let (cx, cy) = (i64::from(x) + 1 + dx, i64::from(y) + 1 + dy);
+            self.at(cy as usize * columns + cx as usize)
+        };
+        let gx = (at(right, 0) - at(left, 0)) / dx * bump;
+        // Rows run down the image; y runs up.
+        let gy = (at(0, up) - at(0, down)) / dy * bump;
+        let length = libm::sqrtf(gx * gx + gy * gy + 1.0);
+        [-gx / length, -gy / length, 1.0 / length]
+    }
+}

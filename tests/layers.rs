@@ -1,0 +1,185 @@
+//! Every layer of every model in one render call, and tiles: a render of any sub-rectangle of
+//! the image gives, bit for bit, the pixels the whole image's render gives there, for every
+//! layer, on open and periodic domains, at the edges and corners.
+
+use hibi_core::glass::{Glass, GlassParams, GlassRender};
+use hibi_core::mud::{Boundary, Mud, MudParams, MudRender};
+use hibi_core::raster::{Layer, Layers, RasterError, Tile};
+use hibi_core::skin::{Skin, SkinError, SkinParams, SkinRender, preset};
+use hibi_tests::EveryLayer;
+
+/// Tiles of a `width × height` image: corners, edges, single pixels, strips, the middle.
+fn tiles(width: u32, height: u32) -> Vec<Tile> {
+    let t = |x, y, w, h| Tile { x, y, width: w, height: h };
+    vec![
+        t(0, 0, 1, 1),
+        t(width - 1, height - 1, 1, 1),
+        t(0, 0, 17, 9),
+        t(width - 13, height - 7, 13, 7),
+        t(width - 5, 0, 5, height),
+        t(0, height / 2, width, 3),
+        t(width / 3, height / 4, width / 3, height / 2),
+        t(1, 1, width - 2, height - 2),
+        t(0, 0, width, height),
+    ]
+}
+
+/// Renders the whole image and each tile with every layer the model has, and checks that
+/// each tile's pixels equal the whole image's, bit for bit; returns the whole image.
+fn tiles_match(
+    width: u32,
+    height: u32,
+    crack: bool,
+    render: impl Fn(&Tile, Layers) -> Result<(), String>,
+) -> EveryLayer {
+    let mut whole = EveryLayer::new(width, height);
+    render(&Tile::whole(width, height), whole.layers(crack)).expect("the whole image renders");
+    for tile in tiles(width, height) {
+        let mut part = EveryLayer::new(tile.width, tile.height);
+        render(&tile, part.layers(crack)).expect("a tile renders");
+        for y in 0..tile.height {
+            for x in 0..tile.width {
+                assert_eq!(
+                    part.pixel(tile.width, x, y),
+                    whole.pixel(width, tile.x + x, tile.y + y),
+                    "{tile:?}: pixel ({x}, {y}) differs from the whole image's"
+                );
+            }
+        }
+    }
+    whole
+}
+
+fn finished_mud(params: &MudParams, run: impl FnOnce(&Mud)) {
+    let mut store = params.memory().expect("valid").allocate::<f32>();
+    let mut mud = Mud::new(params, store.buffers()).expect("memory suffices");
+    mud.run().expect("the run ends");
+    run(&mud);
+}
+
+#[test]
+fn mud_tiles_equal_the_whole_image_open_and_periodic() {
+    for boundary in [Boundary::Open, Boundary::Periodic] {
+        let params = MudParams { columns: 32, rows: 32, boundary, seed: 3, ..MudParams::default() };
+        finished_mud(&params, |mud| {
+            let render = MudRender { offset: [1.5, -2.25], ..MudRender::fit(mud.extent(), 96) };
+            let whole = tiles_match(render.width, render.height, true, |tile, layers| {
+                mud.render_tile(&render, tile, layers).map_err(|e| e.to_string())
+            });
+            assert!(whole.mask.contains(&255), "{boundary:?}: cracks are drawn");
+            assert!(whole.preview.iter().all(|p| p[3] == 255));
+            // The layers of one pass are those of separate calls.
+            let mut mask = vec![0u8; whole.mask.len()];
+            mud.render(&render, Layers { mask: Some(&mut mask), ..Layers::default() }).unwrap();
+            assert_eq!(mask, whole.mask);
+            let mut height = vec![0f32; whole.mask.len()];
+            mud.render(&render, Layers { height: Some(&mut height), ..Layers::default() }).unwrap();
+            assert_eq!(height, whole.height, "{boundary:?}: height without the scratch");
+        });
+    }
+}
+
+#[test]
+fn glass_tiles_equal_the_whole_image() {
+    let params = GlassParams { width: 120.0, height: 90.0, impact: [50.0, 40.0], seed: 5, ..GlassParams::default() };
+    let mut store = params.memory().expect("valid").allocate();
+    let mut glass = Glass::new(&params, store.buffers()).expect("memory");
+    glass.run();
+    let render = GlassRender { width: 120, height: 90, ..GlassRender::default() };
+    let whole =
+        tiles_match(120, 90, true, |tile, layers| glass.render_tile(&render, tile, layers).map_err(|e| e.to_string()));
+    assert!(whole.mask.contains(&255));
+    // Height is 1 − coverage, exactly.
+    for (h, m) in whole.height.iter().zip(&whole.mask) {
+        assert_eq!(*h, 1.0 - f32::from(*m) / 255.0);
+    }
+}
+
+#[test]
+fn skin_tiles_equal_the_whole_surface_open_and_periodic() {
+    for periodic in [false, true] {
+        let params = SkinParams { width: 90, height: 70, periodic, ..preset("fig19a").expect("a preset") };
+        let mut store = params.memory().expect("valid").allocate();
+        let mut skin = Skin::<f32>::new(&params, store.buffers()).expect("memory");
+        skin.run();
+        let render = SkinRender { cell_level: 1, ..SkinRender::default() };
+        let whole = tiles_match(90, 70, false, |tile, layers| {
+            skin.render_tile(&render, tile, layers).map_err(|e| e.to_string())
+        });
+        // Furrows: the coarsest level's outlines at 255, and cells inside them left dark.
+        assert!(whole.mask.contains(&255) && whole.mask.contains(&0));
+        assert!(whole.cell.iter().all(|&c| (c as usize) < skin.cells().len()));
+    }
+}
+
+#[test]
+fn a_model_refuses_a_layer_it_does_not_draw_and_bad_tiles_and_writes_nothing() {
+    let params = GlassParams { width: 40.0, height: 40.0, impact: [20.0; 2], ..GlassParams::default() };
+    let mut store = params.memory().expect("valid").allocate();
+    let mut glass = Glass::new(&params, store.buffers()).expect("memory");
+    glass.run();
+    let render = GlassRender { width: 40, height: 40, ..GlassRender::default() };
+    let mut every = EveryLayer::new(40, 40);
+    let untouched = every.clone();
+    let mut layers = every.layers(true);
+    let mut cell = vec![7u32; 1600];
+    layers.cell = Some(&mut cell);
+    assert_eq!(glass.render(&render, layers), Err(RasterError::NoLayer(Layer::Cell)));
+    assert_eq!(every, untouched);
+    for tile in [Tile { x: 30, y: 0, width: 11, height: 1 }, Tile { x: 0, y: 0, width: 0, height: 4 }] {
+        assert_eq!(glass.render_tile(&render, &tile, every.layers(true)), Err(RasterError::Tile), "{tile:?}");
+    }
+    let mut short = every.clone();
+    short.scratch.pop();
+    assert_eq!(
+        glass.render(&render, short.layers(true)),
+        Err(RasterError::BufferTooSmall { layer: Layer::Scratch, needed: 42 * 42 })
+    );
+    let mut no_scratch = every.layers(true);
+    no_scratch.scratch = None;
+    assert_eq!(
+        glass.render(&render, no_scratch),
+        Err(RasterError::BufferTooSmall { layer: Layer::Scratch, needed: 42 * 42 })
+    );
+    assert_eq!(every, untouched);
+
+    let params = SkinParams { width: 32, height: 32, ..preset("fig19a").expect("a preset") };
+    let mut store = params.memory().expect("valid").allocate();
+    let mut skin = Skin::<f32>::new(&params, store.buffers()).expect("memory");
+    skin.run();
+    let mut every = EveryLayer::new(32, 32);
+    let mut layers = every.layers(false);
+    let mut time = vec![0f32; 1024];
+    layers.time = Some(&mut time);
+    assert_eq!(skin.render(&SkinRender::default(), layers), Err(SkinError::Raster(RasterError::NoLayer(Layer::Time))));
+}
+
+#[test]
+fn until_draws_the_cracks_as_they_stood() {
+    let params = MudParams { columns: 32, rows: 32, seed: 9, ..MudParams::default() };
+    finished_mud(&params, |mud| {
+        let render = MudRender::fit(mud.extent(), 64);
+        let pixels = (render.width * render.height) as usize;
+        let (mut time, mut all) = (vec![0f32; pixels], vec![0u8; pixels]);
+        mud.render(&render, Layers { time: Some(&mut time), mask: Some(&mut all), ..Layers::default() }).unwrap();
+        let finite: Vec<f32> = time.iter().copied().filter(|t| t.is_finite()).collect();
+        let (first, last) = finite.iter().fold((f32::MAX, f32::MIN), |(a, b), &t| (a.min(t), b.max(t)));
+        let mut previous = 0usize;
+        for k in 0..=4 {
+            let until = first + (last - first) * k as f32 / 4.0;
+            let mut mask = vec![0u8; pixels];
+            mud.render(&MudRender { until, ..render }, Layers { mask: Some(&mut mask), ..Layers::default() }).unwrap();
+            let drawn = mask.iter().filter(|&&m| m > 0).count();
+            assert!(drawn >= previous, "the cracks grow: {drawn} < {previous}");
+            // Every pixel whose time map says it broke by then is drawn.
+            for i in 0..pixels {
+                if time[i] <= until {
+                    assert!(mask[i] > 0, "pixel {i} broke at {} <= {until}", time[i]);
+                }
+                assert!(mask[i] <= all[i]);
+            }
+            previous = drawn;
+        }
+        assert!(previous == all.iter().filter(|&&m| m > 0).count());
+    });
+}
