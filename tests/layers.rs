@@ -183,3 +183,76 @@ fn until_draws_the_cracks_as_they_stood() {
         assert!(previous == all.iter().filter(|&&m| m > 0).count());
     });
 }
+
+/// The case the Callgrind test below runs in this binary: `model:image` (`image` the image's
+/// width, or `tile` for a 64 × 64 tile of a 4096-wide image).
+const TILE_CASE: &str = "HIBI_TILE_COST_CASE";
+
+/// Renders every layer of `tile` of a model (wrapped so that Callgrind can count it alone).
+#[unsafe(no_mangle)]
+#[inline(never)]
+fn hibi_test_render_tile(draw: &dyn Fn(&Tile, Layers), tile: &Tile) {
+    let mut every = EveryLayer::new(tile.width, tile.height);
+    draw(tile, every.layers(!matches!(std::env::var(TILE_CASE).as_deref(), Ok(c) if c.starts_with("skin"))));
+    std::hint::black_box(&every);
+}
+
+/// A render's cost is set by its tile, not by the image: every layer of a 64 × 64 tile of a
+/// 4096-pixel-wide image takes fewer instructions (Callgrind, the same on any machine) than
+/// the whole of a 256-wide one, for mud and glass; a skin's tile, a sixteenth of its 400 × 400
+/// surface, takes less than a third of the whole (each render also passes over every cell).
+#[test]
+fn a_tile_costs_what_its_pixels_do_not_what_the_image_does() {
+    if let Ok(case) = std::env::var(TILE_CASE) {
+        let (model, size) = case.split_once(':').expect("model:size");
+        let huge = size == "tile";
+        match model {
+            "mud" => finished_mud(&MudParams::default(), |mud| {
+                let render = MudRender::fit(mud.extent(), if huge { 4096 } else { 256 });
+                let tile = if huge {
+                    Tile { x: 2000, y: 1500, width: 64, height: 64 }
+                } else {
+                    Tile::whole(render.width, render.height)
+                };
+                hibi_test_render_tile(&|t, l| mud.render_tile(&render, t, l).expect("renders"), &tile);
+            }),
+            "glass" => {
+                let params = GlassParams::default();
+                let mut store = params.memory().expect("valid").allocate();
+                let mut glass = Glass::new(&params, store.buffers()).expect("memory");
+                glass.run();
+                let side = if huge { 4096 } else { 256 };
+                let render = GlassRender { width: side, height: side, ..GlassRender::default() };
+                let tile =
+                    if huge { Tile { x: 2000, y: 2000, width: 64, height: 64 } } else { Tile::whole(side, side) };
+                hibi_test_render_tile(&|t, l| glass.render_tile(&render, t, l).expect("renders"), &tile);
+            }
+            _ => {
+                let params = preset("fig19a").expect("a preset");
+                let mut store = params.memory().expect("valid").allocate();
+                let mut skin = Skin::<f32>::new(&params, store.buffers()).expect("memory");
+                skin.run();
+                let tile = if huge { Tile { x: 150, y: 150, width: 100, height: 100 } } else { Tile::whole(400, 400) };
+                let render = SkinRender::default();
+                hibi_test_render_tile(&|t, l| skin.render_tile(&render, t, l).expect("renders"), &tile);
+            }
+        }
+        println!("\nrendered {case}");
+        return;
+    }
+    for (model, limit) in [("mud", 1.0), ("glass", 1.0), ("skin", 1.0 / 3.0)] {
+        let count = |size: &str| {
+            let case = format!("{model}:{size}");
+            let (stdout, instructions) = hibi_tests::callgrind_this_test(
+                "a_tile_costs_what_its_pixels_do_not_what_the_image_does",
+                "hibi_test_render_tile",
+                (TILE_CASE, &case),
+            );
+            assert!(stdout.contains(&format!("rendered {case}")), "{case}: {stdout}");
+            instructions
+        };
+        let (whole, tile) = (count("whole"), count("tile"));
+        println!("{model}: whole image {whole} instructions, tile {tile} ({:.3} of it)", tile as f64 / whole as f64);
+        assert!((tile as f64) < limit * whole as f64, "{model}: a tile took {tile} instructions, the whole {whole}");
+    }
+}

@@ -113,9 +113,10 @@ impl<S: Scalar> Mud<'_, S> {
         0.5 * (frame.scale[0] + frame.scale[1])
     }
 
-    /// A crack's half stroke width in pixels, from its width in lattice units.
-    fn half_width(&self, render: &MudRender, width: f32) -> f32 {
-        0.5 * (width.max(0.0) * render.width_scale * self.pixels_per_unit(render)).max(render.min_width)
+    /// A crack's half stroke width in pixels, from its width in lattice units, at
+    /// `pixels_per_unit` ([`Mud::pixels_per_unit`]).
+    fn half_width(render: &MudRender, pixels_per_unit: f32, width: f32) -> f32 {
+        0.5 * (width.max(0.0) * render.width_scale * pixels_per_unit).max(render.min_width)
     }
 
     /// Calls `visit` for every pixel of `clip` that a crack stroke covers (broken by
@@ -131,11 +132,13 @@ impl<S: Scalar> Mud<'_, S> {
             None => render.offset,
         };
         let cut = render.until < f32::INFINITY;
+        let ppu = self.pixels_per_unit(render);
+        let half = |w: f32| Self::half_width(render, ppu, w) + margin;
         self.for_each_network_piece(|a, b| {
             let stroke = Stroke {
                 start: [a.at[0] - ox, a.at[1] - oy],
                 end: [b.at[0] - ox, b.at[1] - oy],
-                half_width: [self.half_width(render, a.width) + margin, self.half_width(render, b.width) + margin],
+                half_width: [half(a.width), half(b.width)],
                 value: [a.time, b.time],
             };
             for_each_hit(&frame, &stroke, |hit| {
@@ -267,13 +270,14 @@ impl<S: Scalar> Mud<'_, S> {
     /// height is the lowest it is given.
     fn draw_grooves(&self, render: &MudRender, clip: Clip, mut lower: impl FnMut(usize, f32)) {
         let mut widest = 0.0f32;
+        let ppu = self.pixels_per_unit(render);
         self.for_each_network_piece(|a, b| {
-            widest = widest.max(self.half_width(render, a.width)).max(self.half_width(render, b.width));
+            widest = widest.max(Self::half_width(render, ppu, a.width)).max(Self::half_width(render, ppu, b.width));
         });
         if widest <= 0.0 {
             return;
         }
-        let bevel = BEVEL * self.pixels_per_unit(render);
+        let bevel = BEVEL * ppu;
         self.draw(render, clip, bevel, |hit| {
             let crack = hit.half_width - bevel;
             let from_axis = hit.depth * hit.half_width;
