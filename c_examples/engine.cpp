@@ -7,7 +7,9 @@
  * budget, and checks that the budgeted objects came out as one unbudgeted run of each. Mud
  * runs twice: with the quasi-static solver (the default) and with the explicit one (the
  * paper's loop, whose short steps are cut between rows of the lattice); a mud run's last
- * frames trace its crack network, within the same budget.
+ * frames trace its crack network, within the same budget. Once they are done, every layer an
+ * engine uploads (mask, 16-bit height, RGB8 normals, time or cells, an RGBA preview) is
+ * streamed a 32 x 32 tile per call, and checked against one call's whole image.
  *
  *   c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/engine.cpp \
  *       target/release/libhibi.a -lpthread -ldl -lm -o engine && ./engine frames/
@@ -74,7 +76,46 @@ struct Budget {
 };
 
 bool same(const std::vector<float> &a, const std::vector<float> &b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+/// A finished model's layers drawn a tile per frame, as an engine streams a large texture in:
+/// each call draws one `tile` × `tile` rectangle (its cost set by the tile's pixels and one pass
+/// over the cracks or cells, not by the image), copied into the full image. Returns whether
+/// the streamed image equals the one-call render of the whole, byte for byte, and counts the
+/// calls and the largest one's pixels.
+template <class Model, class Params>
+bool stream_tiles(const Model &model, const Params &render, std::uint32_t width, std::uint32_t height,
+                  unsigned which, std::uint32_t tile, unsigned &calls, std::size_t &largest) {
+    hibi::Layers whole(width, height, which), streamed(width, height, which);
+    model.render_layers(render, whole);
+    for (std::uint32_t y = 0; y < height; y += tile) {
+        for (std::uint32_t x = 0; x < width; x += tile) {
+            const hibi_tile t{x, y, std::min(tile, width - x), std::min(tile, height - y)};
+            hibi::Layers part(t.width, t.height, which);
+            model.render_layers(render, part, &t);  // one frame's call
+            calls++;
+            largest = std::max(largest, static_cast<std::size_t>(t.width) * t.height);
+            // Copy each layer's rows into place (bytes per pixel from the layer's size).
+            auto place = [&](auto &to, const auto &from) {
+                if (from.empty()) return;
+                const std::size_t per = from.size() / (static_cast<std::size_t>(t.width) * t.height);
+                for (std::uint32_t row = 0; row < t.height; row++) {
+                    std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(per * row * t.width), per * t.width,
+                                to.begin() + static_cast<std::ptrdiff_t>(per * ((y + row) * std::size_t{width} + x)));
+                }
+            };
+            place(streamed.mask, part.mask);
+            place(streamed.height16, part.height16);
+            place(streamed.normal_rgb8, part.normal_rgb8);
+            place(streamed.time, part.time);
+            place(streamed.cell, part.cell);
+            place(streamed.preview, part.preview);
+        }
+    }
+    return streamed.mask == whole.mask && streamed.height16 == whole.height16 &&
+           streamed.normal_rgb8 == whole.normal_rgb8 && same(streamed.time, whole.time) &&
+           streamed.cell == whole.cell && streamed.preview == whole.preview;
 }
 
 }  // namespace
@@ -199,6 +240,24 @@ int main(int argc, char **argv) {
         std::printf("glass: largest frame work %llu of budget %llu\n",
                     static_cast<unsigned long long>(glass_budget.largest),
                     static_cast<unsigned long long>(glass_budget.per_frame));
+
+        // The finished models' textures, streamed a 32 x 32 tile per call (per frame, in an
+        // engine): every layer an engine uploads, equal to one call's whole image.
+        namespace layer = hibi::layer;
+        const unsigned cracks = layer::mask | layer::height16 | layer::normal_rgb8 | layer::time | layer::preview;
+        const unsigned cells = layer::mask | layer::height16 | layer::normal_rgb8 | layer::cell | layer::preview;
+        unsigned tile_calls = 0;
+        std::size_t tile_pixels = 0;
+        const bool glass_tiles = stream_tiles(glass, glass_render, glass_render.width, glass_render.height, cracks,
+                                              32, tile_calls, tile_pixels);
+        const bool mud_tiles =
+            stream_tiles(mud, mud_render, mud_render.width, mud_render.height, cracks, 32, tile_calls, tile_pixels);
+        const bool skin_tiles = stream_tiles(skin, skin_render, static_cast<std::uint32_t>(skin_params.width),
+                                             static_cast<std::uint32_t>(skin_params.height), cells, 32, tile_calls,
+                                             tile_pixels);
+        std::printf("tiles: %u render calls, the largest %zu pixels; streamed = whole: glass %s, mud %s, skin %s\n",
+                    tile_calls, tile_pixels, glass_tiles ? "yes" : "no", mud_tiles ? "yes" : "no",
+                    skin_tiles ? "yes" : "no");
 
         // The models do not depend on the budgets: the same objects, run in one go.
         hibi::Glass whole_glass(glass_params);

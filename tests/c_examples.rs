@@ -1225,6 +1225,12 @@ fn check_engine(linkage: Linkage) {
         line(&output, "budgeted = one go:"),
         "budgeted = one go: glass yes, mud yes, explicit mud yes, skin yes"
     );
+    // Renders streamed a 32 x 32 tile per call: 25 tiles of each 160 x 160 image and 9 of the
+    // 96 x 96 skin, none larger than its tile, every layer equal to the whole image's.
+    assert_eq!(
+        line(&output, "tiles: "),
+        "tiles: 59 render calls, the largest 1024 pixels; streamed = whole: glass yes, mud yes, skin yes"
+    );
     let header = b"P5\n160 160\n255\n";
     for model in ["glass", "mud"] {
         for frame in 0..4 {
