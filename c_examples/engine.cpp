@@ -6,10 +6,12 @@
  * files, and at the end the program reports the largest work any frame did against its
  * budget, and checks that the budgeted objects came out as one unbudgeted run of each. Mud
  * runs twice: with the quasi-static solver (the default) and with the explicit one (the
- * paper's loop, whose short steps are cut between rows of the lattice); a mud run's last
- * frames trace its crack network, within the same budget. Once they are done, every layer an
- * engine uploads (mask, 16-bit height, RGB8 normals, time or cells, an RGBA preview) is
- * streamed a 32 x 32 tile per call, and checked against one call's whole image.
+ * paper's loop, whose short steps are cut between rows of the lattice); a mud run traces its
+ * crack network live, within the same budget, and every frame renders what it shows: the
+ * program counts the frames with cracks from the first break on and checks that the cracks
+ * shown never fall. Once the models are done, every layer an engine uploads (mask, 16-bit
+ * height, RGB8 normals, time or cells, an RGBA preview) is streamed a 32 x 32 tile per call,
+ * and checked against one call's whole image.
  *
  *   c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/engine.cpp \
  *       target/release/libhibi.a -lpthread -ldl -lm -o engine && ./engine frames/
@@ -72,6 +74,39 @@ struct Budget {
     void frame(std::uint64_t total) {
         largest = std::max(largest, total - last_total);
         last_total = total;
+    }
+};
+
+/// A mud run's frames as an engine shows them: each frame renders the run's mask, and the
+/// springs broken in the network it shows are counted.
+struct Live {
+    unsigned frames = 0;
+    long first_break = -1;   // the frame in which the first spring broke
+    long first_shown = -1;   // the first frame whose render shows a crack
+    unsigned blank_after = 0; // frames after that whose render shows no crack
+    unsigned networks = 0;   // times the network shown changed
+    unsigned falls = 0;      // times the springs shown fell
+    std::uint32_t shown = 0; // springs broken in the network shown now
+    std::vector<std::uint8_t> mask;
+
+    void frame(const hibi::Mud &mud, const hibi::Mud::Progress &p, const hibi::Mud::RenderParams &render) {
+        mask.resize(static_cast<std::size_t>(render.width) * render.height);
+        mud.render_mask(render, hibi::Span<std::uint8_t>(mask.data(), mask.size()));
+        bool cracked = std::any_of(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; });
+        std::uint32_t now = mud.shown_broken_springs();
+        if (first_break < 0 && p.broken_springs > 0) first_break = frames;
+        if (first_shown < 0 && cracked) first_shown = frames;
+        if (first_shown >= 0 && !cracked) blank_after++;
+        if (now != shown) networks++;
+        if (now < shown) falls++;
+        shown = now;
+        frames++;
+    }
+    void report(const char *name) const {
+        std::printf("%s live: first break in frame %ld, cracks shown from frame %ld on, %u of the %ld frames from "
+                    "there blank; %u networks shown, the springs they show rising to %u, falling %u times\n",
+                    name, first_break, first_shown, blank_after, static_cast<long>(frames) - first_shown, networks,
+                    static_cast<unsigned>(shown), falls);
     }
 };
 
@@ -183,6 +218,7 @@ int main(int argc, char **argv) {
 
         bool glass_done = false, mud_done = false, explicit_done = false, skin_done = false;
         unsigned frame = 0, glass_frames = 0, mud_frames = 0, explicit_frames = 0, skin_frames = 0, written = 0;
+        Live mud_live, explicit_live;
         const unsigned stride = 6, max_written = 3;
         while (!(glass_done && mud_done && explicit_done && skin_done)) {
             if (!glass_done) {
@@ -196,12 +232,14 @@ int main(int argc, char **argv) {
                 mud_done = p.finished != 0;
                 mud_budget.frame(p.work);
                 mud_frames = frame + 1;
+                mud_live.frame(mud, p, mud_render);
             }
             if (!explicit_done) {
                 hibi::Mud::Progress p = explicit_mud.step(explicit_budget.per_frame);
                 explicit_done = p.finished != 0;
                 explicit_budget.frame(p.work);
                 explicit_frames = frame + 1;
+                explicit_live.frame(explicit_mud, p, mud_render);
             }
             if (!skin_done) {
                 hibi::Skin::Progress p = skin.step(skin_budget.per_frame);
@@ -228,6 +266,8 @@ int main(int argc, char **argv) {
         std::printf("frames: %u (glass done after %u, mud after %u, explicit mud after %u, skin after %u)\n", frame,
                     glass_frames, mud_frames, explicit_frames, skin_frames);
         std::printf("wrote %u frames of each break-time raster\n", written);
+        mud_live.report("mud");
+        explicit_live.report("explicit mud");
         std::printf("mud: largest frame work %llu of budget %llu, the network's tracing included\n",
                     static_cast<unsigned long long>(mud_budget.largest),
                     static_cast<unsigned long long>(mud_budget.per_frame));

@@ -584,8 +584,8 @@ public:
     /// Advances by about `budget` units of work (springs and nodes visited; overruns by less
     /// than one piece: a piece of the setup the first calls do, at most HIBI_MUD_SETUP_PIECE
     /// units, a row of the lattice, a node's springs, or a piece of the network's tracing, at
-    /// most HIBI_MUD_TRACE_PIECE units, which runs within the same budgets: see
-    /// hibi_mud_step). Fails with HIBI_ERROR_MUD_SHORT_STEP_STABILITY on an irregular mesh
+    /// most HIBI_MUD_TRACE_PIECE units: the network is traced live, within the same budgets,
+    /// see hibi_mud_step). Fails with HIBI_ERROR_MUD_SHORT_STEP_STABILITY on an irregular mesh
     /// that fails the explicit solver's stability test, and again on every later call.
     Result<Progress> try_step(std::uint64_t budget) noexcept {
         Progress progress{};
@@ -605,6 +605,14 @@ public:
         return detail::result(hibi_mud_segment_count(handle_.get(), &count), count);
     }
     detail::Returned<std::size_t> segment_count() const { return detail::returned(try_segment_count()); }
+    /// Springs broken when the network shown was traced (see hibi_mud_shown_broken_springs).
+    Result<std::uint32_t> try_shown_broken_springs() const noexcept {
+        std::uint32_t count = 0;
+        return detail::result(hibi_mud_shown_broken_springs(handle_.get(), &count), count);
+    }
+    detail::Returned<std::uint32_t> shown_broken_springs() const {
+        return detail::returned(try_shown_broken_springs());
+    }
     /// Writes the crack segments into `out` (at least segment_count()); returns how many.
     Result<std::size_t> try_segments(Span<hibi_mud_segment> out) const noexcept {
         std::size_t written = 0;

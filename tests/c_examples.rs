@@ -1221,6 +1221,18 @@ fn check_engine(linkage: Linkage) {
     let (largest, budget) = (number_after(glass, "work "), number_after(glass, "budget "));
     assert!(largest >= budget && largest < budget + hibi_core::glass::STEP_PIECE, "{glass}");
     assert_eq!(line(&output, "wrote "), "wrote 4 frames of each break-time raster");
+    // Mud live: every frame renders the network the run shows; from the frame of the first
+    // break (or the next: the first trace finishes within the frame's budget unless the break
+    // comes at its end) every frame has cracks, and the springs shown rise and never fall, to
+    // every spring broken.
+    for (name, networks) in [("mud", 4), ("explicit mud", 20)] {
+        let live = line(&output, &format!("{name} live: "));
+        let (first_break, first_shown) = (number_after(live, "frame "), number_after(live, "from frame "));
+        assert!(first_shown <= first_break + 1, "{live}");
+        assert_eq!(number_after(live, "on, "), 0, "blank frames after the first crack: {live}");
+        assert!(number_after(live, "blank; ") >= networks, "{live}");
+        assert_eq!(number_after(live, "falling "), 0, "{live}");
+    }
     assert_eq!(
         line(&output, "budgeted = one go:"),
         "budgeted = one go: glass yes, mud yes, explicit mud yes, skin yes"

@@ -1151,3 +1151,85 @@ fn an_unstable_irregular_explicit_run_is_refused_by_its_setup_steps() {
         assert!(mud.lattice().mesh().is_some(), "the mesh was built");
     }
 }
+
+/// Mud live, as an engine shows it: a budgeted run renders every frame from the network it
+/// shows, a whole trace of the springs broken a moment before. From the frame of the first
+/// break (or the next) on, every frame shows cracks; the springs the network shows never fall;
+/// no pixel of a frame's break-time raster is later than the run's time then; most of the
+/// frames' cracked pixels (80 % or more) lie within a pixel of the finished run's break-time
+/// raster cut at the frame's time (the rest: the network read at an earlier time, the surface
+/// moved since); and
+/// the last frame is the finished run's, bit for bit.
+#[test]
+fn a_budgeted_run_shows_its_cracks_as_they_break() {
+    for (solver, size, budget) in [(Solver::QuasiStatic, 40, 20_000), (Solver::Explicit, 24, 1_000_000)] {
+        let p = MudParams { columns: size, rows: size, seed: 11, solver, ..MudParams::default() };
+        let render = MudRender::fit(p.extent(), 160);
+        let pixels = (render.width * render.height) as usize;
+        let memory = p.memory().unwrap();
+        let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+        let mut finished = vec![0.0f32; pixels];
+        {
+            let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+            mud.run().unwrap();
+            mud.render(&render, MudLayers { time: Some(&mut finished), ..MudLayers::default() }).unwrap();
+        }
+        let mut mud = Mud::new(&p, MudBuffers { scalars: &mut scalars, words: &mut words }).unwrap();
+        let (mut mask, mut time) = (vec![0u8; pixels], vec![0.0f32; pixels]);
+        let (mut frame, mut first_break, mut first_shown, mut shown, mut networks) = (0, None, None, 0, 0);
+        let (mut least_near, mut near_total, mut cracked_total) = (1.0f32, 0usize, 0usize);
+        let w = render.width as i64;
+        loop {
+            let progress = mud.step(budget).unwrap();
+            mud.render(&render, MudLayers { mask: Some(&mut mask), time: Some(&mut time), ..MudLayers::default() })
+                .unwrap();
+            let cracked: Vec<usize> = (0..pixels).filter(|&i| mask[i] > 0).collect();
+            if first_break.is_none() && progress.broken_springs > 0 {
+                first_break = Some(frame);
+            }
+            if first_shown.is_none() && !cracked.is_empty() {
+                first_shown = Some(frame);
+            }
+            assert!(first_shown.is_none() || !cracked.is_empty(), "{solver:?}: frame {frame} shows no crack");
+            let now = mud.shown_broken_springs();
+            assert!(now >= shown && now <= progress.broken_springs, "{solver:?}: frame {frame}: {now} after {shown}");
+            networks += usize::from(now != shown);
+            shown = now;
+            let t = progress.time;
+            let latest = time.iter().copied().filter(|v| v.is_finite()).fold(f32::NEG_INFINITY, f32::max);
+            assert!(latest <= t, "{solver:?}: frame {frame} shows a crack at {latest}, later than {t}");
+            let near = |i: usize| {
+                let (x, y) = (i as i64 % w, i as i64 / w);
+                (-1..=1).any(|dy| {
+                    (-1..=1).any(|dx| {
+                        let (x, y) = (x + dx, y + dy);
+                        x >= 0 && y >= 0 && x < w && y < i64::from(render.height) && finished[(y * w + x) as usize] <= t
+                    })
+                })
+            };
+            if !cracked.is_empty() {
+                let n = cracked.iter().filter(|&&i| near(i)).count();
+                least_near = least_near.min(n as f32 / cracked.len() as f32);
+                (near_total, cracked_total) = (near_total + n, cracked_total + cracked.len());
+            }
+            frame += 1;
+            if progress.finished {
+                break;
+            }
+        }
+        let (first_break, first_shown) = (first_break.unwrap(), first_shown.unwrap());
+        println!(
+            "{solver:?} {size}²: {frame} frames, first break in {first_break}, cracks from {first_shown}, \
+             {networks} networks; cracked pixels within 1 px of the finished run's raster cut then: \
+             {:.3} of all frames', at least {least_near:.3} of one frame's",
+            near_total as f32 / cracked_total as f32
+        );
+        assert!(
+            first_shown <= first_break + 1,
+            "{solver:?}: first break {first_break}, first crack shown {first_shown}"
+        );
+        assert!(networks >= 4, "{solver:?}: {networks} networks shown");
+        assert!(near_total as f32 >= 0.8 * cracked_total as f32, "{solver:?}: {near_total} of {cracked_total}");
+        assert!(time.iter().zip(&finished).all(|(a, b)| a.to_bits() == b.to_bits()), "{solver:?}: the last frame");
+    }
+}

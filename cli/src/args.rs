@@ -132,6 +132,13 @@ pub struct MudArgs {
     pub output: Output,
     #[command(flatten)]
     pub animation: Animation,
+    /// Write the run as an engine shows it while it runs: an animated PNG of one frame per
+    /// step of UNITS units of work, from the step in which the first spring breaks to the
+    /// end, each drawn from the crack network the run shows then (traced live), at most
+    /// 1000 frames.
+    #[arg(long, value_name = "UNITS", help_heading = "Animation", conflicts_with = "frames",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub live: Option<u64>,
     #[command(flatten)]
     pub model: MudOptions,
 }

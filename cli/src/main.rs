@@ -119,6 +119,24 @@ fn run_mud(a: &MudArgs) -> Result<(), Failure> {
     let path = output_path(&a.output, "mud");
     check_output(&path, Some(&a.animation))?;
     let progress = Progress::run("mud", a.output.quiet);
+    if let Some(budget) = a.live {
+        let live = mud::simulate_live(&params, &render, a.output.layer, budget, &progress);
+        progress.finish();
+        let (frames, run) = live?;
+        let pictures = if frames.is_empty() { &run.pictures[0] } else { &frames };
+        if frames.is_empty() {
+            // Nothing broke: the one picture of the uncracked plate.
+            output::write_file(&path, output::encode_png(&pictures[0]))?;
+        } else {
+            output::write_file(&path, output::encode_apng(pictures, a.animation.frame_delay))?;
+        }
+        if !a.output.quiet {
+            let (layer, size) = (a.output.layer.name(), format!("{}x{}", render.width, render.height));
+            let count = pictures.len();
+            eprintln!("hibi: wrote {} ({count}-frame live animation, {size} {layer}): {}", shown(&path), run.summary());
+        }
+        return Ok(());
+    }
     let run = mud::simulate(&params, &[(render, a.output.layer, a.animation.frames)], &progress);
     progress.finish();
     let run = run?;

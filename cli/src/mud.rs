@@ -196,6 +196,51 @@ pub fn simulate(params: &MudParams, wants: &[Want], progress: &Progress) -> Resu
     Ok(MudRun { pictures, statistics, shrink: mud.progress().shrink })
 }
 
+/// The most frames [`simulate_live`] draws.
+pub const LIVE_FRAMES: usize = 1000;
+
+/// Runs `params` to its end in steps of `budget` units and draws `view`'s `layer` after every
+/// step from the one in which the first spring breaks: the frames an engine shows while the
+/// run goes on (each from the network the run shows then). Returns them and the finished run
+/// (its picture the last frame's). Fails if there would be more than [`LIVE_FRAMES`] frames.
+pub fn simulate_live(
+    params: &MudParams,
+    view: &MudRender,
+    layer: Layer,
+    budget: u64,
+    progress: &Progress,
+) -> Result<(Vec<Image>, MudRun), Failure> {
+    let memory = params.memory().expect("checked parameters");
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let failure = |error: MudError| match error {
+        MudError::Param(e) => Failure::invalid("mud", option(e), e.to_string()),
+        e => Failure::Runtime(e.to_string()),
+    };
+    let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).map_err(failure)?;
+    let draw = |mud: &Mud<'_>| {
+        crack_pictures(view.width, view.height, layer, None, |until, layers| {
+            mud.render(&MudRender { until, ..*view }, layers).expect("the view was checked")
+        })
+    };
+    let mut frames = Vec::new();
+    loop {
+        let p = mud.step(budget).map_err(failure)?;
+        progress.set_fraction(fraction(params, p.shrink, p.crack_density));
+        if p.broken_springs > 0 {
+            if frames.len() == LIVE_FRAMES {
+                let why = format!("makes more than {LIVE_FRAMES} frames of this run: give more units");
+                return Err(Failure::invalid("mud", "--live", why));
+            }
+            frames.extend(draw(&mud));
+        }
+        if p.finished {
+            break;
+        }
+    }
+    let run = MudRun { pictures: vec![draw(&mud)], statistics: mud.statistics(), shrink: mud.progress().shrink };
+    Ok((frames, run))
+}
+
 /// Every parameter as (option, value), in the order of `--help`.
 pub fn options(p: &MudParams, r: &MudRender) -> Vec<(&'static str, String)> {
     let topology = match p.topology {

@@ -173,6 +173,12 @@ pub const HIBI_MUD_TRACE_PIECE: u64 = 64;
 
 const _: () = assert!(HIBI_MUD_TRACE_PIECE == hibi_core::mud::TRACE_PIECE);
 
+/// A live trace of a mud run's network gets one unit of work for every this many units of
+/// the physics (see `hibi_mud_step`): the live traces add at most 1/this to a run's work.
+pub const HIBI_MUD_LIVE_SHARE: u64 = 8;
+
+const _: () = assert!(HIBI_MUD_LIVE_SHARE == hibi_core::mud::LIVE_SHARE);
+
 /// The most work one piece of a mud run's setup does, in `hibi_mud_step`'s units (a block of
 /// the quasi-static solver's tree): a call that sets up does at most max(budget, 1) − 1 + this.
 pub const HIBI_MUD_SETUP_PIECE: u64 = 32;
@@ -292,13 +298,17 @@ impl Object for hibi_mud {
 /// explicit solver's short steps are resumed where the last call stopped; its piece is one
 /// row of the lattice in one direction and its rescan for breaks, at most 2·columns (the irregular lattice goes
 /// spring by spring and node by node: no overrun). The quasi-static solver's piece is one
-/// node's springs (4 square, 6 hexagonal, at most 16 irregular). When the physics ends, the
-/// crack network is traced within the same budgets, in pieces of at most
-/// `HIBI_MUD_TRACE_PIECE` units (its walks along cracks and cell boundaries resume where they
-/// stopped), and the run is finished when the trace is done; until then the network, the
-/// cells, the statistics and the rasters show no crack. The run does not depend on the
-/// budgets. Writes where it stands to `*progress` unless it is NULL. Call until
-/// `progress.finished`.
+/// node's springs (4 square, 6 hexagonal, at most 16 irregular). The crack network is traced
+/// live within the same budgets, in pieces of at most `HIBI_MUD_TRACE_PIECE` units (its walks
+/// along cracks and cell boundaries resume where they stopped): once springs have broken, a
+/// trace of those broken so far begins; it gets one unit for every `HIBI_MUD_LIVE_SHARE`
+/// units of the physics, and writes a second copy of the network, which is shown once it is
+/// done. So the network, the cells, the statistics and the rasters always show one whole
+/// trace, of `hibi_mud_shown_broken_springs` springs, drawn at the displacements of now. When
+/// the physics ends, the cracks as they end are traced in the same way, and the run is
+/// finished when that trace is done. The run (its physics, its final network, its work) does
+/// not depend on the budgets; which live network a call shows does. Writes where it stands
+/// to `*progress` unless it is NULL. Call until `progress.finished`.
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `progress` optional: NULL (not written) or writable.
@@ -312,6 +322,19 @@ pub unsafe extern "C" fn hibi_mud_step(
         |mud: &mut hibi_mud| mud.mud.step(budget).map(|p| hibi_mud_progress::from_core(&p)).map_err(output_status);
     // SAFETY: the caller's contract.
     guard(|| unsafe { update(mud, c"mud", (progress, c"progress"), step) })
+}
+
+/// Writes how many springs had broken when the network shown (by the network, the cells, the
+/// statistics and the rasters) was traced: 0 before the first trace; it never falls, and once
+/// the run is finished it is `progress.broken_springs`.
+///
+/// # Safety
+/// `mud` must be NULL or a live run; `count` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_mud_shown_broken_springs(mud: *const hibi_mud, count: *mut u32) -> hibi_status {
+    let read = |mud: &hibi_mud| Ok(mud.mud.shown_broken_springs());
+    // SAFETY: the caller's contract.
+    guard(|| unsafe { query(mud, c"mud", (count, c"count"), read) })
 }
 
 /// Writes the number of crack segments `hibi_mud_segments` would write now.
@@ -379,7 +402,7 @@ fn output_status(error: MudError) -> hibi_status {
 }
 
 /// Writes how many vertices, edges and points `hibi_mud_network` will write for the network
-/// as last traced (the run's end).
+/// as last traced (live while the run goes on, of its last cracks once it is finished).
 ///
 /// # Safety
 /// `mud` must be NULL or a live run; `vertices`, `edges` and `points` NULL or writable.

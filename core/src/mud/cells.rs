@@ -100,6 +100,10 @@ fn key(cell: usize, side: usize) -> usize {
     cell * 4 + side
 }
 
+/// The work of one step of a ring walk: the next mesh cell's corners worked out (its nodes'
+/// displacements and the cell across a side), as much as visiting three springs.
+pub(super) const RING_STEP: u64 = 3;
+
 /// Ring-start word bits of a mesh cell: side k starts a ring that closes in the plane.
 const STARTS: u32 = 0;
 /// Side k starts a ring that wraps around the torus.
@@ -206,7 +210,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// Finds where each ring starts (its lowest key) and whether it wraps, walking each ring
     /// once, from `cursor` until the work reaches `budget` (at least one item): part of the
     /// trace ([`Mud::trace`]). An item is a mesh cell (its sides) or one step of a ring walk
-    /// (1); a walk stopped by the budget goes on from its step in the next call. Returns the
+    /// ([`RING_STEP`]); a walk stopped by the budget goes on from its step in the next call. Returns the
     /// work and the cursor to go on from (`None`: done). The ring-start words were cleared
     /// when the vertices were numbered.
     pub(super) fn find_ring_starts(&mut self, mut cursor: RingCursor, budget: u64) -> (u64, Option<RingCursor>) {
@@ -218,6 +222,17 @@ impl<S: Scalar> Mud<'_, S> {
                 // The next separating side of this cell, from `side` on, not walked yet.
                 if cursor.cell >= cells {
                     return (work, None);
+                }
+                // Cells no crack touches are passed over (see `network::next_flagged`).
+                if cursor.side == 0 {
+                    match super::network::next_flagged(self.touched.cells, cursor.cell, cells) {
+                        Ok(flagged) => cursor.cell = flagged,
+                        Err(word_end) => {
+                            work += 1;
+                            cursor.cell = word_end;
+                            continue;
+                        }
+                    }
                 }
                 if cursor.side == 0 {
                     work += corners;
@@ -262,7 +277,7 @@ impl<S: Scalar> Mud<'_, S> {
                     true
                 });
                 step += 1;
-                work += 1;
+                work += RING_STEP;
                 if entered != usize::MAX {
                     self.ring_starts[entered / 4] |= 1 << (WALKED + (entered % 4) as u32);
                     lowest = lowest.min(entered);

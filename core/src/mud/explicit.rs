@@ -676,6 +676,8 @@ fn row_forces_applied<S: Scalar>(
 struct Breaks<'b, S> {
     limit: &'b mut [S],
     break_time: &'b mut [u32],
+    /// One bit per spring: broken (for the tracing).
+    broken_blocks: &'b mut [u32],
     time: u32,
     count: u32,
 }
@@ -685,6 +687,7 @@ impl<S: Scalar> Breaks<'_, S> {
     fn record(&mut self, s: usize) {
         self.limit[s] = broken();
         self.break_time[s] = self.time;
+        super::network::set_bit(self.broken_blocks, s);
         self.count += 1;
     }
 
@@ -846,7 +849,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (nodes, columns, rows) = (lattice.node_count(), lattice.columns as usize, lattice.rows as usize);
         let periodic = lattice.boundary == Boundary::Periodic;
         let (fx, fy) = (&mut *d.fx, &mut *d.fy);
-        let mut breaks = Breaks { limit: &mut *d.limit, break_time: &mut *self.break_time, time, count: 0 };
+        let mut breaks = Breaks {
+            limit: &mut *d.limit,
+            break_time: &mut *self.break_time,
+            broken_blocks: &mut *self.broken_blocks,
+            time,
+            count: 0,
+        };
         let law = |k: usize| {
             let v = lattice.direction_vector(k);
             SpringLaw { rest, ex: S::from_f32(v[0]) * deep, ey: S::from_f32(v[1]) * deep, stiffness: m.stiffness[k] }
@@ -1057,6 +1066,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             let limit = self.break_stretch[spring] * l0 * rest;
             if squared > limit * limit {
                 self.break_time[spring] = time;
+                super::network::set_bit(self.broken_blocks, spring);
                 self.broken_face += mesh.face(spring);
                 newly_broken += 1;
                 continue;

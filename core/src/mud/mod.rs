@@ -58,6 +58,14 @@ pub use trace::CrackSegment;
 
 use crate::scalar::Scalar;
 
+/// The live traces' share of a run's work: a trace during the physics gets one unit of work
+/// for every `LIVE_SHARE` units of the physics (see [`Mud::step`]).
+pub const LIVE_SHARE: u64 = 8;
+
+/// Between live traces, the physics' work after which a run looks for new breaks to trace
+/// (see [`Mud::step`]).
+pub const LIVE_CHECK: u64 = 1024;
+
 /// Marks an intact spring in the break-time table.
 const INTACT: u32 = u32::MAX;
 /// Marks a missing spring (beyond an open edge) in the neighbour table.
@@ -115,20 +123,25 @@ pub const fn memory_for(topology: Topology, solver: Solver, columns: u32, rows: 
     // Words per spring: the other node, the break time, the traced network's cut and where
     // its crack point lies (`network::crack_offset`); per
     // mesh cell (1 square, 2 triangles per node) one word for tracing and one for the cells'
-    // ring starts. Quasi-static adds a tournament tree over blocks of 32 springs (2·P, P the
-    // next power of two of the blocks), a work queue, node flags and a list of relaxed nodes
-    // (3 per node).
+    // ring starts. The network's words (cut, crack point, tracing, ring starts) are kept
+    // twice: the network shown, and the one a live trace is building (`network::TraceBuffers`),
+    // each with one bit per spring, mesh cell and node that its trace touched; one more bit per
+    // spring marks the broken ones.
+    // Quasi-static adds a tournament tree over blocks of 32 springs (2·P, P the next power of
+    // two of the blocks), a work queue, node flags and a list of relaxed nodes (3 per node).
     let cells = nodes * (dirs - 1);
+    let block = network::BLOCK as u128;
+    let flags = 3 * springs.div_ceil(block) + 2 * cells.div_ceil(block) + 2 * nodes.div_ceil(block);
     let (scalars, words) = match solver {
         // The irregular lattice's explicit run keeps five constants per node.
         Solver::Explicit => {
             let constants = if mesh > 0 { explicit::NODE_CONSTANTS as u128 * nodes } else { 0 };
-            (6 * nodes + 2 * springs + constants, 4 * springs + 2 * cells + mesh)
+            (6 * nodes + 2 * springs + constants, 6 * springs + 4 * cells + flags + mesh)
         }
         Solver::QuasiStatic => {
             let blocks = springs.div_ceil(quasi_static::BLOCK as u128);
             let leaves = if blocks <= 1 { 1 } else { 1u128 << (128 - (blocks - 1).leading_zeros()) };
-            (2 * nodes + 2 * springs, 4 * springs + 2 * cells + 2 * leaves + 3 * nodes + mesh)
+            (2 * nodes + 2 * springs, 6 * springs + 4 * cells + flags + 2 * leaves + 3 * nodes + mesh)
         }
     };
     // Keep every element count addressable in bytes (the largest element is 8 bytes).
@@ -312,10 +325,27 @@ pub struct Mud<'a, S: Scalar = f32> {
     ring_starts: &'a mut [u32],
     /// Network vertices of the last trace.
     vertex_total: u32,
-    /// Springs broken when the network was last traced.
+    /// The blocks of springs, mesh cells and nodes the network shown touched.
+    touched: network::Touched<'a>,
+    /// One bit per spring: broken (for the tracing; see `network::Touched`).
+    broken_blocks: &'a mut [u32],
+    /// The other copy of the network's words: the one a trace under way builds (see
+    /// `network::TraceBuffers`).
+    back: network::TraceBuffers<'a>,
+    /// Springs broken when the trace under way (or the last) began.
     traced_broken: u32,
+    /// Springs broken when the network shown was traced.
+    shown_broken: u32,
     /// The trace under way, if one is.
     tracing: Option<network::TracePass>,
+    /// The physics ended and its final trace has begun (or nothing broke).
+    final_traced: bool,
+    /// Work of the physics (the setup's and the tracing's apart).
+    physics_work: u64,
+    /// Work of the live traces (those during the physics).
+    live_work: u64,
+    /// The physics work at which the run next looks for new breaks to trace.
+    next_check: u64,
     /// The top of the tracing's stack (in `stack`), while a trace is under way.
     trace_top: usize,
     /// The faces of the broken springs, summed (the irregular lattice's crack length).
@@ -384,6 +414,23 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let crack_offset = take(&mut words, springs);
         let stack = take(&mut words, shape.cell_count());
         let ring_starts = take(&mut words, shape.cell_count());
+        let block = network::BLOCK;
+        let blocks = [springs.div_ceil(block), shape.cell_count().div_ceil(block), nodes.div_ceil(block)];
+        let touched = |words: &mut &'a mut [u32]| network::Touched {
+            springs: take(words, blocks[0]),
+            cells: take(words, blocks[1]),
+            nodes: take(words, blocks[2]),
+        };
+        let front_touched = touched(&mut words);
+        let back = network::TraceBuffers {
+            trace: take(&mut words, springs),
+            crack_offset: take(&mut words, springs),
+            stack: take(&mut words, shape.cell_count()),
+            ring_starts: take(&mut words, shape.cell_count()),
+            vertex_total: 0,
+            touched: touched(&mut words),
+        };
+        let broken_blocks = take(&mut words, blocks[0]);
         // The irregular lattice's bounds come from its nodes, which the setup sees one by one.
         let solver = match params.solver {
             Solver::Explicit => {
@@ -414,8 +461,16 @@ impl<'a, S: Scalar> Mud<'a, S> {
             stack,
             ring_starts,
             vertex_total: 0,
+            touched: front_touched,
+            broken_blocks,
+            back,
             traced_broken: 0,
+            shown_broken: 0,
             tracing: None,
+            final_traced: false,
+            physics_work: 0,
+            live_work: 0,
+            next_check: 0,
             trace_top: 0,
             broken_face: 0.0,
             solver,
@@ -452,11 +507,27 @@ impl<'a, S: Scalar> Mud<'a, S> {
     ///   16 irregular), a break event (1), or the refresh of the nodes
     ///   a relaxation touched, node by node (each its springs).
     ///
-    /// When the physics ends, the network is traced ([`Mud::trace`]) in the same way, in
-    /// pieces of at most [`TRACE_PIECE`] units, within the same budgets: a call does both
-    /// while its budget lasts, and the run is finished when the trace is done. Meanwhile
-    /// ([`Mud::is_tracing`]) the outputs that read the network describe no crack. The run
-    /// does not depend on the budgets: every budget gives the same run bit for bit.
+    /// The crack network is traced live, in pieces of at most [`TRACE_PIECE`] units within the
+    /// same budgets: once springs have broken since the last trace began
+    /// (looked for every [`LIVE_CHECK`] units of the physics), a trace of the springs broken so
+    /// far begins, and it gets one unit of work for every [`LIVE_SHARE`] of the physics (the
+    /// physics' work before it included; the first trace all the work it needs, so the first
+    /// cracks show as soon as it is done). A trace visits the
+    /// springs, mesh cells and nodes its cracks touch, and reads the rest as words of 32 flags:
+    /// its work grows with the cracks, not with the lattice. It writes a second copy of the
+    /// network's words; when it is done, that copy is the network shown. So at every call the
+    /// network, the cells, the statistics and the rasters show one whole trace, of
+    /// [`Mud::shown_broken_springs`] springs (a number that never falls), drawn at the
+    /// displacements of now. When the physics ends, a trace under way is dropped and the final
+    /// trace, of the cracks as they end, is done in the same way ([`Mud::is_tracing`]); the run
+    /// is finished when it is. The live traces add at most one part in [`LIVE_SHARE`] to the
+    /// physics' work, and the first trace's (on the default runs, about 11 % to a quasi-static
+    /// run's total and 3–6 % to an explicit one's: see the changelog).
+    ///
+    /// The run does not depend on the budgets: every budget gives the same physics, the same
+    /// final network and the same work, bit for bit, and even the same live networks at the
+    /// same work (the switches between the physics and a live trace are at fixed counts of
+    /// their work). Which live network a call shows depends on where its budget ends.
     ///
     /// An error ends the run: the call that finds it and every later one return it, and the
     /// outputs stay those of the uncracked plate.
@@ -476,18 +547,60 @@ impl<'a, S: Scalar> Mud<'a, S> {
             }
         }
         let setup_work = work;
-        while !self.finished && work < budget.max(1) {
+        while work < budget.max(1) {
             let left = budget.saturating_sub(work);
-            work += match self.solver {
-                SolverState::Explicit(_) => self.explicit_step(left),
-                SolverState::QuasiStatic(_) => self.quasi_static_step(left),
+            if self.finished {
+                // The physics is over: the final trace, of the cracks as they end (a live
+                // trace under way is dropped: it read the run at an earlier time).
+                if !self.final_traced {
+                    self.final_traced = true;
+                    self.tracing = None;
+                    if self.broken > 0 {
+                        self.start_trace();
+                    }
+                }
+                if self.tracing.is_none() {
+                    break;
+                }
+                work += self.trace_step(left);
+                continue;
+            }
+            // Live tracing: a trace of the springs broken so far gets one part in
+            // `LIVE_SHARE` of the physics' work (the first one all it needs, so that the first
+            // cracks show at once); between traces, new breaks are looked for every
+            // `LIVE_CHECK` units. Each switch is at a fixed count of the physics' and the
+            // traces' work, so the order of the pieces does not depend on the budgets.
+            let (physics, live) = (self.physics_work, self.live_work);
+            let slice = if self.tracing.is_some() {
+                let first = self.shown_broken == 0;
+                if first || live.saturating_mul(LIVE_SHARE) < physics {
+                    let share = if first { u64::MAX } else { physics.div_ceil(LIVE_SHARE) - live };
+                    let done = self.trace_step(left.min(share));
+                    // (The first trace's work is not counted against the share.)
+                    if !first {
+                        self.live_work += done;
+                    }
+                    work += done;
+                    continue;
+                }
+                live.saturating_mul(LIVE_SHARE) + 1 - physics
+            } else {
+                if physics >= self.next_check {
+                    self.next_check = physics.saturating_add(LIVE_CHECK);
+                    if self.broken > self.traced_broken {
+                        self.start_trace();
+                        continue;
+                    }
+                }
+                self.next_check - physics
             };
-        }
-        if self.finished && self.tracing.is_none() && self.traced_broken != self.broken {
-            self.tracing = Some(network::TracePass::Breaks(0));
-        }
-        if self.tracing.is_some() && work < budget.max(1) {
-            work += self.trace_step(budget.saturating_sub(work));
+            let slice = left.min(slice);
+            let done = match self.solver {
+                SolverState::Explicit(_) => self.explicit_step(slice),
+                SolverState::QuasiStatic(_) => self.quasi_static_step(slice),
+            };
+            self.physics_work += done;
+            work += done;
         }
         self.work += work - setup_work;
         Ok(self.progress())
@@ -511,7 +624,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             time: self.time_now(),
             broken_springs: self.broken,
             crack_density: self.crack_density(),
-            finished: self.finished && self.tracing.is_none() && self.traced_broken == self.broken,
+            finished: self.finished && self.final_traced && self.tracing.is_none(),
             work: self.work,
         }
     }
@@ -623,6 +736,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Breaks `spring` now.
     fn break_spring(&mut self, spring: usize) {
         self.break_time[spring] = self.time_now().to_bits();
+        network::set_bit(self.broken_blocks, spring);
         self.broken += 1;
         if self.lattice.mesh().is_some() {
             self.broken_face += self.lattice.face(spring);
@@ -660,9 +774,9 @@ mod tests {
         let p = MudParams { columns: 10, rows: 8, ..MudParams::default() };
         let m = p.memory().unwrap();
         assert_eq!(m.scalars, 80 * 2 + 240 * 2);
-        // Springs: other, break time, cut, crack offset; cells: stack and ring starts; a tree
-        // over 8 blocks of 32 springs; queue, flags and touched list per node.
-        assert_eq!(m.words, 240 * 4 + 2 * 160 + 2 * 8 + 240);
+        // Springs: other, break time, cut and crack offset twice; cells: stack and ring starts
+        // twice; flags per block of 32 springs (3), cells and nodes (2 each); a tree over 8 blocks of 32 springs; queue, flags and touched list per node.
+        assert_eq!(m.words, 240 * 6 + 4 * 160 + (3 * 8 + 2 * 5 + 2 * 3) + 2 * 8 + 240);
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
         assert!(Mud::new(&p, MudBuffers { scalars: &mut s[..m.scalars - 1], words: &mut w }).is_err());
         assert_eq!(
@@ -761,8 +875,41 @@ mod tests {
         progress: (u32, u32, u32, bool, u64),
     }
 
+    /// Asserts that the network shown is one whole trace: every edge joins vertices that
+    /// exist, its points follow the last edge's, each vertex meets as many edge ends as its
+    /// degree, and the cells can be written. Returns the edges.
+    fn assert_consistent(mud: &Mud<'_, f32>, p: &MudParams) -> usize {
+        let counts = mud.network_counts();
+        let mut v = vec![NetworkVertex::default(); counts.vertices];
+        let mut e = vec![NetworkEdge::default(); counts.edges];
+        let mut q = vec![NetworkPoint::default(); counts.points];
+        assert_eq!(mud.network(&mut v, &mut e, &mut q), Ok(counts), "{p:?}");
+        let mut ends = vec![0u32; counts.vertices];
+        let mut next = 0;
+        for edge in &e {
+            assert_eq!(edge.first_point, next, "{p:?}");
+            assert!(edge.point_count >= 2, "{p:?}: {edge:?}");
+            next += edge.point_count;
+            for end in [edge.from, edge.to] {
+                if end != NO_VERTEX {
+                    ends[end as usize] += 1;
+                }
+            }
+        }
+        assert_eq!(next as usize, counts.points, "{p:?}");
+        for (vertex, n) in v.iter().zip(&ends) {
+            assert_eq!(vertex.degree, *n, "{p:?}: {vertex:?}");
+        }
+        let cells = mud.cell_counts();
+        let mut rings = vec![crate::polygon::Ring::default(); cells.rings];
+        let mut points = vec![[0.0f32; 2]; cells.points];
+        assert_eq!(mud.cells(&mut rings, &mut points), Ok(cells), "{p:?}");
+        counts.edges
+    }
+
     /// Runs `p` with `budget` per call (`None`: one `run()`), asserting each call's work is
-    /// within the budget and one piece, and that a trace under way shows no network.
+    /// within the budget and one piece, and that the network shown is always a whole trace,
+    /// of as many springs as the last or more.
     fn outcome(p: &MudParams, budget: Option<u64>) -> Outcome {
         let m = p.memory().unwrap();
         let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
@@ -778,7 +925,7 @@ mod tests {
             (Solver::QuasiStatic, Topology::Irregular) => irregular::MAX_DEGREE as u64,
         };
         let piece = piece.max(TRACE_PIECE);
-        let mut traced_in = 0;
+        let (mut traced_in, mut shown, mut networks) = (0, 0, 0);
         let progress = match budget {
             None => mud.run().unwrap(),
             Some(budget) => loop {
@@ -788,22 +935,32 @@ mod tests {
                 let bound = budget.max(1) - 1 + piece;
                 assert!(work <= bound, "{p:?}: budget {budget}: {work} > {bound}");
                 if mud.is_tracing() {
-                    // Not finished, and no half-traced network shows.
                     traced_in += 1;
                     assert!(!progress.finished, "{p:?}");
-                    assert_eq!(mud.network_counts(), NetworkCounts::default(), "{p:?}");
-                    assert_eq!(mud.cell_counts(), CellCounts::default(), "{p:?}");
-                    assert_eq!(mud.statistics().junctions, 0, "{p:?}");
+                }
+                // A new network shows: a whole trace, of more broken springs than the last.
+                let now = mud.shown_broken_springs();
+                assert!(now >= shown && now <= progress.broken_springs, "{p:?}");
+                if now != shown {
+                    // (A break that has not opened is no crack of the network yet.)
+                    networks += usize::from(assert_consistent(&mud, p) > 0);
+                    shown = now;
                 }
                 if progress.finished {
                     break progress;
                 }
             },
         };
-        // A small budget spreads the trace over calls.
+        // A small budget spreads the traces over calls, and the cracks show as they break.
         if budget == Some(1) {
             assert!(traced_in > 100, "{p:?}: traced in {traced_in} calls");
         }
+        // The explicit runs break spring by spring over many long steps: networks show on
+        // the way (the quasi-static ones here break in one avalanche, shorter than a trace).
+        if budget.is_some() && p.solver == Solver::Explicit {
+            assert!(networks >= 10, "{p:?}: budget {budget:?}: {networks} networks shown during the run");
+        }
+        assert_eq!(mud.shown_broken_springs(), progress.broken_springs, "{p:?}");
         let counts = mud.network_counts();
         let mut v = vec![NetworkVertex::default(); counts.vertices];
         let mut e = vec![NetworkEdge::default(); counts.edges];

@@ -184,9 +184,67 @@ impl TracedCell {
 /// by turning about the node). A tip that joins a crack one node away does at most 3 + 3·16.
 pub const TRACE_PIECE: u64 = 4 * super::irregular::MAX_DEGREE as u64;
 
+/// Springs, mesh cells and nodes are flagged one bit each, this many to a word: a trace's pass
+/// reads a word of flags as one unit of work and visits only the items flagged in it.
+pub(super) const BLOCK: usize = 32;
+
+/// The words of flags whose first item lies in `from..end`.
+pub(super) fn blocks_from(from: usize, end: usize) -> core::ops::Range<usize> {
+    from.div_ceil(BLOCK)..end.div_ceil(BLOCK)
+}
+
+/// Sets the flag of item `at`.
+pub(super) fn set_bit(flags: &mut [u32], at: usize) {
+    flags[at / BLOCK] |= 1 << (at % BLOCK);
+}
+
+/// The first flagged item from `at` on in `at`'s word of flags (`Ok`), or, if there is none
+/// before `end`, where the next word begins (`Err`, at most `end`): a pass reads a word's
+/// flags it finds nothing in as one unit of work, and goes to a flagged item for nothing more
+/// than the item's own.
+pub(super) fn next_flagged(flags: &[u32], at: usize, end: usize) -> Result<usize, usize> {
+    let rest = flags[at / BLOCK] >> (at % BLOCK);
+    let word_end = ((at / BLOCK + 1) * BLOCK).min(end);
+    match at + rest.trailing_zeros() as usize {
+        flagged if rest != 0 && flagged < end => Ok(flagged),
+        _ => Err(word_end),
+    }
+}
+
+/// One bit per spring, mesh cell and node: set if the trace that wrote a copy of the network
+/// cut the spring, or a spring of the cell or node (clear elsewhere: nothing there is cut, and
+/// the trace's passes, which would do nothing there, pass over it).
+pub(super) struct Touched<'a> {
+    pub(super) springs: &'a mut [u32],
+    pub(super) cells: &'a mut [u32],
+    pub(super) nodes: &'a mut [u32],
+}
+
+/// The network's words a trace writes, kept twice (see [`Mud::step`]): the run's own fields
+/// hold the network shown, and these the one a trace under way builds. A trace swaps them in
+/// for its pieces and out again, and keeps them in when it is done: the network shown is
+/// always one whole trace, never part of one.
+pub(super) struct TraceBuffers<'a> {
+    /// Per spring: the cut (break time, `BRANCH`) or `INTACT`.
+    pub(super) trace: &'a mut [u32],
+    /// Per spring: where its crack point lies.
+    pub(super) crack_offset: &'a mut [u32],
+    /// Per mesh cell: the tracing's stack, then the cell's first vertex.
+    pub(super) stack: &'a mut [u32],
+    /// Per mesh cell: the cells' ring starts.
+    pub(super) ring_starts: &'a mut [u32],
+    /// Vertices of the network.
+    pub(super) vertex_total: u32,
+    /// The blocks its trace touched.
+    pub(super) touched: Touched<'a>,
+}
+
 /// Where a trace under way stands: the pass, and the item it goes on with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum TracePass {
+    /// The last trace into these words undone, by block of springs (its cuts), mesh cells and
+    /// nodes (their flags).
+    Clean(usize),
     /// Break times into the trace, by spring.
     Breaks(usize),
     /// Rule 1: stacking the mesh cells with one cut side, by cell.
@@ -276,45 +334,80 @@ impl<S: Scalar> Mud<'_, S> {
         c.sides[..c.corners].iter().filter(|&&s| counted(s)).count()
     }
 
-    /// Traces the network of the cracks as they stand (see the module docs), in one call.
-    /// [`Mud::step`] traces when the run ends, in pieces within its budgets; call this to see
-    /// the network of an unfinished run (a trace under way starts again). The network, the
-    /// cells, the statistics and the rasters describe the state last traced. While the setup
-    /// is under way (the first steps: see [`Mud::step`]) nothing has cracked and this does
-    /// nothing.
+    /// Traces the network of the cracks as they stand (see the module docs), in one call, work
+    /// no budget counts. [`Mud::step`] traces live, in pieces within its budgets; call this to
+    /// see the network of the springs broken right now (a trace under way is dropped). The
+    /// network, the cells, the statistics and the rasters describe the state last traced.
+    /// While the setup is under way (the first steps: see [`Mud::step`]) nothing has cracked
+    /// and this does nothing.
     pub fn trace(&mut self) {
         if !self.is_set_up() {
             return;
         }
-        self.tracing = Some(TracePass::Breaks(0));
+        self.start_trace();
         self.trace_step(u64::MAX);
     }
 
-    /// Whether a trace is under way: between the [`Mud::step`] call in which the run's
-    /// physics ended and the one that finished tracing. The outputs that read the network
-    /// (network, cells, statistics, rasters) describe no crack meanwhile.
+    /// Whether the final trace is under way: the physics has ended and the run is finished
+    /// when the network of its cracks is traced. (The live traces, while the physics goes on,
+    /// run within the same calls as the physics: see [`Mud::step`].) The outputs that read the
+    /// network (network, cells, statistics, rasters) show the last network traced meanwhile.
     pub fn is_tracing(&self) -> bool {
-        self.tracing.is_some()
+        self.finished && self.tracing.is_some()
     }
 
-    /// Whether the outputs that read the network show it: not while the setup or a trace is
-    /// under way (they describe no crack then).
+    /// Springs broken when the network the outputs show was traced (0 before the first
+    /// trace): it never falls, and the run's last network shows all of
+    /// [`MudProgress::broken_springs`](super::MudProgress::broken_springs).
+    pub fn shown_broken_springs(&self) -> u32 {
+        self.shown_broken
+    }
+
+    /// Whether the outputs that read the network show it: not while the setup is under way
+    /// (nothing has cracked then).
     pub(super) fn shows_network(&self) -> bool {
-        self.is_set_up() && self.tracing.is_none()
+        self.is_set_up()
+    }
+
+    /// Begins a trace of the springs broken now into the network's other words (a trace
+    /// under way is dropped).
+    pub(super) fn start_trace(&mut self) {
+        self.tracing = Some(TracePass::Clean(0));
+        self.trace_top = 0;
+        self.traced_broken = self.broken;
+    }
+
+    /// Swaps the network's words with their other copy (see [`TraceBuffers`]).
+    fn swap_buffers(&mut self) {
+        core::mem::swap(&mut self.trace, &mut self.back.trace);
+        core::mem::swap(&mut self.crack_offset, &mut self.back.crack_offset);
+        core::mem::swap(&mut self.stack, &mut self.back.stack);
+        core::mem::swap(&mut self.ring_starts, &mut self.back.ring_starts);
+        core::mem::swap(&mut self.vertex_total, &mut self.back.vertex_total);
+        core::mem::swap(&mut self.touched, &mut self.back.touched);
     }
 
     /// Goes on with the trace under way, piece by piece, until the pieces' work reaches
     /// `max(budget, 1)` or the trace is done; returns the work, in the units of
     /// [`Mud::step`]'s budget. A piece is one item of one of the passes below, each at most
-    /// [`TRACE_PIECE`] units: a spring (1; its crack point, 1 + 2·4 along the crack), a mesh
+    /// [`TRACE_PIECE`] units: a spring (1; broken, 3 with the flags it sets; its crack point,
+    /// 1 + 3·2·4 for the mesh cells along the crack), a mesh
     /// cell (its sides), a cell taken off a stack (its sides; twice more if a crack goes on
     /// from it; the springs turned about if it joins a crack one node away), a node (its
-    /// springs; four times if all are cut), or one step of a walk along a dead-end crack or a
-    /// cell's boundary (1). The walks are resumed where they stopped, so no piece depends on
-    /// a crack's length. The trace does not depend on the budgets.
+    /// springs; four times if all are cut), or one step of a walk along a dead-end crack (1) or
+    /// a cell's boundary (3: the next mesh cell's corners); a pass visits only the items the cracks touch, and a word of 32
+    /// flags with none of them flagged is one piece (1); undoing the last trace in the copy
+    /// of the network's words the trace writes is a word of flags and the springs cut in it
+    /// (at most 33). The walks are resumed where they stopped, so no piece depends on a
+    /// crack's length. The trace does not depend on the budgets.
     pub(super) fn trace_step(&mut self, budget: u64) -> u64 {
         let budget = budget.max(1);
         let mut work = 0u64;
+        if self.tracing.is_none() {
+            return 0;
+        }
+        // The trace works in the other copy of the network's words, the shown network stays.
+        self.swap_buffers();
         while let Some(pass) = self.tracing {
             if work >= budget {
                 break;
@@ -322,9 +415,12 @@ impl<S: Scalar> Mud<'_, S> {
             let (done, next) = self.trace_pass(pass, budget - work);
             work += done;
             self.tracing = next;
-            if next.is_none() {
-                self.traced_broken = self.broken;
-            }
+        }
+        if self.tracing.is_none() {
+            // Done: its words are the network shown now.
+            self.shown_broken = self.traced_broken;
+        } else {
+            self.swap_buffers();
         }
         work
     }
@@ -336,23 +432,63 @@ impl<S: Scalar> Mud<'_, S> {
         let springs = self.lattice.spring_count();
         let corners = self.lattice.sides_per_cell() as u64;
         let mut work = 0u64;
-        // Items `from..end` one by one, each costing what `item` returns, until the budget.
+        // Items `from..end` one by one, each costing what `item` returns, until the budget; a
+        // block whose flag in `flags` is 0 is passed over as one unit (nothing in it is cut,
+        // so `item` would do nothing there).
         macro_rules! items {
-            ($from:expr, $end:expr, $item:expr) => {{
+            ($from:expr, $end:expr, $flags:expr, $item:expr) => {{
                 let mut at = $from;
                 while at < $end && work < budget {
-                    work += $item(&mut *self, at);
-                    at += 1;
+                    at = match next_flagged($flags, at, $end) {
+                        Ok(flagged) => flagged,
+                        Err(word_end) => {
+                            work += 1;
+                            word_end
+                        }
+                    };
+                    if at < $end {
+                        work += $item(&mut *self, at);
+                        at += 1;
+                    }
                 }
                 at
             }};
         }
         let next = match pass {
+            TracePass::Clean(from) => {
+                let blocks =
+                    [springs.div_ceil(BLOCK), cells.div_ceil(BLOCK), self.lattice.node_count().div_ceil(BLOCK)];
+                let end: usize = blocks.iter().sum();
+                let mut at = from;
+                while at < end && work < budget {
+                    work += 1;
+                    if at < blocks[0] {
+                        let mut flags = self.touched.springs[at];
+                        while flags != 0 {
+                            self.trace[at * BLOCK + flags.trailing_zeros() as usize] = INTACT;
+                            flags &= flags - 1;
+                            work += 1;
+                        }
+                        self.touched.springs[at] = 0;
+                    } else if at < blocks[0] + blocks[1] {
+                        self.touched.cells[at - blocks[0]] = 0;
+                    } else {
+                        self.touched.nodes[at - blocks[0] - blocks[1]] = 0;
+                    }
+                    at += 1;
+                }
+                if at < end { TracePass::Clean(at) } else { TracePass::Breaks(0) }
+            }
             TracePass::Breaks(from) => {
                 // Break times are ≥ 0 (−0 at the very start, whose sign bit is cleared here).
-                let at = items!(from, springs, |m: &mut Self, s: usize| {
+                let at = items!(from, springs, self.broken_blocks, |m: &mut Self, s: usize| {
                     let time = m.break_time[s];
                     m.trace[s] = if time == INTACT { INTACT } else { time & !BRANCH };
+                    if time != INTACT {
+                        // Its flags, and those of its two mesh cells and two nodes.
+                        m.touch(s);
+                        return 3;
+                    }
                     1
                 });
                 if at < springs { TracePass::Breaks(at) } else { TracePass::StackTips(0) }
@@ -360,7 +496,7 @@ impl<S: Scalar> Mud<'_, S> {
             // 1. Tips continue across separated sides. Counts only grow, so a mesh cell
             //    reaches one cut side at most once and the stack holds each cell at most once.
             TracePass::StackTips(from) => {
-                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                let at = items!(from, cells, self.touched.cells, |m: &mut Self, cell: usize| {
                     m.trace_top = m.stack_single_cuts(cell..cell + 1, usize::MAX, m.trace_top, false);
                     corners
                 });
@@ -376,6 +512,16 @@ impl<S: Scalar> Mud<'_, S> {
             //    above; closing one leaves its junction with two or more cut sides: no new tip).
             TracePass::DeadEnds(mut cell, mut walk) => {
                 while cell < cells && work < budget {
+                    if walk.is_none() {
+                        match next_flagged(self.touched.cells, cell, cells) {
+                            Ok(flagged) => cell = flagged,
+                            Err(word_end) => {
+                                work += 1;
+                                cell = word_end;
+                                continue;
+                            }
+                        }
+                    }
                     match walk {
                         None => {
                             work += corners;
@@ -396,12 +542,12 @@ impl<S: Scalar> Mud<'_, S> {
             //    docs).
             TracePass::Nodes(from) => {
                 let nodes = self.lattice.node_count();
-                let at = items!(from, nodes, |m: &mut Self, node: usize| m.separate_node(node));
+                let at = items!(from, nodes, self.touched.nodes, |m: &mut Self, node: usize| m.separate_node(node));
                 if at < nodes { TracePass::Nodes(at) } else { TracePass::StackBranches(0) }
             }
             // 3. Branches: counts only fall, so again each cell is stacked at most once.
             TracePass::StackBranches(from) => {
-                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                let at = items!(from, cells, self.touched.cells, |m: &mut Self, cell: usize| {
                     m.trace_top = m.stack_single_cuts(cell..cell + 1, usize::MAX, m.trace_top, true);
                     corners
                 });
@@ -420,7 +566,8 @@ impl<S: Scalar> Mud<'_, S> {
                 if from == 0 {
                     self.vertex_total = 0;
                 }
-                let at = items!(from, cells, |m: &mut Self, cell: usize| {
+                // A block no crack touches holds no vertex (and its words are not read).
+                let at = items!(from, cells, self.touched.cells, |m: &mut Self, cell: usize| {
                     m.stack[cell] = m.vertex_total;
                     m.vertex_total += m.vertices_in(cell) as u32;
                     m.ring_starts[cell] = 0;
@@ -430,7 +577,7 @@ impl<S: Scalar> Mud<'_, S> {
             }
             // 5. Where each crack point lies (the vertices are numbered: walks can end).
             TracePass::Offsets(from) => {
-                let at = items!(from, springs, |m: &mut Self, spring: usize| {
+                let at = items!(from, springs, self.touched.springs, |m: &mut Self, spring: usize| {
                     m.crack_offset[spring] = 0;
                     if !m.is_cut(spring) {
                         return 1;
@@ -438,7 +585,7 @@ impl<S: Scalar> Mud<'_, S> {
                     let pack = |v: f32| (libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0) as i16 as u16) as u32;
                     let [x, y] = m.smoothing_offset(spring);
                     m.crack_offset[spring] = pack(x) | pack(y) << 16;
-                    1 + 2 * SMOOTHING as u64
+                    1 + 2 * SMOOTHING as u64 * super::cells::RING_STEP
                 });
                 if at < springs { TracePass::Offsets(at) } else { TracePass::Rings(RingCursor::START) }
             }
@@ -484,8 +631,21 @@ impl<S: Scalar> Mud<'_, S> {
             return self.join_across_node(cell, tip);
         }
         self.trace[spring] = self.trace[tip];
+        self.touch(spring);
         self.trace_top = self.stack_single_cuts(self.neighbours_across(spring), cell, self.trace_top, false);
         2 * c.corners as u64
+    }
+
+    /// Flags the blocks of cut `spring`, its mesh cells and its nodes as touched by the trace.
+    fn touch(&mut self, spring: usize) {
+        set_bit(self.touched.springs, spring);
+        for (cell, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
+            set_bit(self.touched.cells, cell);
+        }
+        if let Some((a, b)) = self.lattice.spring_nodes(spring) {
+            set_bit(self.touched.nodes, a);
+            set_bit(self.touched.nodes, b);
+        }
     }
 
     /// Rule 3 for the cell on top of the stack: if one side of it still separates, that side
@@ -643,6 +803,7 @@ impl<S: Scalar> Mud<'_, S> {
         let (mut at, mut spring) = (cell, first);
         for _ in 0..super::irregular::MAX_DEGREE {
             self.trace[spring] = time;
+            self.touch(spring);
             work += 1;
             let Some(next) = self.neighbours_across(spring).find(|&n| n != at) else { break };
             let Some(side) = self.other_side_at(next, spring, node) else { break };

@@ -36,11 +36,14 @@ enum Pass {
     /// five constants, and the node's share of the settle or relax bound.
     NodeConstants,
     /// Per spring: the node it reaches, its break stretch κ_i, intact, not cut, and the
-    /// explicit solver's limit.
+    /// explicit solver's limit; per word of their flags, no break, nothing touched in the
+    /// network shown and everything in its other copy (which the first trace clears).
     Springs,
-    /// Per node: no displacement (explicit: no velocity; quasi-static: no flags).
+    /// Per node: no displacement (explicit: no velocity; quasi-static: no flags); per block of
+    /// them, nothing touched.
     Nodes,
-    /// Per mesh cell: the tracing's stack and ring starts cleared.
+    /// Per mesh cell: the tracing's stack and ring starts cleared; per block of them, nothing
+    /// touched.
     Cells,
     /// Quasi-static, per spring: the misfit at which it breaks.
     BreakMisfits,
@@ -134,6 +137,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 Pass::NodeConstants => self.node_constants(from, end),
                 Pass::Springs => self.springs(from, end),
                 Pass::Nodes => {
+                    let blocks = super::network::blocks_from(from, end);
+                    self.touched.nodes[blocks.clone()].fill(0);
+                    self.back.touched.nodes[blocks].fill(0);
                     self.ux[from..end].fill(S::ZERO);
                     self.uy[from..end].fill(S::ZERO);
                     match &mut self.solver {
@@ -145,6 +151,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 Pass::Cells => {
                     self.stack[from..end].fill(0);
                     self.ring_starts[from..end].fill(0);
+                    let blocks = super::network::blocks_from(from, end);
+                    self.touched.cells[blocks.clone()].fill(0);
+                    self.back.touched.cells[blocks].fill(0);
                     end
                 }
                 Pass::BreakMisfits => {
@@ -299,6 +308,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
             self.break_time[spring] = INTACT;
             self.trace[spring] = INTACT;
             self.crack_offset[spring] = 0;
+            if spring % super::network::BLOCK == 0 {
+                let b = spring / super::network::BLOCK;
+                self.broken_blocks[b] = 0;
+                self.touched.springs[b] = 0;
+                // The other copy's cuts are not set: every spring is flagged, so that the
+                // first trace into it clears them (`TracePass::Clean`).
+                let valid = (lattice.spring_count() - spring).min(super::network::BLOCK);
+                self.back.touched.springs[b] = u32::MAX >> (super::network::BLOCK - valid);
+            }
             if let SolverState::Explicit(d) = &mut self.solver {
                 d.set_up_spring(spring, other == ABSENT);
             }
