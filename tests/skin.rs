@@ -1,6 +1,7 @@
 //! Model C against the paper (Ishii et al.) and hibi's own acceptance criteria.
 
 use hibi_core::Scalar;
+use hibi_core::raster::{Layer, RasterError};
 use hibi_core::skin::{
     PRESETS, ShadeError, ShadeParams, Skin, SkinBuffers, SkinCell, SkinError, SkinLayers, SkinParams, SkinRender,
     preset, shade,
@@ -395,7 +396,8 @@ fn bad_input_is_refused_and_nothing_is_written() {
         let mut short = vec![5.0f32; 64 * 64 - 1];
         let mut normal = vec![[5.0f32; 3]; 64 * 64];
         let layers = SkinLayers { height: Some(&mut short), normal: Some(&mut normal), ..SkinLayers::default() };
-        assert_eq!(skin.render(&SkinRender::default(), layers), Err(SkinError::BufferTooSmall { needed: 64 * 64 }));
+        let short_height = RasterError::BufferTooSmall { layer: Layer::Height, needed: 64 * 64 };
+        assert_eq!(skin.render(&SkinRender::default(), layers), Err(SkinError::Raster(short_height)));
         assert!(short.iter().all(|&v| v == 5.0) && normal.iter().all(|v| *v == [5.0; 3]));
         let mut ids = vec![9u32; 64 * 64];
         let layers = SkinLayers { cell: Some(&mut ids), ..SkinLayers::default() };

@@ -95,6 +95,7 @@ impl Glass<'_> {
     }
 
     /// [`Glass::render_tile`] of the mask, time and height maps only.
+    #[inline(never)]
     fn render_own(&self, render: &GlassRender, tile: &Tile, layers: GlassLayers<'_>) -> Result<(), RasterError> {
         render.validate()?;
         tile.check_inside(render.width, render.height)?;
@@ -126,6 +127,7 @@ impl Glass<'_> {
     }
 
     /// [`Glass::render_tile`] with a derived layer (`height16`, the normals, the preview).
+    #[inline(never)]
     fn render_derived(&self, render: &GlassRender, tile: &Tile, layers: GlassLayers<'_>) -> Result<(), RasterError> {
         render.validate()?;
         tile.check_inside(render.width, render.height)?;

@@ -174,6 +174,7 @@ impl<S: Scalar> Mud<'_, S> {
     }
 
     /// [`Mud::render_tile`] of the mask, time and height maps only (none needs the scratch).
+    #[inline(never)]
     fn render_own(&self, render: &MudRender, tile: &Tile, layers: MudLayers<'_>) -> Result<(), RasterError> {
         render.validate()?;
         tile.check_inside(render.width, render.height)?;
@@ -208,6 +209,7 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// [`Mud::render_tile`] with a layer derived from the height (`height16`, the normals, the
     /// preview): the heights of the tile and its margin in the scratch first.
+    #[inline(never)]
     fn render_derived(&self, render: &MudRender, tile: &Tile, layers: MudLayers<'_>) -> Result<(), RasterError> {
         render.validate()?;
         tile.check_inside(render.width, render.height)?;

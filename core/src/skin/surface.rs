@@ -536,6 +536,7 @@ impl<S: Scalar> Skin<'_, S> {
     }
 
     /// [`Skin::render_tile`] of the height, normal and cell maps only.
+    #[inline(never)]
     fn render_own(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.check_render(render, tile, &layers)?;
         let Layers { height, normal, cell, .. } = layers;
@@ -566,6 +567,7 @@ impl<S: Scalar> Skin<'_, S> {
 
     /// [`Skin::render_tile`] with a derived layer (`height16`, `normal_rgb8`, the preview, the
     /// furrow mask).
+    #[inline(never)]
     fn render_derived(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
         let pixels = self.check_render(render, tile, &layers)?;
         let light = match layers.preview {
@@ -605,6 +607,7 @@ impl<S: Scalar> Skin<'_, S> {
     /// The furrow mask of `tile` ([`FURROWS`]), working in `scratch`: per level, the cell map of
     /// the tile with one more column on the right and one more row below (wrapping on a
     /// periodic surface, absent past an open one's edge), then the outlines it shows.
+    #[inline(never)]
     fn draw_furrows(&self, tile: &Tile, mask: &mut [u8], scratch: &mut [u32]) {
         let (w, h) = (self.params.width, self.params.height);
         let periodic = self.params.periodic;
@@ -665,6 +668,7 @@ impl<S: Scalar> Skin<'_, S> {
     /// unions of their descendants, pixel for pixel, so a pixel's coarser cells are its finest
     /// cell's ancestors, which come before it in [`Skin::cells`]. Each level's fan is kept
     /// while its descendants are drawn.
+    #[inline(never)] // one Batch on the stack at a time, whichever maps are drawn
     fn draw<K: Sink>(&self, sink: &mut K, mut cell: Option<(&mut [u32], u32)>, tile: &Tile) {
         if !K::SHADES {
             // A cell map alone needs only the pixels of its level's cells.
