@@ -80,7 +80,7 @@ fn cell(u: &mut Unstructured, s: &Surface) -> Result<()> {
 
 fn render(u: &mut Unstructured, s: &Surface) -> Result<()> {
     let pixels = s.params.width as usize * s.params.height as usize;
-    let render = hibi_skin_render_params { cell_level: count(u, 0..=4)? };
+    let render = hibi_skin_render_params { cell_level: count(u, 0..=4)?, ..hibi_skin_render_params_default() };
     let layer = enumeration(u, 3)?;
     // Values per pixel (floats for the normal layer); each value is 4 bytes.
     let per = if layer == HIBI_SKIN_LAYER_NORMAL { 3 } else { 1 };
