@@ -518,7 +518,9 @@ impl<S: Scalar> Skin<'_, S> {
     /// (about 12 KiB in all: `tests/stack.rs`).
     #[inline(always)]
     pub fn render_tile(&self, render: &SkinRender, tile: &Tile, layers: SkinLayers) -> Result<(), SkinError> {
-        if layers.derived() || layers.mask.is_some() {
+        // (A skin's normal map is its own, not derived from its heights.)
+        let derived = layers.height16.is_some() || layers.normal_rgb8.is_some() || layers.preview.is_some();
+        if derived || layers.mask.is_some() {
             self.render_derived(render, tile, layers)
         } else {
             self.render_own(render, tile, layers)
@@ -594,6 +596,10 @@ impl<S: Scalar> Skin<'_, S> {
             per_span,
         };
         if outputs.shades() {
+            // What a pixel in no cell reads (every pixel of a built skin lies in one): height 0,
+            // the normal straight up.
+            let flat = unit_normal([0.0; 2]);
+            (0..pixels).for_each(|i| outputs.set(i, 0.0, flat));
             self.draw(&mut outputs, cell, tile);
         } else {
             self.draw(&mut NoMaps, cell, tile);
