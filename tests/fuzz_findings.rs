@@ -551,6 +551,17 @@ fn a_periodic_skin_stretched_past_the_fixed_point_builds_and_renders() {
 ///
 /// `glass` must be a live plate.
 unsafe fn fragment_area(glass: *mut hibi_glass) -> (usize, f64) {
+    // SAFETY: as this function's.
+    let (rings, _) = unsafe { fragments(glass) };
+    (rings.len(), rings.iter().map(|ring| ring.area).sum())
+}
+
+/// The fragments of a plate as they stand, through the C ABI: their rings and points.
+///
+/// # Safety
+///
+/// `glass` must be a live plate.
+unsafe fn fragments(glass: *mut hibi_glass) -> (Vec<hibi_core::polygon::Ring>, Vec<hibi_vec2>) {
     let mut size = 0;
     let (mut rings, mut points) = (0, 0);
     // SAFETY (every call below): a live plate, buffers of the lengths passed.
@@ -574,7 +585,34 @@ unsafe fn fragment_area(glass: *mut hibi_glass) -> (usize, f64) {
             &mut p,
         );
         assert_eq!((status, r, p), (HIBI_OK, rings, points));
-        (rings, ring_buf.iter().map(|ring| ring.area).sum())
+        (ring_buf, point_buf)
+    }
+}
+
+/// The area the convex pieces of `rings` (for a physics engine) cover, through the C ABI.
+fn pieces_area(rings: &[hibi_core::polygon::Ring], points: &[hibi_vec2]) -> f64 {
+    let (rp, pp) = (rings.as_ptr(), points.as_ptr());
+    let (mut words, mut triangles, mut pieces, mut written) = (0, 0, 0, 0);
+    // SAFETY: valid buffers of the lengths passed.
+    unsafe {
+        assert_eq!(hibi_pieces_scratch_size(rp, rings.len(), pp, points.len(), &mut words), HIBI_OK);
+        let mut scratch = vec![0u32; words];
+        let s = scratch.as_mut_ptr();
+        let status = hibi_pieces_counts(rp, rings.len(), pp, points.len(), s, words, &mut triangles, &mut pieces);
+        assert_eq!(status, HIBI_OK);
+        let mut convex = vec![hibi_core::polygon::ConvexPiece::default(); pieces];
+        let status =
+            hibi_convex_pieces(rp, rings.len(), pp, points.len(), s, words, convex.as_mut_ptr(), pieces, &mut written);
+        assert_eq!((status, written), (HIBI_OK, pieces));
+        let mut twice = 0.0;
+        for piece in &convex {
+            let n = piece.point_count as usize;
+            for k in 0..n {
+                let [a, b] = [piece.points[k], piece.points[(k + 1) % n]].map(|i| points[i as usize]);
+                twice += f64::from(a.x) * f64::from(b.y) - f64::from(b.x) * f64::from(a.y);
+            }
+        }
+        0.5 * twice
     }
 }
 
@@ -600,6 +638,41 @@ fn fragments_of_an_impact_a_hair_from_the_edge_cover_the_plate() {
         assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
         let (rings, area) = fragment_area(glass);
         assert!((area - 16.0).abs() <= 1e-4 * 16.0, "{rings} rings cover {area} of 16 px²");
+        hibi_glass_destroy(glass);
+    }
+}
+
+/// Finding 17: a second impact at the first one's point (33.5, 20) on a 67 × 40 plate. The
+/// second hub was a vertex of its own at the same place: a crack's move sees no crack at its
+/// very start, so the two hubs' cracks crossed near it with no vertex between them, the face
+/// walks made a fragment ring that passed the hub five times and crossed itself, and its
+/// convex pieces covered 2,945.5 of the plate's 2,680 px² (the rings' signed areas still added
+/// up). An impact (or a ring crack's start point) on an earlier crack now starts from its
+/// vertex, or splits the segment it lies on.
+#[test]
+fn a_second_impact_at_the_first_ones_point_keeps_the_fragments_simple() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (67.0, 40.0, [33.5, 20.0]);
+    params.seed = 15_854_078_063_242_042_368;
+    (params.spread, params.sector_radius) = (HIBI_SPREAD_UNIFORM, 6.085_084e-39);
+    (params.max_cracks, params.max_vertices) = (252, 319);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    let plate = 67.0 * 40.0;
+    // SAFETY: valid pointers; a live plate.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
+        assert_eq!(hibi_glass_step(glass, 9_738, &mut progress), HIBI_OK);
+        assert_eq!(hibi_glass_impact(glass, 33.5, 20.0, core::ptr::null_mut()), HIBI_OK);
+        for _ in 0..2 {
+            assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
+        }
+        let (rings, points) = fragments(glass);
+        let area: f64 = rings.iter().map(|ring| ring.area).sum();
+        assert!((area - plate).abs() <= 1e-4 * plate, "{} rings cover {area} of {plate} px²", rings.len());
+        let pieces = pieces_area(&rings, &points);
+        assert!((pieces - plate).abs() <= 1e-4 * plate, "pieces cover {pieces} of {plate} px²");
         hibi_glass_destroy(glass);
     }
 }

@@ -907,6 +907,28 @@ impl Glass<'_> {
         }
     }
 
+    /// The vertex a crack starting at `at` (an impact point, or a ring crack's start point
+    /// C_i) grows from: the vertex already there, else a new one that splits the crack `at`
+    /// lies on, else a new one. A move sees no crack at its very start (see
+    /// [`Self::trace_path`]), so a crack starting on an earlier one must share its vertex for
+    /// the cracks to stay a plane graph: a second hub at the first one's point, unjoined,
+    /// would let their cracks cross and the fragments' rings cross themselves. Looks at every
+    /// vertex and segment once (bounded by the capacities). NONE when full.
+    pub(super) fn vertex_at(&mut self, at: [f32; 2]) -> u32 {
+        if let Some(v) = self.vertices[..self.vertex_count].iter().position(|v| v.at == at) {
+            return v as u32;
+        }
+        let p = Point::new(at[0], at[1]);
+        for e in 0..self.edge_count as u32 {
+            let (a, z) = self.edge_points(e);
+            let segment = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
+            if segment.contains(p) {
+                return self.meeting_vertex(e, at, segment.closest_parameter(p));
+            }
+        }
+        self.add_vertex(at)
+    }
+
     /// The vertex where a tip meets edge `e` at point `at` (parameter `along` on the edge): one
     /// of its ends if it meets it there, else a new vertex that splits it. NONE when full.
     fn meeting_vertex(&mut self, e: u32, at: [f32; 2], along: f32) -> u32 {

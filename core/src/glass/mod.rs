@@ -588,9 +588,11 @@ impl<'a> Glass<'a> {
     }
 
     /// Adds an impact at `at`: draws M, N and R and starts its cracks (paper §4.2.1). Cracks
-    /// of earlier impacts stay; new cracks stop where they meet them. Growth of any earlier
+    /// of earlier impacts stay; new cracks stop where they meet them, and an impact (or a ring
+    /// crack's start point) on an earlier crack starts from it. Growth of any earlier
     /// impact still running ends first. Its cost is bounded by the capacities: it starts at
-    /// most M + 2R cracks and looks at no more than `max_cracks` ring start points.
+    /// most M + 2R cracks, looks at no more than `max_cracks` ring start points, and for the
+    /// impact and each start point looks once at every vertex and segment so far.
     ///
     /// Refused, with nothing changed: a point outside the plate ([`GlassError::Impact`]), and
     /// any impact once a capacity has run out ([`GlassError::Capacity`]: generation stopped
@@ -637,7 +639,7 @@ impl<'a> Glass<'a> {
         // At most FLT_MAX: Rand((1 + z)·x) of a speed or radius near FLT_MAX is +inf, and an
         // infinite speed made the crack times NaN (inf − inf; found by fuzzing).
         let rand = |rng: &mut Rng, x: f32| rng.rand(x, p.spread_ratio, p.spread).unwrap_or(x).min(f32::MAX);
-        let centre = self.add_vertex(at);
+        let centre = self.vertex_at(at);
         // Radial cracks at equal angles; the N large ones spread as evenly as possible.
         for i in 0..m {
             let large = n > 0 && (i * n) / m != ((i + 1) * n) / m;
@@ -675,7 +677,7 @@ impl<'a> Glass<'a> {
                 continue; // off the plate: no ring crack there
             }
             let speed = rand(&mut speed_rng, p.ring_speed);
-            let vertex = self.add_vertex(start);
+            let vertex = self.vertex_at(start);
             let quarter = core::f32::consts::FRAC_PI_2;
             let wake = libm::ceilf(radius / p.large_speed) as u32;
             for (kind, heading) in
