@@ -577,6 +577,19 @@ typedef struct hibi_glass_fragment_build hibi_glass_fragment_build;
 typedef struct hibi_mud hibi_mud;
 
 /**
+ * A budgeted build of a run's cells, in caller memory (`hibi_mud_cell_build_create_in`).
+ * Opaque; nothing to free (the memory stays the caller's).
+ */
+typedef struct hibi_mud_cell_build hibi_mud_cell_build;
+
+/**
+ * A budgeted build of a run's crack network, in caller memory
+ * (`hibi_mud_network_build_create_in`). Opaque; nothing to free (the memory stays the
+ * caller's).
+ */
+typedef struct hibi_mud_network_build hibi_mud_network_build;
+
+/**
  * A random stream (Xoshiro128++ seeded through SplitMix64). Opaque.
  */
 typedef struct hibi_rng hibi_rng;
@@ -1317,6 +1330,60 @@ typedef struct hibi_mud_render_params {
    */
   float until;
 } hibi_mud_render_params;
+
+/**
+ * Where a network build stands.
+ */
+typedef struct hibi_mud_network_build_progress {
+  /**
+   * Vertices written so far (all of them once finished).
+   */
+  uint32_t vertices;
+  /**
+   * Edges written so far.
+   */
+  uint32_t edges;
+  /**
+   * Edge points written so far.
+   */
+  uint32_t points;
+  /**
+   * 1 when the network is written: its vertices, edges and points can then be read
+   * (`hibi_mud_network_build_vertices`, `_edges`, `_points`).
+   */
+  uint32_t finished;
+  /**
+   * Work done since the build (re)started, in the units of the step's budget.
+   */
+  uint64_t work;
+} hibi_mud_network_build_progress;
+
+/**
+ * Where a cell build stands.
+ */
+typedef struct hibi_mud_cell_build_progress {
+  /**
+   * Rings written so far (all of them once finished).
+   */
+  uint32_t rings;
+  /**
+   * Their points.
+   */
+  uint32_t points;
+  /**
+   * Boundaries that wrap around a periodic lattice found so far (not written).
+   */
+  uint32_t wrapping;
+  /**
+   * 1 when every ring is written and every hole knows its outer ring: the rings and points
+   * can then be read (`hibi_mud_cell_build_rings`, `hibi_mud_cell_build_points`).
+   */
+  uint32_t finished;
+  /**
+   * Work done since the build (re)started, in the units of the step's budget.
+   */
+  uint64_t work;
+} hibi_mud_cell_build_progress;
 
 /**
  * One triangle: three point indices, counter-clockwise with y up (positive area), and the
@@ -2415,6 +2482,180 @@ hibi_status hibi_mud_render_layers(const struct hibi_mud *mud,
                                    const struct hibi_mud_render_params *render,
                                    const struct hibi_tile *tile,
                                    const struct hibi_layers *layers);
+
+/**
+ * Writes the bytes of caller memory a network build of `mud` needs (for
+ * `hibi_mud_network_build_create_in`; aligned to `hibi_mud_memory_align()`): room for the
+ * most vertices, edges and points its lattice's network can have, so one block serves the run
+ * at any point.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `size` NULL or writable.
+ */
+hibi_status hibi_mud_network_build_size(const struct hibi_mud *mud, size_t *size);
+
+/**
+ * Makes a build of `mud`'s crack network in caller memory of at least
+ * `hibi_mud_network_build_size` bytes aligned to `hibi_mud_memory_align()`, in the same
+ * work at any size (nothing is written but the build's header); `hibi_mud_network_build_step`
+ * does the work. The build yields the vertices, edges and points `hibi_mud_network` writes,
+ * bit for bit, read in ranges once finished. Nothing is written on failure; there is nothing
+ * to destroy.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `memory` NULL or writable for `memory_size` bytes and
+ * untouched while the build is used; `out` NULL or writable.
+ */
+hibi_status hibi_mud_network_build_create_in(const struct hibi_mud *mud,
+                                             void *memory,
+                                             size_t memory_size,
+                                             struct hibi_mud_network_build **out);
+
+/**
+ * Goes on with `build` on `mud` until about `budget` units of work are done in this call,
+ * or it is finished; writes where it stands to `*progress` unless it is NULL. A unit is a
+ * mesh cell or a spring looked at, a vertex written, or a point an edge's walk passes (each
+ * edge is walked twice: to find its far end, then for its points); a call does at least one
+ * piece (one mesh cell's vertices or edges, or one spring's closed crack) and overruns the
+ * budget by less than one: the points of the cracks leaving one mesh cell, twice. The result
+ * does not depend on the budgets. A run whose network shown changed since the build began (a
+ * trace finished in a step, or `hibi_mud_trace`) starts the build over (its work from 0).
+ * `HIBI_ERROR_BUFFER_TOO_SMALL` (naming `build`) for a run whose lattice needs a larger
+ * block than the build's. Steps of one build must not run at once; the run is only read.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `mud` NULL or a live run not changed during the call;
+ * `progress` optional: NULL (not written) or writable.
+ */
+hibi_status hibi_mud_network_build_step(struct hibi_mud_network_build *build,
+                                        const struct hibi_mud *mud,
+                                        uint64_t budget,
+                                        struct hibi_mud_network_build_progress *progress);
+
+/**
+ * Writes the vertices of a finished `build` from vertex `first` on into
+ * `vertices[0..vertices_len]`: as many as there are, at most `vertices_len` (none before the
+ * build is finished, or from a `first` at or past the vertex count), and how many into
+ * `*written`. The vertices `[first, first + vertices_len)` of `hibi_mud_network`: ranges read
+ * one after another concatenate to its vertices.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `vertices` NULL (only with `vertices_len` 0) or
+ * writable for `vertices_len` vertices; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_mud_network_build_vertices(const struct hibi_mud_network_build *build,
+                                            size_t first,
+                                            struct hibi_mud_network_vertex *vertices,
+                                            size_t vertices_len,
+                                            size_t *written);
+
+/**
+ * Writes the edges of a finished `build` from edge `first` on into `edges[0..edges_len]`, as
+ * `hibi_mud_network_build_vertices` writes vertices; each edge's `first_point` indexes the
+ * whole points list (`hibi_mud_network_build_points`).
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `edges` NULL (only with `edges_len` 0) or writable for
+ * `edges_len` edges; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_mud_network_build_edges(const struct hibi_mud_network_build *build,
+                                         size_t first,
+                                         struct hibi_mud_network_edge *edges,
+                                         size_t edges_len,
+                                         size_t *written);
+
+/**
+ * Writes the edge points of a finished `build` from point `first` on into
+ * `points[0..points_len]`, as `hibi_mud_network_build_vertices` writes vertices.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `points` NULL (only with `points_len` 0) or writable
+ * for `points_len` points; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_mud_network_build_points(const struct hibi_mud_network_build *build,
+                                          size_t first,
+                                          struct hibi_mud_network_point *points,
+                                          size_t points_len,
+                                          size_t *written);
+
+/**
+ * Writes the bytes of caller memory a cell build of `mud` needs (for
+ * `hibi_mud_cell_build_create_in`; aligned to `hibi_mud_memory_align()`): room for the most
+ * rings and points its lattice's cells can have, so one block serves the run at any point.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `size` NULL or writable.
+ */
+hibi_status hibi_mud_cell_build_size(const struct hibi_mud *mud, size_t *size);
+
+/**
+ * Makes a build of `mud`'s cells in caller memory of at least `hibi_mud_cell_build_size`
+ * bytes aligned to `hibi_mud_memory_align()`, in the same work at any size;
+ * `hibi_mud_cell_build_step` does the work. The build yields the rings and points
+ * `hibi_mud_cells` writes, bit for bit, read in ranges once finished. Nothing is written on
+ * failure; there is nothing to destroy.
+ *
+ * # Safety
+ * `mud` must be NULL or a live run; `memory` NULL or writable for `memory_size` bytes and
+ * untouched while the build is used; `out` NULL or writable.
+ */
+hibi_status hibi_mud_cell_build_create_in(const struct hibi_mud *mud,
+                                          void *memory,
+                                          size_t memory_size,
+                                          struct hibi_mud_cell_build **out);
+
+/**
+ * Goes on with `build` on `mud` until about `budget` units of work are done in this call,
+ * or it is finished; writes where it stands to `*progress` unless it is NULL. A unit is a
+ * mesh cell looked at, a ring point written, or a point of an outer ring tested for a hole
+ * (at each periodic shift); a call does at least one piece (one mesh cell's rings, or one
+ * outer ring tested for one hole) and overruns the budget by less than one: the points of the
+ * rings starting from one mesh cell, or nine times one ring's points. The result does not
+ * depend on the budgets. A run whose network shown changed since the build began starts the
+ * build over (its work from 0). `HIBI_ERROR_BUFFER_TOO_SMALL` (naming `build`) for a run
+ * whose lattice needs a larger block than the build's. Steps of one build must not run at
+ * once; the run is only read.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `mud` NULL or a live run not changed during the call;
+ * `progress` optional: NULL (not written) or writable.
+ */
+hibi_status hibi_mud_cell_build_step(struct hibi_mud_cell_build *build,
+                                     const struct hibi_mud *mud,
+                                     uint64_t budget,
+                                     struct hibi_mud_cell_build_progress *progress);
+
+/**
+ * Writes the rings of a finished `build` from ring `first` on into `rings[0..rings_len]`: as
+ * many as there are, at most `rings_len` (none before the build is finished, or from a
+ * `first` at or past the ring count), and how many into `*written`. The rings
+ * `[first, first + rings_len)` of `hibi_mud_cells`: ranges read one after another
+ * concatenate to its rings, and each ring's `first_point` indexes the whole points list
+ * (`hibi_mud_cell_build_points`).
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `rings` NULL (only with `rings_len` 0) or writable
+ * for `rings_len` rings; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_mud_cell_build_rings(const struct hibi_mud_cell_build *build,
+                                      size_t first,
+                                      struct hibi_ring *rings,
+                                      size_t rings_len,
+                                      size_t *written);
+
+/**
+ * Writes the ring points of a finished `build` from point `first` on into
+ * `points[0..points_len]`, as `hibi_mud_cell_build_rings` writes rings.
+ *
+ * # Safety
+ * `build` must be NULL or a live build; `points` NULL (only with `points_len` 0) or writable
+ * for `points_len` points; `written` NULL (refused) or writable.
+ */
+hibi_status hibi_mud_cell_build_points(const struct hibi_mud_cell_build *build,
+                                       size_t first,
+                                       struct hibi_vec2 *points,
+                                       size_t points_len,
+                                       size_t *written);
 
 /**
  * Checks the rings `rings[0..rings_len]` over the points `points[0..points_len]` (glass

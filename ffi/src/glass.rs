@@ -28,7 +28,7 @@ use hibi_core::glass::{
 
 use crate::constants::param_status;
 use crate::fields::{Field, convert};
-use crate::guard::{Outcome, Outs, buffer, check_pointer, guard, object_ref, query, update, write_out};
+use crate::guard::{Outcome, Outs, buffer, check_pointer, copy_from, guard, object_ref, query, update, write_out};
 use crate::object::{self, AnyBits, Arena, Object, Origin, lifecycle};
 use crate::polygons::polygon_query;
 use crate::raster::{Pixels, render};
@@ -638,28 +638,6 @@ pub unsafe extern "C" fn hibi_glass_fragment_build_step(
     };
     // SAFETY: the caller's contract.
     guard(|| unsafe { update(build, c"build", (progress, c"progress"), step) })
-}
-
-/// Copies what a finished build holds from index `first` into `out[0..len]`, as many as
-/// there are (none before the build is finished, or from `first` past the end), and writes how
-/// many to `*written`.
-///
-/// # Safety
-/// As the callers'.
-unsafe fn copy_from<T: Copy>(
-    all: &[T],
-    first: usize,
-    (out, len, name): (*mut T, usize, &'static CStr),
-    written: *mut usize,
-) -> Result<(), hibi_status> {
-    check_pointer(written, c"written")?;
-    // SAFETY: the caller's contract.
-    let out = unsafe { buffer(out, len, name) }?;
-    let from = all.get(first..).unwrap_or(&[]);
-    let n = from.len().min(out.len());
-    out[..n].copy_from_slice(&from[..n]);
-    // SAFETY: checked; the caller's contract.
-    unsafe { write_out(written, c"written", n) }
 }
 
 /// Writes the rings of a finished `build` from ring `first` on into `rings[0..rings_len]`:

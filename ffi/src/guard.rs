@@ -319,6 +319,28 @@ pub(crate) unsafe fn input<'a, T>(ptr: *const T, len: usize, name: &'static CStr
     Ok(unsafe { core::slice::from_raw_parts(ptr, len) })
 }
 
+/// Copies what a finished build holds from index `first` into `out[0..len]`, as many as
+/// there are (none before the build is finished, or from `first` past the end), and writes how
+/// many to `*written`.
+///
+/// # Safety
+/// As the callers'.
+pub(crate) unsafe fn copy_from<T: Copy>(
+    all: &[T],
+    first: usize,
+    (out, len, name): (*mut T, usize, &'static CStr),
+    written: *mut usize,
+) -> Result<(), hibi_status> {
+    check_pointer(written, c"written")?;
+    // SAFETY: the caller's contract.
+    let out = unsafe { buffer(out, len, name) }?;
+    let from = all.get(first..).unwrap_or(&[]);
+    let n = from.len().min(out.len());
+    out[..n].copy_from_slice(&from[..n]);
+    // SAFETY: checked; the caller's contract.
+    unsafe { write_out(written, c"written", n) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -231,7 +231,7 @@ impl crate::guard::Outcome for hibi_mud_render_params {
 
 /// A drying-mud run. Opaque.
 pub struct hibi_mud {
-    mud: Mud<'static, f32>,
+    pub(crate) mud: Mud<'static, f32>,
     origin: Origin,
 }
 

@@ -40,7 +40,7 @@ pub struct CellCounts {
 
 /// Where a boundary walk is.
 #[derive(Clone, Copy)]
-enum At {
+pub(super) enum At {
     /// Entered mesh cell `c` through its side `k`.
     Inside { c: TracedCell, k: usize, wrap: [i32; 2] },
     /// At corner `i` of mesh cell `c`, on the open border.
@@ -80,7 +80,7 @@ enum RingAt {
 
 /// How a ring walk ended.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum RingEnd {
+pub(super) enum RingEnd {
     /// Back at the start, having moved by this many periods.
     Closed([i32; 2]),
     /// `visit` asked to stop.
@@ -128,7 +128,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// Walks the ring from `start`, calling `visit(point, key)` with every point and the key
     /// of each mesh cell it enters (`usize::MAX` for other points); stops if `visit` returns
     /// false.
-    fn walk_ring(&self, start: At, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
+    pub(super) fn walk_ring(&self, start: At, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
         let start_key = Self::start_key(&start);
         let mut at = start;
         for step in 0..self.ring_step_bound() {
@@ -328,12 +328,32 @@ impl<S: Scalar> Mud<'_, S> {
         if !self.shows_network() {
             return 0;
         }
-        let mut wrapping = 0;
         let mut border_touched = false;
-        for cell in 0..self.lattice.cell_count() {
+        let wrapping = self.ring_starts_in(0..self.lattice.cell_count(), &mut border_touched, &mut ring);
+        // An open plate whose border no crack reaches: the border is a ring of its own.
+        if self.params.boundary == Boundary::Open
+            && !border_touched
+            && let Some(start) = (0..self.lattice.cell_count()).find_map(|cell| self.border_start(cell))
+        {
+            ring(start);
+        }
+        wrapping
+    }
+
+    /// [`Mud::for_each_ring`]'s rings whose start is in the mesh cells `cells`, in its order;
+    /// returns how many rings that wrap start there, and sets `border_touched` if a separating
+    /// side there is on the border.
+    pub(super) fn ring_starts_in(
+        &self,
+        cells: core::ops::Range<usize>,
+        border_touched: &mut bool,
+        ring: &mut impl FnMut(At),
+    ) -> usize {
+        let mut wrapping = 0;
+        for cell in cells {
             let Some(c) = self.cut_cell(cell) else { continue };
             for k in (0..c.sides()).filter(|&k| c.separating[k]) {
-                border_touched |= self.is_border_side(&c, k);
+                *border_touched |= self.is_border_side(&c, k);
                 let flags = self.ring_starts[cell] >> k;
                 if flags & 1 << STARTS != 0 {
                     ring(At::Inside { c, k, wrap: [0, 0] });
@@ -342,17 +362,14 @@ impl<S: Scalar> Mud<'_, S> {
                 }
             }
         }
-        // An open plate whose border no crack reaches: the border is a ring of its own.
-        if self.params.boundary == Boundary::Open && !border_touched {
-            let first_border = (0..self.lattice.cell_count()).find_map(|cell| {
-                let c = self.traced_cell(cell, [0, 0])?;
-                (0..c.sides()).find(|&k| self.is_border_side(&c, k)).map(|k| At::Border { c, i: k })
-            });
-            if let Some(start) = first_border {
-                ring(start);
-            }
-        }
         wrapping
+    }
+
+    /// Where the ring of an open plate's border starts, if mesh cell `cell` has a side on the
+    /// border (the first such cell starts it, when no crack reaches the border).
+    pub(super) fn border_start(&self, cell: usize) -> Option<At> {
+        let c = self.traced_cell(cell, [0, 0])?;
+        (0..c.sides()).find(|&k| self.is_border_side(&c, k)).map(|k| At::Border { c, i: k })
     }
 
     /// The signed area and point count of the ring from `start` (lattice units²).
@@ -428,22 +445,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// it: the hole lies in a cell that wraps around a periodic lattice. The rings are walked
     /// again, not read from a buffer, so that the statistics can ask too (holes are rare).
     fn ring_around(&self, q: [f32; 2]) -> Option<u32> {
-        let (_, deep) = self.factors();
-        let [w, h] = self.lattice.extent().map(|e| e * deep.to_f32());
-        let shifts: &[[f32; 2]] = match self.params.boundary {
-            Boundary::Open => &[[0.0, 0.0]],
-            Boundary::Periodic => &[
-                [0.0, 0.0],
-                [-1.0, -1.0],
-                [0.0, -1.0],
-                [1.0, -1.0],
-                [-1.0, 0.0],
-                [1.0, 0.0],
-                [-1.0, 1.0],
-                [0.0, 1.0],
-                [1.0, 1.0],
-            ],
-        };
+        let ([w, h], shifts) = self.hole_shifts();
         let mut best = (None, f64::INFINITY);
         let mut j = 0;
         self.for_each_ring(|start| {
@@ -473,6 +475,29 @@ impl<S: Scalar> Mud<'_, S> {
             j += 1;
         });
         best.0
+    }
+
+    /// The plate's size (lattice units) and the shifts by it at which a hole's point is tried
+    /// inside the outer rings: none on an open plate, the eight neighbouring copies too on a
+    /// periodic one.
+    pub(super) fn hole_shifts(&self) -> ([f32; 2], &'static [[f32; 2]]) {
+        let (_, deep) = self.factors();
+        let size = self.lattice.extent().map(|e| e * deep.to_f32());
+        let shifts: &[[f32; 2]] = match self.params.boundary {
+            Boundary::Open => &[[0.0, 0.0]],
+            Boundary::Periodic => &[
+                [0.0, 0.0],
+                [-1.0, -1.0],
+                [0.0, -1.0],
+                [1.0, -1.0],
+                [-1.0, 0.0],
+                [1.0, 0.0],
+                [-1.0, 1.0],
+                [0.0, 1.0],
+                [1.0, 1.0],
+            ],
+        };
+        (size, shifts)
     }
 
     /// Sums over the net areas of the cells that close in the plane (outer ring less its

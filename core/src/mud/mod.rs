@@ -29,12 +29,14 @@
 //! into caller buffers: [`Mud::network_counts`] and [`Mud::network`], [`Mud::cell_counts`] and
 //! [`Mud::cells`], [`Mud::segment_count`] and [`Mud::segments`].
 
+mod cell_build;
 mod cells;
 mod explicit;
 mod irregular;
 mod lattice;
 mod material;
 mod network;
+mod network_build;
 mod params;
 mod presets;
 mod quasi_static;
@@ -44,10 +46,16 @@ mod spacing;
 mod statistics;
 mod trace;
 
+#[cfg(feature = "alloc")]
+pub use cell_build::CellBuildStore;
+pub use cell_build::{CellBuild, CellBuildBuffers, CellBuildMemory, CellBuildProgress};
 pub use cells::{CellCounts, IN_WRAPPING_CELL};
 pub use lattice::Lattice;
 pub use material::Material;
 pub use network::{NO_VERTEX, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex, TRACE_PIECE};
+#[cfg(feature = "alloc")]
+pub use network_build::NetworkBuildStore;
+pub use network_build::{NetworkBuild, NetworkBuildBuffers, NetworkBuildMemory, NetworkBuildProgress};
 pub use params::{Boundary, Drive, MudParamError, MudParams, Solver, Topology};
 pub use presets::{PRESETS, preset};
 pub use render::{BEVEL, HAIRLINE, MudLayers, MudRender};
@@ -336,6 +344,8 @@ pub struct Mud<'a, S: Scalar = f32> {
     traced_broken: u32,
     /// Springs broken when the network shown was traced.
     shown_broken: u32,
+    /// Traces shown so far (wrapping): what identifies the network shown, for the builds.
+    shown_traces: u32,
     /// The trace under way, if one is.
     tracing: Option<network::TracePass>,
     /// The physics ended and its final trace has begun (or nothing broke).
@@ -466,6 +476,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             back,
             traced_broken: 0,
             shown_broken: 0,
+            shown_traces: 0,
             tracing: None,
             final_traced: false,
             physics_work: 0,

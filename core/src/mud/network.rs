@@ -419,6 +419,7 @@ impl<S: Scalar> Mud<'_, S> {
         if self.tracing.is_none() {
             // Done: its words are the network shown now.
             self.shown_broken = self.traced_broken;
+            self.shown_traces = self.shown_traces.wrapping_add(1);
         } else {
             self.swap_buffers();
         }
@@ -1083,7 +1084,21 @@ impl<S: Scalar> Mud<'_, S> {
         if !self.shows_network() {
             return;
         }
-        for cell in 0..self.lattice.cell_count() {
+        let ignore = core::cell::Cell::new(0);
+        self.edges_from_cells(0..self.lattice.cell_count(), &ignore, &mut edge);
+        self.closed_cracks(0..self.lattice.spring_count(), &ignore, &mut edge);
+    }
+
+    /// [`Mud::for_each_edge`]'s edges that start from the mesh cells `cells` (a vertex in
+    /// them, or a border point of theirs), in its order; `walked` counts the points its walks
+    /// pass (each edge is walked once to find its end, again for its points).
+    pub(super) fn edges_from_cells(
+        &self,
+        cells: core::ops::Range<usize>,
+        walked: &core::cell::Cell<u64>,
+        edge: &mut impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint))),
+    ) {
+        for cell in cells {
             let Some(c) = self.cut_cell(cell) else { continue };
             let centroid = Self::centroid_is_vertex(&c);
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
@@ -1094,6 +1109,10 @@ impl<S: Scalar> Mud<'_, S> {
                         _ => continue,
                     };
                     let walk = |visit: &mut dyn FnMut(NetworkPoint)| -> Option<Arrival> {
+                        let visit = &mut |p| {
+                            walked.set(walked.get() + 1);
+                            visit(p);
+                        };
                         if start == Start::Centroid {
                             visit(self.centroid_point(&c));
                         }
@@ -1131,9 +1150,19 @@ impl<S: Scalar> Mud<'_, S> {
                 }
             }
         }
+    }
+
+    /// [`Mud::for_each_edge`]'s closed cracks (with no vertex) whose lowest spring is in
+    /// `springs`, in its order; `walked` counts the points its walks pass.
+    pub(super) fn closed_cracks(
+        &self,
+        springs: core::ops::Range<usize>,
+        walked: &core::cell::Cell<u64>,
+        edge: &mut impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint))),
+    ) {
         // Closed cracks: every cell on them has two cut sides; each is found from its lowest
         // spring, in the cell on that spring's left.
-        for spring in (0..self.lattice.spring_count()).filter(|&s| self.is_cut(s)) {
+        for spring in springs.filter(|&s| self.is_cut(s)) {
             let [Some((cell, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { continue };
             let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
             if Self::centroid_is_vertex(&c) {
@@ -1143,6 +1172,7 @@ impl<S: Scalar> Mud<'_, S> {
             // is lower (the walk stops at the first lower one).
             let mut lowest = true;
             let end = self.walk((cell, side), c, side, [0, 0], |_, s| {
+                walked.set(walked.get() + 1);
                 lowest = s >= spring;
                 lowest
             });
@@ -1150,8 +1180,10 @@ impl<S: Scalar> Mud<'_, S> {
                 continue;
             }
             edge(NO_VERTEX, NO_VERTEX, &|visit| {
+                walked.set(walked.get() + 1);
                 visit(self.side_point(&c, side));
                 self.walk((cell, side), c, side, [0, 0], |p, _| {
+                    walked.set(walked.get() + 1);
                     visit(p);
                     true
                 });
@@ -1198,7 +1230,12 @@ impl<S: Scalar> Mud<'_, S> {
         if !self.shows_network() {
             return;
         }
-        for cell in 0..self.lattice.cell_count() {
+        self.vertices_of_cells(0..self.lattice.cell_count(), &mut visit);
+    }
+
+    /// [`Mud::for_each_vertex`]'s vertices in the mesh cells `cells`, in its order.
+    pub(super) fn vertices_of_cells(&self, cells: core::ops::Range<usize>, visit: &mut impl FnMut(NetworkVertex)) {
+        for cell in cells {
             let Some(c) = self.cut_cell(cell) else { continue };
             if Self::centroid_is_vertex(&c) {
                 visit(NetworkVertex { at: c.centroid(), degree: c.cut_count() as u32, on_border: 0 });
