@@ -11,7 +11,9 @@
  * program counts the frames with cracks from the first break on and checks that the cracks
  * shown never fall. Once the models are done, every layer an engine uploads (mask, 16-bit
  * height, RGB8 normals, time or cells, an RGBA preview) is streamed a 32 x 32 tile per call,
- * and checked against one call's whole image.
+ * and checked against one call's whole image; the mud's crack network and cells are built a
+ * frame's budget per call and read 64 elements per call, and checked against one call's
+ * outputs.
  *
  *   c++ -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude c_examples/engine.cpp \
  *       target/release/libhibi.a -lpthread -ldl -lm -o engine && ./engine frames/
@@ -112,6 +114,82 @@ struct Live {
 
 bool same(const std::vector<float> &a, const std::vector<float> &b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+template <class T>
+bool same_bytes(const std::vector<T> &a, const std::vector<T> &b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+/// A finished build read `range` elements per call (per frame, in an engine), appended to
+/// `out`; `read(first, part)` copies from element `first` on and returns how many.
+template <class T, class Read>
+void read_in_ranges(Read read, std::vector<T> &out, std::size_t range, unsigned &calls) {
+    std::vector<T> part(range);
+    for (;;) {
+        std::size_t n = read(out.size(), hibi::Span<T>(part));
+        calls++;
+        out.insert(out.end(), part.begin(), part.begin() + static_cast<std::ptrdiff_t>(n));
+        if (n < range) return;
+    }
+}
+
+/// A mud run's network and cells as an engine takes them: built a frame's budget per call,
+/// then read 64 elements per call, so that no call walks the whole lattice. Prints the
+/// largest work of a call against the budget, beside the longest crack and the largest ring
+/// (which bound a call's one piece), and whether they equal the one-call outputs.
+void mud_outputs(const hibi::Mud &mud, std::uint64_t budget) {
+    Budget network_budget{budget};
+    hibi::MudNetworkBuild network_build = hibi::MudNetworkBuild::create(mud);
+    unsigned build_calls = 0;
+    for (;;) {
+        hibi::MudNetworkBuild::Progress p = network_build.step(mud, budget);
+        network_budget.frame(p.work);
+        build_calls++;
+        if (p.finished) break;
+    }
+    Budget cell_budget{budget};
+    hibi::MudCellBuild cell_build = hibi::MudCellBuild::create(mud);
+    for (;;) {
+        hibi::MudCellBuild::Progress p = cell_build.step(mud, budget);
+        cell_budget.frame(p.work);
+        build_calls++;
+        if (p.finished) break;
+    }
+    unsigned read_calls = 0;
+    hibi::Mud::Network network;
+    read_in_ranges<hibi_mud_network_vertex>(
+        [&](std::size_t first, hibi::Span<hibi_mud_network_vertex> part) { return network_build.vertices(first, part); },
+        network.vertices, 64, read_calls);
+    read_in_ranges<hibi_mud_network_edge>(
+        [&](std::size_t first, hibi::Span<hibi_mud_network_edge> part) { return network_build.edges(first, part); },
+        network.edges, 64, read_calls);
+    read_in_ranges<hibi_mud_network_point>(
+        [&](std::size_t first, hibi::Span<hibi_mud_network_point> part) { return network_build.points(first, part); },
+        network.points, 64, read_calls);
+    hibi::Mud::Cells cells;
+    read_in_ranges<hibi_ring>(
+        [&](std::size_t first, hibi::Span<hibi_ring> part) { return cell_build.rings(first, part); }, cells.rings, 64,
+        read_calls);
+    read_in_ranges<hibi_vec2>(
+        [&](std::size_t first, hibi::Span<hibi_vec2> part) { return cell_build.points(first, part); }, cells.points,
+        64, read_calls);
+    std::uint32_t longest = 0, largest_ring = 0;
+    for (const hibi_mud_network_edge &e : network.edges) longest = std::max(longest, e.point_count);
+    for (const hibi_ring &r : cells.rings) largest_ring = std::max(largest_ring, r.point_count);
+    const hibi::Mud::Network whole_network = mud.network();
+    const hibi::Mud::Cells whole_cells = mud.cells();
+    const bool network_same = same_bytes(network.vertices, whole_network.vertices) &&
+                              same_bytes(network.edges, whole_network.edges) &&
+                              same_bytes(network.points, whole_network.points);
+    const bool cells_same = same_bytes(cells.rings, whole_cells.rings) && same_bytes(cells.points, whole_cells.points);
+    std::printf("mud outputs: %u build calls, the largest network work %llu and cell work %llu of budget %llu "
+                "(longest crack %u points, largest ring %u points); %u range reads of at most 64; "
+                "built = whole: network %s, cells %s\n",
+                build_calls, static_cast<unsigned long long>(network_budget.largest),
+                static_cast<unsigned long long>(cell_budget.largest), static_cast<unsigned long long>(budget),
+                static_cast<unsigned>(longest), static_cast<unsigned>(largest_ring), read_calls,
+                network_same ? "yes" : "no", cells_same ? "yes" : "no");
 }
 
 /// A finished model's layers drawn a tile per frame, as an engine streams a large texture in:
@@ -298,6 +376,9 @@ int main(int argc, char **argv) {
         std::printf("tiles: %u render calls, the largest %zu pixels; streamed = whole: glass %s, mud %s, skin %s\n",
                     tile_calls, tile_pixels, glass_tiles ? "yes" : "no", mud_tiles ? "yes" : "no",
                     skin_tiles ? "yes" : "no");
+
+        // The finished mud's network and cells, built and read in bounded calls.
+        mud_outputs(mud, mud_budget.per_frame);
 
         // The models do not depend on the budgets: the same objects, run in one go.
         hibi::Glass whole_glass(glass_params);

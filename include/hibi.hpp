@@ -805,6 +805,152 @@ private:
     std::unique_ptr<hibi_mud, detail::MudDelete> handle_;
 };
 
+/// A budgeted build of a run's crack network in memory it owns (hibi_mud_network_build_*): made in
+/// the same work at any size, stepped with the run until finished, then read in ranges. The
+/// vertices, edges and points are those of Mud::network, bit for bit.
+class MudNetworkBuild {
+public:
+    using Progress = hibi_mud_network_build_progress;
+
+    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
+    MudNetworkBuild() noexcept = default;
+    MudNetworkBuild(MudNetworkBuild &&other) noexcept
+        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
+    MudNetworkBuild &operator=(MudNetworkBuild &&other) noexcept {
+        if (this != &other) {
+            memory_ = std::move(other.memory_);
+            handle_ = std::exchange(other.handle_, nullptr);
+        }
+        return *this;
+    }
+    /// A build of `mud`'s crack network.
+    static Result<MudNetworkBuild> try_create(const Mud &mud) {
+        std::size_t size = 0;
+        hibi_status status = hibi_mud_network_build_size(mud.get(), &size);
+        if (status != HIBI_OK) return Result<MudNetworkBuild>(status, hibi_error_argument());
+        MudNetworkBuild out;
+        out.memory_ = Buffer(size, Mud::memory_align());
+        if (out.memory_.data() == nullptr) return Result<MudNetworkBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
+        status = hibi_mud_network_build_create_in(mud.get(), out.memory_.data(), out.memory_.size(), &out.handle_);
+        return detail::result(status, std::move(out));
+    }
+    static detail::Returned<MudNetworkBuild> create(const Mud &mud) { return detail::returned(try_create(mud)); }
+
+    /// Goes on until about `budget` units are done in this call, or the build is finished
+    /// (hibi_mud_network_build_step).
+    Result<Progress> try_step(const Mud &mud, std::uint64_t budget) noexcept {
+        Progress progress{};
+        return detail::result(hibi_mud_network_build_step(handle_, mud.get(), budget, &progress), progress);
+    }
+    detail::Returned<Progress> step(const Mud &mud, std::uint64_t budget) {
+        return detail::returned(try_step(mud, budget));
+    }
+    /// Copies the vertices from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_vertices(std::size_t first, Span<hibi_mud_network_vertex> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_mud_network_build_vertices(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> vertices(std::size_t first, Span<hibi_mud_network_vertex> out) const {
+        return detail::returned(try_vertices(first, out));
+    }
+    /// Copies the edges from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_edges(std::size_t first, Span<hibi_mud_network_edge> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_mud_network_build_edges(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> edges(std::size_t first, Span<hibi_mud_network_edge> out) const {
+        return detail::returned(try_edges(first, out));
+    }
+    /// Copies the points from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_points(std::size_t first, Span<hibi_mud_network_point> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_mud_network_build_points(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> points(std::size_t first, Span<hibi_mud_network_point> out) const {
+        return detail::returned(try_points(first, out));
+    }
+
+    hibi_mud_network_build *get() const noexcept { return handle_; }
+
+private:
+    Buffer memory_;
+    hibi_mud_network_build *handle_ = nullptr;
+};
+
+/// A budgeted build of a run's cells in memory it owns (hibi_mud_cell_build_*): made in
+/// the same work at any size, stepped with the run until finished, then read in ranges. The
+/// rings and points are those of Mud::cells, bit for bit.
+class MudCellBuild {
+public:
+    using Progress = hibi_mud_cell_build_progress;
+
+    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
+    MudCellBuild() noexcept = default;
+    MudCellBuild(MudCellBuild &&other) noexcept
+        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
+    MudCellBuild &operator=(MudCellBuild &&other) noexcept {
+        if (this != &other) {
+            memory_ = std::move(other.memory_);
+            handle_ = std::exchange(other.handle_, nullptr);
+        }
+        return *this;
+    }
+    /// A build of `mud`'s cells.
+    static Result<MudCellBuild> try_create(const Mud &mud) {
+        std::size_t size = 0;
+        hibi_status status = hibi_mud_cell_build_size(mud.get(), &size);
+        if (status != HIBI_OK) return Result<MudCellBuild>(status, hibi_error_argument());
+        MudCellBuild out;
+        out.memory_ = Buffer(size, Mud::memory_align());
+        if (out.memory_.data() == nullptr) return Result<MudCellBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
+        status = hibi_mud_cell_build_create_in(mud.get(), out.memory_.data(), out.memory_.size(), &out.handle_);
+        return detail::result(status, std::move(out));
+    }
+    static detail::Returned<MudCellBuild> create(const Mud &mud) { return detail::returned(try_create(mud)); }
+
+    /// Goes on until about `budget` units are done in this call, or the build is finished
+    /// (hibi_mud_cell_build_step).
+    Result<Progress> try_step(const Mud &mud, std::uint64_t budget) noexcept {
+        Progress progress{};
+        return detail::result(hibi_mud_cell_build_step(handle_, mud.get(), budget, &progress), progress);
+    }
+    detail::Returned<Progress> step(const Mud &mud, std::uint64_t budget) {
+        return detail::returned(try_step(mud, budget));
+    }
+    /// Copies the rings from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_rings(std::size_t first, Span<hibi_ring> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_mud_cell_build_rings(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> rings(std::size_t first, Span<hibi_ring> out) const {
+        return detail::returned(try_rings(first, out));
+    }
+    /// Copies the points from `first` on into `out`, as many as there are (none before the
+    /// build is finished); returns how many.
+    Result<std::size_t> try_points(std::size_t first, Span<hibi_vec2> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(hibi_mud_cell_build_points(handle_, first, out.data(), out.size(), &written),
+                              written);
+    }
+    detail::Returned<std::size_t> points(std::size_t first, Span<hibi_vec2> out) const {
+        return detail::returned(try_points(first, out));
+    }
+
+    hibi_mud_cell_build *get() const noexcept { return handle_; }
+
+private:
+    Buffer memory_;
+    hibi_mud_cell_build *handle_ = nullptr;
+};
+
 /// Model B, a glass plate hit by a ball (hibi_glass).
 class Glass {
 public:

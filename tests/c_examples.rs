@@ -1243,6 +1243,18 @@ fn check_engine(linkage: Linkage) {
         line(&output, "tiles: "),
         "tiles: 59 render calls, the largest 1024 pixels; streamed = whole: glass yes, mud yes, skin yes"
     );
+    // The mud's network and cells built a frame's budget per call: over the budget by less than
+    // one piece (the cracks leaving one mesh cell, walked twice; or nine times one ring), equal
+    // to the one-call outputs.
+    let outputs = line(&output, "mud outputs: ");
+    let budget = number_after(outputs, "budget ");
+    let (longest, ring) = (number_after(outputs, "longest crack "), number_after(outputs, "largest ring "));
+    assert!(number_after(outputs, "network work ") < budget + 1 + 2 * 3 * (longest + 2), "{outputs}");
+    assert!(number_after(outputs, "cell work ") < budget + 1 + 9 * ring, "{outputs}");
+    assert!(
+        number_after(outputs, "; ") > 10 && outputs.ends_with("built = whole: network yes, cells yes"),
+        "{outputs}"
+    );
     let header = b"P5\n160 160\n255\n";
     for model in ["glass", "mud"] {
         for frame in 0..4 {
