@@ -1,8 +1,9 @@
 //! What one unit of `step(budget)`'s work costs in time, per model and per phase: each run is
 //! stepped to its end with a fixed budget per call, as an engine would spread it over frames,
 //! and each call's time and work (`progress.work`) go to the phase the call is in. Runs: mud at
-//! its defaults (64², quasi-static, the network's tracing included) and with the explicit
-//! solver (16², the paper's short step), glass at its defaults (640×640, M_ave = 100) and then
+//! its defaults (64², quasi-static, the network's tracing included, then its network and cells
+//! built in steps: `NetworkBuild`, `CellBuild`) and with the explicit solver (16², the paper's
+//! short step), glass at its defaults (640×640, M_ave = 100) and then
 //! its fragments built in steps (`FragmentBuild`), skin at `fig19a` (400×400, three levels).
 //! Each model is run once per round, the rounds one after another so that a slow spell of the
 //! machine hits every model alike; round 0 warms up and is not counted, and each figure is the
@@ -26,7 +27,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use hibi_core::glass::{FragmentBuild, Glass, GlassParams};
-use hibi_core::mud::{Mud, MudParams, Solver};
+use hibi_core::mud::{CellBuild, Mud, MudParams, NetworkBuild, Solver};
 use hibi_core::skin::{Skin, preset};
 
 /// Units of work per `step` call: an engine frame's worth.
@@ -35,13 +36,15 @@ const BUDGET: u64 = 10_000;
 const ROUNDS: usize = 10;
 
 /// The phases measured, in the order of the table: (model, phase).
-const PHASES: [(&str, &str); 9] = [
+const PHASES: [(&str, &str); 11] = [
     ("mud, 64² hexagonal, quasi-static", "setup"),
     ("mud, 64² hexagonal, quasi-static", "quasi-static solver"),
     ("mud, 64² hexagonal, quasi-static", "network tracing"),
     ("mud, 16² hexagonal, explicit", "setup"),
     ("mud, 16² hexagonal, explicit", "explicit solver"),
     ("mud, 16² hexagonal, explicit", "network tracing"),
+    ("mud, 64² hexagonal, quasi-static", "network build"),
+    ("mud, 64² hexagonal, quasi-static", "cell build"),
     ("glass, 640×640, M_ave = 100", "growth"),
     ("glass, 640×640, M_ave = 100", "fragment build"),
     ("skin, fig19a, 400×400, 3 levels", "setup"),
@@ -73,8 +76,9 @@ fn timed(step: impl FnOnce() -> u64, before: u64, phase: &mut Sample) -> u64 {
     work
 }
 
-/// Mud: setup, solver, tracing.
-fn mud(params: &MudParams) -> [Sample; 3] {
+/// Mud: setup, solver, tracing; then the finished run's network and cells built in steps
+/// (`NetworkBuild`, `CellBuild`).
+fn mud(params: &MudParams) -> ([Sample; 3], [Sample; 2]) {
     let mut memory = params.memory().expect("valid parameters").allocate::<f32>();
     let mut mud: Mud = Mud::new(params, memory.buffers()).expect("memory suffices");
     let mut phases = [Sample::default(); 3];
@@ -95,7 +99,28 @@ fn mud(params: &MudParams) -> [Sample; 3] {
         (work, finished) = (p.work, p.finished);
     }
     black_box(mud.statistics());
-    phases
+    let mut builds = [Sample::default(); 2];
+    let mut network_memory = mud.network_build_memory().allocate();
+    let mut network = NetworkBuild::new(&mud, network_memory.buffers()).expect("memory suffices");
+    let (mut work, mut finished) = (0, false);
+    while !finished {
+        let start = Instant::now();
+        let p = network.step(&mud, BUDGET).expect("the run it was made for");
+        builds[0].add(p.work - work, start.elapsed());
+        (work, finished) = (p.work, p.finished);
+    }
+    black_box(network.points().len());
+    let mut cell_memory = mud.cell_build_memory().allocate();
+    let mut cells = CellBuild::new(&mud, cell_memory.buffers()).expect("memory suffices");
+    let (mut work, mut finished) = (0, false);
+    while !finished {
+        let start = Instant::now();
+        let p = cells.step(&mud, BUDGET).expect("the run it was made for");
+        builds[1].add(p.work - work, start.elapsed());
+        (work, finished) = (p.work, p.finished);
+    }
+    black_box(cells.points().len());
+    (phases, builds)
 }
 
 /// Glass: growth, then the fragment build.
@@ -159,8 +184,8 @@ fn main() {
     let mut ns_per_unit: Vec<Vec<f64>> = vec![Vec::new(); rows.len()];
     let mut last = vec![Sample::default(); rows.len()];
     for round in 0..=ROUNDS {
-        let samples: Vec<Sample> =
-            [&mud(&quasi_static)[..], &mud(&explicit)[..], &glass(&plate)[..], &skin(&fig19a)[..]].concat();
+        let (qs, ex) = (mud(&quasi_static), mud(&explicit));
+        let samples: Vec<Sample> = [&qs.0[..], &ex.0[..], &qs.1[..], &glass(&plate)[..], &skin(&fig19a)[..]].concat();
         for (i, s) in samples.into_iter().enumerate() {
             if round > 0 && s.work > 0 {
                 ns_per_unit[i].push(s.time.as_secs_f64() * 1e9 / s.work as f64);

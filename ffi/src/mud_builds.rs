@@ -415,3 +415,108 @@ pub unsafe extern "C" fn hibi_mud_cell_build_points(
         unsafe { copy_from(build.build.points(), first, (points, points_len, c"points"), written) }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mud::{hibi_mud_create, hibi_mud_destroy, hibi_mud_params_default, hibi_mud_step};
+    use crate::status::{HIBI_ERROR_NULL_POINTER, HIBI_OK, hibi_error_argument};
+    use core::ffi::CStr;
+    use core::ptr::null_mut;
+
+    /// Reads a finished build's elements `range` at a time through `read`, until none is left.
+    fn ranges<T: Copy + Default>(
+        range: usize,
+        mut read: impl FnMut(usize, *mut T, usize, &mut usize) -> hibi_status,
+    ) -> Vec<T> {
+        let (mut all, mut out) = (Vec::new(), vec![T::default(); range]);
+        loop {
+            let mut written = usize::MAX;
+            assert_eq!(read(all.len(), out.as_mut_ptr(), range, &mut written), HIBI_OK);
+            all.extend_from_slice(&out[..written]);
+            if written < range {
+                return all;
+            }
+        }
+    }
+
+    /// Both builds through the C ABI: short memory refused naming `memory`, nothing written on
+    /// failure, steps within the budget and one piece, ranges that concatenate to the one-call
+    /// outputs, NULL arguments named.
+    #[test]
+    fn builds_through_the_c_abi() {
+        let mut params = hibi_mud_params_default();
+        (params.columns, params.rows, params.seed) = (24, 20, 9);
+        let mut mud = null_mut();
+        // SAFETY (every call below): valid pointers and lengths; a live run.
+        unsafe {
+            assert_eq!(hibi_mud_create(&params, &mut mud), HIBI_OK);
+            let mut progress = crate::mud::hibi_mud_progress::default();
+            while progress.finished == 0 {
+                assert_eq!(hibi_mud_step(mud, u64::MAX, &mut progress), HIBI_OK);
+            }
+            let core = &(*mud).mud;
+            let counts = core.network_counts();
+            let mut whole = (
+                vec![NetworkVertex::default(); counts.vertices],
+                vec![NetworkEdge::default(); counts.edges],
+                vec![NetworkPoint::default(); counts.points],
+            );
+            core.network(&mut whole.0, &mut whole.1, &mut whole.2).unwrap();
+            let cells = core.cell_counts();
+            let mut whole_cells = (vec![Ring::default(); cells.rings], vec![[0.0f32; 2]; cells.points]);
+            core.cells(&mut whole_cells.0, &mut whole_cells.1).unwrap();
+            assert!(counts.edges > 5 && cells.rings > 5, "{counts:?} {cells:?}");
+
+            let mut size = 0;
+            assert_eq!(hibi_mud_network_build_size(mud, &mut size), HIBI_OK);
+            let mut memory = vec![0xA5A5_A5A5_A5A5_A5A5u64; size.div_ceil(8)];
+            let base = memory.as_mut_ptr().cast::<c_void>();
+            let mut build = null_mut();
+            assert_eq!(hibi_mud_network_build_create_in(mud, base, size - 1, &mut build), HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert_eq!(CStr::from_ptr(hibi_error_argument()), c"memory");
+            assert_eq!(hibi_mud_network_build_create_in(null_mut(), base, size, &mut build), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(hibi_mud_network_build_create_in(mud, base, size, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert!(build.is_null() && memory.iter().all(|&w| w == 0xA5A5_A5A5_A5A5_A5A5), "nothing written");
+            assert_eq!(hibi_mud_network_build_create_in(mud, base, size, &mut build), HIBI_OK);
+            let longest = whole.1.iter().map(|e| u64::from(e.point_count)).max().unwrap();
+            let (mut p, mut before, mut calls) = (hibi_mud_network_build_progress::default(), 0, 0);
+            while p.finished == 0 {
+                assert_eq!(hibi_mud_network_build_step(build, mud, 40, &mut p), HIBI_OK);
+                assert!(p.work - before < 40 + 1 + 6 * (longest + 2), "{p:?}");
+                (before, calls) = (p.work, calls + 1);
+            }
+            assert!(calls > 10, "{calls} calls");
+            let vertices = ranges(5, |first, out, len, w| hibi_mud_network_build_vertices(build, first, out, len, w));
+            let edges = ranges(3, |first, out, len, w| hibi_mud_network_build_edges(build, first, out, len, w));
+            let points = ranges(7, |first, out, len, w| hibi_mud_network_build_points(build, first, out, len, w));
+            assert!(vertices == whole.0 && edges == whole.1 && points == whole.2);
+            let mut one = NetworkEdge::default();
+            assert_eq!(hibi_mud_network_build_edges(build, 0, &mut one, 1, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(CStr::from_ptr(hibi_error_argument()), c"written");
+            assert_eq!(hibi_mud_network_build_step(null_mut(), mud, 1, null_mut()), HIBI_ERROR_NULL_POINTER);
+            assert_eq!(CStr::from_ptr(hibi_error_argument()), c"build");
+
+            assert_eq!(hibi_mud_cell_build_size(mud, &mut size), HIBI_OK);
+            let mut memory = vec![0u64; size.div_ceil(8)];
+            let base = memory.as_mut_ptr().cast::<c_void>();
+            let mut build = null_mut();
+            assert_eq!(hibi_mud_cell_build_create_in(mud, base, size / 2, &mut build), HIBI_ERROR_BUFFER_TOO_SMALL);
+            assert_eq!(CStr::from_ptr(hibi_error_argument()), c"memory");
+            assert_eq!(hibi_mud_cell_build_create_in(mud, base, size, &mut build), HIBI_OK);
+            let largest = whole_cells.0.iter().map(|r| u64::from(r.point_count)).max().unwrap();
+            let (mut p, mut before) = (hibi_mud_cell_build_progress::default(), 0);
+            while p.finished == 0 {
+                assert_eq!(hibi_mud_cell_build_step(build, mud, 40, &mut p), HIBI_OK);
+                assert!(p.work - before < 40 + 1 + 9 * largest, "{p:?}");
+                before = p.work;
+            }
+            let rings = ranges(4, |first, out, len, w| hibi_mud_cell_build_rings(build, first, out, len, w));
+            let points: Vec<hibi_vec2> =
+                ranges(9, |first, out, len, w| hibi_mud_cell_build_points(build, first, out, len, w));
+            assert!(rings == whole_cells.0);
+            assert!(points.len() == cells.points && points.iter().zip(&whole_cells.1).all(|(a, b)| [a.x, a.y] == *b));
+            hibi_mud_destroy(mud);
+        }
+    }
+}
