@@ -14,7 +14,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::{Mutex, OnceLock};
 
-use hibi_core::Rng;
 use hibi_tests::workspace_root;
 
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
@@ -129,25 +128,6 @@ fn needs_libhibi(exe: &Path) -> Option<String> {
     })
 }
 
-/// What tests/subproject/main.c prints.
-fn check_c(output: &str) {
-    let draw = Rng::from_key(42, 7).next_u32();
-    let null = hibi::HIBI_ERROR_NULL_POINTER;
-    assert_eq!(
-        output,
-        format!("hibi_version() {VERSION}, macros {VERSION}, equal: yes\ndraw: {draw}\nNULL rng: status {null}\n")
-    );
-}
-
-/// What tests/consumer/main.cpp prints (as in tests/package.rs).
-fn check_cpp(output: &str) {
-    let expected = format!(
-        "hibi_version() {VERSION}, macros {VERSION}, equal: yes\nmud: cracks\nglass: fragments\n\
-         skin: 1 cells, 4096 heights\nunknown preset: status 1093\n"
-    );
-    assert_eq!(output, expected);
-}
-
 /// Builds tests/subproject taking hibi in `via` (`add_subdirectory` or `FetchContent`) with
 /// `family`'s compilers and the `link` library, then checks hibi's build directory `hibi_build`
 /// (relative to the consumer's) holds this build type's libraries only, and runs both programs.
@@ -184,14 +164,16 @@ fn consumer(via: &str, family: &str, link: &str) {
         std::fs::read_link(lib.join(format!("libhibi.so.{MAJOR}"))).unwrap(),
         Path::new(&format!("libhibi.so.{VERSION}"))
     );
-    for (exe, check) in [("consumer_c", check_c as fn(&str)), ("consumer_cpp", check_cpp)] {
+    for (exe, expected) in
+        [("consumer_c", hibi_tests::consumer_c_output()), ("consumer_cpp", hibi_tests::consumer_cpp_output())]
+    {
         let exe = build.join(exe);
         let needed = needs_libhibi(&exe);
         match link {
             "shared" => assert_eq!(needed, Some(format!("libhibi.so.{MAJOR}")), "{}", exe.display()),
             _ => assert_eq!(needed, None, "{} needs the shared library", exe.display()),
         }
-        check(&stdout(Command::new(&exe).env_remove("LD_LIBRARY_PATH")));
+        assert_eq!(stdout(Command::new(&exe).env_remove("LD_LIBRARY_PATH")), expected, "{}", exe.display());
     }
 }
 

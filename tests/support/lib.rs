@@ -284,3 +284,22 @@ impl EveryLayer {
         ]
     }
 }
+
+/// What tests/consumer/main.cpp prints, built against any form of the library (installed,
+/// a CMake subproject, the release archive).
+pub fn consumer_cpp_output() -> String {
+    let version = env!("CARGO_PKG_VERSION");
+    format!(
+        "hibi_version() {version}, macros {version}, equal: yes\nmud: cracks\nglass: fragments\n\
+         skin: 1 cells, 4096 heights\nunknown preset: status 1093\n"
+    )
+}
+
+/// What tests/consumer/main.c prints: the versions, hibi's first draw for seed 42 and
+/// stream 7, and the status of a call on a null object.
+pub fn consumer_c_output() -> String {
+    let version = env!("CARGO_PKG_VERSION");
+    let draw = hibi_core::Rng::from_key(42, 7).next_u32();
+    let null = hibi::HIBI_ERROR_NULL_POINTER;
+    format!("hibi_version() {version}, macros {version}, equal: yes\ndraw: {draw}\nNULL rng: status {null}\n")
+}

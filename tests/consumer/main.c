@@ -1,7 +1,8 @@
 /*
- * A C99 program of a project that takes hibi in as a CMake subproject (CMakeLists.txt here):
- * the version macros against hibi_version(), hibi's first draw for seed 42 and stream 7, and
- * an error's status. tests/subproject.rs checks what it prints.
+ * A C99 consumer of hibi, beside main.cpp: built by tests/subproject.rs (hibi as a CMake
+ * subproject) and tests/release.rs (the release archive, through pkg-config). The version
+ * macros against hibi_version(), hibi's first draw for seed 42 and stream 7, and an error's
+ * status.
  */
 #include <stdio.h>
 #include <string.h>
