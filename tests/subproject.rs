@@ -216,3 +216,37 @@ fn top_level_project_builds_and_runs_the_examples() {
     }
     assert!(output.contains(&format!("100% tests passed, 0 tests failed out of {}", examples.len())), "{output}");
 }
+
+/// Every build type but Debug links cargo's release profile: RelWithDebInfo, MinSizeRel and
+/// none, one after the other in one build directory (reconfigured), with gcc and the shared
+/// library. Only the release run checks it (it needs the release profile's build).
+#[test]
+#[cfg_attr(debug_assertions, ignore = "links the release profile's library: the release run checks it")]
+fn other_build_types_link_the_release_profile() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let source = format!("-DHIBI_SOURCE={}", workspace_root().display());
+    let mut build = None;
+    for build_type in ["RelWithDebInfo", "MinSizeRel", ""] {
+        let settings =
+            ["-DHIBI_VIA=add_subdirectory".to_owned(), source.clone(), format!("-DCMAKE_BUILD_TYPE={build_type}")];
+        let dir = match &build {
+            None => cmake_build("other-build-types", &workspace_root().join("tests/subproject"), "gcc", &settings),
+            Some(dir) => {
+                run(hibi_tests::tool("cmake").args(&settings).arg(dir));
+                run(hibi_tests::tool("cmake").arg("--build").arg(dir).arg("--parallel").arg("2"));
+                PathBuf::from(dir)
+            }
+        };
+        let libs: Vec<String> = std::fs::read_dir(dir.join("hibi/hibi-lib"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(libs, ["release"], "build type '{build_type}'");
+        let exe = dir.join("consumer_c");
+        let dynamic = stdout(hibi_tests::tool("readelf").arg("-d").arg(&exe));
+        let runpath = dir.join("hibi/hibi-lib/release");
+        assert!(dynamic.contains(&format!("[{}]", runpath.display())), "build type '{build_type}':\n{dynamic}");
+        assert_eq!(stdout(Command::new(&exe).env_remove("LD_LIBRARY_PATH")), hibi_tests::consumer_c_output());
+        build = Some(dir);
+    }
+}
