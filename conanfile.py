@@ -73,7 +73,10 @@ class HibiConan(ConanFile):
         stage = os.path.join(self.build_folder, "stage")
         target = os.path.join(self.build_folder, "target")
         install = os.path.join(self.source_folder, "ffi", "install")
-        self.run(f'bash "{install}" --prefix "{stage}" --profile {self._cargo_profile} --target-dir "{target}"')
+        # Release and MinSizeRel libraries without debug info (symbol tables kept), as the
+        # release archives; Debug and RelWithDebInfo keep it.
+        strip = " --strip" if self.settings.build_type in ("Release", "MinSizeRel") else ""
+        self.run(f'bash "{install}" --prefix "{stage}" --profile {self._cargo_profile} --target-dir "{target}"{strip}')
 
     def package(self):
         stage = os.path.join(self.build_folder, "stage")
