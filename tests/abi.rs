@@ -245,3 +245,46 @@ fn a_struct_missing_from_the_debug_info_stops_the_check() {
     assert_eq!(code, 2, "{output}");
     assert!(output.contains("lacks the members of struct hibi_mud_absent"), "{output}");
 }
+
+#[test]
+fn update_refuses_an_incompatible_change_and_records_an_addition() {
+    // abi/update writes the description it compares with: here a copy of the committed one.
+    let xml = read(&committed("abi"));
+    let constants = committed("constants");
+    let dir = scratch("update");
+
+    // One function more in the description: the library removed it, and the update refuses.
+    let symbol =
+        xml.lines().find(|l| l.contains("<elf-symbol name='hibi_mud_destroy' ")).expect("hibi_mud_destroy's symbol");
+    let decl = element(&xml, "function-decl", "hibi_mud_destroy");
+    let removed = xml
+        .replacen(symbol, &format!("{symbol}\n{}", symbol.replace("hibi_mud_destroy", "hibi_mud_discard")), 1)
+        .replacen(decl, &format!("{decl}\n        {}", decl.replace("hibi_mud_destroy", "hibi_mud_discard")), 1);
+    let baseline = write(&dir, "removed.abi", &removed);
+    let kept = write(&dir, "removed.constants", &read(&constants));
+    let (code, output) = check(&[
+        "--update".as_ref(),
+        "--baseline".as_ref(),
+        baseline.as_os_str(),
+        "--constants".as_ref(),
+        kept.as_os_str(),
+    ]);
+    assert_eq!(code, 1, "abi/update accepted a removed function:\n{output}");
+    assert_eq!(read(&baseline), removed, "abi/update rewrote the description of an incompatible library");
+
+    // One function fewer: an addition, recorded.
+    let older = xml.replacen(&format!("{symbol}\n"), "", 1).replacen(decl, "", 1);
+    let baseline = write(&dir, "older.abi", &older);
+    let (code, output) = check(&[
+        "--update".as_ref(),
+        "--baseline".as_ref(),
+        baseline.as_os_str(),
+        "--constants".as_ref(),
+        kept.as_os_str(),
+    ]);
+    assert_eq!(code, 0, "abi/update refused an addition:\n{output}");
+    assert!(read(&baseline).contains("<function-decl name='hibi_mud_destroy' "), "abi/update did not record it");
+    let (code, output) = check(&["--baseline".as_ref(), baseline.as_os_str()]);
+    assert_eq!(code, 0, "{output}");
+    assert!(!output.contains("Added function"), "the recorded description still lacks an addition:\n{output}");
+}
