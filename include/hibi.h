@@ -1879,6 +1879,13 @@ typedef struct hibi_skin_cell {
  */
 #define HIBI_ERROR_RING_SIZE 1539
 
+/**
+ * `hibi_pieces_counts`, `hibi_triangulate`, `hibi_convex_pieces`: a polygon's triangles do
+ * not add up to its area (its outer ring's and its holes' signed areas, from their points):
+ * a ring of it crosses itself or another ring of the polygon, so no pieces cover it.
+ */
+#define HIBI_ERROR_RING_CROSSES 1540
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -2688,7 +2695,9 @@ hibi_status hibi_pieces_scratch_size(const struct hibi_ring *rings,
  * Writes how many triangles (`*triangles`) and convex pieces (`*pieces`) `hibi_triangulate`
  * and `hibi_convex_pieces` write for the rings. Works in `scratch[0..scratch_len]` (at least
  * `hibi_pieces_scratch_size` words, else `HIBI_ERROR_BUFFER_TOO_SMALL` naming `scratch`); as
- * much work as writing them. Refuses bad rings as `hibi_pieces_scratch_size` does.
+ * much work as writing them. Refuses bad rings as `hibi_pieces_scratch_size` does, and a
+ * polygon whose triangles do not add up to its area (`HIBI_ERROR_RING_CROSSES`: a ring of it
+ * crosses itself or another ring of the polygon, so no pieces cover it).
  *
  * # Safety
  * `rings` and `points` as in `hibi_pieces_scratch_size`; `scratch` NULL (only with length
@@ -2708,13 +2717,15 @@ hibi_status hibi_pieces_counts(const struct hibi_ring *rings,
  * Writes the triangles of every polygon into `triangles[0..triangles_len]`, polygon by
  * polygon in ring order, and their count into `*written`: three indices into `points`,
  * counter-clockwise with y up, and the index of the polygon's outer ring. Holes are left
- * out; each polygon's triangle areas add up to its outer ring's area minus its holes'.
+ * out; each polygon's triangle areas add up to its outer ring's area minus its holes', or
+ * nothing is written (`HIBI_ERROR_RING_CROSSES`, as `hibi_pieces_counts` refuses).
  * Works in `scratch` as `hibi_pieces_counts` does. If `triangles_len` is below the count
  * (`hibi_pieces_counts`), nothing is written and the status is
  * `HIBI_ERROR_BUFFER_TOO_SMALL` naming `triangles`.
  *
- * Work: at most 3·m² point tests for a polygon of m points (its outer ring's, its holes'
- * and 2 per hole), whatever the points hold.
+ * Work: at most 2·3·m² point tests for a polygon of m points (its outer ring's, its holes'
+ * and 2 per hole), whatever the points hold: the polygons are triangulated once to count and
+ * check them, once to write.
  *
  * # Safety
  * As `hibi_pieces_counts`; `triangles` NULL (only with length 0) or writable for
@@ -2736,7 +2747,8 @@ hibi_status hibi_triangulate(const struct hibi_ring *rings,
  * into `points`, counter-clockwise with y up and strictly convex (what Box2D's
  * `b2PolygonShape::Set`, Jolt's and PhysX's convex shapes take), and the index of the
  * polygon's outer ring. They are the triangles of `hibi_triangulate` merged while the union
- * stays convex; each polygon's piece areas add up to its outer ring's area minus its holes'.
+ * stays convex; each polygon's piece areas add up to its outer ring's area minus its holes',
+ * or nothing is written (`HIBI_ERROR_RING_CROSSES`, as `hibi_pieces_counts` refuses).
  * Works in `scratch` as `hibi_pieces_counts` does. If `pieces_len` is below the count
  * (`hibi_pieces_counts`), nothing is written and the status is
  * `HIBI_ERROR_BUFFER_TOO_SMALL` naming `pieces`.

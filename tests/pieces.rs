@@ -188,12 +188,11 @@ fn holes_touching_rings_slits_collinear_and_repeated_points() {
 }
 
 #[test]
-fn degenerate_and_crossing_rings_end_with_counter_clockwise_pieces() {
-    // All collinear, all one point, a bow tie (crossing), a tiny sliver, fewer than 3 points.
-    let cases: [&[[f32; 2]]; 5] = [
+fn degenerate_rings_end_with_counter_clockwise_pieces_and_crossing_rings_are_refused() {
+    // All collinear, all one point, a tiny sliver, fewer than 3 points.
+    let cases: [&[[f32; 2]]; 4] = [
         &[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]],
         &[[1.0, 1.0], [1.0, 1.0], [1.0, 1.0]],
-        &[[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]],
         &[[0.0, 0.0], [1e6, 0.0], [1e6, 1e-6], [0.0, 2e-6]],
         &[[0.0, 0.0], [1.0, 0.0]],
     ];
@@ -209,6 +208,31 @@ fn degenerate_and_crossing_rings_end_with_counter_clockwise_pieces() {
         let mut pieces = vec![ConvexPiece::default(); points.len()];
         let k = convex_pieces(&rings, points, &mut scratch, &mut pieces).unwrap();
         assert!(k <= n);
+    }
+    // A bow tie, a figure of eight, and a square with a hole crossing its side: no pieces
+    // cover a polygon whose rings cross, so it is refused by its outer ring's index, and
+    // nothing is written.
+    let square = [[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
+    let cases: [(&[[f32; 2]], Vec<Ring>); 3] = [
+        (&[[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]], vec![ring(0, 4, 0.0, NOT_A_HOLE)]),
+        (
+            &[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, -1.0], [0.5, -1.0]],
+            vec![ring(0, 6, 0.5, NOT_A_HOLE)],
+        ),
+        (
+            &[square[0], square[1], square[2], square[3], [3.0, 1.0], [3.0, 3.0], [5.0, 3.0], [5.0, 1.0]],
+            vec![ring(0, 4, 16.0, NOT_A_HOLE), ring(0, 4, 16.0, NOT_A_HOLE), ring(4, 4, -4.0, 1)],
+        ),
+    ];
+    for (points, rings) in &cases {
+        let want = Err(PiecesError::Ring { ring: rings.len().saturating_sub(2).min(1), error: RingError::Crosses });
+        let mut scratch = vec![7u32; pieces_scratch(rings, points).unwrap()];
+        assert_eq!(piece_counts(rings, points, &mut scratch).map(|_| ()), want, "{points:?}");
+        let mut triangles = [Triangle { ring: 9, points: [9; 3] }; 16];
+        assert_eq!(triangulate(rings, points, &mut scratch, &mut triangles).map(|_| ()), want);
+        let mut pieces = [ConvexPiece { ring: 9, ..ConvexPiece::default() }; 16];
+        assert_eq!(convex_pieces(rings, points, &mut scratch, &mut pieces).map(|_| ()), want);
+        assert!(triangles.iter().all(|t| t.ring == 9) && pieces.iter().all(|p| p.ring == 9), "nothing written");
     }
 }
 

@@ -69,8 +69,8 @@ use hibi_core::polygon::{ConvexPiece, MAX_PIECE_POINTS, PiecesError, Ring, RingE
 use crate::glass::hibi_vec2;
 use crate::guard::{Outs, buffer, guard, input};
 use crate::status::{
-    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RING_HOLE_OF, HIBI_ERROR_RING_POINT_NOT_FINITE, HIBI_ERROR_RING_POINTS,
-    HIBI_ERROR_RING_SIZE, hibi_status, refuse_argument,
+    HIBI_ERROR_BUFFER_TOO_SMALL, HIBI_ERROR_RING_CROSSES, HIBI_ERROR_RING_HOLE_OF, HIBI_ERROR_RING_POINT_NOT_FINITE,
+    HIBI_ERROR_RING_POINTS, HIBI_ERROR_RING_SIZE, hibi_status, refuse_argument,
 };
 
 /// The most points of a `hibi_convex_piece` (Box2D's `b2_maxPolygonVertices`).
@@ -86,6 +86,7 @@ fn pieces_status(error: PiecesError, output: &'static core::ffi::CStr) -> hibi_s
             RingError::HoleOf => HIBI_ERROR_RING_HOLE_OF,
             RingError::NotFinite => HIBI_ERROR_RING_POINT_NOT_FINITE,
             RingError::Size => HIBI_ERROR_RING_SIZE,
+            RingError::Crosses => HIBI_ERROR_RING_CROSSES,
         },
         PiecesError::ScratchTooSmall { .. } => refuse_argument(c"scratch", HIBI_ERROR_BUFFER_TOO_SMALL),
         PiecesError::BufferTooSmall { .. } => refuse_argument(output, HIBI_ERROR_BUFFER_TOO_SMALL),
@@ -146,7 +147,9 @@ pub unsafe extern "C" fn hibi_pieces_scratch_size(
 /// Writes how many triangles (`*triangles`) and convex pieces (`*pieces`) `hibi_triangulate`
 /// and `hibi_convex_pieces` write for the rings. Works in `scratch[0..scratch_len]` (at least
 /// `hibi_pieces_scratch_size` words, else `HIBI_ERROR_BUFFER_TOO_SMALL` naming `scratch`); as
-/// much work as writing them. Refuses bad rings as `hibi_pieces_scratch_size` does.
+/// much work as writing them. Refuses bad rings as `hibi_pieces_scratch_size` does, and a
+/// polygon whose triangles do not add up to its area (`HIBI_ERROR_RING_CROSSES`: a ring of it
+/// crosses itself or another ring of the polygon, so no pieces cover it).
 ///
 /// # Safety
 /// `rings` and `points` as in `hibi_pieces_scratch_size`; `scratch` NULL (only with length
@@ -179,13 +182,15 @@ pub unsafe extern "C" fn hibi_pieces_counts(
 /// Writes the triangles of every polygon into `triangles[0..triangles_len]`, polygon by
 /// polygon in ring order, and their count into `*written`: three indices into `points`,
 /// counter-clockwise with y up, and the index of the polygon's outer ring. Holes are left
-/// out; each polygon's triangle areas add up to its outer ring's area minus its holes'.
+/// out; each polygon's triangle areas add up to its outer ring's area minus its holes', or
+/// nothing is written (`HIBI_ERROR_RING_CROSSES`, as `hibi_pieces_counts` refuses).
 /// Works in `scratch` as `hibi_pieces_counts` does. If `triangles_len` is below the count
 /// (`hibi_pieces_counts`), nothing is written and the status is
 /// `HIBI_ERROR_BUFFER_TOO_SMALL` naming `triangles`.
 ///
-/// Work: at most 3·m² point tests for a polygon of m points (its outer ring's, its holes'
-/// and 2 per hole), whatever the points hold.
+/// Work: at most 2·3·m² point tests for a polygon of m points (its outer ring's, its holes'
+/// and 2 per hole), whatever the points hold: the polygons are triangulated once to count and
+/// check them, once to write.
 ///
 /// # Safety
 /// As `hibi_pieces_counts`; `triangles` NULL (only with length 0) or writable for
@@ -222,7 +227,8 @@ pub unsafe extern "C" fn hibi_triangulate(
 /// into `points`, counter-clockwise with y up and strictly convex (what Box2D's
 /// `b2PolygonShape::Set`, Jolt's and PhysX's convex shapes take), and the index of the
 /// polygon's outer ring. They are the triangles of `hibi_triangulate` merged while the union
-/// stays convex; each polygon's piece areas add up to its outer ring's area minus its holes'.
+/// stays convex; each polygon's piece areas add up to its outer ring's area minus its holes',
+/// or nothing is written (`HIBI_ERROR_RING_CROSSES`, as `hibi_pieces_counts` refuses).
 /// Works in `scratch` as `hibi_pieces_counts` does. If `pieces_len` is below the count
 /// (`hibi_pieces_counts`), nothing is written and the status is
 /// `HIBI_ERROR_BUFFER_TOO_SMALL` naming `pieces`.

@@ -132,6 +132,10 @@ pub const HIBI_ERROR_RING_POINT_NOT_FINITE: hibi_status = 1538;
 /// `hibi_pieces_*`, `hibi_triangulate`, `hibi_convex_pieces`: one polygon holds 2^30 or more
 /// points with its holes (rings may share points), or there are 2^32 or more rings.
 pub const HIBI_ERROR_RING_SIZE: hibi_status = 1539;
+/// `hibi_pieces_counts`, `hibi_triangulate`, `hibi_convex_pieces`: a polygon's triangles do
+/// not add up to its area (its outer ring's and its holes' signed areas, from their points):
+/// a ring of it crosses itself or another ring of the polygon, so no pieces cover it.
+pub const HIBI_ERROR_RING_CROSSES: hibi_status = 1540;
 
 /// The status that reports a raster error.
 pub(crate) fn raster_status(error: RasterError) -> hibi_status {
@@ -222,6 +226,7 @@ pub(crate) fn message(status: hibi_status) -> &'static CStr {
         HIBI_ERROR_RING_HOLE_OF => RingError::HoleOf.message(),
         HIBI_ERROR_RING_POINT_NOT_FINITE => RingError::NotFinite.message(),
         HIBI_ERROR_RING_SIZE => RingError::Size.message(),
+        HIBI_ERROR_RING_CROSSES => RingError::Crosses.message(),
         _ => match (
             param_error::<MudParamError>(status),
             param_error::<GlassParamError>(status),

@@ -285,6 +285,12 @@ static void calls_and_buffers(void) {
         }
         row_kept("short-pieces-buffer", hibi_convex_pieces(rings, 1, points, 3, scratch, len, pieces, 0, &written),
                  written == 777 && ((unsigned char *)pieces)[0] == 0xA5);
+        {
+            hibi_vec2 tie[4] = {{0.0f, 0.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+            hibi_ring bow[1] = {{0.0, 0, 4, HIBI_RING_NOT_A_HOLE, 0}};
+            row_kept("ring-crosses-itself", hibi_convex_pieces(bow, 1, tie, 4, scratch, 64, pieces, 4, &written),
+                     written == 777 && ((unsigned char *)pieces)[0] == 0xA5);
+        }
     }
     {
         hibi_glass_counts counts;

@@ -1,7 +1,9 @@
 //! Pieces a physics engine takes, cut from polygons given as [`Ring`]s over a point buffer
 //! (glass fragments, mud cells): triangles, and convex pieces of at most
 //! [`MAX_PIECE_POINTS`] points. Every outer ring with the holes whose `hole_of` names it is
-//! one polygon; its pieces' areas add up to the outer ring's area minus its holes'.
+//! one polygon; its pieces' areas add up to the outer ring's area minus its holes', or the
+//! polygon is refused by name ([`RingError::Crosses`]: a ring of it crosses itself or another,
+//! so that no set of pieces covers it).
 //!
 //! Counts first, then caller buffers: [`pieces_scratch`] checks the rings and gives the
 //! scratch words, [`piece_counts`] how many triangles and convex pieces the rings make, and
@@ -10,7 +12,9 @@
 //! Work: for a polygon of `m` nodes (its outer ring's points, and each hole's points plus
 //! 2 for its bridge) at most `3·m²` point tests (ear clipping) and `m` edge tests per hole
 //! (its bridge), plus `O(h log h)` to order its `h` holes; the check of the rings and points
-//! is linear in the rings and the points they name.
+//! is linear in the rings and the points they name. [`triangulate`] and [`convex_pieces`]
+//! triangulate twice: once to count and check the areas (nothing is written if a polygon is
+//! refused), once to write.
 
 use super::convex::{MAX_PIECE_POINTS, Merger};
 use super::triangulation::{self, WORDS_PER_NODE};
@@ -66,6 +70,10 @@ crate::error::error_list! {
         /// One polygon (an outer ring, its holes and their bridges) holds 2³⁰ or more
         /// points, or there are 2³² or more rings.
         Size => c"polygon: a polygon holds 2^30 or more points with its holes, or there are 2^32 or more rings",
+        /// The polygon's triangles do not add up to its area (its outer ring's signed area
+        /// and its holes', from their points): the ring, or a hole of it, crosses itself or
+        /// another ring of the polygon, and has no interior for pieces to cover.
+        Crosses => c"polygon: a ring crosses itself or another ring of its polygon (its triangles do not add up to its area)",
     }
 }
 
@@ -121,8 +129,6 @@ const MAX_NODES: u64 = 1 << 30;
 struct Plan {
     /// Scratch words.
     scratch: usize,
-    /// Triangles at most: `m − 2` per polygon of `m` nodes.
-    triangles: usize,
 }
 
 /// Whether ring `r` is a hole with pieces: of a given outer ring of at least 3 points, with
@@ -138,7 +144,7 @@ fn plan(rings: &[Ring], points: &[[f32; 2]]) -> Result<Plan, PiecesError> {
     if rings.len() as u64 >= 1 << 32 {
         return Err(fail(rings.len() - 1, RingError::Size));
     }
-    let (mut largest_outer, mut hole_nodes, mut triangles) = (0u64, 0u64, 0u64);
+    let (mut largest_outer, mut hole_nodes) = (0u64, 0u64);
     for (i, r) in rings.iter().enumerate() {
         let end = r.first_point as usize as u64 + u64::from(r.point_count);
         if end > points.len() as u64 {
@@ -151,10 +157,8 @@ fn plan(rings: &[Ring], points: &[[f32; 2]]) -> Result<Plan, PiecesError> {
         let n = u64::from(r.point_count);
         if r.hole_of == NOT_A_HOLE && n >= 3 {
             largest_outer = largest_outer.max(n);
-            triangles += n - 2;
         } else if hole_with_pieces(rings, r).is_some() {
             hole_nodes += n + 2;
-            triangles += n + 2;
         }
         if largest_outer + hole_nodes >= MAX_NODES {
             return Err(fail(i, RingError::Size));
@@ -168,7 +172,7 @@ fn plan(rings: &[Ring], points: &[[f32; 2]]) -> Result<Plan, PiecesError> {
         }
     }
     let nodes = (largest_outer + hole_nodes) as usize;
-    Ok(Plan { scratch: 3 * rings.len() + 1 + WORDS_PER_NODE * nodes, triangles: triangles as usize })
+    Ok(Plan { scratch: 3 * rings.len() + 1 + WORDS_PER_NODE * nodes })
 }
 
 /// Checks `rings` over `points` and gives the scratch words (`u32`) the other piece
@@ -197,7 +201,7 @@ fn each_triangle(
     points: &[[f32; 2]],
     scratch: &mut [u32],
     mut triangle: impl FnMut(u32, [u32; 3]),
-    mut polygon_done: impl FnMut(),
+    mut polygon_done: impl FnMut(usize, &[u32]),
 ) {
     let r = rings.len();
     let (start, rest) = scratch.split_at_mut(r + 1);
@@ -229,7 +233,7 @@ fn each_triangle(
         let begin = if i == 0 { 0 } else { start[i - 1] as usize };
         let holes = &mut list[begin..start[i] as usize];
         triangulation::polygon(rings, i, holes, right, points, nodes, &mut |t| triangle(i as u32, t));
-        polygon_done();
+        polygon_done(i, holes);
     }
 }
 
@@ -242,28 +246,62 @@ fn scratch_for<'a>(plan: &Plan, scratch: &'a mut [u32]) -> Result<&'a mut [u32],
 /// [`pieces_scratch`] words). Same work as writing them.
 ///
 /// # Errors
-/// As [`pieces_scratch`], and [`PiecesError::ScratchTooSmall`].
+/// As [`pieces_scratch`]; [`PiecesError::ScratchTooSmall`]; and [`RingError::Crosses`]
+/// naming the outer ring of the first polygon whose triangles do not add up to its area (a
+/// ring of it crosses itself or another: its pieces would not cover it).
 pub fn piece_counts(rings: &[Ring], points: &[[f32; 2]], scratch: &mut [u32]) -> Result<PieceCounts, PiecesError> {
     let plan = plan(rings, points)?;
-    Ok(count(rings, points, scratch_for(&plan, scratch)?))
+    count(rings, points, scratch_for(&plan, scratch)?)
 }
 
-fn count(rings: &[Ring], points: &[[f32; 2]], scratch: &mut [u32]) -> PieceCounts {
+/// Counts the triangles and pieces, and checks that each polygon's triangles add up to its
+/// area (outer ring and holes, from their points) to within 10⁻⁶ of their own: a ring that
+/// crosses itself or another ring of its polygon is refused ([`RingError::Crosses`]).
+fn count(rings: &[Ring], points: &[[f32; 2]], scratch: &mut [u32]) -> Result<PieceCounts, PiecesError> {
     let mut counts = PieceCounts::default();
     let merger = core::cell::RefCell::new(Merger::default());
     let pieces = core::cell::Cell::new(0usize);
+    let covered = core::cell::Cell::new(0.0f64);
+    let mut crossing = None;
     each_triangle(
         rings,
         points,
         scratch,
         |_, t| {
             counts.triangles += 1;
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            covered.set(covered.get() + triangulation::cross(a, b, c));
             merger.borrow_mut().add(t, points, &mut |_| pieces.set(pieces.get() + 1));
         },
-        || merger.borrow_mut().finish(&mut |_| pieces.set(pieces.get() + 1)),
+        |i, holes| {
+            merger.borrow_mut().finish(&mut |_| pieces.set(pieces.get() + 1));
+            // Each ring is walked in its own orientation: the outer ring counter-clockwise,
+            // the holes clockwise, whichever way their points are given.
+            let area = triangulation::ring_area2(&rings[i], points).abs()
+                - holes.iter().map(|&h| triangulation::ring_area2(&rings[h as usize], points).abs()).sum::<f64>();
+            let triangles = covered.replace(0.0);
+            // Rounding: the shoelace terms' products of coordinates, n of them, in f64.
+            let (mut nodes, mut largest) = (0usize, 0.0f32);
+            for r in core::iter::once(i).chain(holes.iter().map(|&h| h as usize)) {
+                let ring = &rings[r];
+                nodes += ring.point_count as usize;
+                for p in &points[ring.first_point as usize..][..ring.point_count as usize] {
+                    largest = largest.max(p[0].abs()).max(p[1].abs());
+                }
+            }
+            let rounding = 1e-10 * nodes as f64 * f64::from(largest) * f64::from(largest);
+            let slack = 1e-6 * triangles.abs().max(area.abs()) + rounding;
+            let adds_up = (triangles - area).abs() <= slack;
+            if !adds_up && crossing.is_none() {
+                crossing = Some(i);
+            }
+        },
     );
+    if let Some(ring) = crossing {
+        return Err(PiecesError::Ring { ring, error: RingError::Crosses });
+    }
     counts.pieces = pieces.get();
-    counts
+    Ok(counts)
 }
 
 /// Writes the triangles of every polygon (outer ring and its holes) into `out`, polygon by
@@ -300,11 +338,9 @@ pub fn triangulate(
 ) -> Result<usize, PiecesError> {
     let plan = plan(rings, points)?;
     let scratch = scratch_for(&plan, scratch)?;
-    if out.len() < plan.triangles {
-        let needed = count(rings, points, scratch).triangles;
-        if out.len() < needed {
-            return Err(PiecesError::BufferTooSmall { needed });
-        }
+    let needed = count(rings, points, scratch)?.triangles;
+    if out.len() < needed {
+        return Err(PiecesError::BufferTooSmall { needed });
     }
     let mut written = 0;
     each_triangle(
@@ -315,7 +351,7 @@ pub fn triangulate(
             out[written] = Triangle { ring, points };
             written += 1;
         },
-        || {},
+        |_, _| {},
     );
     Ok(written)
 }
@@ -336,11 +372,9 @@ pub fn convex_pieces(
 ) -> Result<usize, PiecesError> {
     let plan = plan(rings, points)?;
     let scratch = scratch_for(&plan, scratch)?;
-    if out.len() < plan.triangles {
-        let needed = count(rings, points, scratch).pieces;
-        if out.len() < needed {
-            return Err(PiecesError::BufferTooSmall { needed });
-        }
+    let needed = count(rings, points, scratch)?.pieces;
+    if out.len() < needed {
+        return Err(PiecesError::BufferTooSmall { needed });
     }
     let written = core::cell::Cell::new(0usize);
     let ring_now = core::cell::Cell::new(0u32);
@@ -361,7 +395,7 @@ pub fn convex_pieces(
             ring_now.set(ring);
             merger.borrow_mut().add(t, points, &mut *write.borrow_mut());
         },
-        || merger.borrow_mut().finish(&mut *write.borrow_mut()),
+        |_, _| merger.borrow_mut().finish(&mut *write.borrow_mut()),
     );
     Ok(written.get())
 }
