@@ -251,9 +251,10 @@ fn pieces_add_up(rings: &[Ring], points: &[hibi_vec2], plate: f64, may_cross: bo
         let mut scratch = vec![0u32; words];
         let s = scratch.as_mut_ptr();
         let status = hibi_pieces_counts(rp, rings.len(), pp, points.len(), s, words, &mut triangles, &mut pieces);
-        // A polygon whose rings cross (`may_cross`: mud's cells on a strongly distorted
-        // irregular lattice can, a known defect of the cells) has no interior for pieces to
-        // cover: it may be refused, and only then; every simple polygon's pieces must add up.
+        // A polygon whose rings cross (`may_cross`: mud's cells can where a strongly deformed
+        // lattice folds over, a mesh cell turned inside out, a known defect of the cells) has no
+        // interior for pieces to cover: it may be refused, and only then; every simple
+        // polygon's pieces must add up.
         let at = |i: u32| [f64::from(points[i as usize].x), f64::from(points[i as usize].y)];
         let twice =
             |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);

@@ -81,6 +81,25 @@ const SMOOTHING_WEIGHTS: [f32; SMOOTHING + 1] = [70.0 / 256.0, 56.0 / 256.0, 28.
 /// Crack offsets are stored in steps of 1/`OFFSET_UNITS` lattice units (±16 units fit).
 pub(super) const OFFSET_UNITS: f32 = 2048.0;
 
+/// How many times a crack point's smoothing offset is halved, at most, to keep the point in
+/// its spring's region (see `Mud::packed_offset`) before it is dropped.
+const OFFSET_HALVINGS: u32 = 6;
+
+/// Twice the signed area of the triangle `a`, `b`, `p` (positive: `p` left of `a` → `b`),
+/// computed in `f64`.
+fn side_of(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> f64 {
+    let f = |v: [f32; 2]| [f64::from(v[0]), f64::from(v[1])];
+    let (a, b, p) = (f(a), f(b), f(p));
+    (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
+}
+
+/// Whether `p` lies strictly inside the triangle `a`, `b`, `c` (either orientation; never
+/// inside a degenerate one).
+fn strictly_inside(p: [f32; 2], a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> bool {
+    let (d1, d2, d3) = (side_of(a, b, p), side_of(b, c, p), side_of(c, a, p));
+    (d1 > 0.0 && d2 > 0.0 && d3 > 0.0) || (d1 < 0.0 && d2 < 0.0 && d3 < 0.0)
+}
+
 /// No vertex: the ends of a closed crack with no junction on it.
 pub const NO_VERTEX: u32 = u32::MAX;
 
@@ -583,10 +602,9 @@ impl<S: Scalar> Mud<'_, S> {
                     if !m.is_cut(spring) {
                         return 1;
                     }
-                    let pack = |v: f32| (libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0) as i16 as u16) as u32;
-                    let [x, y] = m.smoothing_offset(spring);
-                    m.crack_offset[spring] = pack(x) | pack(y) << 16;
-                    1 + 2 * SMOOTHING as u64 * super::cells::RING_STEP
+                    m.crack_offset[spring] = m.packed_offset(spring);
+                    // The walks along the crack each way, and its two mesh cells for the clamp.
+                    1 + 2 * (SMOOTHING as u64 + 1) * super::cells::RING_STEP
                 });
                 if at < springs { TracePass::Offsets(at) } else { TracePass::Rings(RingCursor::START) }
             }
@@ -1041,6 +1059,42 @@ impl<S: Scalar> Mud<'_, S> {
         let packed = self.crack_offset[c.cell.sides[k] as usize];
         let unit = |half: u32| f32::from(half as u16 as i16) / OFFSET_UNITS;
         [own[0] + unit(packed & 0xffff), own[1] + unit(packed >> 16)]
+    }
+
+    /// [`Self::smoothing_offset`] of cut `spring` as stored (two `i16` in 1/[`OFFSET_UNITS`]
+    /// lattice units), shortened where the crack point would leave its spring's region: the
+    /// two triangles the spring's ends make with its mesh cells' centroids. A smoothed point
+    /// beyond (a sharp turn of the crack, a distorted irregular mesh, the open border) could
+    /// pass a neighbouring piece of its ring, which then crossed itself; it is moved back
+    /// towards its spring's midpoint, by halves, at most [`OFFSET_HALVINGS`] times, and then to
+    /// the midpoint. Where the mesh is folded over at the spring (both centroids on one side
+    /// of it) there is no such region, and the offset stays.
+    fn packed_offset(&self, spring: usize) -> u32 {
+        let pack = |v: f32| libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0);
+        let [x, y] = self.smoothing_offset(spring).map(pack);
+        let word = |x: f32, y: f32| (x as i16 as u16) as u32 | ((y as i16 as u16) as u32) << 16;
+        if x == 0.0 && y == 0.0 {
+            return 0;
+        }
+        let Some((home, side)) = self.lattice.cells_of_spring(spring)[0] else { return 0 };
+        let Some(home) = self.traced_cell(home, [0, 0]) else { return 0 };
+        let Some((other, _, _)) = self.across(&home, side, [0, 0]) else { return 0 };
+        let (a, b) = (home.corner[side], home.corner[(side + 1) % home.sides()]);
+        let centre = home.midpoint(side);
+        let (near, far) = (home.centroid(), other.centroid());
+        // A mesh folded over at the spring (both centroids on one side of it: a strongly
+        // deformed lattice) has no region to keep the point in; the offset stays.
+        if side_of(a, b, near) * side_of(a, b, far) >= 0.0 {
+            return word(x, y);
+        }
+        for halvings in 0..=OFFSET_HALVINGS {
+            let (x, y) = (libm::roundf(x / (1 << halvings) as f32), libm::roundf(y / (1 << halvings) as f32));
+            let p = [centre[0] + x / OFFSET_UNITS, centre[1] + y / OFFSET_UNITS];
+            if strictly_inside(p, a, b, near) || strictly_inside(p, a, b, far) {
+                return word(x, y);
+            }
+        }
+        0
     }
 
     /// How far the crack point of cut `spring` lies from the spring's midpoint: the binomial
