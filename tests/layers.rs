@@ -50,6 +50,44 @@ fn tiles_match(
     whole
 }
 
+/// Renders each layer alone (with the scratch) over the whole image and checks that it is,
+/// byte for byte, what the render of every layer at once wrote: no layer depends on the others
+/// asked for with it (the preview reads the mask when both are drawn, and draws its coverage
+/// itself otherwise).
+fn each_layer_alone(whole: &EveryLayer, width: u32, height: u32, crack: bool, render: impl Fn(Layers)) {
+    for k in 0..7 {
+        let mut alone = EveryLayer::new(width, height);
+        let e = &mut alone;
+        let mut layers = Layers { scratch: Some(&mut e.scratch), ..Layers::default() };
+        match k {
+            0 => layers.mask = Some(&mut e.mask),
+            1 => layers.height = Some(&mut e.height),
+            2 => layers.height16 = Some(&mut e.height16),
+            3 => layers.normal = Some(&mut e.normal),
+            4 => layers.normal_rgb8 = Some(&mut e.normal_rgb8),
+            5 if crack => layers.time = Some(&mut e.time),
+            5 => layers.cell = Some(&mut e.cell),
+            _ => layers.preview = Some(&mut e.preview),
+        }
+        render(layers);
+        let same = match k {
+            0 => alone.mask == whole.mask,
+            1 => alone.height.iter().map(|v| v.to_bits()).eq(whole.height.iter().map(|v| v.to_bits())),
+            2 => alone.height16 == whole.height16,
+            3 => alone.normal.iter().flatten().map(|v| v.to_bits()).eq(whole
+                .normal
+                .iter()
+                .flatten()
+                .map(|v| v.to_bits())),
+            4 => alone.normal_rgb8 == whole.normal_rgb8,
+            5 if crack => alone.time.iter().map(|v| v.to_bits()).eq(whole.time.iter().map(|v| v.to_bits())),
+            5 => alone.cell == whole.cell,
+            _ => alone.preview == whole.preview,
+        };
+        assert!(same, "layer {k} alone differs from the same layer drawn with every other");
+    }
+}
+
 fn finished_mud(params: &MudParams, run: impl FnOnce(&Mud)) {
     let mut store = params.memory().expect("valid").allocate::<f32>();
     let mut mud = Mud::new(params, store.buffers()).expect("memory suffices");
@@ -68,6 +106,7 @@ fn mud_tiles_equal_the_whole_image_open_and_periodic() {
             });
             assert!(whole.mask.contains(&255), "{boundary:?}: cracks are drawn");
             assert!(whole.preview.iter().all(|p| p[3] == 255));
+            each_layer_alone(&whole, render.width, render.height, true, |layers| mud.render(&render, layers).unwrap());
             // The layers of one pass are those of separate calls.
             let mut mask = vec![0u8; whole.mask.len()];
             mud.render(&render, Layers { mask: Some(&mut mask), ..Layers::default() }).unwrap();
@@ -89,6 +128,7 @@ fn glass_tiles_equal_the_whole_image() {
     let whole =
         tiles_match(120, 90, true, |tile, layers| glass.render_tile(&render, tile, layers).map_err(|e| e.to_string()));
     assert!(whole.mask.contains(&255));
+    each_layer_alone(&whole, 120, 90, true, |layers| glass.render(&render, layers).unwrap());
     // Height is 1 − coverage, exactly.
     for (h, m) in whole.height.iter().zip(&whole.mask) {
         assert_eq!(*h, 1.0 - f32::from(*m) / 255.0);
@@ -109,6 +149,7 @@ fn skin_tiles_equal_the_whole_surface_open_and_periodic() {
         // Furrows: the coarsest level's outlines at 255, and cells inside them left dark.
         assert!(whole.mask.contains(&255) && whole.mask.contains(&0));
         assert!(whole.cell.iter().all(|&c| (c as usize) < skin.cells().len()));
+        each_layer_alone(&whole, 90, 70, false, |layers| skin.render(&render, layers).unwrap());
     }
 }
 

@@ -60,11 +60,7 @@ macro_rules! render {
             $crate::guard::guard(|| {
                 const NAME: &core::ffi::CStr = $crate::guard::c_name(concat!(stringify!($arg), "\0"));
                 // SAFETY: the caller's contract.
-                let object = unsafe { $crate::guard::object_ref($arg, NAME) }?;
-                // SAFETY: the caller's contract.
-                let render = unsafe { $crate::guard::object_ref(render, c"render") }?;
-                let render = $crate::fields::Field::to_core(render)
-                    .ok_or_else(|| $crate::status::refuse_argument(c"render", $crate::status::HIBI_ERROR_BAD_ENUM))?;
+                let (object, render) = unsafe { $crate::raster::render_inputs($arg, NAME, render) }?;
                 // SAFETY: the caller's contract.
                 let layers = $layers(layer, unsafe { $crate::raster::Pixels::new(pixels, pixels_len) })?;
                 object.$arg.render(&render, layers).map_err(|e| $crate::status::short_buffer($status(e), c"pixels"))
@@ -73,6 +69,27 @@ macro_rules! render {
     };
 }
 pub(crate) use render;
+
+/// The object and the render params of a render call, checked: the object (named `name`), and
+/// the params in the core's form (`HIBI_ERROR_BAD_ENUM` naming `render` for a field holding no
+/// valid value).
+///
+/// # Safety
+/// `object` must be NULL or a live object; `render` NULL or readable.
+pub(crate) unsafe fn render_inputs<'a, O, P: crate::fields::Field<C>, C>(
+    object: *const O,
+    name: &'static core::ffi::CStr,
+    render: *const P,
+) -> Result<(&'a O, C), crate::status::hibi_status> {
+    // SAFETY: the caller's contract.
+    let object = unsafe { crate::guard::object_ref(object, name) }?;
+    // SAFETY: the caller's contract.
+    let render = unsafe { crate::guard::object_ref(render, c"render") }?;
+    let render = render
+        .to_core()
+        .ok_or_else(|| crate::status::refuse_argument(c"render", crate::status::HIBI_ERROR_BAD_ENUM))?;
+    Ok((object, render))
+}
 
 /// The rasters one layered render writes (`hibi_mud_render_layers`, `hibi_glass_render_layers`,
 /// `hibi_skin_render_layers`): any of them, each NULL (not drawn) or `pixels_len` pixels of the
@@ -217,11 +234,7 @@ macro_rules! render_layers {
             $crate::guard::guard(|| {
                 const NAME: &core::ffi::CStr = $crate::guard::c_name(concat!(stringify!($arg), "\0"));
                 // SAFETY: the caller's contract.
-                let object = unsafe { $crate::guard::object_ref($arg, NAME) }?;
-                // SAFETY: the caller's contract.
-                let render = unsafe { $crate::guard::object_ref(render, c"render") }?;
-                let render = $crate::fields::Field::to_core(render)
-                    .ok_or_else(|| $crate::status::refuse_argument(c"render", $crate::status::HIBI_ERROR_BAD_ENUM))?;
+                let (object, render) = unsafe { $crate::raster::render_inputs($arg, NAME, render) }?;
                 // SAFETY: the caller's contract.
                 let layers = unsafe { $crate::guard::object_ref(layers, c"layers") }?;
                 let tile = if tile.is_null() {

@@ -3,8 +3,8 @@
 
 use super::Glass;
 use crate::raster::{
-    Clip, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
-    draw_time, for_each_hit, height16, normal_rgb8, pixel_count, srgb8_opaque,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
+    draw_time, for_each_hit, pixel_count, srgb8_opaque,
 };
 
 /// The rasters one [`Glass::render`] call draws: every [`Layers`] field but `cell`.
@@ -136,7 +136,6 @@ impl Glass<'_> {
         let clip = tile.clip(0);
         let needs_window = windowed(&layers);
         let Layers { mask, height, height16: h16, normal, normal_rgb8: n8, time, preview, scratch, .. } = layers;
-        let (mut height, mut h16, mut normal, mut n8) = (height, h16, normal, n8);
         if let Some(out) = time {
             draw_time(&mut out[..pixels], |visit| self.draw(render, clip, visit));
         }
@@ -169,28 +168,7 @@ impl Glass<'_> {
             let lower = window.at(hit.pixel).min(depth(coverage_code(hit.coverage)));
             window.set(hit.pixel, lower);
         });
-        let wants_normal = normal.is_some() || n8.is_some();
-        for y in 0..tile.height {
-            for x in 0..tile.width {
-                let i = y as usize * tile.width as usize + x as usize;
-                let h = window.inside(x, y);
-                if let Some(out) = height.as_deref_mut() {
-                    out[i] = h;
-                }
-                if let Some(out) = h16.as_deref_mut() {
-                    out[i] = height16(h);
-                }
-                if wants_normal {
-                    let n = window.normal(x, y, render.bump);
-                    if let Some(out) = normal.as_deref_mut() {
-                        out[i] = n;
-                    }
-                    if let Some(out) = n8.as_deref_mut() {
-                        out[i] = normal_rgb8(n);
-                    }
-                }
-            }
-        }
+        window.write(render.bump, Derived { height, height16: h16, normal, normal_rgb8: n8 }, None);
         Ok(())
     }
 }

@@ -5,8 +5,8 @@
 
 use super::Mud;
 use crate::raster::{
-    Clip, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
-    draw_time, for_each_hit, height16, normal_rgb8, pixel_count, srgb8_opaque,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
+    draw_time, for_each_hit, pixel_count, srgb8_opaque,
 };
 use crate::scalar::Scalar;
 
@@ -215,9 +215,8 @@ impl<S: Scalar> Mud<'_, S> {
         tile.check_inside(render.width, render.height)?;
         let pixels = layers.check(tile, |l| l != Layer::Cell, |_| true)?;
         let clip = tile.clip(0);
-        let Layers { mask, height, height16: mut h16, normal, normal_rgb8: mut n8, time, preview, scratch, .. } =
-            layers;
-        self.draw_own(render, tile, pixels, mask, time);
+        let Layers { mut mask, height, height16: h16, normal, normal_rgb8: n8, time, preview, scratch, .. } = layers;
+        self.draw_own(render, tile, pixels, mask.as_deref_mut(), time);
         // (Checked: the derived layers need the scratch.)
         let Some(scratch) = scratch else {
             return Err(RasterError::BufferTooSmall { layer: Layer::Scratch, needed: 0 });
@@ -229,39 +228,22 @@ impl<S: Scalar> Mud<'_, S> {
             let lower = window.at(i).min(h);
             window.set(i, lower);
         });
+        // The preview's coverage is the mask's, read from it when it is drawn.
         let mut preview = preview.map(|p| &mut p[..pixels]);
         if let Some(p) = preview.as_deref_mut() {
-            p.fill([0; 4]);
-            self.draw(render, clip, 0.0, |hit| p[hit.pixel][3] = p[hit.pixel][3].max(coverage_code(hit.coverage)));
-        }
-        let (mut height, mut normal) = (height, normal);
-        let wants_normal = normal.is_some() || n8.is_some() || preview.is_some();
-        let light = preview_light();
-        for y in 0..tile.height {
-            for x in 0..tile.width {
-                let i = y as usize * tile.width as usize + x as usize;
-                let h = window.inside(x, y);
-                if let Some(out) = height.as_deref_mut() {
-                    out[i] = h;
-                }
-                if let Some(out) = h16.as_deref_mut() {
-                    out[i] = height16(h);
-                }
-                if !wants_normal {
-                    continue;
-                }
-                let n = window.normal(x, y, render.bump);
-                if let Some(out) = normal.as_deref_mut() {
-                    out[i] = n;
-                }
-                if let Some(out) = n8.as_deref_mut() {
-                    out[i] = normal_rgb8(n);
-                }
-                if let Some(out) = preview.as_deref_mut() {
-                    out[i] = clay(n, light, f32::from(out[i][3]) / 255.0);
+            match mask.as_deref() {
+                Some(m) => p.iter_mut().zip(m).for_each(|(p, &m)| *p = [0, 0, 0, m]),
+                None => {
+                    p.fill([0; 4]);
+                    let code = |hit: StrokeHit| coverage_code(hit.coverage);
+                    self.draw(render, clip, 0.0, |hit| p[hit.pixel][3] = p[hit.pixel][3].max(code(hit)));
                 }
             }
         }
+        let light = preview_light();
+        let mut shade = preview.map(|p| move |i: usize, n: [f32; 3]| p[i] = clay(n, light, f32::from(p[i][3]) / 255.0));
+        let shade = shade.as_mut().map(|s| s as &mut dyn FnMut(usize, [f32; 3]));
+        window.write(render.bump, Derived { height, height16: h16, normal, normal_rgb8: n8 }, shade);
         Ok(())
     }
 

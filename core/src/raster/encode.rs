@@ -93,4 +93,50 @@ impl<'s> HeightWindow<'s> {
         let length = libm::sqrtf(gx * gx + gy * gy + 1.0);
         [-gx / length, -gy / length, 1.0 / length]
     }
+
+    /// Writes the layers derived from the window's heights, pixel by pixel over its tile:
+    /// the height (`f32` and 16-bit) and the unit normal (`f32` and RGB8, [`Self::normal`] at
+    /// `bump`), each where asked; `shade(i, normal)` is called with every pixel's normal when
+    /// given (a model's preview).
+    pub fn write(&self, bump: f32, out: Derived<'_>, mut shade: Option<&mut dyn FnMut(usize, [f32; 3])>) {
+        let Derived { mut height, height16: mut h16, mut normal, normal_rgb8: mut n8 } = out;
+        let wants_normal = normal.is_some() || n8.is_some() || shade.is_some();
+        for y in 0..self.tile.height {
+            for x in 0..self.tile.width {
+                let i = y as usize * self.tile.width as usize + x as usize;
+                let h = self.inside(x, y);
+                if let Some(out) = height.as_deref_mut() {
+                    out[i] = h;
+                }
+                if let Some(out) = h16.as_deref_mut() {
+                    out[i] = height16(h);
+                }
+                if !wants_normal {
+                    continue;
+                }
+                let n = self.normal(x, y, bump);
+                if let Some(out) = normal.as_deref_mut() {
+                    out[i] = n;
+                }
+                if let Some(out) = n8.as_deref_mut() {
+                    out[i] = normal_rgb8(n);
+                }
+                if let Some(shade) = shade.as_deref_mut() {
+                    shade(i, n);
+                }
+            }
+        }
+    }
+}
+
+/// The layers [`HeightWindow::write`] derives from heights, each for the window's tile.
+pub struct Derived<'o> {
+    /// Heights.
+    pub height: Option<&'o mut [f32]>,
+    /// Heights as 16 bits ([`height16`]).
+    pub height16: Option<&'o mut [u16]>,
+    /// Unit normals.
+    pub normal: Option<&'o mut [[f32; 3]]>,
+    /// Unit normals as RGB8 ([`normal_rgb8`]).
+    pub normal_rgb8: Option<&'o mut [[u8; 3]]>,
 }
