@@ -603,8 +603,7 @@ impl<S: Scalar> Mud<'_, S> {
                         return 1;
                     }
                     m.crack_offset[spring] = m.packed_offset(spring);
-                    // The walks along the crack each way, and its two mesh cells for the clamp.
-                    1 + 2 * (SMOOTHING as u64 + 1) * super::cells::RING_STEP
+                    1 + 2 * SMOOTHING as u64 * super::cells::RING_STEP
                 });
                 if at < springs { TracePass::Offsets(at) } else { TracePass::Rings(RingCursor::START) }
             }
@@ -1071,14 +1070,12 @@ impl<S: Scalar> Mud<'_, S> {
     /// of it) there is no such region, and the offset stays.
     fn packed_offset(&self, spring: usize) -> u32 {
         let pack = |v: f32| libm::roundf(v * OFFSET_UNITS).clamp(-32767.0, 32767.0);
-        let [x, y] = self.smoothing_offset(spring).map(pack);
+        let Some((offset, home, side, other)) = self.smoothing_offset(spring) else { return 0 };
+        let [x, y] = offset.map(pack);
         let word = |x: f32, y: f32| (x as i16 as u16) as u32 | ((y as i16 as u16) as u32) << 16;
         if x == 0.0 && y == 0.0 {
             return 0;
         }
-        let Some((home, side)) = self.lattice.cells_of_spring(spring)[0] else { return 0 };
-        let Some(home) = self.traced_cell(home, [0, 0]) else { return 0 };
-        let Some((other, _, _)) = self.across(&home, side, [0, 0]) else { return 0 };
         let (a, b) = (home.corner[side], home.corner[(side + 1) % home.sides()]);
         let centre = home.midpoint(side);
         let (near, far) = (home.centroid(), other.centroid());
@@ -1105,12 +1102,15 @@ impl<S: Scalar> Mud<'_, S> {
     /// Vertices (ends, junctions, border points) stay where they are; a walk that reaches
     /// one before [`SMOOTHING`] points counts it for the rest. The triangle meshes only; the
     /// raw segments ([`Mud::segments`]) keep the midpoints.
-    fn smoothing_offset(&self, spring: usize) -> [f32; 2] {
-        let [Some((first, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { return [0.0; 2] };
+    ///
+    /// Returns the offset with the spring's first mesh cell, its side there and the mesh cell
+    /// across it (in one frame), or `None` where the point stays at the midpoint.
+    fn smoothing_offset(&self, spring: usize) -> Option<([f32; 2], TracedCell, usize, TracedCell)> {
+        let [Some((first, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { return None };
         // The square lattice keeps its midpoints: its axis-aligned steps are the paper's
         // Fig. 6 b, the lattice's artefact the figure shows.
-        let Some(home) = self.traced_cell(first, [0, 0]).filter(|c| c.sides() == 3) else { return [0.0; 2] };
-        let Some((other, other_side, wrap)) = self.across(&home, side, [0, 0]) else { return [0.0; 2] };
+        let home = self.traced_cell(first, [0, 0]).filter(|c| c.sides() == 3)?;
+        let (other, other_side, wrap) = self.across(&home, side, [0, 0])?;
         let centre = home.midpoint(side);
         let mut offset = [0.0f32; 2];
         for (cell, entry, wrap) in [(home, side, [0, 0]), (other, other_side, wrap)] {
@@ -1127,7 +1127,7 @@ impl<S: Scalar> Mud<'_, S> {
                 offset[1] += w * (last[1] - centre[1]);
             }
         }
-        offset
+        Some((offset, home, side, other))
     }
 
     /// Calls `edge(from, to, points)` for every edge of the network, in a fixed order: by
