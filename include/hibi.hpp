@@ -358,6 +358,62 @@ private:
 /// Working memory of the const calls that need it (one per thread); from scratch().
 using Scratch = Buffer;
 
+namespace detail {
+/// A budgeted build in memory it owns (FragmentBuild, MudNetworkBuild, MudCellBuild): made
+/// in the same work at any size, stepped with its model until finished, then read in ranges.
+/// `Self` names its C calls: `size_call`, `create_call` and `step_call`.
+template <class Self, class Model, class Handle, class Progress>
+class Build {
+public:
+    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
+    Build() noexcept = default;
+    Build(Build &&other) noexcept : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
+    Build &operator=(Build &&other) noexcept {
+        if (this != &other) {
+            memory_ = std::move(other.memory_);
+            handle_ = std::exchange(other.handle_, nullptr);
+        }
+        return *this;
+    }
+    /// A build of `model`'s output.
+    static Result<Self> try_create(const Model &model) {
+        std::size_t size = 0;
+        hibi_status status = Self::size_call(model.get(), &size);
+        if (status != HIBI_OK) return Result<Self>(status, hibi_error_argument());
+        Self out;
+        out.memory_ = Buffer(size, Model::memory_align());
+        if (out.memory_.data() == nullptr) return Result<Self>(HIBI_ERROR_OUT_OF_MEMORY, "");
+        status = Self::create_call(model.get(), out.memory_.data(), out.memory_.size(), &out.handle_);
+        return detail::result(status, std::move(out));
+    }
+    static Returned<Self> create(const Model &model) { return returned(try_create(model)); }
+
+    /// Goes on until about `budget` units are done in this call, or the build is finished.
+    Result<Progress> try_step(const Model &model, std::uint64_t budget) noexcept {
+        Progress progress{};
+        return detail::result(Self::step_call(handle_, model.get(), budget, &progress), progress);
+    }
+    Returned<Progress> step(const Model &model, std::uint64_t budget) {
+        return returned(try_step(model, budget));
+    }
+
+    Handle *get() const noexcept { return handle_; }
+
+protected:
+    /// Copies the elements from `first` on into `out` with the C range read `call`, as many
+    /// as there are (none before the build is finished); returns how many.
+    template <class T>
+    Result<std::size_t> read(hibi_status (*call)(const Handle *, std::size_t, T *, std::size_t, std::size_t *),
+                             std::size_t first, Span<T> out) const noexcept {
+        std::size_t written = 0;
+        return detail::result(call(handle_, first, out.data(), out.size(), &written), written);
+    }
+
+    Buffer memory_;
+    Handle *handle_ = nullptr;
+};
+}  // namespace detail
+
 /// The layers a layered render (render_layers) can draw, as flags for hibi::Layers.
 namespace layer {
 constexpr unsigned mask = 1u, height = 2u, height16 = 4u, normal = 8u, normal_rgb8 = 16u, time = 32u, cell = 64u,
@@ -806,51 +862,16 @@ private:
 };
 
 /// A budgeted build of a run's crack network in memory it owns (hibi_mud_network_build_*): made in
-/// the same work at any size, stepped with the run until finished, then read in ranges. The
-/// vertices, edges and points are those of Mud::network, bit for bit.
-class MudNetworkBuild {
+/// the same work at any size, stepped with the run until finished (hibi_mud_network_build_step),
+/// then read in ranges. The vertices, edges and points are those of Mud::network, bit for bit.
+class MudNetworkBuild : public detail::Build<MudNetworkBuild, Mud, hibi_mud_network_build, hibi_mud_network_build_progress> {
 public:
     using Progress = hibi_mud_network_build_progress;
 
-    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
-    MudNetworkBuild() noexcept = default;
-    MudNetworkBuild(MudNetworkBuild &&other) noexcept
-        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
-    MudNetworkBuild &operator=(MudNetworkBuild &&other) noexcept {
-        if (this != &other) {
-            memory_ = std::move(other.memory_);
-            handle_ = std::exchange(other.handle_, nullptr);
-        }
-        return *this;
-    }
-    /// A build of `mud`'s crack network.
-    static Result<MudNetworkBuild> try_create(const Mud &mud) {
-        std::size_t size = 0;
-        hibi_status status = hibi_mud_network_build_size(mud.get(), &size);
-        if (status != HIBI_OK) return Result<MudNetworkBuild>(status, hibi_error_argument());
-        MudNetworkBuild out;
-        out.memory_ = Buffer(size, Mud::memory_align());
-        if (out.memory_.data() == nullptr) return Result<MudNetworkBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
-        status = hibi_mud_network_build_create_in(mud.get(), out.memory_.data(), out.memory_.size(), &out.handle_);
-        return detail::result(status, std::move(out));
-    }
-    static detail::Returned<MudNetworkBuild> create(const Mud &mud) { return detail::returned(try_create(mud)); }
-
-    /// Goes on until about `budget` units are done in this call, or the build is finished
-    /// (hibi_mud_network_build_step).
-    Result<Progress> try_step(const Mud &mud, std::uint64_t budget) noexcept {
-        Progress progress{};
-        return detail::result(hibi_mud_network_build_step(handle_, mud.get(), budget, &progress), progress);
-    }
-    detail::Returned<Progress> step(const Mud &mud, std::uint64_t budget) {
-        return detail::returned(try_step(mud, budget));
-    }
     /// Copies the vertices from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_vertices(std::size_t first, Span<hibi_mud_network_vertex> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_mud_network_build_vertices(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_mud_network_build_vertices, first, out);
     }
     detail::Returned<std::size_t> vertices(std::size_t first, Span<hibi_mud_network_vertex> out) const {
         return detail::returned(try_vertices(first, out));
@@ -858,9 +879,7 @@ public:
     /// Copies the edges from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_edges(std::size_t first, Span<hibi_mud_network_edge> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_mud_network_build_edges(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_mud_network_build_edges, first, out);
     }
     detail::Returned<std::size_t> edges(std::size_t first, Span<hibi_mud_network_edge> out) const {
         return detail::returned(try_edges(first, out));
@@ -868,67 +887,30 @@ public:
     /// Copies the points from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_points(std::size_t first, Span<hibi_mud_network_point> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_mud_network_build_points(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_mud_network_build_points, first, out);
     }
     detail::Returned<std::size_t> points(std::size_t first, Span<hibi_mud_network_point> out) const {
         return detail::returned(try_points(first, out));
     }
 
-    hibi_mud_network_build *get() const noexcept { return handle_; }
-
 private:
-    Buffer memory_;
-    hibi_mud_network_build *handle_ = nullptr;
+    friend Build;
+    static constexpr auto size_call = hibi_mud_network_build_size;
+    static constexpr auto create_call = hibi_mud_network_build_create_in;
+    static constexpr auto step_call = hibi_mud_network_build_step;
 };
 
 /// A budgeted build of a run's cells in memory it owns (hibi_mud_cell_build_*): made in
-/// the same work at any size, stepped with the run until finished, then read in ranges. The
-/// rings and points are those of Mud::cells, bit for bit.
-class MudCellBuild {
+/// the same work at any size, stepped with the run until finished (hibi_mud_cell_build_step),
+/// then read in ranges. The rings and points are those of Mud::cells, bit for bit.
+class MudCellBuild : public detail::Build<MudCellBuild, Mud, hibi_mud_cell_build, hibi_mud_cell_build_progress> {
 public:
     using Progress = hibi_mud_cell_build_progress;
 
-    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
-    MudCellBuild() noexcept = default;
-    MudCellBuild(MudCellBuild &&other) noexcept
-        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
-    MudCellBuild &operator=(MudCellBuild &&other) noexcept {
-        if (this != &other) {
-            memory_ = std::move(other.memory_);
-            handle_ = std::exchange(other.handle_, nullptr);
-        }
-        return *this;
-    }
-    /// A build of `mud`'s cells.
-    static Result<MudCellBuild> try_create(const Mud &mud) {
-        std::size_t size = 0;
-        hibi_status status = hibi_mud_cell_build_size(mud.get(), &size);
-        if (status != HIBI_OK) return Result<MudCellBuild>(status, hibi_error_argument());
-        MudCellBuild out;
-        out.memory_ = Buffer(size, Mud::memory_align());
-        if (out.memory_.data() == nullptr) return Result<MudCellBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
-        status = hibi_mud_cell_build_create_in(mud.get(), out.memory_.data(), out.memory_.size(), &out.handle_);
-        return detail::result(status, std::move(out));
-    }
-    static detail::Returned<MudCellBuild> create(const Mud &mud) { return detail::returned(try_create(mud)); }
-
-    /// Goes on until about `budget` units are done in this call, or the build is finished
-    /// (hibi_mud_cell_build_step).
-    Result<Progress> try_step(const Mud &mud, std::uint64_t budget) noexcept {
-        Progress progress{};
-        return detail::result(hibi_mud_cell_build_step(handle_, mud.get(), budget, &progress), progress);
-    }
-    detail::Returned<Progress> step(const Mud &mud, std::uint64_t budget) {
-        return detail::returned(try_step(mud, budget));
-    }
     /// Copies the rings from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_rings(std::size_t first, Span<hibi_ring> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_mud_cell_build_rings(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_mud_cell_build_rings, first, out);
     }
     detail::Returned<std::size_t> rings(std::size_t first, Span<hibi_ring> out) const {
         return detail::returned(try_rings(first, out));
@@ -936,19 +918,17 @@ public:
     /// Copies the points from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_points(std::size_t first, Span<hibi_vec2> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_mud_cell_build_points(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_mud_cell_build_points, first, out);
     }
     detail::Returned<std::size_t> points(std::size_t first, Span<hibi_vec2> out) const {
         return detail::returned(try_points(first, out));
     }
 
-    hibi_mud_cell_build *get() const noexcept { return handle_; }
-
 private:
-    Buffer memory_;
-    hibi_mud_cell_build *handle_ = nullptr;
+    friend Build;
+    static constexpr auto size_call = hibi_mud_cell_build_size;
+    static constexpr auto create_call = hibi_mud_cell_build_create_in;
+    static constexpr auto step_call = hibi_mud_cell_build_step;
 };
 
 /// Model B, a glass plate hit by a ball (hibi_glass).
@@ -1179,71 +1159,35 @@ private:
 };
 
 /// A budgeted build of a plate's fragments in memory it owns (hibi_glass_fragment_build_*):
-/// made in the same work at any size, stepped with the plate until finished, then read in
-/// ranges. The rings and points are those of Glass::fragments, bit for bit.
-class FragmentBuild {
+/// made in the same work at any size, stepped with the plate until finished
+/// (hibi_glass_fragment_build_step), then read in ranges. The rings and points are those of
+/// Glass::fragments, bit for bit.
+class FragmentBuild
+    : public detail::Build<FragmentBuild, Glass, hibi_glass_fragment_build, hibi_glass_fragment_progress> {
 public:
     using Progress = hibi_glass_fragment_progress;
 
-    /// No build (as after a move): every call on it fails with HIBI_ERROR_NULL_POINTER.
-    FragmentBuild() noexcept = default;
-    FragmentBuild(FragmentBuild &&other) noexcept
-        : memory_(std::move(other.memory_)), handle_(std::exchange(other.handle_, nullptr)) {}
-    FragmentBuild &operator=(FragmentBuild &&other) noexcept {
-        if (this != &other) {
-            memory_ = std::move(other.memory_);
-            handle_ = std::exchange(other.handle_, nullptr);
-        }
-        return *this;
-    }
-    /// A build of `glass`'s fragments.
-    static Result<FragmentBuild> try_create(const Glass &glass) {
-        std::size_t size = 0;
-        hibi_status status = hibi_glass_fragment_build_size(glass.get(), &size);
-        if (status != HIBI_OK) return Result<FragmentBuild>(status, hibi_error_argument());
-        FragmentBuild out;
-        out.memory_ = Buffer(size, Glass::memory_align());
-        if (out.memory_.data() == nullptr) return Result<FragmentBuild>(HIBI_ERROR_OUT_OF_MEMORY, "");
-        status = hibi_glass_fragment_build_create_in(glass.get(), out.memory_.data(), out.memory_.size(),
-                                                     &out.handle_);
-        return detail::result(status, std::move(out));
-    }
-    static detail::Returned<FragmentBuild> create(const Glass &glass) { return detail::returned(try_create(glass)); }
-
-    /// Goes on until about `budget` units are done in this call, or the build is finished
-    /// (hibi_glass_fragment_build_step).
-    Result<Progress> try_step(const Glass &glass, std::uint64_t budget) noexcept {
-        Progress progress{};
-        return detail::result(hibi_glass_fragment_build_step(handle_, glass.get(), budget, &progress), progress);
-    }
-    detail::Returned<Progress> step(const Glass &glass, std::uint64_t budget) {
-        return detail::returned(try_step(glass, budget));
-    }
     /// Copies the rings from `first` on into `out`, as many as there are (none before the
     /// build is finished); returns how many.
     Result<std::size_t> try_rings(std::size_t first, Span<hibi_ring> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_glass_fragment_build_rings(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_glass_fragment_build_rings, first, out);
     }
     detail::Returned<std::size_t> rings(std::size_t first, Span<hibi_ring> out) const {
         return detail::returned(try_rings(first, out));
     }
     /// Copies the points from `first` on into `out`, as try_rings does.
     Result<std::size_t> try_points(std::size_t first, Span<hibi_vec2> out) const noexcept {
-        std::size_t written = 0;
-        return detail::result(hibi_glass_fragment_build_points(handle_, first, out.data(), out.size(), &written),
-                              written);
+        return read(hibi_glass_fragment_build_points, first, out);
     }
     detail::Returned<std::size_t> points(std::size_t first, Span<hibi_vec2> out) const {
         return detail::returned(try_points(first, out));
     }
 
-    hibi_glass_fragment_build *get() const noexcept { return handle_; }
-
 private:
-    Buffer memory_;
-    hibi_glass_fragment_build *handle_ = nullptr;
+    friend Build;
+    static constexpr auto size_call = hibi_glass_fragment_build_size;
+    static constexpr auto create_call = hibi_glass_fragment_build_create_in;
+    static constexpr auto step_call = hibi_glass_fragment_build_step;
 };
 
 /// Model C, skin from hierarchical Voronoi cells (hibi_skin).

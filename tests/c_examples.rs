@@ -910,6 +910,7 @@ fn check_wrapper(output: &str, standard: &str) {
         "mud finished: yes, in more than one step: yes",
         "mud segments: yes",
         "mud network matches its counts: yes",
+        "mud builds in ranges: same as network and cells: yes, steps: yes",
         "mud statistics as from C: yes",
         "mud mask as from C: yes",
         "mud height and time layers: yes",

@@ -757,6 +757,13 @@ void plain() {
 
 }  // namespace
 
+// Every member of the budgeted builds compiles in this mode, used or not.
+template class hibi::detail::Build<hibi::FragmentBuild, hibi::Glass, hibi_glass_fragment_build,
+                                   hibi_glass_fragment_progress>;
+template class hibi::detail::Build<hibi::MudNetworkBuild, hibi::Mud, hibi_mud_network_build,
+                                   hibi_mud_network_build_progress>;
+template class hibi::detail::Build<hibi::MudCellBuild, hibi::Mud, hibi_mud_cell_build, hibi_mud_cell_build_progress>;
+
 int main() {
     mode();
     basics();

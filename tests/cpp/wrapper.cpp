@@ -156,6 +156,48 @@ void mud() {
     std::printf("mud cells: %s rings, area %.1f of %u\n", cells.rings.empty() ? "no" : "some", area,
                 static_cast<unsigned>(params.columns * params.rows));
 
+    {
+        // The same network and cells built in budgeted steps and read in ranges of 5.
+        hibi::MudNetworkBuild network_build = hibi::MudNetworkBuild::create(mud);
+        hibi::MudCellBuild cell_build = hibi::MudCellBuild::create(mud);
+        int steps = 0;
+        while (!network_build.step(mud, 100).finished) steps++;
+        while (!cell_build.step(mud, 100).finished) steps++;
+        hibi::Mud::Network built;
+        hibi::Mud::Cells built_cells;
+        hibi_mud_network_vertex vertices[5];
+        hibi_mud_network_edge edges[5];
+        hibi_mud_network_point points[5];
+        hibi_ring rings[5];
+        hibi_vec2 ring_points[5];
+        using Vertices = hibi::Span<hibi_mud_network_vertex>;
+        using Edges = hibi::Span<hibi_mud_network_edge>;
+        using Points = hibi::Span<hibi_mud_network_point>;
+        for (std::size_t n; (n = network_build.vertices(built.vertices.size(), Vertices(vertices, 5))) > 0;)
+            built.vertices.insert(built.vertices.end(), vertices, vertices + n);
+        for (std::size_t n; (n = network_build.edges(built.edges.size(), Edges(edges, 5))) > 0;)
+            built.edges.insert(built.edges.end(), edges, edges + n);
+        for (std::size_t n; (n = network_build.points(built.points.size(), Points(points, 5))) > 0;)
+            built.points.insert(built.points.end(), points, points + n);
+        for (std::size_t n; (n = cell_build.rings(built_cells.rings.size(), hibi::Span<hibi_ring>(rings, 5))) > 0;)
+            built_cells.rings.insert(built_cells.rings.end(), rings, rings + n);
+        bool read = true;
+        for (;;) {
+            hibi::Result<std::size_t> n =
+                cell_build.try_points(built_cells.points.size(), hibi::Span<hibi_vec2>(ring_points, 5));
+            if (!n || *n == 0) {
+                read = n.ok();
+                break;
+            }
+            built_cells.points.insert(built_cells.points.end(), ring_points, ring_points + *n);
+        }
+        std::printf("mud builds in ranges: same as network and cells: %s, steps: %s\n",
+                    yes(same_bytes(built.vertices, network.vertices) && same_bytes(built.edges, network.edges) &&
+                        same_bytes(built.points, network.points) && same_rings(built_cells.rings, cells.rings) &&
+                        same_bytes(built_cells.points, cells.points) && read),
+                    yes(steps > 2));
+    }
+
     hibi_mud_crack_statistics stats = mud.statistics(), raw_stats{};
     hibi::check(hibi_mud_statistics(mud.get(), &raw_stats));
     std::printf("mud statistics as from C: %s\n",
