@@ -164,7 +164,9 @@ pub fn callgrind_this_test(test: &str, toggle: &str, env: (&str, &str)) -> (Stri
 
 /// [`callgrind_this_test`] with collection inside every function whose name matches `toggle`
 /// (Callgrind's wildcards: `hibi_test_phase_*`), and the instructions counted in each of them,
-/// what it calls included, by name (functions that were never called are absent).
+/// what it calls included, by name (functions that were never called are absent). Several
+/// patterns are separated by `|`; each toggles collection on entry and exit, so a pattern of
+/// functions called inside the counted ones (`hibi_bench_*|__mem*`) leaves them out.
 pub fn callgrind_this_test_by_function(
     test: &str,
     toggle: &str,
@@ -182,7 +184,7 @@ fn callgrind_rerun(test: &str, toggle: &str, env: (&str, &str)) -> (String, Stri
     let _ = std::fs::remove_file(&out);
     let run = tool("valgrind")
         .args(["-q", "--tool=callgrind", "--collect-atstart=no", "--compress-strings=no"])
-        .arg(format!("--toggle-collect={toggle}"))
+        .args(toggle.split('|').map(|t| format!("--toggle-collect={t}")))
         .arg(format!("--callgrind-out-file={}", out.display()))
         .arg(&exe)
         .args([test, "--exact", "--nocapture", "--test-threads=1"])
