@@ -8,34 +8,17 @@
 //! links without a warning from glibc and runs.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::sync::OnceLock;
 
 use hibi_core::Rng;
-use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, workspace_root};
+use hibi_tests::{ASAN_OPTIONS, SANITIZE_FLAGS, VALGRIND, run, stdout, workspace_root};
 
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 fn profile() -> &'static str {
     if cfg!(debug_assertions) { "debug" } else { "release" }
-}
-
-/// Runs `command`, failing the test with its output unless it succeeds.
-fn run(command: &mut Command) -> Output {
-    let output = command.output().unwrap_or_else(|e| panic!("run {command:?}: {e}"));
-    assert!(
-        output.status.success(),
-        "{command:?} failed ({}):\n{}\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
-}
-
-fn stdout(command: &mut Command) -> String {
-    String::from_utf8(run(command).stdout).expect("UTF-8 output")
 }
 
 /// Installs into a prefix of this profile's own under CARGO_TARGET_TMPDIR, once, building in

@@ -8,33 +8,16 @@
 //! package tests share).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::sync::OnceLock;
 
-use hibi_tests::workspace_root;
+use hibi_tests::{run, stdout, workspace_root};
 
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// The most a stripped libhibi.so may weigh.
 const SHARED_LIBRARY_LIMIT: u64 = 1_500_000;
-
-/// Runs `command`, failing the test with its output unless it succeeds.
-fn run(command: &mut Command) -> Output {
-    let output = command.output().unwrap_or_else(|e| panic!("run {command:?}: {e}"));
-    assert!(
-        output.status.success(),
-        "{command:?} failed ({}):\n{}\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
-}
-
-fn stdout(command: &mut Command) -> String {
-    String::from_utf8(run(command).stdout).expect("UTF-8 output")
-}
 
 /// A fresh directory for one test's files.
 fn scratch_dir(name: &str) -> PathBuf {

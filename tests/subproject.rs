@@ -11,10 +11,10 @@
 //! because they share it.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::sync::{Mutex, OnceLock};
 
-use hibi_tests::workspace_root;
+use hibi_tests::{run, stdout, workspace_root};
 
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -26,23 +26,6 @@ fn build_type() -> (&'static str, &'static str) {
 
 /// One CMake build at a time: they share cargo's target directory and its output files.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
-
-/// Runs `command`, failing the test with its output unless it succeeds.
-fn run(command: &mut Command) -> Output {
-    let output = command.output().unwrap_or_else(|e| panic!("run {command:?}: {e}"));
-    assert!(
-        output.status.success(),
-        "{command:?} failed ({}):\n{}\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
-}
-
-fn stdout(command: &mut Command) -> String {
-    String::from_utf8(run(command).stdout).expect("UTF-8 output")
-}
 
 /// A fresh directory for one test's build.
 fn scratch_dir(name: &str) -> PathBuf {

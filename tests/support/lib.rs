@@ -39,6 +39,24 @@ pub const ASAN_OPTIONS: (&str, &str) = ("ASAN_OPTIONS", "allocator_may_return_nu
 /// once stays.)
 pub const VALGRIND: &[&str] = &["valgrind", "-q", "--error-exitcode=1", "--leak-check=full"];
 
+/// Runs `command`, failing the test with its output unless it succeeds.
+pub fn run(command: &mut std::process::Command) -> std::process::Output {
+    let output = command.output().unwrap_or_else(|e| panic!("run {command:?}: {e}"));
+    assert!(
+        output.status.success(),
+        "{command:?} failed ({}):\n{}\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+/// What `command` prints, failing the test unless it succeeds.
+pub fn stdout(command: &mut std::process::Command) -> String {
+    String::from_utf8(run(command).stdout).expect("UTF-8 output")
+}
+
 /// The workspace root.
 pub fn workspace_root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
