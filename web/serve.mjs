@@ -1,0 +1,49 @@
+// Serves web/ over HTTP for the playground, the bench page and the browser tests:
+//   node web/serve.mjs [PORT]     (default 8080; then open http://localhost:8080/playground/)
+// Static files only, nothing outside web/ (plus targets/scenes/src/lib.rs, the golden list
+// the test page reads).
+import { createServer } from 'node:http';
+import { readFile } from 'node:fs/promises';
+import { extname, join, normalize, sep } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = fileURLToPath(new URL('.', import.meta.url));
+const types = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.wasm': 'application/wasm',
+  '.json': 'application/json',
+  '.png': 'image/png',
+  '.svg': 'image/svg+xml',
+  '.ts': 'text/plain; charset=utf-8',
+};
+
+/** Starts the server on `port` (0: any free port); resolves to its base URL. */
+export function serve(port = 8080, host = '127.0.0.1') {
+  const server = createServer(async (req, res) => {
+    const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    let file = normalize(join(root, path));
+    if (!file.startsWith(root) || file.split(sep).includes('node_modules')) {
+      res.writeHead(403).end();
+      return;
+    }
+    if (path.endsWith('/')) file = join(file, 'index.html');
+    try {
+      const body = await readFile(file);
+      res.writeHead(200, { 'content-type': types[extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-cache' });
+      res.end(body);
+    } catch {
+      res.writeHead(404, { 'content-type': 'text/plain' }).end(`not found: ${path}\n`);
+    }
+  });
+  return new Promise((resolve) => {
+    server.listen(port, host, () => resolve({ url: `http://${host}:${server.address().port}`, server }));
+  });
+}
+
+if (process.argv[1] && fileURLToPath(import.meta.url) === normalize(process.argv[1])) {
+  const { url } = await serve(Number(process.argv[2] ?? 8080));
+  console.log(`hibi: serving web/ at ${url}/ — the playground: ${url}/playground/`);
+}

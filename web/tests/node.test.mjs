@@ -1,0 +1,133 @@
+// The JavaScript package under Node: the golden scenes hash as on every native target, bad
+// input throws HibiError with the core's message naming the field, and free() gives memory
+// back. Run by `npm test` (web/test runs it with the browser tests).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import * as hibi from '../hibi.js';
+import { Mud, Glass, Skin, HibiError } from '../hibi.js';
+import { runScenes } from './scenes.mjs';
+import { goldens } from './goldens.mjs';
+
+await hibi.init();
+
+/** The core's messages of an error list: `Variant => c"message"` in `file`. */
+function messages(file) {
+  const source = readFileSync(new URL(`../../core/src/${file}`, import.meta.url), 'utf8');
+  return [...source.matchAll(/=> c"([^"]+)"/g)].map((m) => m[1]);
+}
+
+test('every golden scene the API makes hashes as natively (targets/scenes GOLDENS)', () => {
+  const want = goldens();
+  const got = runScenes(hibi);
+  assert.ok(Object.keys(got).length >= 20, 'the scenes ran');
+  for (const [name, hash] of Object.entries(got)) {
+    assert.ok(name in want, `${name} is a golden scene`);
+    assert.equal(hash, want[name], name);
+  }
+});
+
+test('a parameter out of its range throws the core message naming the field', () => {
+  const mud = messages('mud/params.rs');
+  const glass = messages('glass/params.rs');
+  const skin = messages('skin/params.rs');
+  const raster = messages('raster/mod.rs');
+  const cases = [
+    [() => new Mud({ columns: 0 }), mud, 'columns'],
+    [() => new Mud({ layer_thickness: NaN }), mud, 'layer_thickness'],
+    [() => new Mud({ break_stretch_spread: -1 }), mud, 'break_stretch_spread'],
+    [() => new Glass({ radial_mean: -5 }), glass, 'radial_mean'],
+    [() => new Glass({ width: 0 }), glass, 'width'],
+    [() => new Skin({ levels: 9 }), skin, 'levels'],
+    [() => new Skin({ jitter_ratio: 2 }), skin, 'jitter_ratio'],
+  ];
+  for (const [make, list, field] of cases) {
+    assert.throws(make, (e) => {
+      assert.ok(e instanceof HibiError, `${field}: a HibiError`);
+      assert.ok(list.includes(e.message), `${field}: the core's message, got "${e.message}"`);
+      assert.match(e.message, new RegExp(field), `${field}: the message names the field`);
+      return true;
+    });
+  }
+  const mudRun = new Mud({ columns: 8, rows: 8 });
+  try {
+    assert.throws(() => mudRun.render(['mask'], { width_scale: -1 }), (e) => raster.includes(e.message) && /width_scale/.test(e.message));
+    assert.throws(() => mudRun.render(['cell']), /^HibiError: render: this model has no cell layer$/);
+    assert.throws(() => mudRun.render(['mask'], { width: 0 }), (e) => raster.includes(e.message));
+  } finally {
+    mudRun.free();
+  }
+});
+
+test('a value of the wrong type throws naming the field', () => {
+  assert.throws(() => new Mud({ columns: 1.5 }), /^HibiError: mud: columns must be an integer/);
+  assert.throws(() => new Mud({ columns: '32' }), /mud: columns must be an integer/);
+  assert.throws(() => new Mud({ topology: 'round' }), /mud: topology must be one of square, hexagonal, irregular/);
+  assert.throws(() => new Glass({ impact: [1, 'x'] }), /glass: impact\[1\] must be a number/);
+  assert.throws(() => new Skin({ periodic: 1 }), /skin: periodic must be true or false/);
+  assert.throws(() => new Skin({ level: [{ spacing: null }] }), /skin: level\[0\]\.spacing must be a number/);
+  assert.throws(() => Mud.preset('no-such'), /mud: no preset has that name/);
+  assert.throws(() => new Mud({}).step(-1), /mud: step's budget/);
+});
+
+test('presets: every name makes a model, with the paper defaults underneath', () => {
+  for (const Model of [Mud, Glass, Skin]) {
+    assert.ok(Model.presets.length > 0);
+    for (const name of Model.presets) {
+      const m = new Model(Model.preset(name));
+      assert.deepEqual(m.params, Model.preset(name));
+      m.free();
+    }
+  }
+  assert.equal(Mud.defaults().topology, 'hexagonal');
+  assert.equal(Glass.defaults().radial_mean, 100);
+  const big = new Glass({ seed: 2n ** 63n + 5n });
+  assert.equal(big.params.seed, 2n ** 63n + 5n);
+  big.free();
+});
+
+test('free() gives the memory back: 500 create/step/render/free cycles leave memory flat', () => {
+  const cycle = () => {
+    const g = new Glass({ width: 96, height: 96, impact: [48, 48], radial_mean: 30 });
+    g.step(20_000);
+    g.render(['preview', 'mask']);
+    g.cracks();
+    g.fragments();
+    g.free();
+    const m = new Mud({ columns: 12, rows: 12 });
+    m.step(100_000);
+    m.network();
+    m.free();
+    assert.throws(() => new Skin({ levels: 0 }), HibiError); // the error path frees too
+  };
+  for (let i = 0; i < 20; i++) cycle();
+  const before = hibi.memoryBytes();
+  for (let i = 0; i < 500; i++) cycle();
+  assert.equal(hibi.memoryBytes(), before);
+});
+
+test('a freed model refuses every call; `using` frees at the end of the block', () => {
+  const m = new Mud({ columns: 8, rows: 8 });
+  m.free();
+  m.free(); // twice is harmless
+  assert.throws(() => m.step(10), /mud: used after free\(\)/);
+  assert.throws(() => m.render(), /mud: used after free\(\)/);
+  const s = new Skin({ width: 32, height: 32 });
+  s[Symbol.dispose ?? Symbol.for('Symbol.dispose')]();
+  assert.throws(() => s.cells(), /skin: used after free\(\)/);
+});
+
+test('a glass plate takes further impacts where it is clicked', () => {
+  const g = new Glass({ width: 200, height: 120, impact: [60, 60] });
+  try {
+    while (!g.step(50_000).finished) {}
+    const first = g.cracks().ends.length;
+    const counts = g.impact(150, 60);
+    assert.ok(counts.radial > 0);
+    while (!g.step(50_000).finished) {}
+    assert.ok(g.cracks().ends.length > first);
+    assert.throws(() => g.impact(500, 60), HibiError);
+  } finally {
+    g.free();
+  }
+});
