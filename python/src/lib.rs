@@ -10,6 +10,7 @@ use pyo3::types::{PyBytes, PyDict, PyList, PyString};
 mod arrays;
 mod glass;
 mod mud;
+mod reference;
 mod skin;
 
 pub use arrays::{Rendered, Wanted};
@@ -146,6 +147,7 @@ fn _hibi(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<skin::PySkinProgress>()?;
     m.add_function(wrap_pyfunction!(encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_reference, m)?)?;
     m.add("LAYERS", arrays::LAYER_NAMES.to_vec())?;
     Ok(())
 }

@@ -161,36 +161,32 @@ def _polygons(spec: Spec, model: Any, width: int, height: int) -> Tuple[Dict[str
 
 def _annotations(spec: Spec, model: Any, seed: int, width: int, height: int) -> List[Dict[str, Any]]:
     rings, sx, sy = _polygons(spec, model, width, height)
-    offsets, points, hole_of, area = rings["offsets"], rings["points"], rings["hole_of"], rings["area"]
-    scaled = np.asarray(points, dtype=np.float64) * np.array([sx, sy])
+    offsets = np.asarray(rings["offsets"], dtype=np.int64)
+    hole_of, area = rings["hole_of"], rings["area"]
+    # Image pixels rounded to 1/100 (+ 0.0 turns -0.0 into 0.0).
+    scaled = np.round(np.asarray(rings["points"], dtype=np.float64).reshape(-1, 2) * np.array([sx, sy]), 2) + 0.0
+    counts = np.diff(offsets)
+    rings_total = len(counts)
     holes: Dict[int, List[int]] = {}
-    for k, h in enumerate(hole_of):
-        if h != 0xFFFFFFFF and h < len(hole_of):
-            holes.setdefault(int(h), []).append(k)
+    for k in np.flatnonzero(hole_of != 0xFFFFFFFF):
+        if hole_of[k] < rings_total:
+            holes.setdefault(int(hole_of[k]), []).append(int(k))
     out = []
-    for k in range(len(offsets) - 1):
-        if hole_of[k] != 0xFFFFFFFF:
-            continue
+    for k in np.flatnonzero((hole_of == 0xFFFFFFFF) & (counts >= 3)):
         ring = scaled[offsets[k] : offsets[k + 1]]
-        if len(ring) < 3:
-            continue
-        flat = [_round(v) for v in ring.reshape(-1)]
-        x0, y0 = ring.min(axis=0)
-        x1, y1 = ring.max(axis=0)
-        a = (float(area[k]) + sum(float(area[j]) for j in holes.get(k, []))) * sx * sy
+        (x0, y0), (x1, y1) = ring.min(axis=0).tolist(), ring.max(axis=0).tolist()
+        a = (float(area[k]) + sum(float(area[j]) for j in holes.get(int(k), []))) * sx * sy
         entry = {
             "id": seed * ANNOTATIONS_PER_IMAGE + len(out),
             "image_id": seed,
             "category_id": 1,
-            "segmentation": [flat],
+            "segmentation": [ring.reshape(-1).tolist()],
             "area": _round(abs(a)),
-            "bbox": [_round(x0), _round(y0), _round(x1 - x0), _round(y1 - y0)],
+            "bbox": [x0, y0, _round(x1 - x0), _round(y1 - y0)],
             "iscrowd": 0,
         }
-        if k in holes:
-            entry["holes"] = [
-                [_round(v) for v in scaled[offsets[j] : offsets[j + 1]].reshape(-1)] for j in holes[k]
-            ]
+        if int(k) in holes:
+            entry["holes"] = [scaled[offsets[j] : offsets[j + 1]].reshape(-1).tolist() for j in holes[int(k)]]
         out.append(entry)
         if len(out) == ANNOTATIONS_PER_IMAGE:
             break
