@@ -4,6 +4,7 @@
 //! `--young-modulus`); an option left out keeps the preset's value, or the paper's default
 //! without a preset. Angles are in degrees on the command line (the core takes radians).
 
+use std::num::NonZeroUsize;
 use std::path::PathBuf;
 
 use clap::builder::PossibleValuesParser;
@@ -104,6 +105,10 @@ pub struct Output {
     /// No summary line on stderr and no progress bar.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Threads that draw the picture, each a band of rows; the picture is the same on any
+    /// number [default: the machine's cores].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<NonZeroUsize>,
 }
 
 /// Growth as animation (mud and glass).
@@ -499,6 +504,10 @@ pub struct GalleryArgs {
     /// No progress bar and no summary line.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Threads that render the figures, each figure on one; the pictures are the same on any
+    /// number [default: the machine's cores].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<NonZeroUsize>,
 }
 
 /// `WxH` or `N`.

@@ -150,6 +150,8 @@ struct Settings {
     size: u32,
     /// Frames of the growth animations.
     frames: u32,
+    /// Threads that render figures.
+    threads: usize,
 }
 
 /// One figure, rendered: its files (name, PNG bytes) and its card. fig6a and fig6b also
@@ -182,7 +184,7 @@ fn mud_piece(s: Settings, preset: &'static str, caption: &str) -> Piece {
         wants.push((view, Layer::Shaded, Some(GROWTH_STILLS)));
         wants.push((view, Layer::Shaded, Some(s.frames)));
     }
-    let run = match mud::simulate(&params, &wants, &Progress::hidden()) {
+    let run = match mud::simulate(&params, &wants, 1, &Progress::hidden()) {
         Ok(run) => run,
         Err(_) => unreachable!("the paper's mud presets run (the gallery test renders every one)"),
     };
@@ -244,7 +246,7 @@ fn glass_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece
     if preset == "fig15a" {
         wants.push((Layer::Shaded, Some(s.frames)));
     }
-    let run = glass::simulate(&params, &impacts, &view, &wants, &Progress::hidden())?;
+    let run = glass::simulate(&params, &impacts, &view, (&wants, 1), &Progress::hidden())?;
     let file = format!("glass-{preset}.png");
     let mut files = vec![(file.clone(), output::encode_png(&run.pictures[0][0]))];
     let mut extra = Vec::new();
@@ -274,7 +276,7 @@ fn glass_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece
 fn skin_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece, Failure> {
     let light = ShadeParams::default();
     let params = skin::scaled_preset(preset, s.size);
-    let run = skin::render(&params, &light, Layer::Shaded)?;
+    let run = skin::render(&params, &light, Layer::Shaded, 1)?;
     let file = format!("skin-{preset}.png");
     let files = vec![(file.clone(), output::encode_png(&run.image))];
     let defaults = skin::options(&hibi_core::skin::SkinParams::default(), &light);
@@ -293,7 +295,7 @@ fn skin_piece(s: Settings, preset: &'static str, caption: &str) -> Result<Piece,
     Ok(Piece { model: "skin", files, card, comparison: None, extra_card: None })
 }
 
-/// Renders every figure, on as many threads as there are cores, in figure order.
+/// Renders every figure, on `s.threads` threads (each figure on one), in figure order.
 fn render_all(s: Settings, progress: &Progress) -> Result<Vec<Piece>, Failure> {
     let jobs: Vec<(&'static str, &'static str, &'static str)> = MUD
         .iter()
@@ -302,7 +304,7 @@ fn render_all(s: Settings, progress: &Progress) -> Result<Vec<Piece>, Failure> {
         .chain(SKIN.iter().map(|&(p, c)| ("skin", p, c)))
         .collect();
     let next = AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(jobs.len());
+    let workers = s.threads.min(jobs.len());
     let mut pieces: Vec<Option<Result<Piece, Failure>>> = (0..jobs.len()).map(|_| None).collect();
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
@@ -353,7 +355,7 @@ pub fn run(a: &GalleryArgs) -> Result<(), Failure> {
     fs::create_dir_all(&a.dir)
         .map_err(|e| Failure::Runtime(format!("cannot create the directory {}: {e}", shown(&a.dir))))?;
     output::check_writable(&a.dir.join("index.html"))?;
-    let settings = Settings { size: a.size, frames: a.frames };
+    let settings = Settings { size: a.size, frames: a.frames, threads: crate::image::threads(a.threads) };
     let progress = Progress::items((MUD.len() + GLASS.len() + SKIN.len()) as u64, a.quiet);
     let pieces = render_all(settings, &progress);
     progress.finish();

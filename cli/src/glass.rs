@@ -139,12 +139,13 @@ impl GlassRun {
 
 /// Grows every impact to its end, reporting to `progress`, and draws every picture wanted (a
 /// layer, and a still or that many frames of the growth). The
-/// parameters and raster must have passed [`check`]. Fails when a capacity runs out.
+/// parameters and raster must have passed [`check`]. Fails when a capacity runs out. Each
+/// picture is drawn on up to `threads` threads.
 pub fn simulate(
     params: &GlassParams,
     impacts: &[[f32; 2]],
     render: &GlassRender,
-    wants: &[(Layer, Option<u32>)],
+    (wants, threads): (&[(Layer, Option<u32>)], usize),
     progress: &Progress,
 ) -> Result<GlassRun, Failure> {
     let m = params.memory().expect("checked parameters");
@@ -177,8 +178,8 @@ pub fn simulate(
     let pictures = wants
         .iter()
         .map(|&(layer, frames)| {
-            crack_pictures(render.width, render.height, layer, frames, |until, layers| {
-                glass.render(&GlassRender { until, ..*render }, layers).expect("the raster was checked")
+            crack_pictures((render.width, render.height), layer, frames, threads, |until, tile, layers| {
+                glass.render_tile(&GlassRender { until, ..*render }, tile, layers).expect("the raster was checked")
             })
         })
         .collect();

@@ -1,7 +1,9 @@
 //! Pictures in memory, and the core's layers encoded as pictures: a still or the frames of a
 //! crack model's growth.
 
-use hibi_core::raster::Layers;
+use std::num::NonZeroUsize;
+
+use hibi_core::raster::{Layers, Tile};
 
 use crate::args::Layer;
 
@@ -71,15 +73,33 @@ impl Image {
     }
 }
 
+/// How many threads draw a picture: `asked` (`--threads`), else the machine's cores.
+pub fn threads(asked: Option<NonZeroUsize>) -> usize {
+    asked.or_else(|| std::thread::available_parallelism().ok()).map_or(1, NonZeroUsize::get)
+}
+
 /// The layers of a core render to ask for to draw `layer` over `pixels` pixels, and the picture
 /// they make; the core draws every layer, the command line only encodes it.
 pub struct Buffers {
+    layer: Layer,
+    width: u32,
+    height: u32,
     mask: Vec<u8>,
     height16: Vec<u16>,
     normal: Vec<[u8; 3]>,
     time: Vec<f32>,
     preview: Vec<[u8; 4]>,
-    scratch: Vec<u32>,
+}
+
+/// The first `n` elements of `rest` (none if it is empty: a layer not asked for), leaving the
+/// others in `rest`.
+fn take<'a, T>(rest: &mut &'a mut [T], n: usize) -> Option<&'a mut [T]> {
+    if rest.is_empty() {
+        return None;
+    }
+    let (head, tail) = std::mem::take(rest).split_at_mut(n);
+    *rest = tail;
+    Some(head)
 }
 
 impl Buffers {
@@ -87,34 +107,64 @@ impl Buffers {
     pub fn new(layer: Layer, width: u32, height: u32) -> Buffers {
         let pixels = width as usize * height as usize;
         let n = |wanted: bool| if wanted { pixels } else { 0 };
-        let scratch = hibi_core::raster::scratch_len(width, height).expect("a picture that fits in memory");
         Buffers {
+            layer,
+            width,
+            height,
             mask: vec![0; n(layer == Layer::Mask)],
             height16: vec![0; n(layer == Layer::Height)],
             normal: vec![[0; 3]; n(layer == Layer::Normal)],
             time: vec![0.0; n(layer == Layer::Time)],
             preview: vec![[0; 4]; n(layer == Layer::Shaded)],
-            scratch: vec![0; if layer == Layer::Time { 0 } else { scratch }],
         }
     }
 
-    /// The core layers to draw into.
-    pub fn layers(&mut self) -> Layers<'_> {
-        Layers {
-            mask: if self.mask.is_empty() { None } else { Some(&mut self.mask) },
-            height16: if self.height16.is_empty() { None } else { Some(&mut self.height16) },
-            normal_rgb8: if self.normal.is_empty() { None } else { Some(&mut self.normal) },
-            time: if self.time.is_empty() { None } else { Some(&mut self.time) },
-            preview: if self.preview.is_empty() { None } else { Some(&mut self.preview) },
-            scratch: if self.scratch.is_empty() { None } else { Some(&mut self.scratch) },
-            ..Layers::default()
+    /// Draws the picture with `draw(tile, layers)`, which renders one tile of the model's
+    /// picture: in full-width bands of rows, one band per thread on up to `threads` threads.
+    /// The core draws each pixel of a tile bit for bit as the whole picture has it, so the
+    /// picture is the same whatever the number of threads; the core itself stays on one thread.
+    pub fn draw(&mut self, threads: usize, draw: impl Fn(&Tile, Layers) + Sync) {
+        let (width, height) = (self.width, self.height);
+        let rows = height.div_ceil(threads.clamp(1, height.max(1) as usize) as u32).max(1);
+        let scratch = self.layer != Layer::Time;
+        let (mut mask, mut height16, mut normal) = (&mut self.mask[..], &mut self.height16[..], &mut self.normal[..]);
+        let (mut time, mut preview) = (&mut self.time[..], &mut self.preview[..]);
+        let mut bands = Vec::new();
+        for y in (0..height).step_by(rows as usize) {
+            let tile = Tile { x: 0, y, width, height: rows.min(height - y) };
+            let n = width as usize * tile.height as usize;
+            let layers = Layers {
+                mask: take(&mut mask, n),
+                height16: take(&mut height16, n),
+                normal_rgb8: take(&mut normal, n),
+                time: take(&mut time, n),
+                preview: take(&mut preview, n),
+                ..Layers::default()
+            };
+            bands.push((tile, layers));
+        }
+        let band = |(tile, layers): (Tile, Layers)| {
+            let len = hibi_core::raster::scratch_len(tile.width, tile.height).expect("a picture that fits in memory");
+            let mut own = vec![0u32; if scratch { len } else { 0 }];
+            let scratch = if scratch { Some(&mut own[..]) } else { None };
+            draw(&tile, Layers { scratch, ..layers });
+        };
+        if bands.len() == 1 {
+            bands.into_iter().for_each(band);
+        } else {
+            std::thread::scope(|scope| {
+                for job in bands {
+                    scope.spawn(|| band(job));
+                }
+            });
         }
     }
 
     /// The drawn layer as a picture: mask 8-bit grey, height 16-bit grey, normal and preview
     /// 8-bit RGB, time 16-bit grey from the earliest break (0) to the latest (65534), 65535
     /// where nothing broke.
-    pub fn picture(self, width: u32, height: u32) -> Image {
+    pub fn picture(self) -> Image {
+        let (width, height) = (self.width, self.height);
         let pixels = if !self.mask.is_empty() {
             Pixels::Gray8(self.mask)
         } else if !self.height16.is_empty() {
@@ -142,26 +192,26 @@ pub fn time_range(time: &[f32]) -> Option<(f32, f32)> {
 
 /// A crack model's `layer` as a picture, or (`frames`) its growth: that many pictures evenly
 /// spaced in time from the first break to the last, each drawn by the core as the cracks stood
-/// then. `draw(until, layers)` renders the model's `width × height` image.
+/// then. `draw(until, tile, layers)` renders a tile of the model's `width × height` image; the
+/// tiles of a picture are drawn on up to `threads` threads.
 pub fn crack_pictures(
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     layer: Layer,
     frames: Option<u32>,
-    draw: impl Fn(f32, Layers),
+    threads: usize,
+    draw: impl Fn(f32, &Tile, Layers) + Sync,
 ) -> Vec<Image> {
-    let picture = |until: f32| {
+    let picture = |layer: Layer, until: f32| {
         let mut buffers = Buffers::new(layer, width, height);
-        draw(until, buffers.layers());
-        buffers.picture(width, height)
+        buffers.draw(threads, |tile, layers| draw(until, tile, layers));
+        buffers
     };
-    let Some(count) = frames else { return vec![picture(f32::INFINITY)] };
-    let mut time = vec![0.0f32; width as usize * height as usize];
-    draw(f32::INFINITY, Layers { time: Some(&mut time), ..Layers::default() });
+    let Some(count) = frames else { return vec![picture(layer, f32::INFINITY).picture()] };
+    let time = picture(Layer::Time, f32::INFINITY).time;
     let Some((first, last)) = time_range(&time) else {
-        return vec![picture(f32::INFINITY); count as usize];
+        return vec![picture(layer, f32::INFINITY).picture(); count as usize];
     };
-    (1..=count).map(|k| picture(first + (last - first) * k as f32 / count as f32)).collect()
+    (1..=count).map(|k| picture(layer, first + (last - first) * k as f32 / count as f32).picture()).collect()
 }
 
 #[cfg(test)]
@@ -171,24 +221,47 @@ mod tests {
     #[test]
     fn layers_encode_as_documented() {
         let mut b = Buffers::new(Layer::Time, 4, 1);
-        b.layers().time.unwrap().copy_from_slice(&[f32::INFINITY, 2.0, 3.5, 5.0]);
-        assert_eq!(b.picture(4, 1).pixels, Pixels::Gray16(vec![65535, 0, 32767, 65534]));
+        b.draw(1, |_, layers| layers.time.unwrap().copy_from_slice(&[f32::INFINITY, 2.0, 3.5, 5.0]));
+        assert_eq!(b.picture().pixels, Pixels::Gray16(vec![65535, 0, 32767, 65534]));
         let mut b = Buffers::new(Layer::Shaded, 1, 1);
-        b.layers().preview.unwrap()[0] = [1, 2, 3, 255];
-        assert_eq!(b.picture(1, 1).pixels, Pixels::Rgb8(vec![1, 2, 3]));
+        b.draw(1, |_, layers| layers.preview.unwrap()[0] = [1, 2, 3, 255]);
+        assert_eq!(b.picture().pixels, Pixels::Rgb8(vec![1, 2, 3]));
+    }
+
+    #[test]
+    fn bands_cover_every_row_once_on_any_number_of_threads() {
+        for threads in 1..=9 {
+            let tiles = std::sync::Mutex::new(Vec::new());
+            let mut b = Buffers::new(Layer::Mask, 3, 7);
+            b.draw(threads, |tile, layers| {
+                let scratch = layers.scratch.expect("a mask may need the scratch");
+                assert_eq!(scratch.len(), hibi_core::raster::scratch_len(3, tile.height).unwrap());
+                let mask = layers.mask.unwrap();
+                assert_eq!(mask.len(), 3 * tile.height as usize);
+                for (i, v) in mask.iter_mut().enumerate() {
+                    *v = (tile.y as usize * 3 + i) as u8;
+                }
+                tiles.lock().unwrap().push(*tile);
+            });
+            assert_eq!(b.picture().pixels, Pixels::Gray8((0..21).collect()), "{threads} threads");
+            let tiles = tiles.into_inner().unwrap();
+            assert!(tiles.len() <= threads && (threads > 1 || tiles.len() == 1), "{threads} threads: {tiles:?}");
+            assert_eq!(tiles.iter().map(|t| t.height).sum::<u32>(), 7);
+            assert!(tiles.iter().all(|t| t.x == 0 && t.width == 3));
+        }
     }
 
     #[test]
     fn growth_frames_cut_the_time_range_evenly() {
-        let cut = std::cell::RefCell::new(Vec::new());
-        let frames = crack_pictures(2, 1, Layer::Mask, Some(4), |until, layers| {
-            cut.borrow_mut().push(until);
+        let cut = std::sync::Mutex::new(Vec::new());
+        let frames = crack_pictures((2, 1), Layer::Mask, Some(4), 2, |until, _, layers| {
+            cut.lock().unwrap().push(until);
             if let Some(t) = layers.time {
                 t.copy_from_slice(&[1.0, 5.0]);
             }
         });
         assert_eq!(frames.len(), 4);
-        assert_eq!(*cut.borrow(), vec![f32::INFINITY, 2.0, 3.0, 4.0, 5.0]);
+        assert_eq!(*cut.lock().unwrap(), vec![f32::INFINITY, 2.0, 3.0, 4.0, 5.0]);
     }
 
     #[test]

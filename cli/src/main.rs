@@ -120,7 +120,8 @@ fn run_mud(a: &MudArgs) -> Result<(), Failure> {
     check_output(&path, Some(&a.animation))?;
     let progress = Progress::run("mud", a.output.quiet);
     if let Some(budget) = a.live {
-        let live = mud::simulate_live(&params, &render, a.output.layer, budget, &progress);
+        let threads = image::threads(a.output.threads);
+        let live = mud::simulate_live(&params, &render, (a.output.layer, budget, threads), &progress);
         progress.finish();
         let (frames, run) = live?;
         let pictures = if frames.is_empty() { &run.pictures[0] } else { &frames };
@@ -137,7 +138,8 @@ fn run_mud(a: &MudArgs) -> Result<(), Failure> {
         }
         return Ok(());
     }
-    let run = mud::simulate(&params, &[(render, a.output.layer, a.animation.frames)], &progress);
+    let wants = [(render, a.output.layer, a.animation.frames)];
+    let run = mud::simulate(&params, &wants, image::threads(a.output.threads), &progress);
     progress.finish();
     let run = run?;
     let written = write_cracks(&run.pictures[0], &a.output, &a.animation, &path)?;
@@ -156,7 +158,8 @@ fn run_glass(a: &GlassArgs) -> Result<(), Failure> {
     let path = output_path(&a.output, "glass");
     check_output(&path, Some(&a.animation))?;
     let progress = Progress::run("glass", a.output.quiet);
-    let run = glass::simulate(&params, &impacts, &render, &[(a.output.layer, a.animation.frames)], &progress);
+    let wants = [(a.output.layer, a.animation.frames)];
+    let run = glass::simulate(&params, &impacts, &render, (&wants, image::threads(a.output.threads)), &progress);
     progress.finish();
     let run = run?;
     let written = write_cracks(&run.pictures[0], &a.output, &a.animation, &path)?;
@@ -172,7 +175,7 @@ fn run_skin(a: &SkinArgs) -> Result<(), Failure> {
     skin::check(&params, &light, a.output.layer)?;
     let path = output_path(&a.output, "skin");
     check_output(&path, None)?;
-    let run = skin::render(&params, &light, a.output.layer)?;
+    let run = skin::render(&params, &light, a.output.layer, image::threads(a.output.threads))?;
     output::write_file(&path, output::encode_png(&run.image))?;
     if !a.output.quiet {
         let size = format!("{}x{}", params.width, params.height);

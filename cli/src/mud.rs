@@ -168,8 +168,8 @@ fn fraction(params: &MudParams, shrink: f32, density: f32) -> f32 {
 /// Runs `params` to its end, reporting to `progress`, and draws every picture wanted. The
 /// parameters and views must have passed [`check`]. Fails, naming the options, when the
 /// explicit solver's short step fails its stability test on an irregular lattice (known only
-/// once the first steps have built the lattice).
-pub fn simulate(params: &MudParams, wants: &[Want], progress: &Progress) -> Result<MudRun, Failure> {
+/// once the first steps have built the lattice). Each picture is drawn on up to `threads` threads.
+pub fn simulate(params: &MudParams, wants: &[Want], threads: usize, progress: &Progress) -> Result<MudRun, Failure> {
     let memory = params.memory().expect("checked parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
     let failure = |error: MudError| match error {
@@ -187,8 +187,8 @@ pub fn simulate(params: &MudParams, wants: &[Want], progress: &Progress) -> Resu
     let pictures = wants
         .iter()
         .map(|&(view, layer, frames)| {
-            crack_pictures(view.width, view.height, layer, frames, |until, layers| {
-                mud.render(&MudRender { until, ..view }, layers).expect("the view was checked")
+            crack_pictures((view.width, view.height), layer, frames, threads, |until, tile, layers| {
+                mud.render_tile(&MudRender { until, ..view }, tile, layers).expect("the view was checked")
             })
         })
         .collect();
@@ -203,11 +203,11 @@ pub const LIVE_FRAMES: usize = 1000;
 /// step from the one in which the first spring breaks: the frames an engine shows while the
 /// run goes on (each from the network the run shows then). Returns them and the finished run
 /// (its picture the last frame's). Fails if there would be more than [`LIVE_FRAMES`] frames.
+/// Each frame is drawn on up to `threads` threads.
 pub fn simulate_live(
     params: &MudParams,
     view: &MudRender,
-    layer: Layer,
-    budget: u64,
+    (layer, budget, threads): (Layer, u64, usize),
     progress: &Progress,
 ) -> Result<(Vec<Image>, MudRun), Failure> {
     let memory = params.memory().expect("checked parameters");
@@ -218,8 +218,8 @@ pub fn simulate_live(
     };
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).map_err(failure)?;
     let draw = |mud: &Mud<'_>| {
-        crack_pictures(view.width, view.height, layer, None, |until, layers| {
-            mud.render(&MudRender { until, ..*view }, layers).expect("the view was checked")
+        crack_pictures((view.width, view.height), layer, None, threads, |until, tile, layers| {
+            mud.render_tile(&MudRender { until, ..*view }, tile, layers).expect("the view was checked")
         })
     };
     let mut frames = Vec::new();

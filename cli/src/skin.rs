@@ -164,8 +164,9 @@ impl SkinRun {
     }
 }
 
-/// Builds the skin and renders `layer`. The parameters must have passed [`check`].
-pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<SkinRun, Failure> {
+/// Builds the skin and renders `layer` on up to `threads` threads. The parameters must have
+/// passed [`check`].
+pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer, threads: usize) -> Result<SkinRun, Failure> {
     let memory = params.memory().expect("checked parameters");
     let mut store = memory.allocate();
     let mut skin = Skin::<f32>::new(params, store.buffers()).map_err(failure)?;
@@ -186,8 +187,16 @@ pub fn render(params: &SkinParams, light: &ShadeParams, layer: Layer) -> Result<
     }
     let mut buffers = Buffers::new(layer, width, height);
     let render = SkinRender { shade: *light, ..SkinRender::default() };
-    skin.render(&render, buffers.layers()).map_err(failure)?;
-    let image = buffers.picture(width, height);
+    let failed = std::sync::Mutex::new(None);
+    buffers.draw(threads, |tile, layers| {
+        if let Err(e) = skin.render_tile(&render, tile, layers) {
+            *failed.lock().expect("a band panicked") = Some(e);
+        }
+    });
+    if let Some(e) = failed.into_inner().expect("a band panicked") {
+        return Err(failure(e));
+    }
+    let image = buffers.picture();
     Ok(SkinRun { image, cells: counts })
 }
 

@@ -104,6 +104,39 @@ fn every_layer_has_its_documented_format() {
 }
 
 #[test]
+fn pictures_are_the_same_bytes_on_any_number_of_threads() {
+    let dir = scratch("threads");
+    let models: [&[&str]; 3] = [&["mud", "--columns", "24", "--rows", "28"], &["glass"], &["skin"]];
+    for model in models {
+        for layer in ["mask", "height", "normal", "time", "shaded"] {
+            if model[0] == "skin" && layer == "time" {
+                continue;
+            }
+            let files: Vec<Vec<u8>> = ["1", "2", "5"]
+                .iter()
+                .map(|threads| {
+                    let path = dir.join(format!("{}-{layer}-{threads}.png", model[0])).to_string_lossy().into_owned();
+                    let args = ["-q", "--size", "61x37", "--layer", layer, "--threads", threads, "-o", &path];
+                    succeeds(&[model, &args[..]].concat());
+                    fs::read(&path).unwrap()
+                })
+                .collect();
+            assert!(files.iter().all(|f| *f == files[0]), "{} {layer}", model[0]);
+        }
+    }
+    // The frames of a growth too.
+    let frames: Vec<Vec<u8>> = ["1", "3"]
+        .iter()
+        .map(|threads| {
+            let path = dir.join(format!("growth-{threads}.png")).to_string_lossy().into_owned();
+            succeeds(&["glass", "-q", "--size", "40", "--frames", "4", "--threads", threads, "-o", &path]);
+            fs::read(&path).unwrap()
+        })
+        .collect();
+    assert_eq!(frames[0], frames[1]);
+}
+
+#[test]
 fn growth_is_an_animated_png_or_a_numbered_sequence() {
     let dir = scratch("growth");
     let apng = dir.join("growth.png").to_string_lossy().into_owned();
@@ -120,7 +153,7 @@ fn growth_is_an_animated_png_or_a_numbered_sequence() {
 
 #[test]
 fn bad_options_are_usage_errors_naming_the_option() {
-    let cases: [(&[&str], &str); 15] = [
+    let cases: [(&[&str], &str); 16] = [
         (&["mud", "--size", "0x10"], "--size"),
         (&["mud", "--rows", "5"], "--rows"),
         (&["mud", "--young-modulus", "-1"], "--young-modulus"),
@@ -152,6 +185,7 @@ fn bad_options_are_usage_errors_naming_the_option() {
         (&["skin", "--frames", "3"], "--frames"),
         (&["skin", "--ambient", "1.5"], "--ambient"),
         (&["skin", "--furrow", "0.5,2,0.5"], "--furrow"),
+        (&["glass", "--threads", "0"], "--threads"),
     ];
     let dir = scratch("usage");
     for (args, option) in cases {
@@ -241,4 +275,17 @@ fn the_gallery_renders_every_figure_and_an_index_of_them() {
     assert_eq!(decode(&dir.join("mud-fig10.png")).4, 3, "the growth animation");
     assert_eq!(decode(&dir.join("mud-tile-2x2.png")).0, 128, "the tiled texture");
     assert!(!listing(&dir).iter().any(|f| f.ends_with(".tmp")));
+    // On one thread, every file is the same (the page names its own directory).
+    let alone = scratch("gallery-one-thread");
+    succeeds(&["gallery", &alone.to_string_lossy(), "-q", "--size", "128", "--frames", "3", "--threads", "1"]);
+    assert_eq!(listing(&alone), listing(&dir));
+    for name in listing(&dir) {
+        let (a, b) = (fs::read(dir.join(&name)).unwrap(), fs::read(alone.join(&name)).unwrap());
+        if name == "index.html" {
+            let a = text(&a).replace(&*dir.to_string_lossy(), "DIR");
+            assert_eq!(a, text(&b).replace(&*alone.to_string_lossy(), "DIR"));
+        } else {
+            assert!(a == b, "{name} differs on one thread");
+        }
+    }
 }
