@@ -33,3 +33,16 @@ test('Chromium: the golden scenes hash as natively, on the main thread and in a 
   console.log(`# ${version}: ${Object.keys(report.main).length} scenes match on the main thread and in a Worker`);
   await p.close();
 });
+
+test('Chromium: the bench page (web/bench/run) times every model', async () => {
+  const errors = [];
+  const p = await page(browser, errors);
+  await p.goto(`${base}/bench/`);
+  await p.waitForFunction('window.results', { timeout: 300_000 });
+  const results = await p.evaluate(() => window.results);
+  assert.equal(results.error, undefined, results.error);
+  assert.deepEqual(results.map((r) => r.case), ['mud fig6a 96² (render 512 px)', 'glass defaults 640²', 'skin fig19a 400²']);
+  for (const r of results) assert.ok(r.generate_ms > 0 && r.render_ms > 0, r.case);
+  assert.deepEqual(errors, []);
+  await p.close();
+});
