@@ -647,9 +647,17 @@ mod tests {
                 }
                 Err(OutlineFull) => panic!("case {case}: full"),
             }
+            // The general form (a 32-bit target's only one) gives what the one-word form gives.
+            let (mut general, mut one) = ([ClipVertex::default(); 400], [ClipVertex::default(); 400]);
+            let by_general = clip::clip_marked::<{ MAX_OUTLINE / 64 }>(vertices, (&a, &b, 3), &mut general);
+            assert_eq!(by_general, clip_by_bisector(vertices, (&a, &b, 3), &mut one), "case {case}");
+            assert_eq!(general, one, "case {case}");
             // Too little room for the outline kept: full.
             if m > 1 && m < n {
                 assert_eq!(clip_by_bisector(vertices, (&a, &b, 3), &mut out[..m - 1]), Err(OutlineFull));
+                let short = &mut general[..m - 1];
+                let full = clip::clip_marked::<{ MAX_OUTLINE / 64 }>(vertices, (&a, &b, 3), short);
+                assert_eq!(full, Err(OutlineFull));
             }
         }
         assert!(cut > 300, "{cut} of 600 cut");
