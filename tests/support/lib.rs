@@ -166,9 +166,9 @@ mod guide {
     struct RustApi;
 }
 
-/// Runs test `test` of the running test binary again, alone, under Callgrind with collection
-/// only inside the function `toggle` (a `no_mangle` function the test calls), with `env` set so
-/// that the re-run knows which case to do. Returns what the re-run printed and the
+/// Runs test `test` of the running test binary again, alone (an ignored one too), under
+/// Callgrind with collection only inside the function `toggle` (a `no_mangle` function the
+/// test calls), with `env` set so that the re-run knows which case to do. Returns what the re-run printed and the
 /// instructions counted; fails when the re-run fails or Callgrind counted nothing.
 pub fn callgrind_this_test(test: &str, toggle: &str, env: (&str, &str)) -> (String, u64) {
     let (stdout, text, case) = callgrind_rerun(test, toggle, env);
@@ -205,7 +205,7 @@ fn callgrind_rerun(test: &str, toggle: &str, env: (&str, &str)) -> (String, Stri
         .args(toggle.split('|').map(|t| format!("--toggle-collect={t}")))
         .arg(format!("--callgrind-out-file={}", out.display()))
         .arg(&exe)
-        .args([test, "--exact", "--nocapture", "--test-threads=1"])
+        .args([test, "--exact", "--include-ignored", "--nocapture", "--test-threads=1"])
         .env(env.0, env.1)
         .output()
         .expect("run valgrind");

@@ -11,7 +11,7 @@
 use super::faces::{Enclosure, HalfEdge};
 use super::grid::NONE;
 use super::scan::{Filed, Scan};
-use super::{CrackEnd, CrackKind, Edge, Glass, GlassProgress, wrap};
+use super::{CrackEnd, CrackKind, Edge, Glass, GlassProgress, ceil, wrap};
 use crate::geom::{Intersection, Point, Segment};
 
 /// The longest update \[px\]: a time step is cut into equal updates (dt) no longer than
@@ -580,6 +580,9 @@ impl Glass<'_> {
                 if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                     return;
                 }
+                if glass.moving_away(w, direction, a, z) {
+                    return;
+                }
                 // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
                 // than B from the tip (it has no point in S), or farther than its crack's nearest
                 // point found so far (it would not replace it). The box's distance is a lower
@@ -682,7 +685,7 @@ impl Glass<'_> {
             f[1] += p.ring_adherence * direction[1];
         }
         let course = u.course;
-        let full = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
+        let full = c.speed / ceil(c.speed / UPDATE_LENGTH).max(1.0);
         let planned = full.min(u.left);
         // Near a crack, an update covers a quarter of the distance to it, and at least
         // MIN_UPDATE scaled by how squarely the tip heads at it (down to a quarter): a tip
@@ -753,6 +756,29 @@ impl Glass<'_> {
         u.scan = self.start_scan(Filed::Segments, self.index.grid.span(x0, y0, x1, y1));
     }
 
+    /// Whether a tip at `w` heading `direction` runs alongside or away from the line of segment
+    /// `a`–`z` for certain: the test F2 makes of a segment's normal at its nearest point in S
+    /// ([`Self::normal_towards`], "a pull to meet it at a right angle", §4.2.2 (2), for a crack
+    /// the tip closes in on) decided from the ends alone, before the costly nearest point. That
+    /// normal is the segment's unit normal n on the tip's side of its line, and the test fails
+    /// when n·direction ≤ 0, so with t = z − a: when the cross products t × (a − w) (the tip's
+    /// side, times |t|) and t × direction (n·direction, times |t|) have opposite signs. True
+    /// only when both are larger than their rounding (and that of the computed normal) by far:
+    /// 10⁻⁵ of the terms they are formed from, about 170 times f32's epsilon. Otherwise (a tip
+    /// on or near the line, a segment parallel to the heading or of length 0) the full test
+    /// decides, so F2 is the same to the bit.
+    #[inline(always)]
+    fn moving_away(&self, w: [f32; 2], direction: [f32; 2], a: [f32; 2], z: [f32; 2]) -> bool {
+        const ROUNDING: f32 = 1e-5;
+        let t = [z[0] - a[0], z[1] - a[1]];
+        let (ea, ez) = ([a[0] - w[0], a[1] - w[1]], [z[0] - w[0], z[1] - w[1]]);
+        let side = t[0] * ea[1] - t[1] * ea[0];
+        let heading = t[0] * direction[1] - t[1] * direction[0];
+        let length = t[0].abs() + t[1].abs();
+        let reach = ea[0].abs() + ea[1].abs() + ez[0].abs() + ez[1].abs();
+        (side < 0.0) != (heading < 0.0) && side.abs() > ROUNDING * length * reach && heading.abs() > ROUNDING * length
+    }
+
     /// The unit normal of segment `a`–`z` pointing from the tip towards it; `v` is the offset
     /// from the tip to its nearest point, at distance `d`.
     fn normal_towards(&self, a: [f32; 2], z: [f32; 2], v: [f32; 2], d: f32) -> [f32; 2] {
@@ -794,7 +820,7 @@ impl Glass<'_> {
     fn ring_course(c: &super::CrackSlot) -> f32 {
         let radius = c.ring.1;
         let (angle, r, sense) = Self::ring_frame(c);
-        let update = c.speed / libm::ceilf(c.speed / UPDATE_LENGTH).max(1.0);
+        let update = c.speed / ceil(c.speed / UPDATE_LENGTH).max(1.0);
         // Half the angle the chord of length `update` subtends.
         let half = libm::asinf((0.5 * update / r).min(1.0));
         let pull = ((r - radius) / update).clamp(-0.5, 0.5) * half;

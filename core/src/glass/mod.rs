@@ -502,10 +502,43 @@ fn take<'a, T>(buffer: &mut &'a mut [T], n: usize) -> &'a mut [T] {
     head
 }
 
+/// ⌊x⌋, the very value of `libm::floorf` (−0.0, infinities and NaN included), without its call:
+/// below 2²³ in magnitude through the integer part, else x (every such f32 is an integer).
+fn floor(x: f32) -> f32 {
+    if x.abs() < 8_388_608.0 {
+        let i = x as i32 as f32;
+        if i == x {
+            x
+        } else if i > x {
+            i - 1.0
+        } else {
+            i
+        }
+    } else {
+        x
+    }
+}
+
+/// ⌈x⌉, the very value of `libm::ceilf`, as [`floor`] is `floorf`'s.
+fn ceil(x: f32) -> f32 {
+    if x.abs() < 8_388_608.0 {
+        let i = x as i32 as f32;
+        if i == x {
+            x
+        } else if i < x {
+            i + 1.0
+        } else {
+            i.copysign(x)
+        }
+    } else {
+        x
+    }
+}
+
 /// `angle` wrapped into (−π, π].
 fn wrap(angle: f32) -> f32 {
     let tau = 2.0 * core::f32::consts::PI;
-    let mut a = angle - tau * libm::floorf(angle / tau);
+    let mut a = angle - tau * floor(angle / tau);
     if a > core::f32::consts::PI {
         a -= tau;
     }
@@ -809,6 +842,26 @@ mod tests {
     extern crate std;
     use std::vec;
     use std::vec::Vec;
+
+    /// `floor` and `ceil` give libm's very bits: zeros of both signs, halves, values next to
+    /// integers and to 2²³, huge values, infinities and NaN, and a sweep of 10⁵ values.
+    #[test]
+    fn floor_and_ceil_are_libms_to_the_bit() {
+        let mut values = vec![0.0f32, -0.0, 0.5, -0.5, 1.0, -1.0, 1.5, -1.5, 8_388_607.5, -8_388_607.5];
+        values.extend([8_388_608.0, -8_388_608.0, 1e20, -1e20, f32::INFINITY, f32::NEG_INFINITY, f32::NAN]);
+        values.extend([f32::MIN_POSITIVE, -f32::MIN_POSITIVE, 1e-45, -1e-45, 3.0f32.next_up(), (-3.0f32).next_down()]);
+        let mut x = 0x1234_5678u32;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            values.push((x as i32) as f32 / 65_536.0);
+        }
+        for v in values {
+            assert_eq!(floor(v).to_bits(), libm::floorf(v).to_bits(), "floor {v:e}");
+            assert_eq!(ceil(v).to_bits(), libm::ceilf(v).to_bits(), "ceil {v:e}");
+        }
+    }
 
     /// Grows `p` to its end with `setup` applied to the new plate and `each` before every call
     /// of `step(budget)`: every crack's end and points (position and time bits), and the
