@@ -1,7 +1,7 @@
 // Serves web/ over HTTP for the playground, the bench page and the browser tests:
-//   node web/serve.mjs [PORT]     (default 8080; then open http://localhost:8080/playground/)
-// Static files only, nothing outside web/ (plus targets/scenes/src/lib.rs, the golden list
-// the test page reads).
+//   node web/serve.mjs [PORT]     (default 8080; then open http://localhost:8080/playground/;
+//                                 web/serve builds hibi.wasm first when it is missing)
+// Static files under web/ only (not node_modules).
 import { createServer } from 'node:http';
 import { readFile } from 'node:fs/promises';
 import { extname, join, normalize, sep } from 'node:path';

@@ -3,7 +3,10 @@
 // back. Run by `npm test` (web/test runs it with the browser tests).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import * as hibi from '../hibi.js';
 import { Mud, Glass, Skin, HibiError } from '../hibi.js';
 import { runScenes } from './scenes.mjs';
@@ -129,5 +132,46 @@ test('a glass plate takes further impacts where it is clicked', () => {
     assert.throws(() => g.impact(500, 60), HibiError);
   } finally {
     g.free();
+  }
+});
+
+/** The ```js blocks of a Markdown file: code, whether a `not run` comment precedes it, and the
+ * output it is said to print (a ```text block after a paragraph that is just "prints"). */
+function jsBlocks(file) {
+  const lines = readFileSync(new URL(`../../${file}`, import.meta.url), 'utf8').split('\n');
+  const blocks = [];
+  for (let i = 0; i < lines.length; i++) {
+    const open = lines[i].match(/^```(\w*)/);
+    if (!open) continue;
+    let end = i + 1;
+    while (!lines[end].startsWith('```')) end++;
+    const prev = lines.slice(0, i).reverse().find((l) => l.trim() !== '') ?? '';
+    blocks.push({ lang: open[1], code: lines.slice(i + 1, end).join('\n'), notRun: prev.startsWith('<!-- not run:'), at: `${file}:${i + 1}`, before: i, after: end });
+    i = end;
+  }
+  return blocks
+    .map((b, k) => {
+      const next = blocks[k + 1];
+      const between = next ? lines.slice(b.after + 1, next.before).join(' ').trim() : '';
+      return { ...b, prints: next && next.lang === 'text' && between === 'prints' ? next.code + '\n' : null };
+    })
+    .filter((b) => b.lang === 'js');
+}
+
+test('the JavaScript blocks of README.md and docs/src/javascript.md run and print what they say', () => {
+  const hibi = new URL('../hibi.js', import.meta.url).href;
+  const blocks = ['README.md', 'docs/src/javascript.md'].flatMap(jsBlocks);
+  const run = blocks.filter((b) => !b.notRun);
+  assert.ok(run.length >= 3, 'the quick starts are there');
+  for (const b of run) {
+    const dir = mkdtempSync(join(tmpdir(), 'hibi-js-block-'));
+    try {
+      const file = join(dir, 'block.mjs');
+      writeFileSync(file, b.code.replaceAll("from 'hibi'", `from '${hibi}'`));
+      const out = execFileSync(process.execPath, [file], { cwd: dir, encoding: 'utf8' });
+      if (b.prints !== null) assert.equal(out, b.prints, `${b.at}: prints what the page says`);
+    } finally {
+      rmSync(dir, { recursive: true, force: true });
+    }
   }
 });
