@@ -34,6 +34,8 @@ use hibi_tests::EveryLayer;
 /// The committed baseline: one line per bench, `name count`, after a header naming the
 /// compiler and Valgrind that counted it.
 const BASELINE: &str = "benches/baselines/instructions.txt";
+/// The performance page's table of the baseline's counts, written with the baseline.
+const PAGE_TABLE: &str = "docs/src/generated/instructions.md";
 /// How far above its baseline a count may be: 3 %.
 const TOLERANCE: f64 = 0.03;
 /// The environment variable that makes the test, run again under Callgrind, do the benches'
@@ -333,6 +335,7 @@ fn benches() {
     if std::env::var_os("HIBI_BLESS").is_some() {
         std::fs::create_dir_all(path.parent().expect("a directory")).expect("create the directory");
         std::fs::write(&path, write(&fresh)).expect("write the baseline");
+        std::fs::write(root().join(PAGE_TABLE), page_table(&fresh)).expect("write the page's table");
         return;
     }
     let committed = committed.unwrap_or_else(|e| panic!("{BASELINE}: {e} (bless to write it)"));
@@ -395,6 +398,60 @@ fn the_gate_is_three_percent_over_the_committed_baseline() {
     let blessed = parse(&write(&over));
     assert_eq!(blessed, over);
     assert!(regressions(&blessed, &over).is_empty());
+}
+
+/// The pixels of each model's renders in the benches.
+fn render_pixels(model: &str) -> u64 {
+    match model {
+        "mud" => 256 * 256,
+        "glass" => 640 * 640,
+        _ => 400 * 400,
+    }
+}
+
+/// The performance page's table of a baseline: each bench's count, and per pixel for renders.
+fn page_table(baseline: &Baseline) -> String {
+    let mut text = format!(
+        "<!-- Written with {BASELINE} by `HIBI_BLESS=1 cargo test --release --test instructions`; do not edit. -->\n\n\
+         Counted by {}.\n\n| bench | instructions | per pixel |\n|---|---:|---:|\n",
+        // "rustc 1.95.0 (hash date) | valgrind-3.19.0" reads "rustc 1.95.0 and valgrind-3.19.0".
+        baseline.toolchain.split(" | ").map(|t| t.split(" (").next().unwrap_or(t)).collect::<Vec<_>>().join(" and ")
+    );
+    for (name, count) in &baseline.counts {
+        let model = name.split('/').next().expect("model/bench");
+        let per_pixel = if name.contains("/render/") {
+            format!("{:.0}", *count as f64 / render_pixels(model) as f64)
+        } else {
+            String::new()
+        };
+        let grouped = count
+            .to_string()
+            .as_bytes()
+            .rchunks(3)
+            .rev()
+            .map(|c| std::str::from_utf8(c).unwrap())
+            .collect::<Vec<_>>()
+            .join(" ");
+        text.push_str(&format!("| {name} | {grouped} | {per_pixel} |\n"));
+    }
+    text
+}
+
+/// The performance page shows the committed baseline's counts. Blessing writes the table (here
+/// from the committed baseline; [`benches`] writes it again from the new counts).
+#[test]
+fn the_performance_page_shows_the_baseline() {
+    let committed = parse(&std::fs::read_to_string(root().join(BASELINE)).expect("the baseline"));
+    if std::env::var_os("HIBI_BLESS").is_some() {
+        std::fs::write(root().join(PAGE_TABLE), page_table(&committed)).expect("write the page's table");
+    }
+    let page = std::fs::read_to_string(root().join(PAGE_TABLE)).unwrap_or_default();
+    assert!(
+        page == page_table(&committed),
+        "{PAGE_TABLE} is not the table of {BASELINE}: `HIBI_BLESS=1 cargo test --release --test instructions` \
+         writes both\n{}",
+        hibi_tests::line_diff(&page_table(&committed), &page)
+    );
 }
 
 /// The committed baseline names every bench, and only them, with a toolchain line.

@@ -194,9 +194,26 @@ pub fn callgrind_this_test_by_function(
     (stdout, inclusive_costs(&text))
 }
 
+/// [`callgrind_this_test_by_function`] for a program without libtest's harness (a bench):
+/// runs the running executable again with `args` under Callgrind.
+pub fn callgrind_this_program_by_function(
+    args: &[&str],
+    toggle: &str,
+    env: (&str, &str),
+) -> (String, std::collections::BTreeMap<String, u64>) {
+    let (stdout, text, _) = callgrind_run(args, toggle, env);
+    (stdout, inclusive_costs(&text))
+}
+
 /// Runs `test` again under Callgrind (see [`callgrind_this_test`]); returns what it printed,
 /// Callgrind's output (names written out, not compressed) and the case's name for messages.
 fn callgrind_rerun(test: &str, toggle: &str, env: (&str, &str)) -> (String, String, String) {
+    callgrind_run(&[test, "--exact", "--include-ignored", "--nocapture", "--test-threads=1"], toggle, env)
+}
+
+/// Runs the running executable again with `args` under Callgrind (see [`callgrind_rerun`]).
+fn callgrind_run(args: &[&str], toggle: &str, env: (&str, &str)) -> (String, String, String) {
+    let test = args.first().copied().unwrap_or("run");
     let exe = std::env::current_exe().expect("the test binary");
     let out = exe.with_file_name(format!("{test}_{}.callgrind", env.1));
     let _ = std::fs::remove_file(&out);
@@ -205,7 +222,7 @@ fn callgrind_rerun(test: &str, toggle: &str, env: (&str, &str)) -> (String, Stri
         .args(toggle.split('|').map(|t| format!("--toggle-collect={t}")))
         .arg(format!("--callgrind-out-file={}", out.display()))
         .arg(&exe)
-        .args([test, "--exact", "--include-ignored", "--nocapture", "--test-threads=1"])
+        .args(args)
         .env(env.0, env.1)
         .output()
         .expect("run valgrind");
