@@ -175,3 +175,10 @@ test('the JavaScript blocks of README.md and docs/src/javascript.md run and prin
     }
   }
 });
+
+test('hibi.d.ts types what a TypeScript user writes (tsc --strict on tests/types.ts)', () => {
+  const tsc = new URL('../node_modules/typescript/bin/tsc', import.meta.url).pathname;
+  const types = new URL('./types.ts', import.meta.url).pathname;
+  const args = ['--noEmit', '--strict', '--target', 'es2022', '--module', 'esnext', '--moduleResolution', 'bundler'];
+  execFileSync(process.execPath, [tsc, ...args, '--lib', 'es2022,dom,esnext.disposable', types], { encoding: 'utf8' });
+});
