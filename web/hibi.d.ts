@@ -150,7 +150,7 @@ export interface SkinView {
   shade: ShadeParams;
 }
 
-export type LayerName = 'mask' | 'height' | 'normal' | 'time' | 'cell' | 'preview';
+export type LayerName = 'mask' | 'height' | 'normal' | 'time' | 'cell' | 'preview' | 'height16' | 'normal_rgb8';
 
 /** What `render` returns: the raster size and the layers asked for. */
 export interface Render {
@@ -169,6 +169,10 @@ export interface Render {
     cell?: Uint32Array;
     /** A shaded preview, RGBA (ImageData's layout). */
     preview?: Uint8ClampedArray;
+    /** Height in 16 bits over the model's height range. */
+    height16?: Uint16Array;
+    /** The normal as 8-bit RGB, (c + 1) / 2 · 255 per component. */
+    normal_rgb8?: Uint8Array;
   };
 }
 

@@ -241,6 +241,8 @@ const LAYERS = [
   ['time', 8, Float32Array, 1],
   ['cell', 16, Uint32Array, 1],
   ['preview', 32, Uint8ClampedArray, 4],
+  ['height16', 64, Uint16Array, 1],
+  ['normal_rgb8', 128, Uint8Array, 3],
 ];
 
 const registry = typeof FinalizationRegistry === 'undefined'
@@ -295,7 +297,8 @@ class Model {
   }
 
   /**
-   * Draws `layers` (names among mask, height, normal, time, cell, preview) with `view` (a
+   * Draws `layers` (names among mask, height, normal, time, cell, preview, height16,
+   * normal_rgb8) with `view` (a
    * render parameter record: fields given are laid over the model's defaults; omitted, the
    * model's default view). Returns { width, height, layers: { name: typed array } }.
    */
@@ -306,7 +309,7 @@ class Model {
     let bits = 0;
     for (const name of layers) {
       const layer = LAYERS.find((l) => l[0] === name);
-      if (!layer) throw new HibiError(`render: no layer is named ${name} (mask, height, normal, time, cell, preview)`);
+      if (!layer) throw new HibiError(`render: no layer is named ${name} (${LAYERS.map((l) => l[0]).join(', ')})`);
       bits |= layer[1];
     }
     if (w[`hibi_web_${this.#model}_render`](this._handle, slotsPtr, bits)) throw failure();

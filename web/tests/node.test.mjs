@@ -182,3 +182,24 @@ test('hibi.d.ts types what a TypeScript user writes (tsc --strict on tests/types
   const args = ['--noEmit', '--strict', '--target', 'es2022', '--module', 'esnext', '--moduleResolution', 'bundler'];
   execFileSync(process.execPath, [tsc, ...args, '--lib', 'es2022,dom,esnext.disposable', types], { encoding: 'utf8' });
 });
+
+test('every layer: height16 and normal_rgb8 encode height and normal as the core documents', () => {
+  for (const model of [new Glass({ width: 96, height: 96, impact: [48, 48] }), new Mud({ columns: 16, rows: 16 }), new Skin({ width: 64, height: 64, levels: 2 })]) {
+    try {
+      while (!model.step(1_000_000).finished) {}
+      const { layers } = model.render(['height', 'height16', 'normal', 'normal_rgb8', 'mask', 'preview']);
+      const n = layers.height.length;
+      assert.equal(layers.height16.length, n);
+      assert.equal(layers.normal_rgb8.length, 3 * n);
+      // (c + 1) / 2 · 255 rounded, in f32 arithmetic: within 1 of the same in f64.
+      for (let i = 0; i < 3 * n; i++) assert.ok(Math.abs(layers.normal_rgb8[i] - ((layers.normal[i] + 1) / 2) * 255) <= 1, `normal_rgb8[${i}]`);
+      for (let i = 1; i < n; i++) {
+        if (layers.height[i] < layers.height[i - 1]) assert.ok(layers.height16[i] <= layers.height16[i - 1]);
+        if (layers.height[i] > layers.height[i - 1]) assert.ok(layers.height16[i] >= layers.height16[i - 1]);
+      }
+      assert.ok(new Set(layers.height16).size > 1, 'the heights vary');
+    } finally {
+      model.free();
+    }
+  }
+});

@@ -300,6 +300,8 @@ const NORMAL: u32 = 4;
 const TIME: u32 = 8;
 const CELL: u32 = 16;
 const PREVIEW: u32 = 32;
+const HEIGHT16: u32 = 64;
+const NORMAL_RGB8: u32 = 128;
 
 /// The layer buffers of a `width × height` render, as asked by `bits`.
 struct LayerBuffers {
@@ -309,6 +311,8 @@ struct LayerBuffers {
     time: Option<Vec<f32>>,
     cell: Option<Vec<u32>>,
     preview: Option<Vec<[u8; 4]>>,
+    height16: Option<Vec<u16>>,
+    normal_rgb8: Option<Vec<[u8; 3]>>,
     scratch: Vec<u32>,
 }
 
@@ -324,6 +328,8 @@ impl LayerBuffers {
             time: want(TIME).then(|| vec![0.0; n]),
             cell: want(CELL).then(|| vec![0; n]),
             preview: want(PREVIEW).then(|| vec![[0; 4]; n]),
+            height16: want(HEIGHT16).then(|| vec![0; n]),
+            normal_rgb8: want(NORMAL_RGB8).then(|| vec![[0; 3]; n]),
             scratch: vec![0; scratch],
         })
     }
@@ -336,8 +342,9 @@ impl LayerBuffers {
             time: self.time.as_deref_mut(),
             cell: self.cell.as_deref_mut(),
             preview: self.preview.as_deref_mut(),
+            height16: self.height16.as_deref_mut(),
+            normal_rgb8: self.normal_rgb8.as_deref_mut(),
             scratch: Some(&mut self.scratch),
-            ..Default::default()
         }
     }
 
@@ -349,12 +356,14 @@ impl LayerBuffers {
         self.time.map(out);
         self.cell.map(out);
         self.preview.map(out);
+        self.height16.map(out);
+        self.normal_rgb8.map(out);
     }
 }
 
 /// A render's buffers, or the failure's status.
 fn layer_buffers(width: u32, height: u32, bits: u32) -> Result<LayerBuffers, u32> {
-    if bits & !(MASK | HEIGHT | NORMAL | TIME | CELL | PREVIEW) != 0 {
+    if bits & !(MASK | HEIGHT | NORMAL | TIME | CELL | PREVIEW | HEIGHT16 | NORMAL_RGB8) != 0 {
         return Err(fail("render: no such layer"));
     }
     LayerBuffers::new(width, height, bits).ok_or_else(|| fail(hibi_core::raster::RasterError::Size))
