@@ -323,6 +323,20 @@ def _value(text: str) -> Any:
         return text
 
 
+class _Count:
+    """A progress count on stderr, for when tqdm is not installed."""
+
+    def __init__(self, total: int) -> None:
+        self.total, self.done = total, 0
+
+    def update(self, n: int) -> None:
+        self.done += n
+        print(f"\r{self.done}/{self.total} samples", end="", file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        print(file=sys.stderr)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python -m hibi.dataset",
@@ -369,9 +383,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         client = Client(args.scheduler)
     bar = None
     if not args.quiet:
-        from tqdm import tqdm
+        try:
+            from tqdm import tqdm
 
-        bar = tqdm(total=spec.count, unit="sample", desc=args.model)
+            bar = tqdm(total=spec.count, unit="sample", desc=args.model)
+        except ImportError:  # tqdm is optional: a plain count on stderr
+            bar = _Count(spec.count)
     try:
         write(args.out, spec, workers=args.workers, client=client, progress=bar.update if bar else None)
     finally:
