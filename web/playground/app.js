@@ -58,6 +58,7 @@ let runId = 0;
 let current = null; // what the worker runs: { id, params, width, height, finished, progress }
 let waiting = false; // a frame was asked for and has not come back
 let idle = false; // the run is finished and nothing changed
+let frames = 0; // frames drawn since the run started
 const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
 
 const get = (object, path) => path.split('.').reduce((o, k) => o?.[k], object);
@@ -170,6 +171,7 @@ function restart() {
   writeUrl();
   runId += 1;
   current = null;
+  frames = 0;
   idle = false;
   waiting = true;
   $('text').textContent = 'starting…';
@@ -266,7 +268,10 @@ worker.addEventListener('message', (e) => {
     waiting = false;
   } else if (m.type === 'frame' || m.type === 'idle') {
     waiting = false;
-    if (m.type === 'frame') context.putImageData(new ImageData(m.rgba, m.width, m.height), 0, 0);
+    if (m.type === 'frame') {
+      context.putImageData(new ImageData(m.rgba, m.width, m.height), 0, 0);
+      frames += 1;
+    }
     else idle = true;
     current.finished = m.finished;
     current.progress = m.progress;
@@ -305,6 +310,10 @@ window.playground = {
   svg,
   get current() {
     return current;
+  },
+  /** Frames drawn since the run started (one per step while it grows). */
+  get frames() {
+    return frames;
   },
   get done() {
     return Boolean(current?.finished && idle);

@@ -5,7 +5,10 @@ import { init, Mud, Glass, Skin } from '../hibi.js';
 
 const MODELS = { mud: Mud, glass: Glass, skin: Skin };
 /** Work per step at the start, then adjusted so that a step takes about STEP_MS. */
-const FIRST_BUDGET = { mud: 200_000, glass: 20_000, skin: 20_000 };
+const FIRST_BUDGET = { mud: 200_000, glass: 4_000, skin: 5_000 };
+/** At most this much work per step, so that a fast model's growth still spans many frames
+ * (glass's default plate is about 270,000 units, skin's fig19a about 210,000). */
+const MAX_BUDGET = { mud: Infinity, glass: 10_000, skin: 10_000 };
 const STEP_MS = 12;
 /** Mud's raster width (the lattice's aspect sets its height). */
 const MUD_WIDTH = 640;
@@ -63,7 +66,8 @@ function frame() {
     const t = performance.now();
     progress = model.step(run.budget);
     const ms = performance.now() - t;
-    run.budget = Math.max(1000, Math.round(run.budget * Math.min(2, Math.max(0.5, STEP_MS / Math.max(ms, 0.5)))));
+    const adjusted = Math.round(run.budget * Math.min(2, Math.max(0.5, STEP_MS / Math.max(ms, 0.5))));
+    run.budget = Math.min(MAX_BUDGET[run.name], Math.max(1000, adjusted));
   }
   if (!growing && !run.dirty) {
     postMessage({ type: 'idle', id: run.id, progress, fraction: 1, finished: true, pending: run.hits.length - run.hitsDone });
@@ -119,10 +123,11 @@ function draw() {
       out[4 * i + 3] = 255;
     }
   } else if (layer === 'time') {
-    let hi = 0;
-    for (const v of data) if (Number.isFinite(v)) hi = Math.max(hi, v);
+    // First crack dark blue, last yellow.
+    let lo = Infinity, hi = -Infinity;
+    for (const v of data) if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
     for (let i = 0; i < n; i++) {
-      if (Number.isFinite(data[i])) ramp(out, i, hi > 0 ? data[i] / hi : 0);
+      if (Number.isFinite(data[i])) ramp(out, i, hi > lo ? (data[i] - lo) / (hi - lo) : 0);
       else out.set([250, 248, 244, 255], 4 * i);
     }
   }
