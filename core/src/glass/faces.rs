@@ -120,6 +120,27 @@ impl CrackGraph<'_> {
         if edge.from == v { edge.links[0] } else { edge.links[1] }
     }
 
+    /// The key that orders the edges at vertex `v`: the pseudo-angle of the half-edge leaving
+    /// `v` along edge `e`, and that half-edge (what [`next_around_face`] orders them by).
+    fn key(&self, v: u32, e: u32) -> (f32, HalfEdge) {
+        let edge = &self.edges[e as usize];
+        let side = u32::from(edge.from != v);
+        (edge.angles[side as usize], 2 * e + side)
+    }
+
+    /// [`next_around_face`] in one step: each vertex's incidence list runs by descending
+    /// [`Self::key`] ([`Glass::link`] keeps it so), so the predecessor of the way back in that
+    /// order is the edge after it in the list, or the list's first when it is the last. The
+    /// same half-edge as the search over every edge at the vertex, without it (at the impact
+    /// point, M edges).
+    pub(super) fn next_sorted(&self, h: HalfEdge) -> HalfEdge {
+        let back = h ^ 1;
+        let w = self.ends(back).0;
+        let after = self.edges[(back >> 1) as usize].links[(back & 1) as usize];
+        let next = if after == NONE { self.vertices[w as usize].first_edge } else { after };
+        self.key(w, next).1
+    }
+
     /// Calls `visit` with every edge at vertex `v` and the half-edge leaving `v` along it.
     pub(super) fn for_each_edge_at(&self, v: u32, mut visit: impl FnMut(u32, HalfEdge)) {
         let mut e = self.vertices[v as usize].first_edge;
@@ -171,6 +192,34 @@ impl Glass<'_> {
         v
     }
 
+    /// Links edge `e` into vertex `v`'s incidence list at its place: the list runs by
+    /// descending [`CrackGraph::key`], so that a face walk finds the next edge around a vertex
+    /// in one step ([`CrackGraph::next_sorted`]). Walks the edges with larger keys (at most the
+    /// vertex's degree; none for the radial cracks of an impact, which start in ascending
+    /// angle order but for one wrap).
+    pub(super) fn link(&mut self, v: u32, e: u32) {
+        let (previous, after) = {
+            let g = self.crack_graph();
+            let key = g.key(v, e);
+            let before = |a: (f32, u32), b: (f32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+            let mut previous = NONE;
+            let mut x = self.vertices[v as usize].first_edge;
+            while x != NONE && before(key, g.key(v, x)) {
+                previous = x;
+                x = g.next_at(v, x);
+            }
+            (previous, x)
+        };
+        let edge = &mut self.edges[e as usize];
+        edge.links[usize::from(edge.from != v)] = after;
+        if previous == NONE {
+            self.vertices[v as usize].first_edge = e;
+        } else {
+            let p = &mut self.edges[previous as usize];
+            p.links[usize::from(p.from != v)] = e;
+        }
+    }
+
     /// Joins the pieces of vertices `a` and `b`; true if they already were one piece (an edge
     /// between them closes a cycle).
     pub(super) fn join(&mut self, a: u32, b: u32) -> bool {
@@ -204,8 +253,8 @@ impl Glass<'_> {
                     // The two faces in step, two units a step.
                     self.clock.work += 2;
                     let g = self.crack_graph();
-                    e.a = next_around_face(&g, e.a);
-                    e.b = next_around_face(&g, e.b);
+                    e.a = g.next_sorted(e.a);
+                    e.b = g.next_sorted(e.b);
                     e.steps += 1;
                     if e.a == e.h || e.steps > g.half_edge_bound() {
                         e.faces = [e.h, e.h ^ 1];
@@ -225,7 +274,7 @@ impl Glass<'_> {
                     let g = self.crack_graph();
                     let (u, w) = g.ends(e.at);
                     e.shape.add(g.point(u), g.point(w));
-                    e.at = next_around_face(&g, e.at);
+                    e.at = g.next_sorted(e.at);
                     let (closed, broken) = (e.at == e.faces[e.which], e.shape.edges > g.half_edge_bound());
                     self.walk.marks[u as usize] = self.walk.mark;
                     if closed && e.shape.area > 0.0 {
@@ -271,7 +320,7 @@ impl Glass<'_> {
                     let p = g.point(self.tip_vertex(e.crack));
                     let (u, w) = g.ends(e.at);
                     e.inside ^= crosses_ray(g.point(u), g.point(w), p);
-                    e.at = next_around_face(&g, e.at);
+                    e.at = g.next_sorted(e.at);
                     e.steps += 1;
                     if e.at == e.faces[e.which] || e.steps > g.half_edge_bound() {
                         if e.inside {
@@ -369,6 +418,40 @@ impl Enclosure {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::glass::{CrackSlot, GlassBuffers, GlassParams};
+    extern crate std;
+    use std::vec;
+
+    /// The one-step walk around a face ([`CrackGraph::next_sorted`], over incidence lists kept
+    /// in angle order) gives the very half-edge of the search over every edge at the vertex
+    /// ([`next_around_face`]), for every half-edge of grown plates: the paper's M_ave of 100
+    /// and a crowded 200 (hubs of about 200 edges), ring cracks met and split, a second impact
+    /// on the cracks of the first; and their lists hold each edge once at each end.
+    #[test]
+    fn the_one_step_walk_is_the_search_over_every_edge() {
+        for (seed, radial_mean) in [(1, 100.0), (2, 100.0), (3, 200.0), (4, 40.0)] {
+            let p = GlassParams { seed, radial_mean, ..GlassParams::default() };
+            let m = p.memory().unwrap();
+            let (mut cracks, mut vertices) =
+                (vec![CrackSlot::default(); m.cracks], vec![Vertex::default(); m.vertices]);
+            let (mut edges, mut words) = (vec![Edge::default(); m.edges], vec![0u32; m.words]);
+            let buffers =
+                GlassBuffers { cracks: &mut cracks, vertices: &mut vertices, edges: &mut edges, words: &mut words };
+            let mut glass = Glass::new(&p, buffers).unwrap();
+            while !glass.step(u64::MAX).finished {}
+            glass.impact([200.0, 410.0]).unwrap();
+            while !glass.step(u64::MAX).finished {}
+            let g = glass.crack_graph();
+            let mut seen = vec![0u32; g.edges.len()];
+            for v in 0..g.vertices.len() as u32 {
+                g.for_each_edge_at(v, |e, _| seen[e as usize] += 1);
+            }
+            assert!(seen.iter().all(|&n| n == 2), "seed {seed}: an edge not listed once at each end");
+            for h in 0..2 * g.edges.len() as u32 {
+                assert_eq!(g.next_sorted(h), next_around_face(&g, h), "seed {seed}, half-edge {h}");
+            }
+        }
+    }
 
     #[test]
     fn a_point_is_inside_a_square_by_crossings() {

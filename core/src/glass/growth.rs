@@ -979,18 +979,20 @@ impl Glass<'_> {
         let time = old.time[0] + (old.time[1] - old.time[0]) * along;
         let tail = Edge { next: old.next, ..Edge::new(v, old.to, old.crack, [time, old.time[1]]) };
         let Some(t) = self.push_edge(tail) else { return false };
-        // The head now ends at v: out of the old end's incidence list, into v's.
+        // The head now ends at v: out of the old end's incidence list, into v's, and again into
+        // its first vertex's at its (recomputed) angle.
         self.unlink(old.to, e);
+        self.unlink(old.from, e);
         let head = &mut self.edges[e as usize];
         head.to = v;
         head.next = t;
         head.time[1] = time;
-        head.links[1] = self.vertices[v as usize].first_edge;
         head.orient(self.vertices[old.from as usize].at, self.vertices[v as usize].at);
         let at = self.vertices[v as usize].at;
         head.ends[2] = at[0];
         head.ends[3] = at[1];
-        self.vertices[v as usize].first_edge = e;
+        self.link(old.from, e);
+        self.link(v, e);
         self.join(v, old.from);
         let owner = &mut self.cracks[old.crack as usize];
         if owner.last_segment == e {
@@ -1043,14 +1045,14 @@ impl Glass<'_> {
         let e = self.edge_count as u32;
         // No segment query has seen it yet (a stamp is never 0).
         self.index.stamps[self.edge_count] = 0;
-        edge.links = [self.vertices[edge.from as usize].first_edge, self.vertices[edge.to as usize].first_edge];
+        edge.links = [NONE; 2];
         let (a, z) = (self.vertices[edge.from as usize].at, self.vertices[edge.to as usize].at);
         edge.orient(a, z);
         edge.ends = [a[0], a[1], z[0], z[1]];
-        self.vertices[edge.from as usize].first_edge = e;
-        self.vertices[edge.to as usize].first_edge = e;
         self.edges[self.edge_count] = edge;
         self.edge_count += 1;
+        self.link(edge.from, e);
+        self.link(edge.to, e);
         let (a, z) = self.edge_points(e);
         let (cx0, cy0, cx1, cy1) = self.index.grid.span(a[0].min(z[0]), a[1].min(z[1]), a[0].max(z[0]), a[1].max(z[1]));
         for cy in cy0..=cy1 {
