@@ -176,6 +176,14 @@ fn counts_dict(py: Python<'_>, c: ImpactCounts) -> PyResult<Bound<'_, PyDict>> {
 }
 
 /// Model B (Agui et al.): cracks growing in a glass plate hit by a ball.
+///
+/// Keywords are ``hibi_core::glass::GlassParams``'s fields over the preset's (or the paper's
+/// defaults): width, height, impact (x, y), seed, radial_mean, ring_threshold, large_slope,
+/// large_offset, ring_slope, ring_offset, ring_radius_slope, ring_radius_offset, large_speed,
+/// radial_speed, ring_speed, spread_ratio, spread ("normal", "uniform"), turn_limit (radians),
+/// turn_delay, sector_angle (radians), sector_radius, tip_repulsion, crack_attraction, wander
+/// (radians), ring_adherence, max_cracks, max_vertices. A plate resized without ``impact``
+/// is hit at its centre.
 #[pyclass(module = "hibi._hibi", name = "Glass")]
 pub struct PyGlass {
     plate: Plate,

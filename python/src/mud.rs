@@ -154,6 +154,15 @@ impl From<MudProgress> for PyMudProgress {
 }
 
 /// Model A (Hirota et al.): a drying layer of mud as a spring lattice.
+///
+/// Keywords are ``hibi_core::mud::MudParams``'s fields over the preset's (or the paper's
+/// defaults): topology ("square", "hexagonal", "irregular"), boundary ("open", "periodic"),
+/// solver ("explicit", "quasi-static"), drive ("shrink", "growth"), columns, rows, seed,
+/// layer_thickness, element_size, long_step, short_step, shrink_ratio,
+/// displacement_tolerance, damping_factor, density, young_modulus, shear_modulus,
+/// break_stretch_mean, break_stretch_spread, break_stretch_size_exponent,
+/// anisotropy_direction (radians), anisotropy_ratio, stiffness_anisotropy_ratio,
+/// target_shrink, target_crack_density. A bad value raises ``ValueError`` naming the field.
 #[pyclass(module = "hibi._hibi", name = "Mud")]
 pub struct PyMud {
     run: Run,

@@ -185,6 +185,12 @@ impl From<SkinProgress> for PySkinProgress {
 }
 
 /// Model C (Ishii et al.): skin as hierarchical Voronoi cells.
+///
+/// Keywords are ``hibi_core::skin::SkinParams``'s fields over the preset's (or the paper's
+/// defaults): width, height, seed, layout ("triangular", "square", "random"), jitter
+/// ("normal", "uniform"), jitter_ratio, periodic, levels, and level: a list of dicts, one per
+/// level from the coarsest, with spacing, perturbation, perturbation_decay,
+/// perturbation_depth, stretch (x, y), profile (3k + 1 points (x', z)) and roundness.
 #[pyclass(module = "hibi._hibi", name = "Skin")]
 pub struct PySkin {
     surface: Surface,
