@@ -2,15 +2,23 @@
 //! quasi-static run (tracing its network at the end) and the cells, at 64² to 512², with the
 //! growth exponent of the cost in the node count; the explicit solver (the paper's loop) at
 //! 128² for the speed ratio; the irregular lattice beside the hexagonal one. Crack statistics
-//! are printed so that speeds are read at equal statistics.
+//! are printed so that speeds are read at equal statistics. Then the outputs of the default
+//! 128² run, each call's median over [`OUTPUT_RUNS`] calls: `network`, `cells` and a 512²
+//! `render` of the height map.
 //!
 //!     cargo bench --bench mud                # the table of the README
 //!     cargo bench --bench mud -- 64 128      # other sizes (quasi-static only)
 
 use std::time::Instant;
 
-use hibi_core::mud::{CrackStatistics, Mud, MudBuffers, MudParams, Solver, Topology};
+use hibi_core::mud::{
+    CrackStatistics, Mud, MudBuffers, MudParams, MudRender, NetworkEdge, NetworkPoint, NetworkVertex, Solver, Topology,
+};
 use hibi_core::polygon::Ring;
+use hibi_core::raster::{Layers, scratch_len};
+
+/// Calls of each output whose median time is printed.
+const OUTPUT_RUNS: usize = 21;
 
 struct Run {
     seconds: f64,
@@ -32,6 +40,55 @@ fn run(size: u32, solver: Solver, topology: Topology) -> Run {
     let seconds = start.elapsed().as_secs_f64();
     let stats = mud.statistics();
     Run { seconds, work: progress.work, stats }
+}
+
+/// The median time of `OUTPUT_RUNS` calls of `f`, milliseconds.
+fn median_ms(mut f: impl FnMut()) -> f64 {
+    let mut times: Vec<f64> = (0..OUTPUT_RUNS)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[OUTPUT_RUNS / 2]
+}
+
+/// The outputs of the default 128² run, one call each: their median times.
+fn outputs() {
+    let params = MudParams { columns: 128, rows: 128, ..MudParams::default() };
+    let memory = params.memory().expect("valid parameters");
+    let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+    let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
+    mud.run().expect("a stable run");
+    let n = mud.network_counts();
+    let (mut vertices, mut edges, mut points) = (
+        vec![NetworkVertex::default(); n.vertices],
+        vec![NetworkEdge::default(); n.edges],
+        vec![NetworkPoint::default(); n.points],
+    );
+    let c = mud.cell_counts();
+    let (mut rings, mut ring_points) = (vec![Ring::default(); c.rings], vec![[0.0f32; 2]; c.points]);
+    let render = MudRender::fit(mud.extent(), 512);
+    let pixels = render.width as usize * render.height as usize;
+    let mut height = vec![0.0f32; pixels];
+    let mut scratch = vec![0u32; scratch_len(render.width, render.height).expect("a small raster")];
+    let network = median_ms(|| {
+        std::hint::black_box(mud.network(&mut vertices, &mut edges, &mut points).expect("buffers suffice"));
+    });
+    let cells = median_ms(|| {
+        std::hint::black_box(mud.cells(&mut rings, &mut ring_points).expect("buffers suffice"));
+    });
+    let rendered = median_ms(|| {
+        let layers = Layers { height: Some(&mut height), scratch: Some(&mut scratch), ..Layers::default() };
+        mud.render(&render, layers).expect("buffers suffice");
+    });
+    println!("\n| 128² default run, one call (median of {OUTPUT_RUNS}) | time |");
+    println!("|---|---|");
+    println!("| `network` ({} vertices, {} edges, {} points) | {network:.2} ms |", n.vertices, n.edges, n.points);
+    println!("| `cells` ({} rings, {} points) | {cells:.2} ms |", c.rings, c.points);
+    println!("| `render`, height map {}×{} | {rendered:.2} ms |", render.width, render.height);
 }
 
 fn row(size: u32, name: &str, r: &Run) {
@@ -72,5 +129,8 @@ fn main() {
     {
         let exponent = (tb / ta).ln() / ((f64::from(b) / f64::from(a)).powi(2)).ln();
         println!("\ncost grows as nodes^{exponent:.2} from {a}² to {b}²");
+    }
+    if !custom {
+        outputs();
     }
 }

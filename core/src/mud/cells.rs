@@ -100,8 +100,8 @@ fn key(cell: usize, side: usize) -> usize {
     cell * 4 + side
 }
 
-/// The work of one step of a ring walk: the next mesh cell's corners worked out (its nodes'
-/// displacements and the cell across a side), as much as visiting three springs.
+/// The work of one step of a ring walk: the mesh cell across a side and its sides looked at
+/// (and, for the points written, its nodes' displacements), as much as visiting three springs.
 pub(super) const RING_STEP: u64 = 3;
 
 /// Ring-start word bits of a mesh cell: side k starts a ring that closes in the plane.
@@ -128,11 +128,17 @@ impl<S: Scalar> Mud<'_, S> {
     /// Walks the ring from `start`, calling `visit(point, key)` with every point and the key
     /// of each mesh cell it enters (`usize::MAX` for other points); stops if `visit` returns
     /// false.
-    pub(super) fn walk_ring(&self, start: At, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
+    pub(super) fn walk_ring(&self, start: At, visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
+        self.walk_ring_as(start, true, visit)
+    }
+
+    /// [`Self::walk_ring`], the points' positions worked out only if `positions` (a walk that
+    /// counts points or follows keys needs none; `visit` gets 0 for them then).
+    fn walk_ring_as(&self, start: At, positions: bool, mut visit: impl FnMut([f32; 2], usize) -> bool) -> RingEnd {
         let start_key = Self::start_key(&start);
         let mut at = start;
         for step in 0..self.ring_step_bound() {
-            match self.ring_step(at, start_key, step > 0, &mut visit) {
+            match self.ring_step(at, start_key, step > 0, positions, &mut visit) {
                 Ok(next) => at = next,
                 Err(end) => return end,
             }
@@ -142,14 +148,17 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// One step of a ring walk from `at` (`moved`: not the walk's first): to the next mesh
     /// cell the ring enters or the next border corner, visiting the points on the way (at
-    /// most one of them with a mesh cell's key). `Err` when the walk ends.
+    /// most one of them with a mesh cell's key). `Err` when the walk ends. The mesh cells'
+    /// positions are worked out only if `positions`.
     fn ring_step(
         &self,
         at: At,
         start_key: usize,
         moved: bool,
+        positions: bool,
         visit: &mut impl FnMut([f32; 2], usize) -> bool,
     ) -> Result<At, RingEnd> {
+        let crack_point = |c: &TracedCell, j: usize| if positions { self.crack_point(c, j) } else { [0.0; 2] };
         Ok(match at {
             At::Inside { c, k, wrap } => {
                 // The first separating side clockwise from k bounds this corner's region.
@@ -158,9 +167,9 @@ impl<S: Scalar> Mud<'_, S> {
                 if c.separating_count() >= 3 && !visit(c.centroid(), usize::MAX) {
                     return Err(RingEnd::Stopped);
                 }
-                match self.across(&c, j, wrap) {
+                match self.across_as(&c, j, wrap, positions) {
                     Some((next, side, wrap)) => {
-                        if !visit(self.crack_point(&c, j), key(next.index, side)) {
+                        if !visit(crack_point(&c, j), key(next.index, side)) {
                             return Err(RingEnd::Stopped);
                         }
                         if key(next.index, side) == start_key {
@@ -170,7 +179,7 @@ impl<S: Scalar> Mud<'_, S> {
                     }
                     None => {
                         let i = (j + 1) % n;
-                        if !visit(self.crack_point(&c, j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
+                        if !visit(crack_point(&c, j), usize::MAX) || !visit(c.corner[i], usize::MAX) {
                             return Err(RingEnd::Stopped);
                         }
                         At::Border { c, i }
@@ -180,14 +189,14 @@ impl<S: Scalar> Mud<'_, S> {
             At::Border { c, i } => {
                 // The side leaving corner i counter-clockwise: on the border, or turn about
                 // the corner into the next mesh cell.
-                match self.across(&c, i, [0, 0]) {
+                match self.across_as(&c, i, [0, 0], positions) {
                     Some((next, side, _)) => At::Border { c: next, i: (side + 1) % next.sides() },
                     None => {
                         if moved && border_key(c.index, i) == start_key {
                             return Err(RingEnd::Closed([0, 0]));
                         }
                         if c.separating[i] {
-                            if !visit(self.crack_point(&c, i), key(c.index, i)) {
+                            if !visit(crack_point(&c, i), key(c.index, i)) {
                                 return Err(RingEnd::Stopped);
                             }
                             if key(c.index, i) == start_key {
@@ -238,7 +247,7 @@ impl<S: Scalar> Mud<'_, S> {
                     work += corners;
                 }
                 let next_cell = RingCursor { cell: cursor.cell + 1, side: 0, walk: None };
-                let Some(c) = self.cut_cell(cursor.cell) else {
+                let Some(c) = self.cut_cell_as(cursor.cell, false) else {
                     cursor = next_cell;
                     continue;
                 };
@@ -270,7 +279,7 @@ impl<S: Scalar> Mud<'_, S> {
                     break None;
                 }
                 let mut entered = usize::MAX;
-                let next = self.ring_step(at, start_key, step > 0, &mut |_, k| {
+                let next = self.ring_step(at, start_key, step > 0, false, &mut |_, k| {
                     if k != usize::MAX {
                         entered = k;
                     }
@@ -312,11 +321,13 @@ impl<S: Scalar> Mud<'_, S> {
         }
     }
 
-    /// The ring walk's place `at`, with its mesh cell as the network sees it.
+    /// The ring walk's place `at`, with its mesh cell as the network sees it (its sides; the
+    /// search for ring starts needs no positions).
     fn ring_at(&self, at: RingAt) -> Option<At> {
+        let traced = |cell: usize, wrap: [i32; 2]| Some(self.traced_as(cell, self.lattice.cell(cell)?, wrap, false));
         Some(match at {
-            RingAt::Inside { cell, k, wrap } => At::Inside { c: self.traced_cell(cell, wrap)?, k, wrap },
-            RingAt::Border { cell, i } => At::Border { c: self.traced_cell(cell, [0, 0])?, i },
+            RingAt::Inside { cell, k, wrap } => At::Inside { c: traced(cell, wrap)?, k, wrap },
+            RingAt::Border { cell, i } => At::Border { c: traced(cell, [0, 0])?, i },
         })
     }
 
@@ -351,12 +362,13 @@ impl<S: Scalar> Mud<'_, S> {
     ) -> usize {
         let mut wrapping = 0;
         for cell in cells {
-            let Some(c) = self.cut_cell(cell) else { continue };
-            for k in (0..c.sides()).filter(|&k| c.separating[k]) {
-                *border_touched |= self.is_border_side(&c, k);
+            // The cell's positions are worked out for the rings that start in it only.
+            let Some(t) = self.cut_cell_as(cell, false) else { continue };
+            for k in (0..t.sides()).filter(|&k| t.separating[k]) {
+                *border_touched |= self.is_border_side(&t, k);
                 let flags = self.ring_starts[cell] >> k;
                 if flags & 1 << STARTS != 0 {
-                    ring(At::Inside { c, k, wrap: [0, 0] });
+                    ring(At::Inside { c: self.traced(cell, t.cell, [0, 0]), k, wrap: [0, 0] });
                 } else if flags & 1 << WRAPS != 0 {
                     wrapping += 1;
                 }
@@ -396,7 +408,10 @@ impl<S: Scalar> Mud<'_, S> {
         let mut counts = CellCounts::default();
         counts.wrapping = self.for_each_ring(|start| {
             counts.rings += 1;
-            counts.points += self.ring_shape(start).1;
+            self.walk_ring_as(start, false, |_, _| {
+                counts.points += 1;
+                true
+            });
         });
         counts
     }

@@ -343,6 +343,34 @@ impl<'a> Lattice<'a> {
             let v = self.direction_vector(d);
             [at[0] + v[0], at[1] + v[1]]
         };
+        // Away from the edges the corners are fixed offsets from the base node (what the
+        // general case below finds, without wrapping: the same cell).
+        let c = self.columns as usize;
+        let (i, j) = (base % c, base / c);
+        if i >= 1 && i + 1 < c && j + 1 < self.rows as usize {
+            let up_right = base + c + j % 2;
+            let (nodes, corners, sides, reference) = match (self.topology, k) {
+                (Topology::Square, _) => (
+                    [base, base + 1, base + c + 1, base + c],
+                    4,
+                    [self.spring(base, 0), self.spring(base + 1, 1), self.spring(base + c, 0), self.spring(base, 1)],
+                    [at, offset(0), [at[0] + 1.0, at[1] + 1.0], offset(1)],
+                ),
+                (_, 0) => (
+                    [base, base + 1, up_right, 0],
+                    3,
+                    [self.spring(base, 0), self.spring(base + 1, 2), self.spring(base, 1), 0],
+                    [at, offset(0), offset(1), [0.0; 2]],
+                ),
+                (_, _) => (
+                    [base, up_right, up_right - 1, 0],
+                    3,
+                    [self.spring(base, 1), self.spring(up_right - 1, 0), self.spring(base, 2), 0],
+                    [at, offset(1), offset(2), [0.0; 2]],
+                ),
+            };
+            return Some(Cell { nodes: nodes.map(|n| n as u32), corners, sides: sides.map(|s| s as u32), reference });
+        }
         match (self.topology, k) {
             (Topology::Square, _) => {
                 let right = self.neighbour(base, 0)?;

@@ -921,8 +921,21 @@ impl<S: Scalar> Mud<'_, S> {
     /// Mesh cell `cell` as the network sees it, if a side of it is cut (most cells have none,
     /// and are passed over without working out their positions).
     pub(super) fn cut_cell(&self, cell: usize) -> Option<TracedCell> {
+        self.cut_cell_as(cell, true)
+    }
+
+    /// [`Self::cut_cell`], with its corners' positions worked out only if `positions` (the
+    /// walks that only follow the network's topology leave them at 0).
+    pub(super) fn cut_cell_as(&self, cell: usize, positions: bool) -> Option<TracedCell> {
+        // A mesh cell the trace did not touch has no cut side (see `Touched`).
+        if self.touched.cells.get(cell / BLOCK).is_none_or(|&w| w & 1 << (cell % BLOCK) == 0) {
+            return None;
+        }
         let c = self.lattice.cell(cell)?;
-        c.sides[..c.corners].iter().any(|&s| self.is_cut(s as usize)).then(|| self.traced(cell, c, [0, 0]))
+        c.sides[..c.corners]
+            .iter()
+            .any(|&s| self.is_cut(s as usize))
+            .then(|| self.traced_as(cell, c, [0, 0], positions))
     }
 
     /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
@@ -931,20 +944,30 @@ impl<S: Scalar> Mud<'_, S> {
     }
 
     /// Mesh cell `c` (index `cell`) as the network sees it, shifted by `wrap` periods.
-    fn traced(&self, cell: usize, c: Cell, wrap: [i32; 2]) -> TracedCell {
+    pub(super) fn traced(&self, cell: usize, c: Cell, wrap: [i32; 2]) -> TracedCell {
+        self.traced_as(cell, c, wrap, true)
+    }
+
+    /// [`Self::traced`], its corners' positions left at 0 unless `positions`.
+    pub(super) fn traced_as(&self, cell: usize, c: Cell, wrap: [i32; 2], positions: bool) -> TracedCell {
+        let mut t = TracedCell { index: cell, cell: c, corner: [[0.0; 2]; 4], cut: [false; 4], separating: [false; 4] };
+        for k in 0..c.corners {
+            t.cut[k] = self.is_cut(c.sides[k] as usize);
+            t.separating[k] = self.separates(c.sides[k] as usize);
+        }
+        if !positions {
+            return t;
+        }
         let (_, deep) = self.factors();
         let deep = deep.to_f32();
         let [w, h] = self.lattice.extent();
         let shift = [wrap[0] as f32 * w, wrap[1] as f32 * h];
-        let mut t = TracedCell { index: cell, cell: c, corner: [[0.0; 2]; 4], cut: [false; 4], separating: [false; 4] };
         for k in 0..c.corners {
             let (dx, dy) = self.displacement(c.nodes[k] as usize);
             t.corner[k] = [
                 (c.reference[k][0] + shift[0]) * deep + dx.to_f32(),
                 (c.reference[k][1] + shift[1]) * deep + dy.to_f32(),
             ];
-            t.cut[k] = self.is_cut(c.sides[k] as usize);
-            t.separating[k] = self.separates(c.sides[k] as usize);
         }
         t
     }
@@ -952,6 +975,18 @@ impl<S: Scalar> Mud<'_, S> {
     /// The mesh cell across side `k` of `from`, the side the spring is in it, and the wrap
     /// that keeps the two cells' positions continuous; `None` at an open border.
     pub(super) fn across(&self, from: &TracedCell, k: usize, wrap: [i32; 2]) -> Option<(TracedCell, usize, [i32; 2])> {
+        self.across_as(from, k, wrap, true)
+    }
+
+    /// [`Self::across`], the cell's positions worked out only if `positions` (the wrap always:
+    /// a ring that wraps around a periodic lattice is told by it).
+    pub(super) fn across_as(
+        &self,
+        from: &TracedCell,
+        k: usize,
+        wrap: [i32; 2],
+        positions: bool,
+    ) -> Option<(TracedCell, usize, [i32; 2])> {
         let spring = from.cell.sides[k] as usize;
         let [a, b] = self.lattice.cells_of_spring(spring);
         let (cell, side) = [a, b].into_iter().flatten().find(|&(c, _)| c != from.index)?;
@@ -965,7 +1000,7 @@ impl<S: Scalar> Mud<'_, S> {
         let [w, h] = self.lattice.extent();
         let periods = [libm::roundf((p[0] - q[0]) / w) as i32, libm::roundf((p[1] - q[1]) / h) as i32];
         let wrap = [wrap[0] + periods[0], wrap[1] + periods[1]];
-        Some((self.traced(cell, to, wrap), side, wrap))
+        Some((self.traced_as(cell, to, wrap, positions), side, wrap))
     }
 
     /// The network point at the midpoint of side `k`.
@@ -1012,7 +1047,7 @@ impl<S: Scalar> Mud<'_, S> {
         wrap: [i32; 2],
         mut visit: impl FnMut(NetworkPoint, usize) -> bool,
     ) -> Option<Arrival> {
-        self.walk_sides(start, c, k, wrap, |c, side| match side {
+        self.walk_sides(start, c, k, wrap, true, |c, side| match side {
             Some(j) => visit(self.side_point(c, j), c.cell.sides[j] as usize),
             None => visit(self.centroid_point(c), usize::MAX),
         })
@@ -1026,6 +1061,7 @@ impl<S: Scalar> Mud<'_, S> {
         mut c: TracedCell,
         mut k: usize,
         mut wrap: [i32; 2],
+        positions: bool,
         mut visit: impl FnMut(&TracedCell, Option<usize>) -> bool,
     ) -> Option<Arrival> {
         for _ in 0..=self.lattice.cell_count() {
@@ -1038,7 +1074,7 @@ impl<S: Scalar> Mud<'_, S> {
             if !visit(&c, Some(out)) {
                 return None;
             }
-            let Some((next, side, next_wrap)) = self.across(&c, out, wrap) else {
+            let Some((next, side, next_wrap)) = self.across_as(&c, out, wrap, positions) else {
                 return Some(Arrival { vertex: self.border_vertex(&c, out), side: out });
             };
             if (next.index, side) == start {
@@ -1115,7 +1151,7 @@ impl<S: Scalar> Mud<'_, S> {
         let mut offset = [0.0f32; 2];
         for (cell, entry, wrap) in [(home, side, [0, 0]), (other, other_side, wrap)] {
             let (mut n, mut last) = (0, centre);
-            self.walk_sides((cell.index, entry), cell, entry, wrap, |c, side| {
+            self.walk_sides((cell.index, entry), cell, entry, wrap, true, |c, side| {
                 last = side.map_or_else(|| c.centroid(), |j| c.midpoint(j));
                 n += 1;
                 offset[0] += SMOOTHING_WEIGHTS[n] * (last[0] - centre[0]);
@@ -1130,10 +1166,11 @@ impl<S: Scalar> Mud<'_, S> {
         Some((offset, home, side, other))
     }
 
-    /// Calls `edge(from, to, points)` for every edge of the network, in a fixed order: by
-    /// the vertex and side it starts from, then the closed cracks by their lowest spring.
-    /// `points` calls its argument with the edge's points in order.
-    fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint)))) {
+    /// Calls `edge(from, to, count, points)` for every edge of the network, in a fixed order:
+    /// by the vertex and side it starts from, then the closed cracks by their lowest spring.
+    /// `count` is the number of the edge's points; `points` calls its argument with them in
+    /// order.
+    fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, usize, &EdgePoints<'_>)) {
         // The setup or a trace under way has no network to show yet.
         if !self.shows_network() {
             return;
@@ -1143,63 +1180,91 @@ impl<S: Scalar> Mud<'_, S> {
         self.closed_cracks(0..self.lattice.spring_count(), &ignore, &mut edge);
     }
 
+    /// The walk along an edge from side `k` of mesh cell `c` (see
+    /// [`Mud::edges_from_cells`]), from its centroid or from the border point on that side:
+    /// calls `visit(cell, Some(j))` at the point on side `j` of a mesh cell, `visit(cell,
+    /// None)` at its centroid, and returns where the edge ends. The mesh cells' positions are
+    /// worked out only if `positions` (finding the end and counting the points needs none).
+    fn edge_walk(
+        &self,
+        c: &TracedCell,
+        k: usize,
+        start: Start,
+        positions: bool,
+        visit: &mut impl FnMut(&TracedCell, Option<usize>),
+    ) -> Option<Arrival> {
+        if start == Start::Centroid {
+            visit(c, None);
+        }
+        visit(c, Some(k));
+        let mut go_on = |t: &TracedCell, j: Option<usize>| {
+            visit(t, j);
+            true
+        };
+        match start {
+            Start::Centroid => {
+                let Some((n, side, wrap)) = self.across_as(c, k, [0, 0], positions) else {
+                    return Some(Arrival { vertex: self.border_vertex(c, k), side: k });
+                };
+                self.walk_sides((c.index, k), n, side, wrap, positions, go_on)
+            }
+            Start::Border if Self::centroid_is_vertex(c) => {
+                go_on(c, None);
+                Some(Arrival { vertex: self.stack[c.index], side: k })
+            }
+            Start::Border => self.walk_sides((c.index, k), *c, k, [0, 0], positions, go_on),
+        }
+    }
+
+    /// The network point `visit(cell, side)` of a walk stands for (see [`Self::walk_sides`]).
+    fn walk_point(&self, c: &TracedCell, side: Option<usize>) -> NetworkPoint {
+        match side {
+            Some(j) => self.side_point(c, j),
+            None => self.centroid_point(c),
+        }
+    }
+
     /// [`Mud::for_each_edge`]'s edges that start from the mesh cells `cells` (a vertex in
     /// them, or a border point of theirs), in its order; `walked` counts the points its walks
-    /// pass (each edge is walked once to find its end, again for its points).
+    /// pass (each edge is walked once to find its end and count its points, again for its
+    /// points, if `edge` asks for them).
     pub(super) fn edges_from_cells(
         &self,
         cells: core::ops::Range<usize>,
         walked: &core::cell::Cell<u64>,
-        edge: &mut impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint))),
+        edge: &mut impl FnMut(u32, u32, usize, &EdgePoints<'_>),
     ) {
         for cell in cells {
-            let Some(c) = self.cut_cell(cell) else { continue };
-            let centroid = Self::centroid_is_vertex(&c);
-            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+            // The walks that find the edges follow the mesh alone; the points of an edge
+            // found are worked out from the cell's positions.
+            let Some(t) = self.cut_cell_as(cell, false) else { continue };
+            let centroid = Self::centroid_is_vertex(&t);
+            for k in (0..t.sides()).filter(|&k| t.cut[k]) {
                 for start in [Start::Centroid, Start::Border] {
                     let from = match start {
                         Start::Centroid if centroid => self.stack[cell],
-                        Start::Border if self.is_border_side(&c, k) => self.border_vertex(&c, k),
+                        Start::Border if self.is_border_side(&t, k) => self.border_vertex(&t, k),
                         _ => continue,
-                    };
-                    let walk = |visit: &mut dyn FnMut(NetworkPoint)| -> Option<Arrival> {
-                        let visit = &mut |p| {
-                            walked.set(walked.get() + 1);
-                            visit(p);
-                        };
-                        if start == Start::Centroid {
-                            visit(self.centroid_point(&c));
-                        }
-                        visit(self.side_point(&c, k));
-                        match start {
-                            Start::Centroid => {
-                                let Some((n, side, wrap)) = self.across(&c, k, [0, 0]) else {
-                                    return Some(Arrival { vertex: self.border_vertex(&c, k), side: k });
-                                };
-                                self.walk((cell, k), n, side, wrap, |p, _| {
-                                    visit(p);
-                                    true
-                                })
-                            }
-                            Start::Border if centroid => {
-                                visit(self.centroid_point(&c));
-                                Some(Arrival { vertex: self.stack[cell], side: k })
-                            }
-                            Start::Border => self.walk((cell, k), c, k, [0, 0], |p, _| {
-                                visit(p);
-                                true
-                            }),
-                        }
                     };
                     // Each edge is found from both ends: keep the walk from the lower end (an
                     // edge from a vertex back to itself by the same side is a border point's
                     // stub into its own cell, found once).
-                    let Some(end) = walk(&mut |_| {}) else { continue };
+                    let mut count = 0;
+                    let Some(end) = self.edge_walk(&t, k, start, false, &mut |_, _| {
+                        walked.set(walked.get() + 1);
+                        count += 1;
+                    }) else {
+                        continue;
+                    };
                     if end < (Arrival { vertex: from, side: k }) {
                         continue;
                     }
-                    edge(from, end.vertex, &|visit| {
-                        walk(visit);
+                    edge(from, end.vertex, count, &|visit| {
+                        let c = self.traced(cell, t.cell, [0, 0]);
+                        self.edge_walk(&c, k, start, true, &mut |c, j| {
+                            walked.set(walked.get() + 1);
+                            visit(self.walk_point(c, j));
+                        });
                     });
                 }
             }
@@ -1212,28 +1277,42 @@ impl<S: Scalar> Mud<'_, S> {
         &self,
         springs: core::ops::Range<usize>,
         walked: &core::cell::Cell<u64>,
-        edge: &mut impl FnMut(u32, u32, &dyn Fn(&mut dyn FnMut(NetworkPoint))),
+        edge: &mut impl FnMut(u32, u32, usize, &EdgePoints<'_>),
     ) {
         // Closed cracks: every cell on them has two cut sides; each is found from its lowest
         // spring, in the cell on that spring's left.
         for spring in springs.filter(|&s| self.is_cut(s)) {
-            let [Some((cell, side)), Some(_)] = self.lattice.cells_of_spring(spring) else { continue };
-            let Some(c) = self.traced_cell(cell, [0, 0]) else { continue };
-            if Self::centroid_is_vertex(&c) {
+            let [Some((cell, side)), Some((right, _))] = self.lattice.cells_of_spring(spring) else { continue };
+            // The mesh cell on the spring's right is the crack's last before it comes back: if
+            // the crack ends or meets others there, or goes on across a lower spring, the walk
+            // below would find that at its end; it is looked at first (a crack's springs
+            // mostly rise along it, and each walk would run to its end).
+            if right != cell {
+                let Some(r) = self.lattice.cell(right) else { continue };
+                let mut cut = r.sides[..r.corners].iter().map(|&s| s as usize).filter(|&s| self.is_cut(s));
+                let (Some(a), Some(b), None) = (cut.next(), cut.next(), cut.next()) else { continue };
+                if a.max(b) != spring {
+                    continue;
+                }
+            }
+            let Some(t) = self.lattice.cell(cell).map(|c| self.traced_as(cell, c, [0, 0], false)) else { continue };
+            if Self::centroid_is_vertex(&t) {
                 continue;
             }
             // Closed if the walk comes back without a vertex; found here if no spring on it
-            // is lower (the walk stops at the first lower one).
-            let mut lowest = true;
-            let end = self.walk((cell, side), c, side, [0, 0], |_, s| {
+            // is lower (the walk stops at the first lower one). It follows the mesh alone.
+            let (mut lowest, mut count) = (true, 1);
+            let end = self.walk_sides((cell, side), t, side, [0, 0], false, |c, j| {
                 walked.set(walked.get() + 1);
-                lowest = s >= spring;
+                count += 1;
+                lowest = j.is_none_or(|j| c.cell.sides[j] as usize >= spring);
                 lowest
             });
             if end.is_some() || !lowest {
                 continue;
             }
-            edge(NO_VERTEX, NO_VERTEX, &|visit| {
+            edge(NO_VERTEX, NO_VERTEX, count, &|visit| {
+                let c = self.traced(cell, t.cell, [0, 0]);
                 walked.set(walked.get() + 1);
                 visit(self.side_point(&c, side));
                 self.walk((cell, side), c, side, [0, 0], |p, _| {
@@ -1304,9 +1383,9 @@ impl<S: Scalar> Mud<'_, S> {
     pub fn network_counts(&self) -> NetworkCounts {
         let vertices = if !self.shows_network() { 0 } else { self.vertex_total as usize };
         let mut counts = NetworkCounts { vertices, ..NetworkCounts::default() };
-        self.for_each_edge(|_, _, points| {
+        self.for_each_edge(|_, _, points, _| {
             counts.edges += 1;
-            points(&mut |_| counts.points += 1);
+            counts.points += points;
         });
         counts
     }
@@ -1333,7 +1412,7 @@ impl<S: Scalar> Mud<'_, S> {
             v += 1;
         });
         let (mut e, mut p) = (0, 0);
-        self.for_each_edge(|from, to, walk| {
+        self.for_each_edge(|from, to, _, walk| {
             let first = p;
             walk(&mut |point| {
                 points[p] = point;
@@ -1372,6 +1451,9 @@ impl<S: Scalar> Mud<'_, S> {
         }
     }
 }
+
+/// An edge's points: calls its argument with each, in order.
+pub(super) type EdgePoints<'w> = dyn Fn(&mut dyn FnMut(NetworkPoint)) + 'w;
 
 /// Where an edge walk starts.
 #[derive(Clone, Copy, PartialEq, Eq)]

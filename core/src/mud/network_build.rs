@@ -4,7 +4,7 @@
 //! over the mesh cells (the vertices, then the edges leaving each cell) and the springs (the
 //! closed cracks), cut into pieces that a [`NetworkBuild::step`] call stops between.
 
-use super::network::{NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
+use super::network::{EdgePoints, NetworkCounts, NetworkEdge, NetworkPoint, NetworkVertex};
 use super::{Mud, MudError};
 use crate::scalar::Scalar;
 
@@ -97,9 +97,6 @@ enum Pass {
     /// Done.
     Done,
 }
-
-/// An edge's walk: calls its argument with the edge's points in order.
-type EdgeWalk<'w> = dyn Fn(&mut dyn FnMut(NetworkPoint)) + 'w;
 
 /// A network built in steps: see the module docs.
 pub struct NetworkBuild<'a> {
@@ -209,10 +206,10 @@ impl<'a> NetworkBuild<'a> {
                     walked.set(walked.get() + 1);
                 });
             }
-            Pass::Edges if at < cells => mud.edges_from_cells(at..at + 1, &walked, &mut |from, to, walk| {
+            Pass::Edges if at < cells => mud.edges_from_cells(at..at + 1, &walked, &mut |from, to, _, walk| {
                 Self::write_edge(buffers, counts, from, to, walk)
             }),
-            Pass::Closed if at < springs => mud.closed_cracks(at..at + 1, &walked, &mut |from, to, walk| {
+            Pass::Closed if at < springs => mud.closed_cracks(at..at + 1, &walked, &mut |from, to, _, walk| {
                 Self::write_edge(buffers, counts, from, to, walk)
             }),
             _ => {
@@ -234,7 +231,7 @@ impl<'a> NetworkBuild<'a> {
         counts: &mut NetworkCounts,
         from: u32,
         to: u32,
-        walk: &EdgeWalk<'_>,
+        walk: &EdgePoints<'_>,
     ) {
         let first = counts.points;
         walk(&mut |point| {
