@@ -104,6 +104,11 @@ fn key(cell: usize, side: usize) -> usize {
 /// (and, for the points written, its nodes' displacements), as much as visiting three springs.
 pub(super) const RING_STEP: u64 = 3;
 
+/// Whether the trace's search for ring starts works out positions, which it does not read:
+/// only on 32-bit targets, where the run calls the walks with positions alone, so that the
+/// Cortex-M3's flash holds one form of them.
+const SEARCH_POSITIONS: bool = cfg!(not(target_pointer_width = "64"));
+
 /// Ring-start word bits of a mesh cell: side k starts a ring that closes in the plane.
 const STARTS: u32 = 0;
 /// Side k starts a ring that wraps around the torus.
@@ -247,7 +252,7 @@ impl<S: Scalar> Mud<'_, S> {
                     work += corners;
                 }
                 let next_cell = RingCursor { cell: cursor.cell + 1, side: 0, walk: None };
-                let Some(c) = self.cut_cell_as(cursor.cell, false) else {
+                let Some(c) = self.cut_cell_as(cursor.cell, SEARCH_POSITIONS) else {
                     cursor = next_cell;
                     continue;
                 };
@@ -279,7 +284,7 @@ impl<S: Scalar> Mud<'_, S> {
                     break None;
                 }
                 let mut entered = usize::MAX;
-                let next = self.ring_step(at, start_key, step > 0, false, &mut |_, k| {
+                let next = self.ring_step(at, start_key, step > 0, SEARCH_POSITIONS, &mut |_, k| {
                     if k != usize::MAX {
                         entered = k;
                     }
@@ -324,7 +329,8 @@ impl<S: Scalar> Mud<'_, S> {
     /// The ring walk's place `at`, with its mesh cell as the network sees it (its sides; the
     /// search for ring starts needs no positions).
     fn ring_at(&self, at: RingAt) -> Option<At> {
-        let traced = |cell: usize, wrap: [i32; 2]| Some(self.traced_as(cell, self.lattice.cell(cell)?, wrap, false));
+        let traced =
+            |cell: usize, wrap: [i32; 2]| Some(self.traced_as(cell, self.lattice.cell(cell)?, wrap, SEARCH_POSITIONS));
         Some(match at {
             RingAt::Inside { cell, k, wrap } => At::Inside { c: traced(cell, wrap)?, k, wrap },
             RingAt::Border { cell, i } => At::Border { c: traced(cell, [0, 0])?, i },

@@ -344,10 +344,11 @@ impl<'a> Lattice<'a> {
             [at[0] + v[0], at[1] + v[1]]
         };
         // Away from the edges the corners are fixed offsets from the base node (what the
-        // general case below finds, without wrapping: the same cell).
+        // general case below finds, without wrapping: the same cell). Not on 32-bit targets,
+        // for the Cortex-M3's flash: the general case alone computes the same.
         let c = self.columns as usize;
         let (i, j) = (base % c, base / c);
-        if i >= 1 && i + 1 < c && j + 1 < self.rows as usize {
+        if cfg!(target_pointer_width = "64") && i >= 1 && i + 1 < c && j + 1 < self.rows as usize {
             let up_right = base + c + j % 2;
             let (nodes, corners, sides, reference) = match (self.topology, k) {
                 (Topology::Square, _) => (

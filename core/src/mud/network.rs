@@ -927,8 +927,11 @@ impl<S: Scalar> Mud<'_, S> {
     /// [`Self::cut_cell`], with its corners' positions worked out only if `positions` (the
     /// walks that only follow the network's topology leave them at 0).
     pub(super) fn cut_cell_as(&self, cell: usize, positions: bool) -> Option<TracedCell> {
-        // A mesh cell the trace did not touch has no cut side (see `Touched`).
-        if self.touched.cells.get(cell / BLOCK).is_none_or(|&w| w & 1 << (cell % BLOCK) == 0) {
+        // A mesh cell the trace did not touch has no cut side (see `Touched`). Not on 32-bit
+        // targets, for the Cortex-M3's flash: the sides alone tell the same.
+        if cfg!(target_pointer_width = "64")
+            && self.touched.cells.get(cell / BLOCK).is_none_or(|&w| w & 1 << (cell % BLOCK) == 0)
+        {
             return None;
         }
         let c = self.lattice.cell(cell)?;
@@ -1191,7 +1194,7 @@ impl<S: Scalar> Mud<'_, S> {
         k: usize,
         start: Start,
         positions: bool,
-        visit: &mut impl FnMut(&TracedCell, Option<usize>),
+        visit: &mut dyn FnMut(&TracedCell, Option<usize>),
     ) -> Option<Arrival> {
         if start == Start::Centroid {
             visit(c, None);
