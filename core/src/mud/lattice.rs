@@ -156,7 +156,11 @@ impl<'a> Lattice<'a> {
         if let Some(m) = &self.mesh {
             return m.position(node);
         }
-        let (i, j) = (node % self.columns as usize, node / self.columns as usize);
+        self.reference_at(node % self.columns as usize, node / self.columns as usize)
+    }
+
+    /// Reference position of the regular lattice's node in column `i`, row `j`.
+    fn reference_at(&self, i: usize, j: usize) -> [f32; 2] {
         let shift = if self.topology != Topology::Square && j % 2 == 1 { 0.5 } else { 0.0 };
         [i as f32 + shift, j as f32 * self.row_pitch()]
     }
@@ -310,6 +314,20 @@ impl<'a> Lattice<'a> {
         let (node, d) = self.spring_origin(spring);
         // On a periodic lattice every cell exists; at open edges a cell exists if its sides do.
         let periodic = self.boundary == Boundary::Periodic;
+        // Away from the edges of a periodic lattice the cells are fixed offsets from the
+        // spring's origin (what the general case below finds: the same cells). Not on 32-bit
+        // targets, for the Cortex-M3's flash.
+        let c = self.columns as usize;
+        let (i, j) = (node % c, node / c);
+        if cfg!(target_pointer_width = "64") && periodic && i >= 1 && i + 1 < c && j >= 1 && j < self.rows as usize {
+            return match (self.topology, d) {
+                (Topology::Square, 0) => [Some((node, 0)), Some((node - c, 2))],
+                (Topology::Square, _) => [Some((node - 1, 1)), Some((node, 3))],
+                (_, 0) => [Some((2 * node, 0)), Some((2 * (node - c + j % 2) + 1, 1))],
+                (_, 1) => [Some((2 * node + 1, 0)), Some((2 * node, 2))],
+                (_, _) => [Some((2 * (node - 1), 1)), Some((2 * node + 1, 2))],
+            };
+        }
         let exists =
             |cell: Option<usize>, side: usize| cell.filter(|&c| periodic || self.cell(c).is_some()).map(|c| (c, side));
         match (self.topology, d) {
@@ -338,7 +356,9 @@ impl<'a> Lattice<'a> {
         }
         let per = self.cells_per_node();
         let (base, k) = (cell / per, cell % per);
-        let at = self.reference(base);
+        let c = self.columns as usize;
+        let (i, j) = (base % c, base / c);
+        let at = self.reference_at(i, j);
         let offset = |d: usize| {
             let v = self.direction_vector(d);
             [at[0] + v[0], at[1] + v[1]]
@@ -346,8 +366,6 @@ impl<'a> Lattice<'a> {
         // Away from the edges the corners are fixed offsets from the base node (what the
         // general case below finds, without wrapping: the same cell). Not on 32-bit targets,
         // for the Cortex-M3's flash: the general case alone computes the same.
-        let c = self.columns as usize;
-        let (i, j) = (base % c, base / c);
         if cfg!(target_pointer_width = "64") && i >= 1 && i + 1 < c && j + 1 < self.rows as usize {
             let up_right = base + c + j % 2;
             let (nodes, corners, sides, reference) = match (self.topology, k) {

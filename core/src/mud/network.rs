@@ -915,6 +915,14 @@ impl<S: Scalar> Mud<'_, S> {
 
     /// Whether side `k` of a cell is on the open border (no cell on its other side).
     pub(super) fn is_border_side(&self, c: &TracedCell, k: usize) -> bool {
+        // A periodic regular lattice has no border (not looked at on 32-bit targets, for the
+        // Cortex-M3's flash: the cells across tell the same).
+        if cfg!(target_pointer_width = "64")
+            && self.params.boundary == super::Boundary::Periodic
+            && self.lattice.mesh().is_none()
+        {
+            return false;
+        }
         self.lattice.cells_of_spring(c.cell.sides[k] as usize).into_iter().flatten().count() < 2
     }
 
@@ -1372,7 +1380,12 @@ impl<S: Scalar> Mud<'_, S> {
     /// [`Mud::for_each_vertex`]'s vertices in the mesh cells `cells`, in its order.
     pub(super) fn vertices_of_cells(&self, cells: core::ops::Range<usize>, visit: &mut impl FnMut(NetworkVertex)) {
         for cell in cells {
-            let Some(c) = self.cut_cell(cell) else { continue };
+            // Positions only for the mesh cells that hold a vertex (few of those cut).
+            let Some(t) = self.cut_cell_as(cell, false) else { continue };
+            if !Self::centroid_is_vertex(&t) && !(0..t.sides()).any(|k| t.cut[k] && self.is_border_side(&t, k)) {
+                continue;
+            }
+            let c = self.traced(cell, t.cell, [0, 0]);
             if Self::centroid_is_vertex(&c) {
                 visit(NetworkVertex { at: c.centroid(), degree: c.cut_count() as u32, on_border: 0 });
             }
