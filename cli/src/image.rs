@@ -91,15 +91,9 @@ pub struct Buffers {
     preview: Vec<[u8; 4]>,
 }
 
-/// The first `n` elements of `rest` (none if it is empty: a layer not asked for), leaving the
-/// others in `rest`.
-fn take<'a, T>(rest: &mut &'a mut [T], n: usize) -> Option<&'a mut [T]> {
-    if rest.is_empty() {
-        return None;
-    }
-    let (head, tail) = std::mem::take(rest).split_at_mut(n);
-    *rest = tail;
-    Some(head)
+/// A layer's buffer if it was asked for (not empty).
+fn wanted<T>(buffer: &mut [T]) -> Option<&mut [T]> {
+    (!buffer.is_empty()).then_some(buffer)
 }
 
 impl Buffers {
@@ -127,22 +121,15 @@ impl Buffers {
         let (width, height) = (self.width, self.height);
         let rows = height.div_ceil(threads.clamp(1, height.max(1) as usize) as u32).max(1);
         let scratch = self.layer != Layer::Time;
-        let (mut mask, mut height16, mut normal) = (&mut self.mask[..], &mut self.height16[..], &mut self.normal[..]);
-        let (mut time, mut preview) = (&mut self.time[..], &mut self.preview[..]);
-        let mut bands = Vec::new();
-        for y in (0..height).step_by(rows as usize) {
-            let tile = Tile { x: 0, y, width, height: rows.min(height - y) };
-            let n = width as usize * tile.height as usize;
-            let layers = Layers {
-                mask: take(&mut mask, n),
-                height16: take(&mut height16, n),
-                normal_rgb8: take(&mut normal, n),
-                time: take(&mut time, n),
-                preview: take(&mut preview, n),
-                ..Layers::default()
-            };
-            bands.push((tile, layers));
-        }
+        let whole = Layers {
+            mask: wanted(&mut self.mask),
+            height16: wanted(&mut self.height16),
+            normal_rgb8: wanted(&mut self.normal),
+            time: wanted(&mut self.time),
+            preview: wanted(&mut self.preview),
+            ..Layers::default()
+        };
+        let bands: Vec<(Tile, Layers)> = whole.bands(&Tile::whole(width, height), rows).collect();
         let band = |(tile, layers): (Tile, Layers)| {
             let len = hibi_core::raster::scratch_len(tile.width, tile.height).expect("a picture that fits in memory");
             let mut own = vec![0u32; if scratch { len } else { 0 }];

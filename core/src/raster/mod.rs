@@ -4,12 +4,14 @@
 //! Rasters are computed in `f32` whatever backend the model ran on: the inputs are the
 //! models' `f32` outputs, and IEEE `f32` arithmetic gives the same pixels everywhere.
 
+mod bands;
 mod encode;
 mod layers;
 mod regions;
 mod stroke;
 mod tile;
 
+pub use bands::Bands;
 pub use encode::{Derived, HeightWindow, height16, normal_rgb8, srgb8, srgb8_opaque};
 pub use layers::{Layer, Layers, coverage_code, draw_mask, draw_time, scratch_len};
 pub use regions::label_regions;
