@@ -1,7 +1,7 @@
 //! Render layers as owned Rust buffers that become NumPy arrays without a copy, and the
 //! point arrays of networks, cells and fragments.
 
-use hibi_core::raster::{Layers, scratch_len};
+use hibi_core::raster::{Layers, Tile, scratch_len};
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array2, Array3};
 use pyo3::prelude::*;
@@ -11,6 +11,14 @@ use crate::{runtime_error, value_error};
 
 /// Every layer a render can draw, as Rust and C spell them.
 pub const LAYER_NAMES: [&str; 8] = ["mask", "height", "height16", "normal", "normal_rgb8", "time", "cell", "preview"];
+
+/// A render's `threads`, or a `ValueError` when it is 0.
+pub fn threads(threads: usize) -> PyResult<usize> {
+    if threads == 0 {
+        return Err(value_error("render: threads must be at least 1"));
+    }
+    Ok(threads)
+}
 
 /// Which layers to draw (in the order asked).
 #[derive(Clone, Debug, Default)]
@@ -99,6 +107,38 @@ impl Rendered {
             preview: self.preview.as_deref_mut().map(|v| v.as_chunks_mut::<4>().0),
             scratch: Some(&mut self.scratch),
         }
+    }
+
+    /// Draws every layer with `draw(tile, layers)`, one render of a tile: in one call on the
+    /// calling thread when `threads` is 1, else in full-width bands of rows, one band per
+    /// thread on up to `threads` threads (each band its own scratch). The core draws a tile's
+    /// pixels bit for bit as the whole raster has them, so the arrays are the same on any
+    /// number of threads. The first failure is returned.
+    pub fn draw<E: Send>(
+        &mut self,
+        threads: usize,
+        draw: impl Fn(&Tile, Layers) -> Result<(), E> + Sync,
+    ) -> Result<(), E> {
+        let whole = Tile::whole(self.columns, self.rows);
+        if threads <= 1 {
+            return draw(&whole, self.layers());
+        }
+        let rows = self.rows.div_ceil(threads.min(self.rows as usize) as u32).max(1);
+        let bands: Vec<(Tile, Layers)> = self.layers().bands(&whole, rows).collect();
+        let draw = &draw;
+        std::thread::scope(|scope| {
+            let running: Vec<_> = bands
+                .into_iter()
+                .map(|(tile, band)| {
+                    scope.spawn(move || {
+                        let mut scratch = vec![0u32; scratch_len(tile.width, tile.height).unwrap_or(0)];
+                        draw(&tile, Layers { scratch: Some(&mut scratch), ..band })
+                    })
+                })
+                .collect();
+            running.into_iter().map(|r| r.join().expect("a render band panicked")).collect::<Result<Vec<()>, E>>()
+        })
+        .map(|_| ())
     }
 
     /// The layers as a dict of arrays (height × width, × 3 or 4 channels), in the order asked;

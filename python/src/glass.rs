@@ -318,8 +318,8 @@ impl PyGlass {
 
     /// Draws `layers` (a name, or a sequence of: mask, height, height16, normal,
     /// normal_rgb8, time, preview) with the GIL released, by default one pixel per px of the
-    /// plate.
-    #[pyo3(signature = (layers=None, *, width=None, height=None, line_width=None, bump=None, until=None))]
+    /// plate; on `threads` threads, a band of rows each (the same arrays on any number).
+    #[pyo3(signature = (layers=None, *, width=None, height=None, line_width=None, bump=None, until=None, threads=1))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
@@ -330,7 +330,9 @@ impl PyGlass {
         line_width: Option<f32>,
         bump: Option<f32>,
         until: Option<f32>,
+        threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let threads = crate::arrays::threads(threads)?;
         let (wanted, single) = layer_request(layers, "mask")?;
         let p = *self.plate.borrow_glass().params();
         let plate = [p.width, p.height].map(|v| (v.round() as u32).clamp(1, 65_536));
@@ -344,7 +346,11 @@ impl PyGlass {
         };
         let mut out = wanted.buffers(r.width, r.height)?;
         let glass = &self.plate;
-        py.detach(|| glass.borrow_glass().render(&r, out.layers())).map_err(value_error)?;
+        py.detach(|| {
+            let g = glass.borrow_glass();
+            out.draw(threads, |tile, layers| g.render_tile(&r, tile, layers))
+        })
+        .map_err(value_error)?;
         rendered(py, out, single)
     }
 

@@ -307,8 +307,9 @@ impl PyMud {
 
     /// Draws `layers` (a name, or a sequence of names: mask, height, height16, normal,
     /// normal_rgb8, time, preview) with the GIL released. `width` defaults to 512 and
-    /// `height` to the domain's aspect; the strokes to `MudRender::fit`'s.
-    #[pyo3(signature = (layers=None, *, width=None, height=None, width_scale=None, min_width=None, groove_depth=None, offset=None, bump=None, until=None))]
+    /// `height` to the domain's aspect; the strokes to `MudRender::fit`'s. On `threads`
+    /// threads, a band of rows each (the same arrays on any number).
+    #[pyo3(signature = (layers=None, *, width=None, height=None, width_scale=None, min_width=None, groove_depth=None, offset=None, bump=None, until=None, threads=1))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
@@ -322,7 +323,9 @@ impl PyMud {
         offset: Option<(f32, f32)>,
         bump: Option<f32>,
         until: Option<f32>,
+        threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let threads = crate::arrays::threads(threads)?;
         let (wanted, single) = layer_request(layers, "mask")?;
         let extent = self.run.with_mud(|m| m.extent());
         let fit = MudRender::fit(extent, width.unwrap_or(512).max(1));
@@ -338,7 +341,8 @@ impl PyMud {
         };
         let mut out = wanted.buffers(r.width, r.height)?;
         let run = &self.run;
-        py.detach(|| run.with_mud(|m| m.render(&r, out.layers()))).map_err(value_error)?;
+        py.detach(|| run.with_mud(|m| out.draw(threads, |tile, layers| m.render_tile(&r, tile, layers))))
+            .map_err(value_error)?;
         rendered(py, out, single)
     }
 

@@ -282,8 +282,9 @@ impl PySkin {
 
     /// Draws `layers` (a name, or a sequence of: mask, height, height16, normal,
     /// normal_rgb8, cell, preview) over the surface's width × height pixels, GIL released.
-    /// `cell_level` picks the level of the cell map; the rest light the preview.
-    #[pyo3(signature = (layers=None, *, cell_level=0, light=None, ridge=None, furrow=None, ambient=None, specular=None))]
+    /// `cell_level` picks the level of the cell map; the rest light the preview. On `threads`
+    /// threads, a band of rows each (the same arrays on any number).
+    #[pyo3(signature = (layers=None, *, cell_level=0, light=None, ridge=None, furrow=None, ambient=None, specular=None, threads=1))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
@@ -295,7 +296,9 @@ impl PySkin {
         furrow: Option<[f32; 3]>,
         ambient: Option<f32>,
         specular: Option<f32>,
+        threads: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let threads = crate::arrays::threads(threads)?;
         let (wanted, single) = layer_request(layers, "height")?;
         let d = ShadeParams::default();
         let shade = ShadeParams {
@@ -309,7 +312,8 @@ impl PySkin {
         let (w, h) = self.surface.with_skin(|k| (k.params().width, k.params().height));
         let mut out = wanted.buffers(w, h)?;
         let s = &self.surface;
-        py.detach(|| s.with_skin(|k| k.render(&r, out.layers()))).map_err(error)?;
+        py.detach(|| s.with_skin(|k| out.draw(threads, |tile, layers| k.render_tile(&r, tile, layers))))
+            .map_err(error)?;
         rendered(py, out, single)
     }
 

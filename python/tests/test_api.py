@@ -178,6 +178,30 @@ def test_threads_give_the_same_arrays_as_one_thread():
     assert not np.array_equal(alone[0], alone[1])
 
 
+def test_a_render_on_several_threads_gives_the_same_arrays():
+    # Each band of rows is drawn by its own thread; the core draws every pixel of a band as
+    # the whole raster has it.
+    mud = hibi.Mud(columns=24, rows=24)
+    mud.run()
+    glass = hibi.Glass(width=120, height=90, impact=(60, 45))
+    glass.run()
+    skin = hibi.Skin(width=64, height=48)
+    skin.run()
+    cases = [
+        (mud, ["mask", "height", "normal", "time", "preview"], {"width": 61, "height": 37}),
+        (glass, ["mask", "height16", "normal_rgb8", "time", "preview"], {}),
+        (skin, ["mask", "height", "normal", "cell", "preview"], {}),
+    ]
+    for model, layers, view in cases:
+        one = model.render(layers, **view)
+        for threads in (2, 3, 7):
+            many = model.render(layers, threads=threads, **view)
+            for name in layers:
+                assert np.array_equal(one[name], many[name], equal_nan=True), (type(model).__name__, name, threads)
+    with pytest.raises(ValueError, match="threads"):
+        glass.render("mask", threads=0)
+
+
 def test_the_gil_is_released_while_a_model_runs():
     # While another thread is inside run(), this thread keeps running Python: if run() held
     # the GIL, this loop would be stopped for the whole run.

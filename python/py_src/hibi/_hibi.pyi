@@ -113,6 +113,7 @@ class Mud:
         offset: Optional[Tuple[float, float]] = None,
         bump: Optional[float] = None,
         until: Optional[float] = None,
+        threads: int = 1,
     ) -> npt.NDArray[Any]: ...
     @overload
     def render(
@@ -127,6 +128,7 @@ class Mud:
         offset: Optional[Tuple[float, float]] = None,
         bump: Optional[float] = None,
         until: Optional[float] = None,
+        threads: int = 1,
     ) -> Dict[str, npt.NDArray[Any]]: ...
     @staticmethod
     def presets() -> Tuple[str, ...]: ...
@@ -198,6 +200,7 @@ class Glass:
         line_width: Optional[float] = None,
         bump: Optional[float] = None,
         until: Optional[float] = None,
+        threads: int = 1,
     ) -> npt.NDArray[Any]: ...
     @overload
     def render(
@@ -209,6 +212,7 @@ class Glass:
         line_width: Optional[float] = None,
         bump: Optional[float] = None,
         until: Optional[float] = None,
+        threads: int = 1,
     ) -> Dict[str, npt.NDArray[Any]]: ...
     @staticmethod
     def presets() -> Tuple[str, ...]: ...
@@ -256,6 +260,7 @@ class Skin:
         furrow: Optional[Sequence[float]] = None,
         ambient: Optional[float] = None,
         specular: Optional[float] = None,
+        threads: int = 1,
     ) -> npt.NDArray[Any]: ...
     @overload
     def render(
@@ -268,6 +273,7 @@ class Skin:
         furrow: Optional[Sequence[float]] = None,
         ambient: Optional[float] = None,
         specular: Optional[float] = None,
+        threads: int = 1,
     ) -> Dict[str, npt.NDArray[Any]]: ...
     @staticmethod
     def presets() -> Tuple[str, ...]: ...
