@@ -252,7 +252,8 @@ fn pieces_add_up(rings: &[Ring], points: &[hibi_vec2], plate: f64, may_cross: bo
         let s = scratch.as_mut_ptr();
         let status = hibi_pieces_counts(rp, rings.len(), pp, points.len(), s, words, &mut triangles, &mut pieces);
         // A polygon whose rings cross (`may_cross`: mud's cells can where a strongly deformed
-        // lattice folds over, a mesh cell turned inside out, a known defect of the cells) has no
+        // lattice folds over, a mesh cell turned inside out, a known defect of the cells) or
+        // pass the same point twice (a ring run out and back along a crack) has no proper
         // interior for pieces to cover: it may be refused, and only then; every simple
         // polygon's pieces must add up.
         let at = |i: u32| [f64::from(points[i as usize].x), f64::from(points[i as usize].y)];
@@ -266,9 +267,11 @@ fn pieces_add_up(rings: &[Ring], points: &[hibi_vec2], plate: f64, may_cross: bo
                 let (d3, d4) = (twice(c, d, a), twice(c, d, b));
                 d1 * d2 < 0.0 && d3 * d4 < 0.0
             };
-            (0..n).all(|i| {
-                (i + 2..n).all(|j| (i == 0 && j == n - 1) || !crosses(q[i], q[(i + 1) % n], q[j], q[(j + 1) % n]))
-            })
+            let twice_through = (0..n).any(|i| (i + 1..n).any(|j| q[i] == q[j]));
+            !twice_through
+                && (0..n).all(|i| {
+                    (i + 2..n).all(|j| (i == 0 && j == n - 1) || !crosses(q[i], q[(i + 1) % n], q[j], q[(j + 1) % n]))
+                })
         };
         if status == HIBI_ERROR_RING_CROSSES && may_cross {
             assert!(!rings.iter().all(simple), "pieces refused rings none of which crosses itself");
@@ -422,6 +425,35 @@ proptest! {
         prop_assert_eq!((other.work, other.broken_springs), (end.work, end.broken_springs), "the budget changed the run");
         mud_outputs_in_range(&mud, &other, &render);
     }
+}
+
+/// A run the property test found: on an irregular lattice with the explicit solver and growth,
+/// a cell's hole runs out and back along a crack, passing the same points twice. Its pieces
+/// are refused by name (`HIBI_ERROR_RING_CROSSES`); every other output keeps its bounds.
+#[test]
+fn a_hole_that_passes_a_point_twice_is_refused_by_the_pieces_by_name() {
+    let mut p = hibi_mud_params_default();
+    (p.topology, p.boundary, p.solver, p.drive, p.columns, p.rows) = (2, 0, 1, 1, 13, 18);
+    p.seed = 11846520712649192639;
+    (p.layer_thickness, p.element_size, p.long_step, p.short_step) = (1.472012, 1.2452421, 0.5, 0.001067449);
+    (p.shrink_ratio, p.displacement_tolerance, p.damping_factor) = (0.99, 0.00018576381, 12.691394);
+    (p.density, p.young_modulus, p.shear_modulus) = (1.6275991, 1153002.9, 361531.47);
+    (p.break_stretch_mean, p.break_stretch_spread, p.break_stretch_size_exponent) = (1.2158769, 0.04924649, 0.9566485);
+    (p.anisotropy_direction, p.anisotropy_ratio, p.stiffness_anisotropy_ratio) = (-0.42801565, 1.8092309, 1.0918131);
+    (p.target_shrink, p.target_crack_density) = (0.100105345, 0.0);
+    let render = hibi_mud_render_params {
+        width: 47,
+        height: 29,
+        width_scale: 0.10144923,
+        min_width: 1.9324046,
+        groove_depth: 0.70342004,
+        offset: [19.105711, 19.305775],
+        bump: 2.0,
+        until: f32::INFINITY,
+    };
+    let mud = Mud::new(&p);
+    let end = mud.run(1044, &p);
+    mud_outputs_in_range(&mud, &end, &render);
 }
 
 // ---------------------------------------------------------------------------------------
