@@ -152,6 +152,12 @@ export interface SkinView {
 
 export type LayerName = 'mask' | 'height' | 'normal' | 'time' | 'cell' | 'preview' | 'height16' | 'normal_rgb8';
 
+/** Options of `renderAsync`. */
+export interface RenderOptions {
+  /** How many workers draw bands of rows at once: an integer in 1..=64 (1 by default). */
+  threads?: number;
+}
+
 /** What `render` returns: the raster size and the layers asked for. */
 export interface Render {
   width: number;
@@ -247,7 +253,14 @@ declare abstract class Model<Params, View, Progress> {
   view(): View;
   /** Draws the layers; a view given is laid over the render defaults. */
   render(layers?: LayerName[], view?: Partial2<View>): Render;
-  /** Frees the model's WebAssembly memory; the model cannot be used after. */
+  /**
+   * What render() draws, the same bytes, in bands of rows on `options.threads` workers at once
+   * (module Web Workers; in Node, worker_threads). Each worker holds a copy of the module's
+   * memory, sent when the model has stepped since; the workers stay for the next call and end
+   * with free(). Rejects with a HibiError naming what is wrong.
+   */
+  renderAsync(layers?: LayerName[], view?: Partial2<View>, options?: RenderOptions): Promise<Render>;
+  /** Frees the model's WebAssembly memory and ends its render workers; the model cannot be used after. */
   free(): void;
   [Symbol.dispose](): void;
 }

@@ -8,10 +8,14 @@
 //   const { layers } = mud.render(['preview']);
 //
 // The models keep their memory inside the WebAssembly instance: call free() (or declare them
-// with `using`) when done. Parameters are the Rust and C structs' fields, by the same names.
+// with `using`) when done. `await model.renderAsync(layers, view, { threads })` draws the same
+// bytes as render() in bands of rows on Web Workers (worker_threads in Node), hibi-worker.js.
+// Parameters are the Rust and C structs' fields, by the same names.
 // Errors are HibiError exceptions whose message names the field, as the C API's do.
 
 let wasm = null; // the instance's exports
+let wasmModule = null; // the compiled module (each render worker instantiates it)
+let NodeWorker = null; // node:worker_threads' Worker, where there is no global Worker
 let slotsPtr = 0; // SLOTS f64 values of scratch for parameter records
 const SLOTS = 1024;
 const records = new Map(); // kind -> { fields: [{ path, kind, names }], count }
@@ -35,6 +39,7 @@ export async function init(source) {
   if (wasm) return;
   if (source === undefined) source = new URL('./hibi.wasm', import.meta.url);
   let instance;
+  let module = source;
   if (source instanceof WebAssembly.Module) {
     instance = await WebAssembly.instantiate(source, {});
   } else {
@@ -52,8 +57,13 @@ export async function init(source) {
       if (!bytes.ok) throw new HibiError(`hibi: could not load ${bytes.url} (HTTP ${bytes.status})`);
       bytes = await bytes.arrayBuffer();
     }
-    ({ instance } = await WebAssembly.instantiate(bytes, {}));
+    ({ instance, module } = await WebAssembly.instantiate(bytes, {}));
   }
+  if (typeof Worker === 'undefined' && typeof process !== 'undefined' && process.versions?.node) {
+    ({ Worker: NodeWorker } = await import('node:worker_threads'));
+  }
+  if (wasm) return; // (another init() finished first)
+  wasmModule = module;
   wasm = instance.exports;
   slotsPtr = wasm.hibi_web_alloc(SLOTS * 8);
 }
@@ -247,13 +257,102 @@ const LAYERS = [
 
 const registry = typeof FinalizationRegistry === 'undefined'
   ? null
-  : new FinalizationRegistry(({ model, handle }) => wasm[`hibi_web_${model}_free`](handle));
+  : new FinalizationRegistry(({ model, handle, workers }) => {
+    for (const w of workers) w.terminate(`${model}: collected while rendering`);
+    wasm[`hibi_web_${model}_free`](handle);
+  });
+
+/** The bits of the layers named. */
+function layerBits(layers) {
+  let bits = 0;
+  for (const name of layers) {
+    const layer = LAYERS.find((l) => l[0] === name);
+    if (!layer) throw new HibiError(`render: no layer is named ${name} (${LAYERS.map((l) => l[0]).join(', ')})`);
+    bits |= layer[1];
+  }
+  return bits;
+}
+
+/** The most workers renderAsync draws on. */
+const MAX_THREADS = 64;
+/** One copy of memory can go to every worker where memory can be shared (Node, and pages
+ * that are cross-origin isolated); elsewhere each worker is sent its own. */
+const SHARED = typeof SharedArrayBuffer === 'function' && globalThis.crossOriginIsolated !== false;
+
+/** A render worker (hibi-worker.js): a module Web Worker, or a worker_threads Worker in Node.
+ * It answers its requests in order. */
+class RenderWorker {
+  #worker;
+  #pending = new Map(); // id -> { resolve, reject }
+  #next = 0;
+  #failure = null;
+  /** The model version its copy of memory holds (-1: none). */
+  version = -1;
+
+  constructor() {
+    if (NodeWorker) {
+      this.#worker = new NodeWorker(new URL('./hibi-worker.js', import.meta.url));
+      this.#worker.on('message', (m) => this.#receive(m));
+      this.#worker.on('error', (e) => this.#fail(`render: a worker failed: ${e.message}`));
+      this.#worker.on('exit', () => this.#fail('render: a worker ended'));
+      this.#worker.unref(); // an idle worker keeps no Node process alive
+    } else {
+      // (Written so that bundlers see the worker: new Worker(new URL(..., import.meta.url)).)
+      this.#worker = new Worker(new URL('./hibi-worker.js', import.meta.url), { type: 'module' });
+      this.#worker.onmessage = (e) => this.#receive(e.data);
+      this.#worker.onerror = (e) => {
+        e.preventDefault();
+        this.#fail(`render: a worker failed: ${e.message || 'hibi-worker.js did not start'}`);
+      };
+    }
+    this.#worker.postMessage({ module: wasmModule });
+  }
+
+  /** Whether the worker failed or ended (it takes no more requests). */
+  get failed() {
+    return this.#failure !== null;
+  }
+
+  /** Posts `message` (with `transfer`); resolves to the band's layers as ArrayBuffers. */
+  request(message, transfer) {
+    if (this.#failure) return Promise.reject(new HibiError(this.#failure));
+    const id = this.#next++;
+    const answer = new Promise((resolve, reject) => this.#pending.set(id, { resolve, reject }));
+    if (this.#pending.size === 1) this.#worker.ref?.();
+    this.#worker.postMessage({ ...message, id }, transfer);
+    return answer;
+  }
+
+  #receive(m) {
+    const p = this.#pending.get(m.id);
+    if (!p) return;
+    this.#pending.delete(m.id);
+    if (this.#pending.size === 0) this.#worker.unref?.();
+    if (m.lost) this.version = -1; // the instance trapped: the next request sends memory again
+    if (m.error === undefined) p.resolve(m.layers);
+    else p.reject(new HibiError(m.error));
+  }
+
+  #fail(text) {
+    this.#failure ??= text;
+    for (const p of this.#pending.values()) p.reject(new HibiError(text));
+    this.#pending.clear();
+  }
+
+  /** Ends the worker; requests pending reject with `text`. */
+  terminate(text) {
+    this.#fail(text);
+    this.#worker.terminate();
+  }
+}
 
 /** What the three models share: the handle, step, progress, render, free. */
 class Model {
   #handle = 0;
   #model;
   #kinds;
+  #version = 0; // of the model's state, for the render workers' copies
+  #workers = []; // RenderWorker, made by renderAsync
 
   constructor(model, kinds, params) {
     const w = exports();
@@ -266,7 +365,7 @@ class Model {
     this.#handle = handle;
     /** The parameters the model was made with (complete). */
     this.params = full;
-    registry?.register(this, { model, handle }, this);
+    registry?.register(this, { model, handle, workers: this.#workers }, this);
   }
 
   /** The handle, or an error if the model was freed. */
@@ -280,7 +379,9 @@ class Model {
     if (!(typeof budget === 'number' && budget >= 0 && Number.isFinite(budget))) {
       throw new HibiError(`${this.#model}: step's budget must be a finite number >= 0`);
     }
-    const status = wasm[`hibi_web_${this.#model}_step`](this._handle, Math.floor(budget), slotsPtr);
+    const handle = this._handle;
+    this.#version++;
+    const status = wasm[`hibi_web_${this.#model}_step`](handle, Math.floor(budget), slotsPtr);
     if (status) throw failure();
     return read(this.#kinds.progress);
   }
@@ -306,12 +407,7 @@ class Model {
     const w = exports();
     const full = view === undefined ? this.view() : merge(defaults(this.#kinds.view), view);
     write(this.#kinds.view, full, 'render');
-    let bits = 0;
-    for (const name of layers) {
-      const layer = LAYERS.find((l) => l[0] === name);
-      if (!layer) throw new HibiError(`render: no layer is named ${name} (${LAYERS.map((l) => l[0]).join(', ')})`);
-      bits |= layer[1];
-    }
+    const bits = layerBits(layers);
     if (w[`hibi_web_${this.#model}_render`](this._handle, slotsPtr, bits)) throw failure();
     const buffers = outputs();
     const [width, height] = this._size(full);
@@ -322,9 +418,80 @@ class Model {
     return result;
   }
 
-  /** Frees the model's WebAssembly memory; the model cannot be used after. */
+  /**
+   * render() in bands of rows drawn at once on `options.threads` workers (Web Workers; in
+   * Node, worker_threads): the same bytes as render(). Each worker instantiates the module with
+   * a copy of its memory, which it keeps until the model steps again; the workers stay for the
+   * next call and end with free(). Resolves to what render() returns.
+   */
+  async renderAsync(layers = ['preview'], view, options = {}) {
+    if (options === null || typeof options !== 'object') throw new HibiError(`${this.#model}: renderAsync's options must be an object`);
+    const threads = options.threads ?? 1;
+    if (!Number.isInteger(threads) || threads < 1 || threads > MAX_THREADS) {
+      throw new HibiError(`${this.#model}: threads must be an integer in 1..=${MAX_THREADS}`);
+    }
+    const handle = this._handle;
+    const full = view === undefined ? this.view() : merge(defaults(this.#kinds.view), view);
+    write(this.#kinds.view, full, 'render');
+    const slots = f64s(slotsPtr, record(this.#kinds.view).count).slice();
+    const bits = layerBits(layers);
+    const [width, height] = this._size(full);
+    // Bands as the CLI and Python cut them: at most `threads`, of equal rows but the last.
+    const rows = Math.max(1, Math.ceil(height / Math.max(1, Math.min(threads, height))));
+    const bands = Math.max(1, Math.ceil(height / rows));
+    const workers = this.#workers;
+    for (let k = 0; k < bands; k++) {
+      if (workers[k]?.failed === false) continue;
+      workers[k]?.terminate('render: a worker failed');
+      workers[k] = new RenderWorker();
+    }
+    // Workers whose memory is older than the model's last step get a copy of it, taken now.
+    const stale = workers.slice(0, bands).filter((w) => w.version !== this.#version);
+    const copies = new Map();
+    if (stale.length > 0) {
+      const memory = new Uint8Array(wasm.memory.buffer);
+      const shared = SHARED ? new SharedArrayBuffer(memory.length) : null;
+      if (shared) new Uint8Array(shared).set(memory);
+      for (const w of stale) {
+        copies.set(w, shared ?? memory.slice().buffer);
+        w.version = this.#version;
+      }
+    }
+    const answers = [];
+    for (let k = 0; k < bands; k++) {
+      const memory = copies.get(workers[k]);
+      const y = k * rows;
+      const tile = [0, y, width, Math.min(rows, height - y)];
+      const message = { model: this.#model, handle, slots: slotsPtr, view: slots, bits, tile, memory };
+      answers.push(workers[k].request(message, memory instanceof ArrayBuffer ? [memory] : []));
+    }
+    const parts = await Promise.all(answers);
+    const result = { width, height, layers: {} };
+    let j = 0;
+    for (const [name, bit, Type, channels] of LAYERS) {
+      if (!(bits & bit)) continue;
+      if (bands === 1) {
+        result.layers[name] = new Type(parts[0][j]);
+      } else {
+        const all = new Type(width * height * channels);
+        parts.forEach((part, k) => all.set(new Type(part[j]), k * rows * width * channels));
+        result.layers[name] = all;
+      }
+      j++;
+    }
+    return result;
+  }
+
+  /** The version of the model's state: step() and impact() change it. */
+  _changed() {
+    this.#version++;
+  }
+
+  /** Frees the model's WebAssembly memory and ends its render workers. */
   free() {
     if (this.#handle === 0) return;
+    for (const w of this.#workers) w.terminate(`${this.#model}: freed while rendering`);
+    this.#workers.length = 0;
     registry?.unregister(this);
     wasm[`hibi_web_${this.#model}_free`](this.#handle);
     this.#handle = 0;
@@ -435,7 +602,9 @@ export class Glass extends Model {
   /** Another impact at (x, y) on the plate; returns its crack counts. */
   impact(x, y) {
     if (typeof x !== 'number' || typeof y !== 'number') throw new HibiError('glass: impact x and y must be numbers');
-    if (wasm.hibi_web_glass_impact(this._handle, x, y, slotsPtr)) throw failure();
+    const handle = this._handle;
+    this._changed();
+    if (wasm.hibi_web_glass_impact(handle, x, y, slotsPtr)) throw failure();
     return read(KIND.impactCounts);
   }
 

@@ -1,7 +1,9 @@
 // Serves web/ over HTTP for the playground, the bench page and the browser tests:
 //   node web/serve.mjs [PORT]     (default 8080; then open http://localhost:8080/playground/;
 //                                 web/serve builds hibi.wasm first when it is missing)
-// Static files under web/ only (not node_modules).
+// Static files under web/ only (not node_modules). Under /isolated/ the same files come with
+// the headers that make a page cross-origin isolated (COOP and COEP), where SharedArrayBuffer
+// exists: /isolated/tests/bands.html runs renderAsync's shared-memory path in a browser.
 import { createServer } from 'node:http';
 import { readFile } from 'node:fs/promises';
 import { extname, join, normalize, sep } from 'node:path';
@@ -23,7 +25,11 @@ const types = {
 /** Starts the server on `port` (0: any free port); resolves to its base URL. */
 export function serve(port = 8080, host = '127.0.0.1') {
   const server = createServer(async (req, res) => {
-    const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    let path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    const isolation = path.startsWith('/isolated/')
+      ? { 'cross-origin-opener-policy': 'same-origin', 'cross-origin-embedder-policy': 'require-corp' }
+      : {};
+    if (path.startsWith('/isolated/')) path = path.slice('/isolated'.length);
     let file = normalize(join(root, path));
     if (!file.startsWith(root) || file.split(sep).includes('node_modules')) {
       res.writeHead(403).end();
@@ -32,7 +38,7 @@ export function serve(port = 8080, host = '127.0.0.1') {
     if (path.endsWith('/')) file = join(file, 'index.html');
     try {
       const body = await readFile(file);
-      res.writeHead(200, { 'content-type': types[extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-cache' });
+      res.writeHead(200, { 'content-type': types[extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-cache', ...isolation });
       res.end(body);
     } catch {
       res.writeHead(404, { 'content-type': 'text/plain' }).end(`not found: ${path}\n`);

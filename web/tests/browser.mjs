@@ -9,8 +9,9 @@ export function chromiumPath() {
   return path;
 }
 
-export function launch() {
+export function launch(options = {}) {
   return puppeteer.launch({
+    ...options,
     executablePath: chromiumPath(),
     headless: true,
     args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage', '--use-gl=swiftshader', '--enable-unsafe-swiftshader'],

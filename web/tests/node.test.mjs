@@ -1,9 +1,10 @@
 // The JavaScript package under Node: the golden scenes hash as on every native target, bad
-// input throws HibiError with the core's message naming the field, and free() gives memory
-// back. Run by `npm test` (web/test runs it with the browser tests).
+// input throws HibiError with the core's message naming the field, free() gives memory back,
+// and renderAsync on worker threads draws render()'s bytes. Run by `npm test` (web/test runs
+// it with the browser tests).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -11,6 +12,7 @@ import * as hibi from '../hibi.js';
 import { Mud, Glass, Skin, HibiError } from '../hibi.js';
 import { runScenes } from './scenes.mjs';
 import { goldens } from './goldens.mjs';
+import { compareBands, cycles } from './bands.mjs';
 
 await hibi.init();
 
@@ -202,4 +204,135 @@ test('every layer: height16 and normal_rgb8 encode height and normal as the core
       model.free();
     }
   }
+});
+
+test('renderAsync on 1, 2 and 3 worker threads draws the bytes of render(), every model and layer', async () => {
+  const { mismatches, compared } = await compareBands(hibi);
+  assert.deepEqual(mismatches, []);
+  assert.equal(compared, 2 * 3 * 7 * 3, 'every model, round, worker count and layer');
+});
+
+test('renderAsync: bad options and a bad view reject with a HibiError naming them', async () => {
+  const mud = new Mud({ columns: 8, rows: 8 });
+  try {
+    mud.step(1_000_000);
+    for (const threads of [0, 1.5, '2', -1, NaN, 65, Infinity]) {
+      await assert.rejects(mud.renderAsync(['mask'], undefined, { threads }), (e) => {
+        assert.ok(e instanceof HibiError, `threads ${threads}: a HibiError`);
+        assert.equal(e.message, 'mud: threads must be an integer in 1..=64');
+        return true;
+      });
+    }
+    await assert.rejects(mud.renderAsync(['mask'], undefined, 2), /^HibiError: mud: renderAsync's options must be an object$/);
+    await assert.rejects(mud.renderAsync(['colour'], undefined, { threads: 2 }), /^HibiError: render: no layer is named colour/);
+    await assert.rejects(mud.renderAsync(['mask'], { bump: 'x' }, { threads: 2 }), /^HibiError: render: bump must be a number$/);
+    // The core's own refusals come back from the workers, by the same message as render()'s.
+    for (const [layers, view] of [[['mask'], { width_scale: -1 }], [['cell'], undefined], [['mask'], { width: 0 }]]) {
+      let want;
+      try {
+        mud.render(layers, view);
+      } catch (e) {
+        want = e.message;
+      }
+      assert.ok(want, 'render() refuses it');
+      await assert.rejects(mud.renderAsync(layers, view, { threads: 2 }), (e) => e instanceof HibiError && e.message === want);
+    }
+    // The workers still draw after the refusals.
+    assert.deepEqual((await mud.renderAsync(['mask'], undefined, { threads: 2 })).layers.mask, mud.render(['mask']).layers.mask);
+  } finally {
+    mud.free();
+  }
+});
+
+/** This process's threads (Linux): each worker_threads Worker is one. */
+const threadCount = () => Number(readFileSync('/proc/self/status', 'utf8').match(/^Threads:\s+(\d+)/m)[1]);
+
+const pause = (ms) => new Promise((r) => setTimeout(r, ms));
+
+/** The thread count once no thread is ending (two readings 100 ms apart agree). */
+async function steady() {
+  let n = threadCount();
+  for (let i = 0; i < 50; i++) {
+    await pause(100);
+    if (threadCount() === n) break;
+    n = threadCount();
+  }
+  return n;
+}
+
+/** The thread count once it is at most `want` (or 5 s have passed). */
+async function settle(want) {
+  for (let i = 0; i < 200 && threadCount() > want; i++) await pause(25);
+  return threadCount();
+}
+
+test('free() ends the render workers: 100 create/renderAsync/free cycles leave no thread behind', { skip: !existsSync('/proc/self/status') }, async () => {
+  await cycles(hibi, 3);
+  const threads = await steady();
+  const memory = hibi.memoryBytes();
+  await cycles(hibi, 100);
+  assert.ok((await settle(threads)) <= threads, 'the workers ended');
+  assert.equal(hibi.memoryBytes(), memory, 'the main memory is flat');
+  // free() while the workers draw: the render rejects, the workers end.
+  const skin = new Skin({ width: 200, height: 200 });
+  skin.step(1_000_000);
+  const pending = skin.renderAsync(['preview', 'normal'], undefined, { threads: 3 });
+  skin.free();
+  await assert.rejects(pending, /^HibiError: skin: freed while rendering$/);
+  await assert.rejects(skin.renderAsync(['mask']), /^HibiError: skin: used after free\(\)$/);
+  assert.ok((await settle(threads)) <= threads, 'the workers ended');
+  // `using` (Symbol.dispose) ends them too.
+  {
+    const glass = new Glass({ width: 64, height: 64, impact: [32, 32] });
+    glass.step(1_000_000);
+    await glass.renderAsync(['mask'], undefined, { threads: 2 });
+    assert.ok(threadCount() >= threads + 2, 'two workers run');
+    glass[Symbol.dispose ?? Symbol.for('Symbol.dispose')]();
+  }
+  assert.ok((await settle(threads)) <= threads, 'the workers ended');
+});
+
+/** The globals hibi.wasm defines: [{ type, mutable }] (its global section). */
+function wasmGlobals(bytes) {
+  let at = 8; // magic and version
+  const leb = () => {
+    let value = 0, shift = 0, byte;
+    do {
+      byte = bytes[at++];
+      value += (byte & 0x7f) * 2 ** shift;
+      shift += 7;
+    } while (byte & 0x80);
+    return value;
+  };
+  while (at < bytes.length) {
+    const id = bytes[at++];
+    const size = leb();
+    const end = at + size;
+    if (id === 6) {
+      const globals = [];
+      for (let n = leb(); n > 0; n--) {
+        const type = bytes[at++];
+        const mutable = bytes[at++] === 1;
+        // The initial value: a constant expression up to `end` (0x0b).
+        for (let op = bytes[at++]; op !== 0x0b; op = bytes[at++]) {
+          if (op === 0x41 || op === 0x42 || op === 0x23 || op === 0xd2) leb();
+          else if (op === 0x43) at += 4;
+          else if (op === 0x44) at += 8;
+          else if (op === 0xd0) at++;
+        }
+        globals.push({ type, mutable });
+      }
+      return globals;
+    }
+    at = end;
+  }
+  return [];
+}
+
+test('between calls the module state is its memory: the one mutable global is the stack pointer', () => {
+  // renderAsync's workers hold copies of the memory in fresh instances of the module: that is
+  // the same state only if no other mutable global (thread-local storage, a second stack)
+  // holds any of it. The stack pointer is back at its start between calls.
+  const globals = wasmGlobals(readFileSync(new URL('../hibi.wasm', import.meta.url)));
+  assert.deepEqual(globals.filter((g) => g.mutable), [{ type: 0x7f, mutable: true }]);
 });

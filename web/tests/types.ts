@@ -1,7 +1,7 @@
 // Type-checked by web/tests/node.test.mjs (tsc --noEmit --strict): the calls a TypeScript
 // user writes, against hibi.d.ts. Compiling is the test; it is not run.
 import { init, Mud, Glass, Skin, HibiError, toImageData, memoryBytes } from '../hibi.js';
-import type { MudParams, Render, Rings, GlassProgress } from '../hibi.js';
+import type { MudParams, Render, Rings, GlassProgress, RenderOptions } from '../hibi.js';
 
 await init();
 const params: MudParams = Mud.preset('fig7a', { columns: 48, rows: 48, topology: 'square' });
@@ -15,6 +15,11 @@ const network = mud.network();
 const firstEdge: number = network.edges.from[0];
 const cells: Rings & { wrapping: number } = mud.cells();
 const [w, h]: [number, number] = mud.extent;
+const options: RenderOptions = { threads: 2 };
+const banded: Render = await mud.renderAsync(['height16'], { width: 512, height: 512 }, options);
+const height16: Uint16Array | undefined = banded.layers.height16;
+// @ts-expect-error: threads is a number
+void mud.renderAsync(['mask'], undefined, { threads: '2' });
 mud.free();
 
 const glass = new Glass({ impact: [100, 120], seed: 2n ** 60n, spread: 'uniform' });
@@ -44,4 +49,4 @@ new Mud({ topology: 'round' });
 // @ts-expect-error: no such layer
 mud.render(['colour']);
 
-export { finished, shrink, mask, firstEdge, cells, w, h, gp, radial, points, fragments, picture, outline, bytes, presets };
+export { finished, shrink, mask, height16, firstEdge, cells, w, h, gp, radial, points, fragments, picture, outline, bytes, presets };

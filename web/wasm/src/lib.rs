@@ -4,6 +4,12 @@
 //! a boxed model and its owned buffers (hibi-core's `alloc` feature), and outputs are boxed
 //! slices the glue copies out ([`out`]). Every fallible export returns 0 on success and 1 on
 //! failure, the failure's message (the core's own text, naming the field) in the text buffer.
+//!
+//! Between calls the module's whole state lies in its linear memory (the statics, the
+//! allocator's free lists and every model), and its one mutable global, the stack pointer, is
+//! back at its start. So an instance of the same module whose memory is a copy of this one's
+//! holds the same models at the same handles: hibi.js's `renderAsync` gives each worker such a
+//! copy and has it draw one band of rows with the `*_render_tile` exports.
 #![no_std]
 
 extern crate alloc;
@@ -23,7 +29,7 @@ use hibi_core::glass::{GlassProgress, ImpactCounts};
 use hibi_core::mud::CrackStatistics;
 use hibi_core::mud::{Mud, MudParams, MudProgress, MudRender, MudStore};
 use hibi_core::polygon::Ring;
-use hibi_core::raster::scratch_len;
+use hibi_core::raster::{Tile, scratch_len};
 use hibi_core::skin::{SkinParams, SkinProgress, SkinRender, SkinStore};
 
 use slots::{Slots, description};
@@ -511,6 +517,41 @@ pub unsafe extern "C" fn hibi_web_mud_render(h: usize, view: *const f64, bits: u
     0
 }
 
+/// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the view at `view` into
+/// outputs (in bit order), each pixel as the whole render has it.
+///
+/// # Safety
+/// `h` is a live mud handle; `view` holds the view's slots.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_web_mud_render_tile(
+    h: usize,
+    view: *const f64,
+    bits: u32,
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+) -> u32 {
+    hibi_web_out_clear();
+    // SAFETY: the caller's contract.
+    let m = unsafe { borrow::<MudHandle>(h) };
+    // SAFETY: the caller's contract.
+    let view = match unsafe { take(MudRender::default(), view) } {
+        Ok(v) => v,
+        Err(s) => return s,
+    };
+    let mut buffers = match layer_buffers(width, height, bits) {
+        Ok(b) => b,
+        Err(s) => return s,
+    };
+    let layers = buffers.layers();
+    if let Err(e) = m.mud.render_tile(&view, &Tile { x, y, width, height }, layers) {
+        return fail(e);
+    }
+    buffers.publish();
+    0
+}
+
 /// The traced segments as outputs: one `f32` array of 8 per segment (start x, y, end x, y,
 /// width at each end, time at each end).
 ///
@@ -697,6 +738,41 @@ pub unsafe extern "C" fn hibi_web_glass_render(h: usize, view: *const f64, bits:
     0
 }
 
+/// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the view at `view` into
+/// outputs (in bit order), each pixel as the whole render has it.
+///
+/// # Safety
+/// `h` is a live glass handle; `view` holds the view's slots.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_web_glass_render_tile(
+    h: usize,
+    view: *const f64,
+    bits: u32,
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+) -> u32 {
+    hibi_web_out_clear();
+    // SAFETY: the caller's contract.
+    let g = unsafe { borrow::<GlassHandle>(h) };
+    // SAFETY: the caller's contract.
+    let view = match unsafe { take(GlassRender::default(), view) } {
+        Ok(v) => v,
+        Err(s) => return s,
+    };
+    let mut buffers = match layer_buffers(width, height, bits) {
+        Ok(b) => b,
+        Err(s) => return s,
+    };
+    let layers = buffers.layers();
+    if let Err(e) = g.glass.render_tile(&view, &Tile { x, y, width, height }, layers) {
+        return fail(e);
+    }
+    buffers.publish();
+    0
+}
+
 /// The cracks as outputs: each crack's end (`u32`), each crack's point count (`u32`), and
 /// every point (x, y, time as `f32`), crack after crack.
 ///
@@ -834,6 +910,41 @@ pub unsafe extern "C" fn hibi_web_skin_render(h: usize, view: *const f64, bits: 
     };
     let layers = buffers.layers();
     if let Err(e) = s.skin.render(&view, layers) {
+        return fail(e);
+    }
+    buffers.publish();
+    0
+}
+
+/// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the surface with the
+/// view at `view` into outputs (in bit order), each pixel as the whole render has it.
+///
+/// # Safety
+/// `h` is a live skin handle; `view` holds the view's slots.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn hibi_web_skin_render_tile(
+    h: usize,
+    view: *const f64,
+    bits: u32,
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+) -> u32 {
+    hibi_web_out_clear();
+    // SAFETY: the caller's contract.
+    let s = unsafe { borrow::<SkinHandle>(h) };
+    // SAFETY: the caller's contract.
+    let view = match unsafe { take(SkinRender::default(), view) } {
+        Ok(v) => v,
+        Err(s) => return s,
+    };
+    let mut buffers = match layer_buffers(width, height, bits) {
+        Ok(b) => b,
+        Err(s) => return s,
+    };
+    let layers = buffers.layers();
+    if let Err(e) = s.skin.render_tile(&view, &Tile { x, y, width, height }, layers) {
         return fail(e);
     }
     buffers.publish();
