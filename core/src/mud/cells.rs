@@ -63,12 +63,14 @@ impl RingCursor {
     pub(super) const START: RingCursor = RingCursor { cell: 0, side: 0, walk: None };
 }
 
-/// A ring walk under way: where it is, its steps, and the lowest key it has entered.
+/// A ring walk under way: where it is, its steps, the lowest key it has entered and the
+/// points it has passed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct RingWalk {
     at: RingAt,
     step: usize,
     lowest: usize,
+    points: u64,
 }
 
 /// [`At`] by mesh cell index (the cell as the network sees it is worked out again).
@@ -261,7 +263,7 @@ impl<S: Scalar> Mud<'_, S> {
                 cursor = match (cursor.side..c.sides()).find(|&k| unwalked(k)) {
                     Some(k) => {
                         let at = RingAt::Inside { cell: cursor.cell, k, wrap: [0, 0] };
-                        let walk = RingWalk { at, step: 0, lowest: key(cursor.cell, k) };
+                        let walk = RingWalk { at, step: 0, lowest: key(cursor.cell, k), points: 0 };
                         RingCursor { side: k, walk: Some(walk), ..cursor }
                     }
                     None => next_cell,
@@ -275,7 +277,7 @@ impl<S: Scalar> Mud<'_, S> {
                 cursor = after;
                 continue;
             };
-            let (mut step, mut lowest) = (walk.step, walk.lowest);
+            let (mut step, mut lowest, mut points) = (walk.step, walk.lowest, walk.points);
             let end = loop {
                 if step >= self.ring_step_bound() {
                     break Some(RingEnd::Broken);
@@ -285,6 +287,7 @@ impl<S: Scalar> Mud<'_, S> {
                 }
                 let mut entered = usize::MAX;
                 let next = self.ring_step(at, start_key, step > 0, SEARCH_POSITIONS, &mut |_, k| {
+                    points += 1;
                     if k != usize::MAX {
                         entered = k;
                     }
@@ -302,7 +305,7 @@ impl<S: Scalar> Mud<'_, S> {
                 }
             };
             let Some(end) = end else {
-                cursor.walk = Some(RingWalk { at: Self::ring_at_of(&at), step, lowest });
+                cursor.walk = Some(RingWalk { at: Self::ring_at_of(&at), step, lowest, points });
                 break;
             };
             let bit = match end {
@@ -312,6 +315,15 @@ impl<S: Scalar> Mud<'_, S> {
             };
             if let Some(bit) = bit {
                 self.ring_starts[lowest / 4] |= 1 << (bit + (lowest % 4) as u32);
+            }
+            // A ring has as many points from any start (`cell_counts` reads the sums).
+            match bit {
+                Some(STARTS) => {
+                    self.totals.rings += 1;
+                    self.totals.ring_points += points;
+                }
+                Some(_) => self.totals.wrapping += 1,
+                None => {}
             }
             cursor = after;
         }
@@ -347,14 +359,19 @@ impl<S: Scalar> Mud<'_, S> {
         }
         let mut border_touched = false;
         let wrapping = self.ring_starts_in(0..self.lattice.cell_count(), &mut border_touched, &mut ring);
-        // An open plate whose border no crack reaches: the border is a ring of its own.
-        if self.params.boundary == Boundary::Open
-            && !border_touched
-            && let Some(start) = (0..self.lattice.cell_count()).find_map(|cell| self.border_start(cell))
-        {
+        if let Some(start) = self.border_ring(border_touched) {
             ring(start);
         }
         wrapping
+    }
+
+    /// An open plate whose border no crack reaches (`border_touched` false): the border is a
+    /// ring of its own, which starts here.
+    fn border_ring(&self, border_touched: bool) -> Option<At> {
+        if self.params.boundary != Boundary::Open || border_touched {
+            return None;
+        }
+        (0..self.lattice.cell_count()).find_map(|cell| self.border_start(cell))
     }
 
     /// [`Mud::for_each_ring`]'s rings whose start is in the mesh cells `cells`, in its order;
@@ -409,8 +426,35 @@ impl<S: Scalar> Mud<'_, S> {
         (twice * 0.5, count)
     }
 
-    /// How many rings and points [`Mud::cells`] writes.
+    /// How many rings and points [`Mud::cells`] writes: those the trace counted as it found
+    /// where the rings start, and an open plate's border if no crack reaches it (walked).
     pub fn cell_counts(&self) -> CellCounts {
+        // The setup or a trace under way has no cells to show yet.
+        if !self.shows_network() {
+            return CellCounts::default();
+        }
+        let t = &self.totals;
+        let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
+        let mut counts = CellCounts { rings: size(t.rings), points: size(t.ring_points), wrapping: size(t.wrapping) };
+        // Whether a crack reaches an open plate's border.
+        let border_touched = self.params.boundary == Boundary::Open
+            && (0..self.lattice.cell_count()).any(|cell| {
+                self.cut_cell_as(cell, false)
+                    .is_some_and(|c| (0..c.sides()).any(|k| c.separating[k] && self.is_border_side(&c, k)))
+            });
+        if let Some(start) = self.border_ring(border_touched) {
+            counts.rings += 1;
+            self.walk_ring_as(start, false, |_, _| {
+                counts.points += 1;
+                true
+            });
+        }
+        counts
+    }
+
+    /// [`Mud::cell_counts`] by walking every ring (what the counts must equal).
+    #[cfg(test)]
+    pub(super) fn walked_cell_counts(&self) -> CellCounts {
         let mut counts = CellCounts::default();
         counts.wrapping = self.for_each_ring(|start| {
             counts.rings += 1;
@@ -433,27 +477,34 @@ impl<S: Scalar> Mud<'_, S> {
                 return Err(MudError::BufferTooSmall { needed });
             }
         }
+        // (The counts hold on every trace; were one to differ, what does not fit is left out
+        // rather than written past a buffer.)
         let (mut r, mut p) = (0, 0);
         self.for_each_ring(|start| {
             let first = p;
             self.walk_ring(start, |q, _| {
-                points[p] = q;
+                if let Some(slot) = points.get_mut(p) {
+                    *slot = q;
+                }
                 p += 1;
                 true
             });
-            let ring = &points[first..p];
+            let ring = &points[first.min(points.len())..p.min(points.len())];
             let twice: f64 = ring.iter().zip(ring.iter().cycle().skip(1)).map(|(a, b)| shoelace(*a, *b)).sum();
             let area = 0.5 * twice;
-            rings[r] = Ring {
-                area,
-                first_point: first as u32,
-                point_count: (p - first) as u32,
-                hole_of: NOT_A_HOLE,
-                reserved: 0,
-            };
+            if let Some(slot) = rings.get_mut(r) {
+                *slot = Ring {
+                    area,
+                    first_point: first as u32,
+                    point_count: (p - first) as u32,
+                    hole_of: NOT_A_HOLE,
+                    reserved: 0,
+                };
+            }
             r += 1;
         });
-        for ring in &mut rings[..r] {
+        let written = r.min(rings.len());
+        for ring in rings[..written].iter_mut().filter(|ring| (ring.first_point as usize) < points.len()) {
             if ring.area < 0.0 {
                 ring.hole_of = self.ring_around(points[ring.first_point as usize]).unwrap_or(IN_WRAPPING_CELL);
             }

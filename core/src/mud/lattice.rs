@@ -183,7 +183,14 @@ impl<'a> Lattice<'a> {
 
     /// The node a spring leaves and its direction.
     pub const fn spring_origin(&self, spring: usize) -> (usize, usize) {
-        (spring % self.node_count(), spring / self.node_count())
+        // The direction by comparisons rather than a division (springs are stored direction
+        // by direction; past the last direction the division's answer).
+        let n = self.node_count();
+        if spring >= 3 * n {
+            return (spring % n, spring / n);
+        }
+        let d = (spring >= n) as usize + (spring >= 2 * n) as usize;
+        (spring - d * n, d)
     }
 
     /// Column and row offset of the neighbour in direction `d` of a node in row `j`.
@@ -308,8 +315,18 @@ impl<'a> Lattice<'a> {
     /// reaches) first, then the one to its right. A cell is `None` where it does not exist
     /// (an open edge).
     pub fn cells_of_spring(&self, spring: usize) -> [Option<(usize, usize)>; 2] {
+        self.cells_of_spring_framed(spring).0
+    }
+
+    /// [`Lattice::cells_of_spring`], and whether the two cells are known to lie in one frame:
+    /// their reference positions ([`Cell::reference`]) place the spring at the same point, not
+    /// a period apart. They do on an open regular lattice, and away from a periodic one's
+    /// edges; elsewhere (and on 32-bit targets, for the Cortex-M3's flash) `false` says only
+    /// that the positions must be compared.
+    #[inline(always)]
+    pub(crate) fn cells_of_spring_framed(&self, spring: usize) -> ([Option<(usize, usize)>; 2], bool) {
         if let Some(m) = &self.mesh {
-            return m.cells_of_spring(spring);
+            return (m.cells_of_spring(spring), false);
         }
         let (node, d) = self.spring_origin(spring);
         // On a periodic lattice every cell exists; at open edges a cell exists if its sides do.
@@ -319,18 +336,20 @@ impl<'a> Lattice<'a> {
         // targets, for the Cortex-M3's flash.
         let c = self.columns as usize;
         let (i, j) = (node % c, node / c);
+        // (Their base nodes are the origin's neighbours, unwrapped: one frame.)
         if cfg!(target_pointer_width = "64") && periodic && i >= 1 && i + 1 < c && j >= 1 && j < self.rows as usize {
-            return match (self.topology, d) {
+            let cells = match (self.topology, d) {
                 (Topology::Square, 0) => [Some((node, 0)), Some((node - c, 2))],
                 (Topology::Square, _) => [Some((node - 1, 1)), Some((node, 3))],
                 (_, 0) => [Some((2 * node, 0)), Some((2 * (node - c + j % 2) + 1, 1))],
                 (_, 1) => [Some((2 * node + 1, 0)), Some((2 * node, 2))],
                 (_, _) => [Some((2 * (node - 1), 1)), Some((2 * node + 1, 2))],
             };
+            return (cells, true);
         }
         let exists =
             |cell: Option<usize>, side: usize| cell.filter(|&c| periodic || self.cell(c).is_some()).map(|c| (c, side));
-        match (self.topology, d) {
+        let cells = match (self.topology, d) {
             // Square cell b has sides [b→right, right→up-right, up→up-right, b→up], the last
             // two running clockwise; the side index says which.
             (Topology::Square, 0) => [exists(Some(node), 0), exists(self.back_neighbour(node, 1), 2)],
@@ -338,7 +357,9 @@ impl<'a> Lattice<'a> {
             (_, 0) => [exists(Some(2 * node), 0), exists(self.back_neighbour(node, 2).map(|b| 2 * b + 1), 1)],
             (_, 1) => [exists(Some(2 * node + 1), 0), exists(Some(2 * node), 2)],
             (_, _) => [exists(self.back_neighbour(node, 0).map(|b| 2 * b), 1), exists(Some(2 * node + 1), 2)],
-        }
+        };
+        // An open lattice's reference positions are the plate's own: one frame everywhere.
+        (cells, cfg!(target_pointer_width = "64") && !periodic)
     }
 
     /// Mesh cell `cell` (`node·cells_per_node + k`), if all its sides exist.
@@ -572,6 +593,35 @@ mod tests {
                 assert_eq!(found.iter().sum::<u32>() as usize, sides, "{topology:?} {boundary:?}");
                 if boundary == Boundary::Periodic {
                     assert!(found[..l.spring_count()].iter().all(|&n| n == 2));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cells_said_to_share_a_frame_place_their_spring_at_one_point() {
+        for topology in [Topology::Square, Topology::Hexagonal] {
+            for boundary in [Boundary::Open, Boundary::Periodic] {
+                let l = lattice(topology, boundary, 7, 6);
+                let mut shared = 0;
+                for spring in 0..l.spring_count() {
+                    let ([a, b], one_frame) = l.cells_of_spring_framed(spring);
+                    assert_eq!([a, b], l.cells_of_spring(spring));
+                    let (Some((a, side_a)), Some((b, side_b)), true) = (a, b, one_frame) else { continue };
+                    let mid = |c: Cell, k: usize| {
+                        let (p, q) = (c.reference[k], c.reference[(k + 1) % c.corners]);
+                        [(p[0] + q[0]) * 0.5, (p[1] + q[1]) * 0.5]
+                    };
+                    let (p, q) = (mid(l.cell(a).unwrap(), side_a), mid(l.cell(b).unwrap(), side_b));
+                    assert!(
+                        (p[0] - q[0]).abs() < 1e-4 && (p[1] - q[1]).abs() < 1e-4,
+                        "{topology:?} {boundary:?} {spring}"
+                    );
+                    shared += 1;
+                }
+                // Most springs' cells are known to share a frame (on 64-bit targets).
+                if cfg!(target_pointer_width = "64") {
+                    assert!(shared > l.spring_count() / 3, "{topology:?} {boundary:?}: {shared}");
                 }
             }
         }

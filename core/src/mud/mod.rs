@@ -331,8 +331,8 @@ pub struct Mud<'a, S: Scalar = f32> {
     stack: &'a mut [u32],
     /// Per mesh cell: which of its sides start a ring of the cells (see `cells`).
     ring_starts: &'a mut [u32],
-    /// Network vertices of the last trace.
-    vertex_total: u32,
+    /// What the trace of the network shown counted of it.
+    totals: network::Totals,
     /// The blocks of springs, mesh cells and nodes the network shown touched.
     touched: network::Touched<'a>,
     /// One bit per spring: broken (for the tracing; see `network::Touched`).
@@ -437,7 +437,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             crack_offset: take(&mut words, springs),
             stack: take(&mut words, shape.cell_count()),
             ring_starts: take(&mut words, shape.cell_count()),
-            vertex_total: 0,
+            totals: network::Totals::default(),
             touched: touched(&mut words),
         };
         let broken_blocks = take(&mut words, blocks[0]);
@@ -454,6 +454,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     &mut words,
                     (nodes, springs),
                     bound,
+                    quasi_static::relax_tolerance(params, S::ZERO),
                 ))
             }
         };
@@ -470,7 +471,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             crack_offset,
             stack,
             ring_starts,
-            vertex_total: 0,
+            totals: network::Totals::default(),
             touched: front_touched,
             broken_blocks,
             back,
@@ -765,6 +766,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
         }
     }
 
+    /// The nodes `spring` joins (the one it leaves first), if it exists: from the run's table
+    /// of the nodes springs reach, without the lattice's arithmetic.
+    fn spring_ends(&self, spring: usize) -> Option<(usize, usize)> {
+        let other = self.other[spring];
+        (other != ABSENT).then(|| (self.origin(spring), other as usize))
+    }
+
     /// Current displacement of `node` from its deep node.
     fn displacement(&self, node: usize) -> (S, S) {
         match self.solver {
@@ -891,6 +899,9 @@ mod tests {
     /// degree, and the cells can be written. Returns the edges.
     fn assert_consistent(mud: &Mud<'_, f32>, p: &MudParams) -> usize {
         let counts = mud.network_counts();
+        // The counts the trace kept are those of walking the network and the rings.
+        assert_eq!(counts, mud.walked_network_counts(), "{p:?}");
+        assert_eq!(mud.cell_counts(), mud.walked_cell_counts(), "{p:?}");
         let mut v = vec![NetworkVertex::default(); counts.vertices];
         let mut e = vec![NetworkEdge::default(); counts.edges];
         let mut q = vec![NetworkPoint::default(); counts.points];
@@ -916,6 +927,34 @@ mod tests {
         let mut points = vec![[0.0f32; 2]; cells.points];
         assert_eq!(mud.cells(&mut rings, &mut points), Ok(cells), "{p:?}");
         counts.edges
+    }
+
+    /// The counts the trace keeps equal what walking the network and the rings finds, on
+    /// every topology and boundary, with cracks and without (an open plate's border is a ring).
+    #[test]
+    fn the_counts_a_trace_keeps_are_the_walks() {
+        use Boundary::{Open, Periodic};
+        use Topology::{Hexagonal, Irregular, Square};
+        for topology in [Square, Hexagonal, Irregular] {
+            for boundary in [Open, Periodic] {
+                for (seed, target_shrink) in [(1, 0.0005), (2, 0.023), (3, 0.06)] {
+                    let p = MudParams {
+                        columns: 20,
+                        rows: 20,
+                        topology,
+                        boundary,
+                        seed,
+                        target_shrink,
+                        ..MudParams::default()
+                    };
+                    let m = p.memory().unwrap();
+                    let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
+                    let mut mud = Mud::new(&p, MudBuffers { scalars: &mut s, words: &mut w }).unwrap();
+                    mud.run().unwrap();
+                    assert_consistent(&mud, &p);
+                }
+            }
+        }
     }
 
     /// Runs `p` with `budget` per call (`None`: one `run()`), asserting each call's work is

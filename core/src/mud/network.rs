@@ -252,10 +252,30 @@ pub(super) struct TraceBuffers<'a> {
     pub(super) stack: &'a mut [u32],
     /// Per mesh cell: the cells' ring starts.
     pub(super) ring_starts: &'a mut [u32],
-    /// Vertices of the network.
-    pub(super) vertex_total: u32,
+    /// What its trace counted of the network.
+    pub(super) totals: Totals,
     /// The blocks its trace touched.
     pub(super) touched: Touched<'a>,
+}
+
+/// What a trace counts of the network it writes, so that the outputs' counts need no walk
+/// along it ([`Mud::network_counts`], [`Mud::cell_counts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct Totals {
+    /// Vertices (numbered in mesh cell order: `stack` holds each cell's first).
+    pub(super) vertices: u32,
+    /// The degrees of the vertices at mesh cells' centroids, summed: the edges' ends there,
+    /// each a point of its edge.
+    pub(super) centroid_degrees: u64,
+    /// Vertices on the open border: one edge end each, whose point is its spring's.
+    pub(super) border_vertices: u64,
+    /// Cut springs (branches included): each a point of one edge or closed crack.
+    pub(super) cut_springs: u64,
+    /// The rings of the cells that close in the plane, and their points.
+    pub(super) rings: u64,
+    pub(super) ring_points: u64,
+    /// The rings that wrap around a periodic lattice.
+    pub(super) wrapping: u64,
 }
 
 /// Where a trace under way stands: the pass, and the item it goes on with.
@@ -322,7 +342,7 @@ impl<S: Scalar> Mud<'_, S> {
     /// The separation of `spring`'s nodes from their rest arrangement,
     /// |x_j − x_i − l·e_ij|, lattice units (see the module docs).
     pub(super) fn separation(&self, spring: usize) -> f32 {
-        let Some((a, b)) = self.lattice.spring_nodes(spring) else {
+        let Some((a, b)) = self.spring_ends(spring) else {
             return 0.0;
         };
         let e = self.lattice.spring_vector(spring);
@@ -402,7 +422,7 @@ impl<S: Scalar> Mud<'_, S> {
         core::mem::swap(&mut self.crack_offset, &mut self.back.crack_offset);
         core::mem::swap(&mut self.stack, &mut self.back.stack);
         core::mem::swap(&mut self.ring_starts, &mut self.back.ring_starts);
-        core::mem::swap(&mut self.vertex_total, &mut self.back.vertex_total);
+        core::mem::swap(&mut self.totals, &mut self.back.totals);
         core::mem::swap(&mut self.touched, &mut self.back.touched);
     }
 
@@ -584,12 +604,15 @@ impl<S: Scalar> Mud<'_, S> {
             //    numbered in cell order. The cells' ring starts are cleared on the way.
             TracePass::Number(from) => {
                 if from == 0 {
-                    self.vertex_total = 0;
+                    self.totals = Totals::default();
                 }
                 // A block no crack touches holds no vertex (and its words are not read).
                 let at = items!(from, cells, self.touched.cells, |m: &mut Self, cell: usize| {
-                    m.stack[cell] = m.vertex_total;
-                    m.vertex_total += m.vertices_in(cell) as u32;
+                    m.stack[cell] = m.totals.vertices;
+                    let (degree, border) = m.vertices_in(cell);
+                    m.totals.vertices += u32::from(degree > 0) + border as u32;
+                    m.totals.centroid_degrees += degree as u64;
+                    m.totals.border_vertices += border as u64;
                     m.ring_starts[cell] = 0;
                     corners
                 });
@@ -602,6 +625,7 @@ impl<S: Scalar> Mud<'_, S> {
                     if !m.is_cut(spring) {
                         return 1;
                     }
+                    m.totals.cut_springs += 1;
                     m.crack_offset[spring] = m.packed_offset(spring);
                     1 + 2 * SMOOTHING as u64 * super::cells::RING_STEP
                 });
@@ -660,7 +684,7 @@ impl<S: Scalar> Mud<'_, S> {
         for (cell, _) in self.lattice.cells_of_spring(spring).into_iter().flatten() {
             set_bit(self.touched.cells, cell);
         }
-        if let Some((a, b)) = self.lattice.spring_nodes(spring) {
+        if let Some((a, b)) = self.spring_ends(spring) {
             set_bit(self.touched.nodes, a);
             set_bit(self.touched.nodes, b);
         }
@@ -903,14 +927,14 @@ impl<S: Scalar> Mud<'_, S> {
         self.lattice.cells_of_spring(spring).into_iter().flatten().map(|(cell, _)| cell)
     }
 
-    /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut, and each cut
-    /// side on the border.
-    fn vertices_in(&self, cell: usize) -> usize {
-        let Some(c) = self.cut_cell(cell) else {
-            return 0;
+    /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut (its degree,
+    /// the cut sides, or 0 if it is none), and each cut side on the border (how many).
+    fn vertices_in(&self, cell: usize) -> (usize, usize) {
+        let Some(c) = self.cut_cell_as(cell, false) else {
+            return (0, 0);
         };
-        let centroid = usize::from(matches!(c.cut_count(), 1) || c.cut_count() >= 3);
-        centroid + (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)).count()
+        let degree = if Self::centroid_is_vertex(&c) { c.cut_count() } else { 0 };
+        (degree, (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)).count())
     }
 
     /// Whether side `k` of a cell is on the open border (no cell on its other side).
@@ -999,18 +1023,23 @@ impl<S: Scalar> Mud<'_, S> {
         positions: bool,
     ) -> Option<(TracedCell, usize, [i32; 2])> {
         let spring = from.cell.sides[k] as usize;
-        let [a, b] = self.lattice.cells_of_spring(spring);
+        let ([a, b], one_frame) = self.lattice.cells_of_spring_framed(spring);
         let (cell, side) = [a, b].into_iter().flatten().find(|&(c, _)| c != from.index)?;
         let to = self.lattice.cell(cell)?;
-        // The spring's midpoint in the two cells' reference frames differs by whole periods.
-        let n = (from.cell.corners, to.corners);
-        let mid = |r: &[[f32; 2]; 4], k: usize, n: usize| {
-            [(r[k][0] + r[(k + 1) % n][0]) * 0.5, (r[k][1] + r[(k + 1) % n][1]) * 0.5]
+        // The spring's midpoint in the two cells' reference frames differs by whole periods
+        // (none where the lattice knows they share a frame).
+        let wrap = if one_frame {
+            wrap
+        } else {
+            let n = (from.cell.corners, to.corners);
+            let mid = |r: &[[f32; 2]; 4], k: usize, n: usize| {
+                [(r[k][0] + r[(k + 1) % n][0]) * 0.5, (r[k][1] + r[(k + 1) % n][1]) * 0.5]
+            };
+            let (p, q) = (mid(&from.cell.reference, k, n.0), mid(&to.reference, side, n.1));
+            let [w, h] = self.lattice.extent();
+            let periods = [libm::roundf((p[0] - q[0]) / w) as i32, libm::roundf((p[1] - q[1]) / h) as i32];
+            [wrap[0] + periods[0], wrap[1] + periods[1]]
         };
-        let (p, q) = (mid(&from.cell.reference, k, n.0), mid(&to.reference, side, n.1));
-        let [w, h] = self.lattice.extent();
-        let periods = [libm::roundf((p[0] - q[0]) / w) as i32, libm::roundf((p[1] - q[1]) / h) as i32];
-        let wrap = [wrap[0] + periods[0], wrap[1] + periods[1]];
         Some((self.traced_as(cell, to, wrap, positions), side, wrap))
     }
 
@@ -1294,20 +1323,20 @@ impl<S: Scalar> Mud<'_, S> {
         // spring, in the cell on that spring's left.
         for spring in springs.filter(|&s| self.is_cut(s)) {
             let [Some((cell, side)), Some((right, _))] = self.lattice.cells_of_spring(spring) else { continue };
-            // The mesh cell on the spring's right is the crack's last before it comes back: if
-            // the crack ends or meets others there, or goes on across a lower spring, the walk
-            // below would find that at its end; it is looked at first (a crack's springs
-            // mostly rise along it, and each walk would run to its end).
+            // The mesh cell on the spring's right is the crack's last before it comes back, the
+            // one on its left the first after: if the crack ends or meets others in either, or
+            // goes on across a lower spring, the walk below would find that; they are looked at
+            // first (each walk would run to the crack's end or its first lower spring).
             if right != cell {
                 let Some(r) = self.lattice.cell(right) else { continue };
                 let mut cut = r.sides[..r.corners].iter().map(|&s| s as usize).filter(|&s| self.is_cut(s));
                 let (Some(a), Some(b), None) = (cut.next(), cut.next(), cut.next()) else { continue };
-                if a.max(b) != spring {
+                if a.min(b) != spring {
                     continue;
                 }
             }
             let Some(t) = self.lattice.cell(cell).map(|c| self.traced_as(cell, c, [0, 0], false)) else { continue };
-            if Self::centroid_is_vertex(&t) {
+            if Self::centroid_is_vertex(&t) || (0..t.sides()).any(|j| t.cut[j] && (t.cell.sides[j] as usize) < spring) {
                 continue;
             }
             // Closed if the walk comes back without a vertex; found here if no spring on it
@@ -1396,9 +1425,31 @@ impl<S: Scalar> Mud<'_, S> {
     }
 
     /// How many vertices, edges and points [`Mud::network`] writes.
+    ///
+    /// From what the trace counted, without walking the edges: an edge has two ends, each at
+    /// a vertex (a vertex of degree d is the end of d edges), and its points are its ends at
+    /// mesh cells' centroids and one for each cut spring along it; a closed crack (no vertex,
+    /// found by its walk) repeats its first point.
     pub fn network_counts(&self) -> NetworkCounts {
-        let vertices = if !self.shows_network() { 0 } else { self.vertex_total as usize };
-        let mut counts = NetworkCounts { vertices, ..NetworkCounts::default() };
+        if !self.shows_network() {
+            return NetworkCounts::default();
+        }
+        let t = &self.totals;
+        let mut closed = 0;
+        self.closed_cracks(0..self.lattice.spring_count(), &core::cell::Cell::new(0), &mut |_, _, _, _| closed += 1);
+        let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
+        NetworkCounts {
+            vertices: t.vertices as usize,
+            edges: size((t.centroid_degrees + t.border_vertices) / 2).saturating_add(closed),
+            points: size(t.cut_springs + t.centroid_degrees).saturating_add(closed),
+        }
+    }
+
+    /// [`Mud::network_counts`] by walking every edge (what the counts must equal).
+    #[cfg(test)]
+    pub(super) fn walked_network_counts(&self) -> NetworkCounts {
+        let mut counts = NetworkCounts::default();
+        self.for_each_vertex(|_| counts.vertices += 1);
         self.for_each_edge(|_, _, points, _| {
             counts.edges += 1;
             counts.points += points;
@@ -1422,19 +1473,27 @@ impl<S: Scalar> Mud<'_, S> {
                 return Err(super::MudError::BufferTooSmall { needed });
             }
         }
+        // (The counts hold on every trace; were one to differ, what does not fit is left out
+        // rather than written past a buffer.)
         let mut v = 0;
         self.for_each_vertex(|vertex| {
-            vertices[v] = vertex;
+            if let Some(slot) = vertices.get_mut(v) {
+                *slot = vertex;
+            }
             v += 1;
         });
         let (mut e, mut p) = (0, 0);
         self.for_each_edge(|from, to, _, walk| {
             let first = p;
             walk(&mut |point| {
-                points[p] = point;
+                if let Some(slot) = points.get_mut(p) {
+                    *slot = point;
+                }
                 p += 1;
             });
-            edges[e] = NetworkEdge { from, to, first_point: first as u32, point_count: (p - first) as u32 };
+            if let Some(slot) = edges.get_mut(e) {
+                *slot = NetworkEdge { from, to, first_point: first as u32, point_count: (p - first) as u32 };
+            }
             e += 1;
         });
         Ok(counts)

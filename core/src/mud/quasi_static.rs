@@ -77,6 +77,8 @@ pub(super) struct Relaxation<'a, S> {
     /// The most node relaxations that follow a break before the rest of the queue is dropped
     /// ([`relax_bound`]).
     relax_bound: u64,
+    /// The relaxation tolerance at the misfit now ([`relax_tolerance`]).
+    tolerance: S,
 }
 
 /// The node is in the queue.
@@ -123,6 +125,17 @@ pub(super) fn relax_bound_of(ratio: f64, nodes: usize) -> u64 {
     if relaxations.is_nan() { u64::MAX } else { (relaxations as u64).max(1) }
 }
 
+/// How far a node's u may move in a relaxation without its neighbours being relaxed again, at
+/// misfit `misfit`: the paper's δx over the element size W, per unit misfit (displacements are
+/// s·u, so u needs resolving to δx/(W·s)), with s no smaller than [`TOLERANCE_MISFIT_FLOOR`]
+/// (so early relaxations are not needlessly coarse), and no less than [`SOLVE_ROUNDING`] units
+/// of the backend's resolution.
+pub(super) fn relax_tolerance<S: Scalar>(params: &super::MudParams, misfit: S) -> S {
+    let scale = misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
+    let tolerance = S::from_f32(params.displacement_tolerance / params.element_size) / scale;
+    tolerance.max(S::RESOLUTION * S::from_i32(SOLVE_ROUNDING))
+}
+
 impl<'a, S: Scalar> Relaxation<'a, S> {
     /// The arrays, carved from `scalars` and `words`; the run's setup writes them
     /// ([`Relaxation::clear_nodes`], [`Mud::set_break_misfits`], the tree and the queue) and,
@@ -132,6 +145,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         words: &mut &'a mut [u32],
         (nodes, springs): (usize, usize),
         relax_bound: u64,
+        tolerance: S,
     ) -> Self {
         let leaves = springs.div_ceil(BLOCK).next_power_of_two();
         let break_misfit = take(scalars, springs);
@@ -152,6 +166,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             refreshed: 0,
             relaxed: 0,
             relax_bound,
+            tolerance,
         }
     }
 
@@ -221,13 +236,15 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
     }
 
     /// Re-decides spring `s`'s leaf, and the path from it to the root, after its value
-    /// changed. Stops early where a slot keeps a winner other than `s` and the leaf's former
-    /// winner: nothing above it can change.
-    fn update(&mut self, s: usize) {
+    /// changed (`fell`: to a smaller one). Stops early where a slot keeps a winner other than
+    /// `s` and the leaf's former winner: nothing above it can change.
+    fn update(&mut self, s: usize, fell: bool) {
         let leaf = self.leaves + s / BLOCK;
         let held = self.tree[leaf];
         let winner = if held == s as u32 {
-            self.block_winner(s / BLOCK)
+            // A block's winner whose value falls stays its winner (it was the smallest, and the
+            // lowest index among equals); otherwise the block is looked through again.
+            if fell { s as u32 } else { self.block_winner(s / BLOCK) }
         } else if self.break_misfit[s] < self.break_misfit[held as usize]
             || self.break_misfit[s] == self.break_misfit[held as usize] && (s as u32) < held
         {
@@ -286,8 +303,14 @@ impl<'a, S: Scalar> Mud<'a, S> {
         if j == ABSENT || self.break_time[spring] != INTACT {
             return S::MAX;
         }
-        let (i, j) = (self.origin(spring), j as usize);
-        let e = self.lattice.spring_vector(spring).map(S::from_f32);
+        self.break_misfit_between(spring, self.origin(spring), j as usize, self.lattice.spring_vector(spring))
+    }
+
+    /// [`Mud::break_misfit_of`] of intact `spring`, which leaves node `i` for node `j` in
+    /// direction `e` (what the caller knows already: no division finds them again).
+    #[inline(always)]
+    fn break_misfit_between(&self, spring: usize, i: usize, j: usize, e: [f32; 2]) -> S {
+        let e = e.map(S::from_f32);
         let mut opening = e[0] * (self.ux[j] - self.ux[i]) + e[1] * (self.uy[j] - self.uy[i]);
         if self.lattice.mesh().is_some() {
             // The strain: e·(u_j − u_i)/l0 (l0 = 1 on the regular lattices).
@@ -324,22 +347,20 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// Solves node `node`'s 2×2 equilibrium for u, and queues its neighbours
-    /// if u moved by more than the tolerance. Returns the springs visited.
-    ///
-    /// The tolerance is the paper's δx: displacements are s·u, so u needs resolving to
-    /// δx/s (with s no smaller than 0.005, so early relaxations are not needlessly coarse),
-    /// and to no less than [`SOLVE_ROUNDING`] units of the backend's resolution.
+    /// if u moved by more than the tolerance ([`relax_tolerance`]). Returns the springs visited.
     fn relax(&mut self, node: usize) -> u64 {
-        match self.lattice.mesh() {
-            // At most six springs on the regular lattices: a smaller list to set up.
-            None => self.relax_with::<6>(node),
-            Some(_) => self.relax_with::<{ super::irregular::MAX_DEGREE }>(node),
+        match self.lattice.mesh().copied() {
+            // At most six springs on the regular lattices: a smaller list to set up (and no
+            // mesh to look up a spring's law in).
+            None => self.relax_with::<6>(node, None),
+            mesh => self.relax_with::<{ super::irregular::MAX_DEGREE }>(node, mesh),
         }
     }
 
-    /// [`Mud::relax`] with room for `DEGREE` springs at the node.
-    fn relax_with<const DEGREE: usize>(&mut self, node: usize) -> u64 {
-        let mesh = self.lattice.mesh().copied();
+    /// [`Mud::relax`] with room for `DEGREE` springs at the node, on the irregular lattice's
+    /// `mesh` if there is one.
+    #[inline(always)]
+    fn relax_with<const DEGREE: usize>(&mut self, node: usize, mesh: Option<super::irregular::Mesh<'_>>) -> u64 {
         let h = match &mesh {
             Some(m) => S::from_f32(m.area(node) * self.material.shear_per_area),
             None => self.material.shear,
@@ -347,8 +368,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         let mut visited = 0u64;
-        // The node's intact springs: (spring, other node, e towards the other node).
-        let mut intact = [(0u32, 0u32, S::ZERO, S::ZERO, S::ZERO); DEGREE];
+        // The node's intact springs: (spring, other node, e towards the other node, k, the
+        // other node's u).
+        let mut intact = [(0u32, 0u32, S::ZERO, S::ZERO, S::ZERO, S::ZERO, S::ZERO); DEGREE];
         let mut count = 0;
         self.lattice.for_each_spring_at(node, |spring, other, d, sign| {
             visited += 1;
@@ -364,10 +386,11 @@ impl<'a, S: Scalar> Mud<'a, S> {
             a00 += k * ex * ex;
             a01 += k * ex * ey;
             a11 += k * ey * ey;
-            let pull = k * (rest + ex * self.ux[other] + ey * self.uy[other]);
+            let (ux, uy) = (self.ux[other], self.uy[other]);
+            let pull = k * (rest + ex * ux + ey * uy);
             b0 += pull * ex;
             b1 += pull * ey;
-            intact[count] = (spring as u32, other as u32, ex, ey, k);
+            intact[count] = (spring as u32, other as u32, ex, ey, k, ux, uy);
             count += 1;
         });
         let det = a00 * a11 - a01 * a01;
@@ -379,15 +402,14 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let diagonal = (a00 + a11) * S::from_f32(0.5);
         self.ux[node] = x;
         self.uy[node] = y;
-        let scale = self.misfit.max(S::from_f32(TOLERANCE_MISFIT_FLOOR));
-        let tolerance = S::from_f32(self.params.displacement_tolerance / self.params.element_size) / scale;
-        let tolerance = tolerance.max(S::RESOLUTION * S::from_i32(SOLVE_ROUNDING));
+        let tolerance = self.relaxation().tolerance;
         let misfit = self.misfit;
-        for &(spring, other, ex, ey, k) in &intact[..count] {
+        for &(spring, other, ex, ey, k, ux, uy) in &intact[..count] {
             let (spring, other) = (spring as usize, other as usize);
             // A spring that is past its limit on the way to equilibrium breaks now:
             // s_break ≤ s, i.e. κ − 1 ≤ s·(e·(u_j − u_i)/l0 + a + κ·b), without the division.
-            let mut opening = ex * (self.ux[other] - x) + ey * (self.uy[other] - y);
+            // (Breaking moves no node: the other node's u is the one read above.)
+            let mut opening = ex * (ux - x) + ey * (uy - y);
             if let Some(m) = &mesh {
                 opening /= S::from_f32(m.rest_length(spring));
             }
@@ -416,7 +438,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let mut work = 0u64;
         while t < count && work < budget {
             let node = self.relaxation().touched[t] as usize;
-            lattice.for_each_spring_at(node, |spring, other, _, sign| {
+            lattice.for_each_spring_at(node, |spring, other, d, sign| {
                 work += 1;
                 // A spring between two touched nodes is brought up to date once, from its
                 // origin (the tree's result does not depend on the order of updates).
@@ -424,11 +446,18 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 if shared || self.break_time[spring] != INTACT {
                     return;
                 }
-                let value = self.break_misfit_of(spring);
+                // The spring leaves `node` (sign +1) or reaches it.
+                let (i, j) = if sign > 0.0 { (node, other) } else { (other, node) };
+                let e = match lattice.mesh() {
+                    Some(m) => m.direction(spring),
+                    None => lattice.direction_vector(d),
+                };
+                let value = self.break_misfit_between(spring, i, j, e);
                 let r = self.relaxation();
-                if r.break_misfit[spring] != value {
+                let before = r.break_misfit[spring];
+                if before != value {
                     r.break_misfit[spring] = value;
-                    r.update(spring);
+                    r.update(spring, value < before);
                 }
             });
             t += 1;
@@ -448,12 +477,24 @@ impl<'a, S: Scalar> Mud<'a, S> {
         work
     }
 
+    /// Pieces of quasi-static work ([`Mud::quasi_static_piece`]) until their work reaches
+    /// `max(budget, 1)` or the physics ends: what as many calls of one piece would do, without
+    /// the way back through [`Mud::step`] between them. Returns the work done: at most
+    /// `max(budget, 1)` − 1 plus the springs at one node.
+    pub(super) fn quasi_static_step(&mut self, budget: u64) -> u64 {
+        let mut work = self.quasi_static_piece(budget);
+        while work < budget && !self.finished {
+            work += self.quasi_static_piece(budget - work);
+        }
+        work
+    }
+
     /// One piece of quasi-static work: relax one queued node (its springs), or drop it from
     /// the queue once [`relax_bound`] nodes have been relaxed since the last break (one unit),
     /// refresh the touched nodes' springs until the work reaches `budget` (at least one
     /// node's), or break the next spring (jumping the misfit to it; one unit). Returns the work
     /// done (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
-    pub(super) fn quasi_static_step(&mut self, budget: u64) -> u64 {
+    fn quasi_static_piece(&mut self, budget: u64) -> u64 {
         if let Some(node) = self.relaxation().pop() {
             let r = self.relaxation();
             if r.relaxed >= r.relax_bound {
@@ -481,6 +522,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 return 1;
             }
             self.misfit = at;
+            self.relaxation().tolerance = relax_tolerance(&self.params, at);
         }
         self.break_and_relax(next as usize);
         1
@@ -493,7 +535,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let r = self.relaxation();
         r.relaxed = 0;
         r.break_misfit[spring] = S::MAX;
-        r.update(spring);
+        r.update(spring, false);
         r.push(a);
         r.push(b);
     }
