@@ -262,9 +262,10 @@ impl Glass<'_> {
         }
     }
 
-    /// One unit of filing the tips: the next crack's tip and direction at the start of the
-    /// time step are kept (what other tips' F1 sees), and its tip is filed if it grows. Then
-    /// the cracks advance; the plate finishes if the tip grid is full.
+    /// One unit of filing the tips: if the next crack grows, its tip and direction at the start
+    /// of the time step are kept (what other tips' F1 sees) and its tip is filed. A stopped
+    /// crack's are read no more. Then the cracks advance; the plate finishes if the tip grid is
+    /// full.
     fn file_tip(&mut self) {
         let i = self.clock.done;
         if i == self.crack_count {
@@ -276,10 +277,10 @@ impl Glass<'_> {
         }
         self.clock.work += 1;
         let c = &mut self.cracks[i];
-        c.before = c.tip;
-        c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
-        let c = self.cracks[i];
         if c.growing() {
+            c.before = c.tip;
+            c.before_direction = [libm::cosf(c.heading), libm::sinf(c.heading)];
+            let c = *c;
             let (cx, cy, _, _) = self.index.grid.span(c.tip[0], c.tip[1], c.tip[0], c.tip[1]);
             if !self.index.tips.insert(cy * self.index.grid.columns + cx, i as u32) {
                 self.clock.capacity_reached = true;
@@ -442,7 +443,10 @@ impl Glass<'_> {
         let left = if c.left > 0.0 { c.left } else { c.speed };
         let ring = c.is_ring();
         let course = if ring { Self::ring_course(&c) } else { c.heading };
-        let direction = [libm::cosf(course), libm::sinf(course)];
+        // A radial crack's first update of the time step sets out in the direction the step
+        // began with (`file_tip` worked out the very same cosine and sine of its heading).
+        let direction =
+            if !ring && c.left <= 0.0 { c.before_direction } else { [libm::cosf(course), libm::sinf(course)] };
         let bounds = self.sector_box(c.tip, direction);
         let [x0, y0, x1, y1] = bounds;
         let cells = self.index.grid.span(x0, y0, x1, y1);

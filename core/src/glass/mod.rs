@@ -124,7 +124,7 @@ pub struct CrackSlot {
     /// The crack's start vertex.
     start_vertex: u32,
     /// The tip at the start of the current time step: what other tips' F1 sees, so that all
-    /// tips move at once (Eq. 17) whatever order they are advanced in.
+    /// tips move at once (Eq. 17) whatever order they are advanced in. Kept while it grows.
     before: [f32; 2],
     /// Its direction at the start of the current time step (unit vector).
     before_direction: [f32; 2],
