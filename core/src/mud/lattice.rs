@@ -296,6 +296,36 @@ impl<'a> Lattice<'a> {
         }
     }
 
+    /// The `N` springs at a square (`N` = 4) or hexagonal (`N` = 6) lattice's node away from
+    /// its edges and the nodes they reach, in [`Lattice::for_each_spring_at`]'s order (the
+    /// outgoing springs by direction, then the incoming ones), each spring's direction and
+    /// sign given by its place: direction `k % directions`, outgoing for `k < directions`.
+    /// `None` for any other node, size or topology.
+    #[inline(always)]
+    pub(crate) fn interior_star<const N: usize>(&self, node: usize) -> Option<([usize; N], [usize; N])> {
+        let (n, c) = (self.node_count(), self.columns as usize);
+        let (i, j) = (node % c, node / c);
+        if !(i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize) {
+            return None;
+        }
+        let (springs, others) = match (self.topology, N) {
+            (Topology::Square, 4) => {
+                ([node, n + node, node - 1, n + node - c, 0, 0], [node + 1, node + c, node - 1, node - c, 0, 0])
+            }
+            (Topology::Hexagonal, 6) => {
+                let odd = j % 2;
+                let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
+                let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
+                (
+                    [node, n + node, 2 * n + node, node - 1, n + down_left, 2 * n + down_right],
+                    [node + 1, up_right, up_left, node - 1, down_left, down_right],
+                )
+            }
+            _ => return None,
+        };
+        Some((core::array::from_fn(|k| springs[k]), core::array::from_fn(|k| others[k])))
+    }
+
     /// Number of mesh cells (squares, or two triangles per node), including those whose
     /// sides are missing at an open edge (for which [`Lattice::cell`] is `None`).
     pub const fn cell_count(&self) -> usize {
@@ -501,6 +531,38 @@ mod tests {
                     }
                 }
                 assert_eq!(fast[..n], general[..m], "{topology:?} node {node}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_interior_star_is_the_springs_at_the_node() {
+        for (topology, degree) in [(Topology::Square, 4), (Topology::Hexagonal, 6)] {
+            for boundary in [Boundary::Open, Boundary::Periodic] {
+                let l = lattice(topology, boundary, 7, 6);
+                let mut found = 0;
+                for node in 0..l.node_count() {
+                    let mut listed = [(0, 0, 0, 0.0); 6];
+                    let mut n = 0;
+                    l.for_each_spring_at(node, |s, o, d, sign| {
+                        listed[n] = (s, o, d, sign);
+                        n += 1;
+                    });
+                    let pad = |a: &[usize]| core::array::from_fn::<usize, 6, _>(|k| a.get(k).copied().unwrap_or(0));
+                    let star = if degree == 4 {
+                        l.interior_star::<4>(node).map(|(s, o)| (pad(&s), pad(&o)))
+                    } else {
+                        l.interior_star::<6>(node).map(|(s, o)| (pad(&s), pad(&o)))
+                    };
+                    let Some((springs, others)) = star else { continue };
+                    found += 1;
+                    let dirs = l.directions();
+                    let expected: [(usize, usize, usize, f32); 6] =
+                        core::array::from_fn(|k| (springs[k], others[k], k % dirs, if k < dirs { 1.0 } else { -1.0 }));
+                    assert_eq!(listed[..n], expected[..degree], "{topology:?} {boundary:?} {node}");
+                }
+                assert_eq!(found, 5 * 4, "{topology:?} {boundary:?}");
+                assert!(l.interior_star::<5>(8).is_none());
             }
         }
     }

@@ -455,6 +455,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     (nodes, springs),
                     bound,
                     quasi_static::relax_tolerance(params, S::ZERO),
+                    // (Read by the 64-bit targets' fast path only.)
+                    if cfg!(target_pointer_width = "64") {
+                        quasi_static::interior_laws(&shape, &material)
+                    } else {
+                        [[S::ZERO; 3]; 6]
+                    },
                 ))
             }
         };

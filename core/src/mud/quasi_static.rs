@@ -79,6 +79,23 @@ pub(super) struct Relaxation<'a, S> {
     relax_bound: u64,
     /// The relaxation tolerance at the misfit now ([`relax_tolerance`]).
     tolerance: S,
+    /// A regular lattice's spring laws in [`Lattice::interior_star`]'s order: e towards the
+    /// other node, and k ([`interior_laws`]).
+    ///
+    /// [`Lattice::interior_star`]: super::Lattice::interior_star
+    laws: [[S; 3]; 6],
+}
+
+/// The spring laws of a regular lattice's node, in [`super::Lattice::interior_star`]'s order:
+/// e towards the other node (the direction's vector, negated for an incoming spring) and k,
+/// as [`Mud::relax`] finds them spring by spring. (Unused on the irregular lattice.)
+pub(super) fn interior_laws<S: Scalar>(lattice: &super::Lattice, material: &super::Material<S>) -> [[S; 3]; 6] {
+    let dirs = lattice.directions();
+    core::array::from_fn(|k| {
+        let (d, sign) = (k % dirs, if k < dirs { 1.0 } else { -1.0 });
+        let v = lattice.direction_vector(d);
+        [S::from_f32(v[0] * sign), S::from_f32(v[1] * sign), material.stiffness[d]]
+    })
 }
 
 /// The node is in the queue.
@@ -146,6 +163,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         (nodes, springs): (usize, usize),
         relax_bound: u64,
         tolerance: S,
+        laws: [[S; 3]; 6],
     ) -> Self {
         let leaves = springs.div_ceil(BLOCK).next_power_of_two();
         let break_misfit = take(scalars, springs);
@@ -167,6 +185,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             relaxed: 0,
             relax_bound,
             tolerance,
+            laws,
         }
     }
 
@@ -349,12 +368,78 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Solves node `node`'s 2×2 equilibrium for u, and queues its neighbours
     /// if u moved by more than the tolerance ([`relax_tolerance`]). Returns the springs visited.
     fn relax(&mut self, node: usize) -> u64 {
+        // Away from a regular lattice's edges, its springs by fixed offsets (64-bit targets:
+        // the Cortex-M3's flash holds the general case alone, which computes the same).
+        if cfg!(target_pointer_width = "64") {
+            let star = match self.lattice.topology {
+                super::Topology::Square => self.lattice.interior_star::<4>(node).map(|s| self.relax_interior(node, s)),
+                super::Topology::Hexagonal => {
+                    self.lattice.interior_star::<6>(node).map(|s| self.relax_interior(node, s))
+                }
+                super::Topology::Irregular => None,
+            };
+            if let Some(visited) = star {
+                return visited;
+            }
+        }
         match self.lattice.mesh().copied() {
             // At most six springs on the regular lattices: a smaller list to set up (and no
             // mesh to look up a spring's law in).
             None => self.relax_with::<6>(node, None),
             mesh => self.relax_with::<{ super::irregular::MAX_DEGREE }>(node, mesh),
         }
+    }
+
+    /// [`Mud::relax`] of a regular lattice's node away from its edges, whose `N` springs and
+    /// the nodes they reach are `star` ([`super::Lattice::interior_star`]): the same
+    /// arithmetic in the same order, with the springs' laws from [`interior_laws`].
+    #[inline(always)]
+    fn relax_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
+        let laws = self.relaxation().laws;
+        let h = self.material.shear;
+        let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
+        let (mut b0, mut b1) = (S::ZERO, S::ZERO);
+        let intact: [bool; N] = core::array::from_fn(|k| self.break_time[springs[k]] == INTACT);
+        let u: [(S, S); N] = core::array::from_fn(|k| (self.ux[others[k]], self.uy[others[k]]));
+        for k in 0..N {
+            if intact[k] {
+                let [ex, ey, kk] = laws[k];
+                a00 += kk * ex * ex;
+                a01 += kk * ex * ey;
+                a11 += kk * ey * ey;
+                let pull = kk * (S::ONE + ex * u[k].0 + ey * u[k].1);
+                b0 += pull * ex;
+                b1 += pull * ey;
+            }
+        }
+        let det = a00 * a11 - a01 * a01;
+        let (old_x, old_y) = (self.ux[node], self.uy[node]);
+        let x = (a11 * b0 - a01 * b1) / det;
+        let y = (a00 * b1 - a01 * b0) / det;
+        let (dx, dy) = (x - old_x, y - old_y);
+        let diagonal = (a00 + a11) * S::from_f32(0.5);
+        self.ux[node] = x;
+        self.uy[node] = y;
+        let tolerance = self.relaxation().tolerance;
+        let misfit = self.misfit;
+        for k in 0..N {
+            if !intact[k] {
+                continue;
+            }
+            let [ex, ey, kk] = laws[k];
+            let opening = ex * (u[k].0 - x) + ey * (u[k].1 - y);
+            let kappa = self.break_stretch[springs[k]];
+            let denominator = match self.params.drive {
+                Drive::Shrink => opening + kappa,
+                Drive::Growth => opening + S::ONE,
+            };
+            if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
+                self.break_and_relax(springs[k]);
+            } else if kk * (ex * dx + ey * dy).abs() > tolerance * diagonal {
+                self.relaxation().push(others[k]);
+            }
+        }
+        N as u64
     }
 
     /// [`Mud::relax`] with room for `DEGREE` springs at the node, on the irregular lattice's
@@ -438,6 +523,22 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let mut work = 0u64;
         while t < count && work < budget {
             let node = self.relaxation().touched[t] as usize;
+            // Away from a regular lattice's edges, its springs by fixed offsets (as in
+            // `Mud::relax`).
+            if cfg!(target_pointer_width = "64") {
+                let done = match lattice.topology {
+                    super::Topology::Square => lattice.interior_star::<4>(node).map(|s| self.refresh_interior(node, s)),
+                    super::Topology::Hexagonal => {
+                        lattice.interior_star::<6>(node).map(|s| self.refresh_interior(node, s))
+                    }
+                    super::Topology::Irregular => None,
+                };
+                if let Some(done) = done {
+                    work += done;
+                    t += 1;
+                    continue;
+                }
+            }
             lattice.for_each_spring_at(node, |spring, other, d, sign| {
                 work += 1;
                 // A spring between two touched nodes is brought up to date once, from its
@@ -475,6 +576,30 @@ impl<'a, S: Scalar> Mud<'a, S> {
             r.refreshed = t;
         }
         work
+    }
+
+    /// [`Mud::refresh_touched`]'s update of one node away from a regular lattice's edges,
+    /// whose springs and the nodes they reach are `star` ([`super::Lattice::interior_star`]).
+    /// Returns the springs visited.
+    #[inline(always)]
+    fn refresh_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
+        let dirs = self.lattice.directions();
+        for k in 0..N {
+            let (spring, other, outgoing) = (springs[k], others[k], k < dirs);
+            // A spring between two touched nodes is brought up to date once, from its origin.
+            if !outgoing && self.relaxation().flags[other] & TOUCHED != 0 || self.break_time[spring] != INTACT {
+                continue;
+            }
+            let (i, j) = if outgoing { (node, other) } else { (other, node) };
+            let value = self.break_misfit_between(spring, i, j, self.lattice.direction_vector(k % dirs));
+            let r = self.relaxation();
+            let before = r.break_misfit[spring];
+            if before != value {
+                r.break_misfit[spring] = value;
+                r.update(spring, value < before);
+            }
+        }
+        N as u64
     }
 
     /// Pieces of quasi-static work ([`Mud::quasi_static_piece`]) until their work reaches
