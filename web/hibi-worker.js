@@ -6,8 +6,8 @@
 // sends the band's layers back as transferred ArrayBuffers. Requests are answered in order.
 //
 // Messages in: { module } once, first; then { id, model, handle, slots, view, bits, tile,
-// memory? }: `memory` (an ArrayBuffer or a SharedArrayBuffer) replaces the instance with a new
-// one holding that copy. Messages out: { id, layers } or { id, error, lost? } (`lost`: the
+// memory? }: `memory` (an ArrayBuffer or a SharedArrayBuffer) is copied over the instance's
+// memory (an instance is made at the first copy, and again after a trap). Messages out: { id, layers } or { id, error, lost? } (`lost`: the
 // instance trapped and is dropped; the next request brings memory again).
 
 let module = null;
@@ -35,13 +35,16 @@ async function answer(m) {
   }
   try {
     if (m.memory) {
+      // The instance is reused: between calls its stack pointer is back at its start, as the
+      // page's is, and memory beyond the copy is memory the copied allocator has not handed
+      // out (it takes new memory from memory.grow's answer, wherever that lies).
+      const instance = exports ? null : await WebAssembly.instantiate(module, {});
+      const w = exports ?? instance.exports;
       exports = null;
-      const instance = await WebAssembly.instantiate(module, {});
-      const memory = instance.exports.memory;
-      const pages = (m.memory.byteLength - memory.buffer.byteLength) / 65536;
-      if (pages > 0) memory.grow(pages);
-      new Uint8Array(memory.buffer).set(new Uint8Array(m.memory));
-      exports = instance.exports;
+      const pages = (m.memory.byteLength - w.memory.buffer.byteLength) / 65536;
+      if (pages > 0) w.memory.grow(pages);
+      new Uint8Array(w.memory.buffer).set(new Uint8Array(m.memory));
+      exports = w;
     }
     if (!exports) throw new Error('render: the worker holds no copy of the memory');
     const w = exports;

@@ -13,17 +13,17 @@ const native = threadsOnly ? [] : readFileSync(process.argv[2], 'utf8').trim().s
 const load = () => loadavg().map((l) => l.toFixed(2)).join(' ');
 
 function threadsTable(rows) {
-  console.log('case                              pixels      memory MB  1 thread ms  1 worker ms  2 workers ms  speed-up  2 workers, memory sent: ms  speed-up');
+  console.log('case                                pixels     memory MB  1 thread ms  1 worker ms  2 workers ms  speed-up  2 workers, memory sent ms  speed-up');
   for (const r of rows) {
     const cells = [
-      r.case.padEnd(33),
-      `${r.width}×${r.height}`.padEnd(11),
+      r.case.padEnd(35),
+      `${r.width}×${r.height}`.padEnd(10),
       (r.memory_bytes / 1e6).toFixed(0).padStart(9),
       r.one_ms.toFixed(1).padStart(12),
       r.warm1_ms.toFixed(1).padStart(12),
       r.warm2_ms.toFixed(1).padStart(13),
       (r.one_ms / r.warm2_ms).toFixed(2).padStart(9),
-      r.cold2_ms.toFixed(1).padStart(28),
+      r.cold2_ms.toFixed(1).padStart(27),
       (r.one_ms / r.cold2_ms).toFixed(2).padStart(9),
     ];
     console.log(cells.join(' '));
@@ -53,7 +53,7 @@ try {
     }
     console.log();
   }
-  console.log(`renderAsync, the preview layer: render() on one thread against renderAsync on workers, medians of 5 runs (${cpus().length} cores)`);
+  console.log(`renderAsync, the preview layer: render() on one thread against renderAsync on workers, the fastest of 5 runs each, taken in turn (${cpus().length} cores)`);
   console.log(`load average (1, 5, 15 min) before: ${load()}`);
   const page = await browser.newPage();
   await page.goto(`${url}/bench/?threads`);
