@@ -128,11 +128,12 @@ pub(super) fn for_each_span(
     let half = 1i64 << (shift - 1);
     let (mut y0, mut y1, mut x0) = (i64::MAX, i64::MIN, i64::MAX);
     for &v in outline {
-        let v = within_reach(v);
         y0 = y0.min(v[1]);
         y1 = y1.max(v[1]);
         x0 = x0.min(v[0]);
     }
+    // (Within reach: the extremes of the vertices within reach, as clamping is monotone.)
+    let ([x0, y0], y1) = (within_reach([x0, y0]), y1.clamp(-REACH, REACH));
     // Rows whose centre lies in [y0, y1]. (An arithmetic shift right by `shift` is the floor of
     // the division by the unit.)
     let first = ((y0 - half) >> shift).max(rows[0]);
@@ -229,18 +230,21 @@ fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut pu
     let half = unit / 2;
     // 2^−shift: scaling by it is exact, like dividing by `unit`.
     let to_pixels = 1.0 / unit as f64;
-    let mut a = within_reach(outline[outline.len() - 1]);
+    // The first row whose centre is not below y (monotone in y, so that the rows of an edge's
+    // lower and higher end are the lower and higher of its ends' rows), made once per vertex.
+    let first_row = |y: i64| (y.clamp(-REACH, REACH) - half + unit - 1) >> shift;
+    let (mut a, mut row_a) = (outline[outline.len() - 1], first_row(outline[outline.len() - 1][1]));
     for (edge, &b) in outline.iter().enumerate() {
-        let b = within_reach(b);
+        let row_b = first_row(b[1]);
         // The edge a→b (in any order: the caller sorts the crossings by row).
-        let a = core::mem::replace(&mut a, b);
-        let (low, high) = (a[1].min(b[1]), a[1].max(b[1]));
+        let (a, row_a) = (core::mem::replace(&mut a, b), core::mem::replace(&mut row_a, row_b));
         // Rows whose centre yc has low <= yc < high (exactly one end above it).
-        let from = ((low - half + unit - 1) >> shift).max(top);
-        let to = (((high - half + unit - 1) >> shift) - 1).min(bottom);
+        let from = row_a.min(row_b).max(top);
+        let to = (row_a.max(row_b) - 1).min(bottom);
         if from > to {
             continue;
         }
+        let (a, b) = (within_reach(a), within_reach(b));
         // The edge crosses the row through yc at X = ax + (yc − ay)·dx/dy, and `crosses`
         // holds for the pixel centres left of X: the first column not left of it is
         // ceil((X − half) / unit) = ax_pixels + ceil(f), with ax − half = ax_pixels·unit +

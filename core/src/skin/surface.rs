@@ -59,7 +59,7 @@ pub struct Wedge {
 }
 
 /// A cell's wedges: `slots[1..=n]` from the corner of smallest angle on, and `slots[0]` the
-/// last one again. A pixel in direction `a` (a pseudo-angle) lies in the wedge its ray leaves
+/// last one again, its angle [`ASCENDING`] if the others' angles ascend (0 if not). A pixel in direction `a` (a pseudo-angle) lies in the wedge its ray leaves
 /// by, the last one whose first corner's angle is at most `a`, cyclically: `slots[k]` with k
 /// the number of wedges whose angle is at most `a`. (For a cell star-shaped around its
 /// centre, as Voronoi cells and their perturbations mostly are, the angles ascend and k is a
@@ -72,12 +72,13 @@ struct Fan<'w> {
 
 /// Fans of up to this many wedges count their angles below a pixel's (in steps that handle
 /// several pixels at once) instead of searching them.
-const COUNTED: usize = 48;
+const COUNTED: usize = 256;
 
-/// Counting a fan longer than this, eight pixels stop at the first wedge past them all (the
-/// angles ascend). That saves half the comparisons of a coarse cell's long fan, for one
-/// mispredicted branch per eight pixels, which a short fan would not repay.
-const LONG_FAN: usize = 24;
+/// Counting a fan longer than this, eight pixels start past the wedges at or below all of
+/// them (found by a binary search) and stop at the first wedge past them all (the angles
+/// ascend). Eight pixels of a coarse cell's long fan mostly span a few of its wedges; a short
+/// fan, the finest cells' own, would not repay the search and the mispredicted branch.
+const LONG_FAN: usize = 12;
 
 /// Pixels whose wedges are looked up together: of one finest-level cell for its own level,
 /// of the cells that share their coarser cells for the coarser levels.
@@ -143,10 +144,11 @@ struct Batch<S> {
     ready: usize,
     /// Index in the maps.
     ready_index: [u32; QUEUE],
-    /// Per level, u in the pixel's wedge, and the offset in apothems.
-    u: [[f32; QUEUE]; MAX_LEVELS],
-    qx: [[f32; QUEUE]; MAX_LEVELS],
-    qy: [[f32; QUEUE]; MAX_LEVELS],
+    /// Per level, u in the pixel's wedge, and the offset in apothems (eight lanes at a time,
+    /// the last ones past the queue stale).
+    u: [[f32; LANES]; MAX_LEVELS],
+    qx: [[f32; LANES]; MAX_LEVELS],
+    qy: [[f32; LANES]; MAX_LEVELS],
     /// The profile's sample interval and the weight of its far end at the pixel's x', and the
     /// factor that turns the profile's slope into the normal's x and y (of the level being
     /// evaluated).
@@ -289,9 +291,9 @@ impl<S: Scalar> Batch<S> {
             wedge: [0; LANES],
             ready: 0,
             ready_index: [0; QUEUE],
-            u: [[0.0; QUEUE]; MAX_LEVELS],
-            qx: [[0.0; QUEUE]; MAX_LEVELS],
-            qy: [[0.0; QUEUE]; MAX_LEVELS],
+            u: [[0.0; LANES]; MAX_LEVELS],
+            qx: [[0.0; LANES]; MAX_LEVELS],
+            qy: [[0.0; LANES]; MAX_LEVELS],
             interval: [0; QUEUE],
             weight: [0.0; QUEUE],
             lean: [S::ZERO; QUEUE],
@@ -315,16 +317,17 @@ impl<S: Scalar> Batch<S> {
             }
             let len = self.len;
             let count = ((x1 - x0) as usize).min(BATCH - len);
-            // Four at a time, past `count` into the spare lanes. (x0 + j) as f32 is x0 as f32 +
-            // j as f32, exactly (pixel columns are far below 2^24).
-            let (first, left) = ((i0 as u32), x0 as f32 + 0.5);
+            // Four at a time, past `count` into the spare lanes. Every sum is exact, (x0 + j)
+            // as f32 is x0 as f32 + j as f32 however it is summed (pixel columns are far below
+            // 2^23).
+            let (mut first, mut left) = ((i0 as u32), x0 as f32 + 0.5);
             for c in (0..count).step_by(4) {
                 let at = len + c..len + c + 4;
                 let (index, x, y) = (&mut self.index[at.clone()], &mut self.x[at.clone()], &mut self.y[at]);
                 for l in 0..4 {
-                    let j = c + l;
-                    (index[l], x[l], y[l]) = (first + j as u32, left + j as f32, centre_y);
+                    (index[l], x[l], y[l]) = (first + l as u32, left + [0.0, 1.0, 2.0, 3.0][l], centre_y);
                 }
+                (first, left) = (first + 4, left + 4.0);
             }
             self.len = len + count;
             (x0, i0) = (x0 + count as i64, i0 + count);
@@ -377,13 +380,34 @@ impl<S: Scalar> Batch<S> {
         if fan.sorted && wedges.len() <= COUNTED {
             // Eight pixels at a time, a wedge at a time (the pixels held in registers).
             let long = wedges.len() > LONG_FAN;
-            for (ks, angles) in self.wedge[all.clone()].chunks_exact_mut(8).zip(self.angle[all].chunks_exact(8)) {
+            for (ks, angles) in self.wedge[all.clone()].chunks_exact_mut(8).zip(self.angle[all.clone()].chunks_exact(8))
+            {
                 let angles: [f32; 8] = core::array::from_fn(|l| angles[l]);
                 // Past the largest of the eight (a NaN, the centre's own, counts nothing), no
-                // wedge counts.
-                let last = if long { angles.iter().fold(f32::NEG_INFINITY, |m, &a| m.max(a)) } else { f32::INFINITY };
-                let mut k = [0u32; 8];
-                for w in wedges {
+                // wedge counts; up to the smallest (none with a NaN among them), every one
+                // does, found by a binary search. Eight pixels near each other, far from a
+                // coarse cell's centre, mostly lie in one or two of its wedges.
+                let (skip, last) = if long {
+                    let (low, high): ([f32; 4], [f32; 4]) = (
+                        core::array::from_fn(|l| if angles[l + 4] < angles[l] { angles[l + 4] } else { angles[l] }),
+                        core::array::from_fn(|l| if angles[l + 4] > angles[l] { angles[l + 4] } else { angles[l] }),
+                    );
+                    let first = low.iter().fold(f32::INFINITY, |m, &a| if a < m { a } else { m });
+                    let nan = angles.iter().fold(false, |nan, a| nan | a.is_nan());
+                    let skip = if nan { 0 } else { wedges.partition_point(|w| w.angle <= first) };
+                    (
+                        skip,
+                        if nan {
+                            f32::INFINITY
+                        } else {
+                            high.iter().fold(f32::NEG_INFINITY, |m, &a| if a > m { a } else { m })
+                        },
+                    )
+                } else {
+                    (0, f32::INFINITY)
+                };
+                let mut k = [skip as u32; 8];
+                for w in &wedges[skip..] {
                     let t = w.angle;
                     if t > last {
                         break;
@@ -393,20 +417,34 @@ impl<S: Scalar> Batch<S> {
                 ks.copy_from_slice(&k);
             }
         } else {
-            for (k, &a) in self.wedge[lanes.clone()].iter_mut().zip(&self.angle[lanes.clone()]) {
+            // (Every lane, so that each lane's k is a slot of this fan.)
+            for (k, &a) in self.wedge[all.clone()].iter_mut().zip(&self.angle[all.clone()]) {
                 *k = wedges.partition_point(|w| w.angle <= a) as u32;
             }
         }
         // u and the offset in apothems there (in f32: the offsets are in pixels, which Q16.16
         // could not square).
-        let r = self.ready + a..self.ready + a + n;
-        let pixel = self.wedge[lanes.clone()].iter().zip(self.dx[lanes.clone()].iter().zip(&self.dy[lanes]));
-        let ready =
-            self.u[level][r.clone()].iter_mut().zip(self.qx[level][r.clone()].iter_mut().zip(&mut self.qy[level][r]));
-        for ((&k, (&dx, &dy)), (u, (qx, qy))) in pixel.zip(ready) {
-            let w = &fan.slots[k as usize];
-            *u = dx * w.g[0] + dy * w.g[1];
-            (*qx, *qy) = (dx * w.inverse_apothem, dy * w.inverse_apothem);
+        // Each pixel's wedge read one by one (every lane's k, stale or not, is a slot of the
+        // fan), then the arithmetic in a plain loop, several at once. Lanes past `n` write
+        // past the pixels' own, into lanes not read (or written again before they are).
+        let to = self.ready + a..self.ready + all.end;
+        let (us, qxs, qys) = (&mut self.u[level][to.clone()], &mut self.qx[level][to.clone()], &mut self.qy[level][to]);
+        // (The wedge's g and 1 / apothem first, where u and q go.)
+        let picked = us.chunks_exact_mut(8).zip(qxs.chunks_exact_mut(8).zip(qys.chunks_exact_mut(8)));
+        for (ks, (gx, (gy, inverse_apothem))) in self.wedge[all.clone()].chunks_exact(8).zip(picked) {
+            for l in 0..8 {
+                let w = &fan.slots[ks[l] as usize];
+                (gx[l], gy[l], inverse_apothem[l]) = (w.g[0], w.g[1], w.inverse_apothem);
+            }
+        }
+        let eight = |v: &[f32]| -> [f32; 8] { core::array::from_fn(|l| v[l]) };
+        let offsets = self.dx[all.clone()].chunks_exact(8).zip(self.dy[all].chunks_exact(8));
+        let ready = us.chunks_exact_mut(8).zip(qxs.chunks_exact_mut(8).zip(qys.chunks_exact_mut(8)));
+        for ((dx, dy), (u, (qx, qy))) in offsets.zip(ready) {
+            let (dx, dy, gx, gy, inverse_apothem) = (eight(dx), eight(dy), eight(u), eight(qx), eight(qy));
+            u.copy_from_slice(&core::array::from_fn::<f32, 8, _>(|l| dx[l] * gx[l] + dy[l] * gy[l]));
+            qx.copy_from_slice(&core::array::from_fn::<f32, 8, _>(|l| dx[l] * inverse_apothem[l]));
+            qy.copy_from_slice(&core::array::from_fn::<f32, 8, _>(|l| dy[l] * inverse_apothem[l]));
         }
     }
 
@@ -426,6 +464,20 @@ impl<S: Scalar> Batch<S> {
                 self.lean[j] = lean;
             }
             // The samples read in a loop of their own, the arithmetic several at once.
+            if !K::NORMALS {
+                // (Heights alone: the two ends' heights apart, for plain loops, where the
+                // normals' sums would be.)
+                let [h0, h1] = &mut self.slope;
+                for (j, &k) in self.interval[..n].iter().enumerate() {
+                    let [[a0, _], [a1, _]] = ridge.table.ends(k);
+                    (h0[j], h1[j]) = (a0, a1);
+                }
+                let ends = h0[..n].iter().zip(&h1[..n]);
+                for ((&h0, &h1), (&w, height)) in ends.zip(self.weight[..n].iter().zip(&mut self.height[..n])) {
+                    *height += blend([[h0, 0.0], [h1, 0.0]], w).0;
+                }
+                continue;
+            }
             for (ends, &k) in self.ends[..n].iter_mut().zip(&self.interval[..n]) {
                 *ends = ridge.table.ends(k);
             }
@@ -435,12 +487,10 @@ impl<S: Scalar> Batch<S> {
             for (((&ends, &w), height), ((&lean, (&qx, &qy)), (sx, sy))) in sample.zip(normal) {
                 let (z, dz) = blend(ends, w);
                 *height += z;
-                if K::NORMALS {
-                    // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
-                    let lean = S::from_f32(-dz) * lean;
-                    *sx += (lean * S::from_f32(qx)).to_f32();
-                    *sy += (lean * S::from_f32(qy)).to_f32();
-                }
+                // The profile's normal (−slope, 1) in the x'z' plane, turned to the ray.
+                let lean = S::from_f32(-dz) * lean;
+                *sx += (lean * S::from_f32(qx)).to_f32();
+                *sy += (lean * S::from_f32(qy)).to_f32();
             }
         }
         if K::NORMALS {
@@ -654,16 +704,25 @@ impl<S: Scalar> Skin<'_, S> {
                 });
             }
             let value = FURROWS[level as usize];
+            // A pixel's right neighbour is in its row for every pixel but the last (which has
+            // one in the margin, if there is one), its lower one in the next row for every row
+            // but the last (likewise): the others in plain loops, several pixels at once.
+            let Some(last) = tw.checked_sub(1) else { continue };
+            let mark = |m: &mut u8, on: bool| *m = if on { (*m).max(value) } else { *m };
             for y in 0..th {
-                for x in 0..tw {
-                    let here = map[y * columns + x];
-                    let right = (x + 1 < tw || margin_x.is_some()).then(|| map[y * columns + x + 1]);
-                    let below = (y + 1 < th || margin_y.is_some()).then(|| map[(y + 1) * columns + x]);
-                    if [right, below].into_iter().flatten().any(|other| other != here) {
-                        let m = &mut mask[y * tw + x];
-                        *m = (*m).max(value);
+                let (row, out) = (&map[y * columns..][..columns], &mut mask[y * tw..][..tw]);
+                let pairs = out[..last].iter_mut().zip(row[..last].iter().zip(&row[1..tw]));
+                match (y + 1 < th || margin_y.is_some()).then(|| &map[(y + 1) * columns..][..tw]) {
+                    Some(next) => {
+                        for ((m, (&here, &right)), &below) in pairs.zip(next) {
+                            mark(m, (right != here) | (below != here));
+                        }
                     }
+                    None => pairs.for_each(|(m, (&here, &right))| mark(m, right != here)),
                 }
+                let (here, below) =
+                    (row[last], (y + 1 < th || margin_y.is_some()).then(|| map[(y + 1) * columns + last]));
+                mark(&mut out[last], (margin_x.is_some() && row[tw] != here) | below.is_some_and(|b| b != here));
             }
         }
     }
@@ -712,7 +771,8 @@ impl<S: Scalar> Skin<'_, S> {
             let start = c.first_vertex as usize + index;
             let slots = &wedges[start..][..c.vertex_count as usize + 1];
             let centre = [(c.centre[0] as f64 * to_pixels) as f32, (c.centre[1] as f64 * to_pixels) as f32];
-            fans[level] = FanAt { start, len: slots.len(), sorted: ascends(slots), centre, cell: index as u32 };
+            fans[level] =
+                FanAt { start, len: slots.len(), sorted: slots[0].angle == ASCENDING, centre, cell: index as u32 };
             if level < finest {
                 continue;
             }
@@ -855,8 +915,12 @@ pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wed
         }
     }
     wedges.rotate_left(start);
-    slots[0] = slots[n];
+    let ascending = ascends(wedges);
+    slots[0] = Wedge { angle: if ascending { ASCENDING } else { 0.0 }, ..slots[n] };
 }
+
+/// The front slot's angle (which no pixel compares with) in a fan whose angles ascend.
+const ASCENDING: f32 = 1.0;
 
 /// [`pseudo_angle`] of eight directions, bit for bit, each step a plain loop over the eight so
 /// that the divisions go four at a time: a zero vector's fraction is 0 / 1 (it lies in
@@ -882,10 +946,10 @@ fn pseudo_angles(x: [f32; 8], y: [f32; 8]) -> [f32; 8] {
     out
 }
 
-/// Whether a fan's angles ascend from its first wedge to its last (the fan of a cell
+/// Whether the angles of a fan's wedges ascend from the first to the last (the fan of a cell
 /// star-shaped around its centre): then a pixel's wedge is found by counting.
-fn ascends(slots: &[Wedge]) -> bool {
-    slots[1..].windows(2).all(|w| w[0].angle.partial_cmp(&w[1].angle).is_some_and(Ordering::is_le))
+fn ascends(wedges: &[Wedge]) -> bool {
+    wedges.windows(2).all(|w| w[0].angle.partial_cmp(&w[1].angle).is_some_and(Ordering::is_le))
 }
 
 /// Fig. 10: each level's normal has z = 1; x and y add up to `slope`. Rows run down the
