@@ -9,7 +9,12 @@
 //!
 //! The benches: mud (the default parameters at 64², f32, quasi-static) run, trace, network,
 //! cells and each render layer at 256²; glass (the paper's 640² plate, M_ave = 100) generation,
-//! fragments and each render layer; skin (the fig19a preset, 400²) build and each render layer.
+//! fragments and each render layer; skin (the fig19a preset, 400²) build, each render layer and
+//! one render of height and normal together (as `benches/skin.rs` times it); and the baseline
+//! Model C is compared with, FastNoiseLite's cellular noise with a normal map by central
+//! differences on the same 400² grid (`benches/support/cellular.rs`). The performance page's
+//! table ends with the ratio of the two: skin's build and render of both maps over
+//! FastNoiseLite's.
 //! Every seed is fixed; buffers are allocated outside the counted calls. Counts are the release
 //! profile's (the test is ignored in debug) and depend on the compiler and on Valgrind: the
 //! baseline names both, and a machine with others fails with a message saying so. They leave
@@ -28,8 +33,11 @@ use hibi_core::glass::{Glass, GlassParams, GlassRender};
 use hibi_core::mud::{Mud, MudParams, MudRender, NetworkEdge, NetworkPoint, NetworkVertex};
 use hibi_core::polygon::Ring;
 use hibi_core::raster::Layers;
-use hibi_core::skin::{Skin, SkinRender, preset};
+use hibi_core::skin::{Skin, SkinLayers, SkinRender, preset};
 use hibi_tests::EveryLayer;
+
+#[path = "../benches/support/cellular.rs"]
+mod cellular;
 
 /// The committed baseline: one line per bench, `name count`, after a header naming the
 /// compiler and Valgrind that counted it.
@@ -88,6 +96,8 @@ benches!(
     25 hibi_bench_skin_render_normal_rgb8 "skin/render/normal_rgb8",
     26 hibi_bench_skin_render_cell "skin/render/cell",
     27 hibi_bench_skin_render_preview "skin/render/preview",
+    28 hibi_bench_skin_render_height_normal "skin/render/height_normal",
+    29 hibi_bench_fastnoise_cellular_normal "fastnoise/cellular_normal",
 );
 
 /// Runs bench `name`'s work in its counted call.
@@ -207,6 +217,21 @@ fn skin_benches() {
             skin.render(&render, one_layer(&mut every, layer)).expect("buffers suffice");
         });
     }
+    bench("skin/render/height_normal", || {
+        let layers =
+            SkinLayers { height: Some(&mut every.height), normal: Some(&mut every.normal), ..SkinLayers::default() };
+        skin.render(&render, layers).expect("buffers suffice");
+    });
+}
+
+/// FastNoiseLite's cellular noise, value and normal by central differences, on the skin
+/// benches' 400² grid (Model C's speed is stated as a ratio to it).
+fn fastnoise_benches() {
+    let (w, h) = (400, 400);
+    let noise = black_box(cellular::cellular());
+    let mut grid = vec![0.0f32; (w + 2) * (h + 2)];
+    let (mut height, mut normals) = (vec![0.0f32; w * h], vec![[0.0f32; 3]; w * h]);
+    bench("fastnoise/cellular_normal", || cellular::on_grid(&noise, w, h, &mut grid, &mut height, &mut normals));
 }
 
 /// The compiler and Valgrind this machine counts with: the baseline's header.
@@ -301,6 +326,7 @@ fn rerun() -> Option<()> {
             mud_benches();
             glass_benches(false);
             skin_benches();
+            fastnoise_benches();
         }
         "perturbed" => glass_benches(true),
         other => panic!("{RUN}={other}: not a run"),
@@ -405,6 +431,7 @@ fn render_pixels(model: &str) -> u64 {
     match model {
         "mud" => 256 * 256,
         "glass" => 640 * 640,
+        // Skin's, and FastNoiseLite's maps on the same grid (its value grid is 402²).
         _ => 400 * 400,
     }
 }
@@ -419,7 +446,7 @@ fn page_table(baseline: &Baseline) -> String {
     );
     for (name, count) in &baseline.counts {
         let model = name.split('/').next().expect("model/bench");
-        let per_pixel = if name.contains("/render/") {
+        let per_pixel = if name.contains("/render/") || model == "fastnoise" {
             format!("{:.0}", *count as f64 / render_pixels(model) as f64)
         } else {
             String::new()
@@ -434,6 +461,14 @@ fn page_table(baseline: &Baseline) -> String {
             .join(" ");
         text.push_str(&format!("| {name} | {grouped} | {per_pixel} |\n"));
     }
+    let count = |name: &str| baseline.counts.get(name).copied().unwrap_or(0) as f64;
+    let ours = count("skin/build") + count("skin/render/height_normal");
+    text.push_str(&format!(
+        "\nSkin's build and one render of height and normal (`skin/build` + `skin/render/height_normal`) \
+         take {:.2}× the instructions of FastNoiseLite's cellular noise with its normal by central \
+         differences on the same grid (`fastnoise/cellular_normal`).\n",
+        ours / count("fastnoise/cellular_normal")
+    ));
     text
 }
 

@@ -248,18 +248,16 @@ pub fn pseudo_angle(d: [f32; 2]) -> f32 {
 }
 
 /// `libm::round(x) as i64` (nearest integer, halves away from zero; saturating, NaN → 0),
-/// without libm's bit-level software rounding: below 2^52 in magnitude the truncation and the
-/// remainder `x − trunc(x)` are exact, so comparing the remainder with ±0.5 decides alike;
-/// from 2^52 on every `f64` is already an integer.
+/// without libm's bit-level software rounding: x plus ½ − 2⁻⁵⁴ towards its sign, truncated.
+/// The sum, rounded to the nearest `f64`, reaches the next integer away from zero exactly
+/// when x's fraction is ½ or more: below 1 in magnitude ½ − 2⁻⁵⁴ keeps a fraction under ½
+/// short of it and a fraction of ½ or more (a multiple of 2⁻⁵³) rounds to at least it; from
+/// 1 on the spacing is at least 2⁻⁵², so the 2⁻⁵⁴ taken off never moves the sum across an
+/// integer; from 2^52 on every `f64` is already an integer and the sum rounds back to it.
+/// NaN stays NaN, which `as` maps to 0, and `as` saturates the rest.
 #[inline]
 pub fn round_to_i64(x: f64) -> i64 {
-    let t = x as i64;
-    // Also NaN, which `as` maps to 0.
-    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
-        return t;
-    }
-    let rest = x - t as f64;
-    t + i64::from(rest >= 0.5) - i64::from(rest <= -0.5)
+    (x + 0.499_999_999_999_999_94f64.copysign(x)) as i64
 }
 
 /// Twice the signed area of the triangle (0, a, b): one shoelace term.

@@ -112,6 +112,9 @@ pub struct Rng {
     generator: Xoshiro128PlusPlus,
 }
 
+/// SplitMix64's increment of its state per output.
+const SPLITMIX64_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+
 /// The SplitMix64 finaliser: a bijective mix of a 64-bit key.
 const fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -149,7 +152,15 @@ impl Rng {
     /// identity, a cell's index) or chosen by a C caller. Xoshiro128++ is seeded by SplitMix64
     /// from `seed ^ mix64(key)`.
     pub fn from_key(seed: u64, key: u64) -> Self {
-        Rng { generator: Xoshiro128PlusPlus::seed_from_u64(seed ^ mix64(key)) }
+        // `Xoshiro128PlusPlus::seed_from_u64`, written out: the first two outputs of SplitMix64
+        // from that state (whose output function is `mix64`), little-endian, as the seed.
+        let state = seed ^ mix64(key);
+        let mut bytes = [0u8; 16];
+        for (k, chunk) in bytes.chunks_exact_mut(8).enumerate() {
+            let x = state.wrapping_add(SPLITMIX64_GAMMA.wrapping_mul(k as u64 + 1));
+            chunk.copy_from_slice(&mix64(x).to_le_bytes());
+        }
+        Rng { generator: Xoshiro128PlusPlus::from_seed(bytes) }
     }
 
     /// The next 32 raw bits.
@@ -299,6 +310,20 @@ impl Rng {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_keyed_stream_is_seeded_as_seed_from_u64_seeds_it() {
+        // `from_key` writes out SplitMix64's seeding: the same generator for any seed and key.
+        let mut x = 0x0123_4567_89AB_CDEFu64;
+        for k in 0..20_000u64 {
+            x = mix64(x ^ k);
+            let (seed, key) = (x, x.rotate_left(29) ^ k);
+            let expected = Xoshiro128PlusPlus::seed_from_u64(seed ^ mix64(key));
+            assert_eq!(Rng::from_key(seed, key).generator, expected, "seed {seed:#x}, key {key:#x}");
+        }
+        // (State 0 included: `from_seed` takes the all-zero seed's fallback either way.)
+        assert_eq!(Rng::from_key(mix64(0), 0).generator, Xoshiro128PlusPlus::seed_from_u64(0));
+    }
 
     /// Mean and variance of `n` draws, by Welford's method.
     fn moments(n: u32, mut draw: impl FnMut() -> f64) -> (f64, f64) {

@@ -311,12 +311,27 @@ impl Builder<'_> {
             None if m > FEW => return Err(OutlineFull),
             _ => None,
         };
-        let mut keys = [f64::INFINITY; FEW];
+        // A few: sorted once (by distance, ties by place: a stable insertion sort of those at a
+        // finite distance), handed out in that order.
+        let (mut keys, mut order, mut sorted) = ([0.0f64; FEW], [0u8; FEW], 0);
         if walk.is_none() {
-            for (key, s) in keys.iter_mut().zip(neighbours) {
-                *key = distance(s);
+            for (i, s) in neighbours.iter().enumerate() {
+                let key = distance(s);
+                // (NaN and infinity are never handed out.)
+                if key.is_nan() || key == f64::INFINITY {
+                    continue;
+                }
+                let mut at = sorted;
+                while at > 0 && keys[at - 1] > key {
+                    (keys[at], order[at]) = (keys[at - 1], order[at - 1]);
+                    at -= 1;
+                }
+                // (At most FEW: fewer than 256.)
+                (keys[at], order[at]) = (key, i as u8);
+                sorted += 1;
             }
         }
+        let mut handed = 0;
         // (Unbounded until the first clip: the nearest neighbours clip the parent.)
         let mut farthest = f64::INFINITY;
         loop {
@@ -328,19 +343,12 @@ impl Builder<'_> {
                     None => break,
                 },
                 None => {
-                    // The first of the nearest, without branches (which one it is follows
-                    // no pattern a processor could learn).
-                    let (mut nearest, mut j) = (f64::INFINITY, usize::MAX);
-                    for (i, &e) in keys[..m].iter().enumerate() {
-                        let nearer = e < nearest;
-                        (nearest, j) = (if nearer { e } else { nearest }, if nearer { i } else { j });
-                    }
-                    // (Every one picked: only the marks are left.)
-                    if j == usize::MAX {
+                    // (Every one handed out.)
+                    if handed == sorted {
                         break;
                     }
-                    keys[j] = f64::INFINITY;
-                    j
+                    handed += 1;
+                    usize::from(order[handed - 1])
                 }
             };
             let b = &neighbours[j];
@@ -533,6 +541,9 @@ fn edge_key(f: &Frame, a: &Site, b: &Site, start: &Corner, end: &Corner) -> (Edg
 /// Neighbour lists up to this long are picked nearest first as the clipping asks for them,
 /// longer ones sorted.
 pub(super) const FEW: usize = 96;
+
+// (A few are sorted by their places in bytes.)
+const _: () = assert!(FEW <= 256);
 
 /// Most parent-outline crossings one bisector edge is split at.
 const MAX_CROSSINGS: usize = 16;

@@ -73,13 +73,19 @@ impl Frame {
     /// collinear centres, far off a degenerately stretched surface) saturates there, image
     /// offset included (the skin fuzz target's finding 15).
     pub(super) fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
+        // (Below 64: `shift` is at most 44 and `bits` at least 8.)
+        let s = self.shift - self.bits;
         let q = |k: usize| {
             let world = round_to_i64(at[k] * self.stretch[k] * self.own_unit);
             let offset = i64::from(reference.image[k]).saturating_mul(self.world_period[k]);
-            world
-                .checked_shl(self.shift - self.bits)
-                .filter(|w| w >> (self.shift - self.bits) == world)
-                .map_or(if world < 0 { i64::MIN } else { i64::MAX }, |w| w.saturating_add(offset))
+            let w = world << s;
+            if w >> s == world {
+                w.saturating_add(offset)
+            } else if world < 0 {
+                i64::MIN
+            } else {
+                i64::MAX
+            }
         };
         [q(0), q(1)]
     }

@@ -192,19 +192,28 @@ pub(super) fn perturb(
             blocked
         });
         // With no crossing, only a first or last piece leaving from an end on the outline
-        // can lie outside: its inner end tells.
+        // can lie outside: its inner end tells (in fixed point, as it is written).
         if near && !blocked {
+            inner_fixed(f, lo, (line, forward), points);
+            let at = |k: usize| points[if forward { k } else { pieces - k }];
             // (One point when the edge has two pieces.)
-            let ends: &[usize] = if pieces == 2 { &[1] } else { &[1, pieces - 1] };
-            blocked = ends.iter().any(|&k| !nearby.parent.contains(f.fixed(line[k], lo)));
+            let inside = nearby.parent.contains(at(1)) && (pieces == 2 || nearby.parent.contains(at(pieces - 1)));
+            return if inside { pieces } else { 1 };
         }
     }
     if blocked {
         return 1;
     }
-    for (k, at) in line.iter().enumerate().take(pieces).skip(1) {
-        let index = if forward { k } else { pieces - k };
-        points[index] = f.fixed(*at, lo);
-    }
+    inner_fixed(f, lo, (line, forward), points);
     pieces
+}
+
+/// Writes the inner points of `line` (a perturbed edge from its start to its end, in the
+/// frame of `lo`) in fixed point into `points` from `points[1]` on, in the direction `a`
+/// runs the edge (`forward`: as `line` runs).
+fn inner_fixed(f: &Frame, lo: &Site, (line, forward): (&[[f64; 2]], bool), points: &mut [[i64; 2]]) {
+    let pieces = line.len() - 1;
+    for k in 1..pieces {
+        points[if forward { k } else { pieces - k }] = f.fixed(line[k], lo);
+    }
 }
