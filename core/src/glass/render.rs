@@ -3,8 +3,8 @@
 
 use super::Glass;
 use crate::raster::{
-    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
-    draw_time, for_each_hit, pixel_count, srgb8_opaque,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Srgb8, Stroke, StrokeHit, Tile, coverage_code,
+    draw_mask, draw_time, for_each_hit, pixel_count,
 };
 
 /// The rasters one [`Glass::render`] call draws: every [`Layers`] field but `cell`.
@@ -152,9 +152,11 @@ impl Glass<'_> {
                     self.draw(render, clip, |hit| p[hit.pixel][3] = p[hit.pixel][3].max(coverage_code(hit.coverage)));
                 }
             }
+            let srgb = Srgb8::new();
             for (i, px) in p.iter_mut().enumerate() {
                 let (x, y) = (tile.x + (i % tile.width as usize) as u32, tile.y + (i / tile.width as usize) as u32);
-                *px = plate(x as f32 / render.width as f32, y as f32 / render.height as f32, f32::from(px[3]) / 255.0);
+                let (x, y) = (x as f32 / render.width as f32, y as f32 / render.height as f32);
+                *px = plate(x, y, f32::from(px[3]) / 255.0, &srgb);
             }
         }
         let Some(scratch) = scratch.filter(|_| needs_window) else {
@@ -180,10 +182,11 @@ fn depth(code: u8) -> f32 {
 
 /// The preview's colour at (`x`, `y`), fractions of the image's width and height, with crack
 /// coverage `coverage`: dark glass (linear RGB 0.012, 0.022, 0.030) with a faint sheen,
-/// brightest at the upper left, blending into bright cracks (0.80, 0.90, 0.95).
-fn plate(x: f32, y: f32, coverage: f32) -> [u8; 4] {
+/// brightest at the upper left, blending into bright cracks (0.80, 0.90, 0.95), in sRGB by
+/// `srgb`.
+fn plate(x: f32, y: f32, coverage: f32, srgb: &Srgb8) -> [u8; 4] {
     let sheen = 0.02 * (1.0 - 0.5 * (x + y));
     let plate = [0.012 + sheen, 0.022 + sheen, 0.030 + sheen];
     let crack = [0.80f32, 0.90, 0.95];
-    srgb8_opaque(core::array::from_fn(|k| plate[k] + (crack[k] - plate[k]) * coverage))
+    srgb.opaque(core::array::from_fn(|k| plate[k] + (crack[k] - plate[k]) * coverage))
 }

@@ -5,8 +5,8 @@
 
 use super::Mud;
 use crate::raster::{
-    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Stroke, StrokeHit, Tile, coverage_code, draw_mask,
-    draw_time, for_each_hit, pixel_count, srgb8_opaque,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Srgb8, Stroke, StrokeHit, Tile, coverage_code,
+    draw_mask, draw_time, for_each_hit, pixel_count,
 };
 use crate::scalar::Scalar;
 
@@ -131,7 +131,7 @@ impl<S: Scalar> Mud<'_, S> {
             ],
             None => render.offset,
         };
-        let cut = render.until < f32::INFINITY;
+        let (cut, until) = (render.until < f32::INFINITY, render.until);
         let ppu = self.pixels_per_unit(render);
         let half = |w: f32| Self::half_width(render, ppu, w) + margin;
         self.for_each_network_piece(|a, b| {
@@ -142,7 +142,7 @@ impl<S: Scalar> Mud<'_, S> {
                 value: [a.time, b.time],
             };
             for_each_hit(&frame, &stroke, |hit| {
-                if !cut || hit.value <= render.until {
+                if !cut || hit.value <= until {
                     visit(hit);
                 }
             });
@@ -241,7 +241,10 @@ impl<S: Scalar> Mud<'_, S> {
             }
         }
         let light = preview_light();
-        let mut shade = preview.map(|p| move |i: usize, n: [f32; 3]| p[i] = clay(n, light, f32::from(p[i][3]) / 255.0));
+        let srgb = preview.is_some().then(Srgb8::new);
+        let mut shade = preview
+            .zip(srgb.as_ref())
+            .map(|(p, srgb)| move |i: usize, n: [f32; 3]| p[i] = clay(n, light, f32::from(p[i][3]) / 255.0, srgb));
         let shade = shade.as_mut().map(|s| s as &mut dyn FnMut(usize, [f32; 3]));
         window.write(render.bump, Derived { height, height16: h16, normal, normal_rgb8: n8 }, shade);
         Ok(())
@@ -253,24 +256,48 @@ impl<S: Scalar> Mud<'_, S> {
     /// below the surface: raised cells between grooves, older (wider) cracks deeper. A pixel's
     /// height is the lowest it is given.
     fn draw_grooves(&self, render: &MudRender, clip: Clip, mut lower: impl FnMut(usize, f32)) {
-        let mut widest = 0.0f32;
         let ppu = self.pixels_per_unit(render);
-        self.for_each_network_piece(|a, b| {
-            widest = widest.max(Self::half_width(render, ppu, a.width)).max(Self::half_width(render, ppu, b.width));
-        });
+        let widest = self.widest(render, ppu);
         if widest <= 0.0 {
             return;
         }
-        let bevel = BEVEL * ppu;
-        self.draw(render, clip, bevel, |hit| {
+        let (bevel, groove_depth) = (BEVEL * ppu, render.groove_depth);
+        self.draw(render, clip, bevel, move |hit| {
             let crack = hit.half_width - bevel;
             let from_axis = hit.depth * hit.half_width;
             // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
             let edge = if from_axis <= crack { 1.0 } else { (1.0 - (from_axis - crack) / bevel).max(0.0) };
-            let floor = render.groove_depth * (0.5 + 0.5 * crack / widest);
+            let floor = groove_depth * (0.5 + 0.5 * crack / widest);
             let groove = floor * edge * edge * hit.coverage;
             lower(hit.pixel, 1.0 - groove);
         });
+    }
+
+    /// The widest half stroke width ([`Mud::half_width`]) among the ends of the pieces
+    /// [`Mud::for_each_network_piece`] gives, 0 if none: each cut side's point has its
+    /// spring's separation, and a cell's centroid (where 1 or at least 3 sides are cut) the
+    /// mean of its cut sides' (0 at a dead end). Found from the widths alone, without the
+    /// points' positions.
+    fn widest(&self, render: &MudRender, pixels_per_unit: f32) -> f32 {
+        let mut widest = 0.0f32;
+        if !self.shows_network() {
+            return widest;
+        }
+        for cell in 0..self.lattice.cell_count() {
+            let Some(c) = self.cut_cell_as(cell, false) else { continue };
+            let (mut sum, mut n) = (0.0f32, 0);
+            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
+                let width = self.separation(c.cell.sides[k] as usize);
+                widest = widest.max(Self::half_width(render, pixels_per_unit, width));
+                sum += width;
+                n += 1;
+            }
+            if n != 2 {
+                let centroid = if n >= 2 { sum / n as f32 } else { 0.0 };
+                widest = widest.max(Self::half_width(render, pixels_per_unit, centroid));
+            }
+        }
+        widest
     }
 }
 
@@ -286,10 +313,50 @@ fn preview_light() -> [f32; 3] {
 
 /// The preview's colour of a pixel with normal `n` and crack coverage `coverage`: dry clay
 /// (linear RGB 0.40, 0.27, 0.16) blending into a dark crack floor (0.035, 0.025, 0.018), lit by
-/// Lambert's law with ambient 0.35.
-fn clay(n: [f32; 3], light: [f32; 3], coverage: f32) -> [u8; 4] {
+/// Lambert's law with ambient 0.35, in sRGB by `srgb`.
+fn clay(n: [f32; 3], light: [f32; 3], coverage: f32, srgb: &Srgb8) -> [u8; 4] {
     let (clay, crack, ambient) = ([0.40f32, 0.27, 0.16], [0.035f32, 0.025, 0.018], 0.35f32);
     let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
     let lit = ambient + (1.0 - ambient) * diffuse;
-    srgb8_opaque(core::array::from_fn(|k| (clay[k] + (crack[k] - clay[k]) * coverage) * lit / 0.75))
+    srgb.opaque(core::array::from_fn(|k| (clay[k] + (crack[k] - clay[k]) * coverage) * lit / 0.75))
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::mud::{Boundary, MudBuffers, MudParams, Topology};
+    use std::vec;
+
+    /// [`Mud::widest`] finds from the widths alone what the pieces' ends give.
+    #[test]
+    fn the_widest_stroke_is_the_widest_piece_end() {
+        let runs = [
+            MudParams { columns: 24, rows: 24, ..MudParams::default() },
+            MudParams { columns: 20, rows: 18, boundary: Boundary::Open, ..MudParams::default() },
+            MudParams { columns: 20, rows: 20, topology: Topology::Irregular, ..MudParams::default() },
+            MudParams { columns: 16, rows: 16, topology: Topology::Square, ..MudParams::default() },
+        ];
+        for params in runs {
+            let memory = params.memory().expect("valid parameters");
+            let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+            let buffers = MudBuffers { scalars: &mut scalars, words: &mut words };
+            let mut mud = Mud::new(&params, buffers).expect("memory suffices");
+            mud.run().expect("a stable run");
+            for render in [
+                MudRender::fit(mud.extent(), 96),
+                MudRender { width_scale: 3.0, min_width: 0.0, ..MudRender::default() },
+            ] {
+                let ppu = mud.pixels_per_unit(&render);
+                let mut pieces = 0.0f32;
+                mud.for_each_network_piece(|a, b| {
+                    pieces = pieces
+                        .max(Mud::<f32>::half_width(&render, ppu, a.width))
+                        .max(Mud::<f32>::half_width(&render, ppu, b.width));
+                });
+                assert!(pieces > 0.0, "{params:?} cracks");
+                assert_eq!(mud.widest(&render, ppu).to_bits(), pieces.to_bits(), "{params:?} {render:?}");
+            }
+        }
+    }
 }
