@@ -375,6 +375,35 @@ fn layer_buffers(width: u32, height: u32, bits: u32) -> Result<LayerBuffers, u32
     LayerBuffers::new(width, height, bits).ok_or_else(|| fail(hibi_core::raster::RasterError::Size))
 }
 
+/// Reads a view (over `base`) from the slots at `view`, draws the layers `bits` of a
+/// `size(view)` raster with `draw`, and publishes them as outputs; 0, or the failure's status.
+///
+/// # Safety
+/// `view` holds the view's slots.
+unsafe fn render_view<V: Slots, E: Display>(
+    base: V,
+    view: *const f64,
+    bits: u32,
+    size: impl FnOnce(&V) -> (u32, u32),
+    draw: impl FnOnce(&V, hibi_core::raster::Layers<'_>) -> Result<(), E>,
+) -> u32 {
+    // SAFETY: the caller's contract.
+    let view = match unsafe { take(base, view) } {
+        Ok(v) => v,
+        Err(s) => return s,
+    };
+    let (width, height) = size(&view);
+    let mut buffers = match layer_buffers(width, height, bits) {
+        Ok(b) => b,
+        Err(s) => return s,
+    };
+    if let Err(e) = draw(&view, buffers.layers()) {
+        return fail(e);
+    }
+    buffers.publish();
+    0
+}
+
 /// Makes a handle of a model and the store its buffers live in.
 fn handle<T>(value: T) -> usize {
     Box::into_raw(Box::new(value)) as usize
@@ -501,20 +530,9 @@ pub unsafe extern "C" fn hibi_web_mud_render(h: usize, view: *const f64, bits: u
     // SAFETY: the caller's contract.
     let m = unsafe { borrow::<MudHandle>(h) };
     // SAFETY: the caller's contract.
-    let view = match unsafe { take(MudRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
-    let mut buffers = match layer_buffers(view.width, view.height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = m.mud.render(&view, layers) {
-        return fail(e);
+    unsafe {
+        render_view(MudRender::default(), view, bits, |v| (v.width, v.height), |v, layers| m.mud.render(v, layers))
     }
-    buffers.publish();
-    0
 }
 
 /// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the view at `view` into
@@ -535,21 +553,17 @@ pub unsafe extern "C" fn hibi_web_mud_render_tile(
     hibi_web_out_clear();
     // SAFETY: the caller's contract.
     let m = unsafe { borrow::<MudHandle>(h) };
+    let tile = Tile { x, y, width, height };
     // SAFETY: the caller's contract.
-    let view = match unsafe { take(MudRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
-    let mut buffers = match layer_buffers(width, height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = m.mud.render_tile(&view, &Tile { x, y, width, height }, layers) {
-        return fail(e);
+    unsafe {
+        render_view(
+            MudRender::default(),
+            view,
+            bits,
+            |_| (width, height),
+            |v, layers| m.mud.render_tile(v, &tile, layers),
+        )
     }
-    buffers.publish();
-    0
 }
 
 /// The traced segments as outputs: one `f32` array of 8 per segment (start x, y, end x, y,
@@ -722,20 +736,9 @@ pub unsafe extern "C" fn hibi_web_glass_render(h: usize, view: *const f64, bits:
     // SAFETY: the caller's contract.
     let g = unsafe { borrow::<GlassHandle>(h) };
     // SAFETY: the caller's contract.
-    let view = match unsafe { take(GlassRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
-    let mut buffers = match layer_buffers(view.width, view.height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = g.glass.render(&view, layers) {
-        return fail(e);
+    unsafe {
+        render_view(GlassRender::default(), view, bits, |v| (v.width, v.height), |v, layers| g.glass.render(v, layers))
     }
-    buffers.publish();
-    0
 }
 
 /// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the view at `view` into
@@ -756,21 +759,17 @@ pub unsafe extern "C" fn hibi_web_glass_render_tile(
     hibi_web_out_clear();
     // SAFETY: the caller's contract.
     let g = unsafe { borrow::<GlassHandle>(h) };
+    let tile = Tile { x, y, width, height };
     // SAFETY: the caller's contract.
-    let view = match unsafe { take(GlassRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
-    let mut buffers = match layer_buffers(width, height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = g.glass.render_tile(&view, &Tile { x, y, width, height }, layers) {
-        return fail(e);
+    unsafe {
+        render_view(
+            GlassRender::default(),
+            view,
+            bits,
+            |_| (width, height),
+            |v, layers| g.glass.render_tile(v, &tile, layers),
+        )
     }
-    buffers.publish();
-    0
 }
 
 /// The cracks as outputs: each crack's end (`u32`), each crack's point count (`u32`), and
@@ -898,22 +897,10 @@ pub unsafe extern "C" fn hibi_web_skin_render(h: usize, view: *const f64, bits: 
     hibi_web_out_clear();
     // SAFETY: the caller's contract.
     let s = unsafe { borrow::<SkinHandle>(h) };
-    // SAFETY: the caller's contract.
-    let view = match unsafe { take(SkinRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
     let params = s.skin.params();
-    let mut buffers = match layer_buffers(params.width, params.height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = s.skin.render(&view, layers) {
-        return fail(e);
-    }
-    buffers.publish();
-    0
+    let size = |_: &SkinRender| (params.width, params.height);
+    // SAFETY: the caller's contract.
+    unsafe { render_view(SkinRender::default(), view, bits, size, |v, layers| s.skin.render(v, layers)) }
 }
 
 /// Renders the layers `bits` of tile (`x`, `y`, `width`, `height`) of the surface with the
@@ -934,21 +921,17 @@ pub unsafe extern "C" fn hibi_web_skin_render_tile(
     hibi_web_out_clear();
     // SAFETY: the caller's contract.
     let s = unsafe { borrow::<SkinHandle>(h) };
+    let tile = Tile { x, y, width, height };
     // SAFETY: the caller's contract.
-    let view = match unsafe { take(SkinRender::default(), view) } {
-        Ok(v) => v,
-        Err(s) => return s,
-    };
-    let mut buffers = match layer_buffers(width, height, bits) {
-        Ok(b) => b,
-        Err(s) => return s,
-    };
-    let layers = buffers.layers();
-    if let Err(e) = s.skin.render_tile(&view, &Tile { x, y, width, height }, layers) {
-        return fail(e);
+    unsafe {
+        render_view(
+            SkinRender::default(),
+            view,
+            bits,
+            |_| (width, height),
+            |v, layers| s.skin.render_tile(v, &tile, layers),
+        )
     }
-    buffers.publish();
-    0
 }
 
 /// The cells as outputs: per cell (level, parent, site, vertex_count) as `u32`, then every
