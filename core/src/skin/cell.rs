@@ -86,6 +86,11 @@ impl CrossingScratch {
 pub(super) struct EdgeWork<'w> {
     pub(super) shared: Option<&'w mut SharedEdges>,
     pub(super) crossing: Option<&'w mut CrossingScratch>,
+    /// The cell's own place among its neighbours when they are built in their order (a
+    /// parent's children): those before it are built, those after it not yet, so an edge
+    /// with one before it can only be taken, and one with a later one only kept. `None`
+    /// (level 0's window): either may hold, and every edge is looked up and kept.
+    pub(super) own: Option<usize>,
 }
 
 /// Scratch for building outlines.
@@ -434,7 +439,7 @@ impl Builder<'_> {
         n: usize,
         (out, work): (&mut [[i64; 2]], EdgeWork),
     ) -> Result<usize, OutlineFull> {
-        let EdgeWork { mut shared, mut crossing } = work;
+        let EdgeWork { mut shared, mut crossing, own } = work;
         // The points of one perturbed piece of a bisector edge (its start, inner points and
         // end: 2^depth + 1), on the stack: one outline's edges are built one after another, at
         // any level, and the points are written out before the next piece is perturbed.
@@ -469,7 +474,10 @@ impl Builder<'_> {
             push(start.fixed, &mut written)?;
             let (key, forward, image) = edge_key(f, a, b, &start, &end);
             let to_surface = |p: [i64; 2]| [p[0].wrapping_add(image[0]), p[1].wrapping_add(image[1])];
-            if let Some((points, m)) = shared.as_deref_mut().and_then(|s| s.take(&key)) {
+            // (A neighbour built before this cell may have kept the edge; one built after it
+            // will look for it.)
+            let (built, unbuilt) = own.map_or((true, true), |k| ((label as usize) < k, (label as usize) > k));
+            if let Some((points, m)) = shared.as_deref_mut().filter(|_| built).and_then(|s| s.take(&key)) {
                 for i in 0..m {
                     push(to_surface(points[if forward { i } else { m - 1 - i }]), &mut written)?;
                 }
@@ -508,7 +516,7 @@ impl Builder<'_> {
                     }
                 }
             }
-            if let Some(shared) = shared.as_deref_mut().filter(|_| fits) {
+            if let Some(shared) = shared.as_deref_mut().filter(|_| fits && unbuilt) {
                 if !forward {
                     kept[..m].reverse();
                 }

@@ -878,11 +878,13 @@ impl Build<'_> {
     /// Builds `site`'s outline in level `level` among `neighbours` (sites[range]) inside the
     /// outline `parent` (vertices[parent range], with level `level`'s chunk boxes and parent
     /// frame, or the given rectangle) and stores the cell; returns its index, or `None` when
-    /// its outline is empty (fewer than 3 vertices: no cell).
+    /// its outline is empty (fewer than 3 vertices: no cell). `own` is the site's place among
+    /// `neighbours` when they are built in that order (a parent's children), for the shared
+    /// edges ([`cell::EdgeWork`]).
     fn cell(
         &mut self,
         level: usize,
-        site: Site,
+        (site, own): (Site, Option<usize>),
         neighbours: (usize, usize),
         (parent, parent_index): (ParentOutline, u32),
     ) -> Result<Option<usize>, Full> {
@@ -920,7 +922,7 @@ impl Build<'_> {
             .builder
             .outline(&f, &site, (&self.sites[neighbours.0..neighbours.0 + neighbours.1], buckets), outline, {
                 let room = tail.len().min(self.layout.outline[level]);
-                (&mut tail[..room], cell::EdgeWork { shared, crossing })
+                (&mut tail[..room], cell::EdgeWork { shared, crossing, own })
             })
             .map_err(|_| Full)?;
         if n < 3 {
@@ -1073,7 +1075,7 @@ impl Build<'_> {
         let s = self.sites[base + k];
         let c = self.cells[parent as usize];
         let outline = ParentOutline::Stored(c.first_vertex as usize, c.vertex_count as usize);
-        self.cell(level, s, (base, count), (outline, parent))
+        self.cell(level, (s, Some(k)), (base, count), (outline, parent))
     }
 }
 
@@ -1326,7 +1328,7 @@ impl<'a, S: Scalar> Skin<'a, S> {
             let (w, h) = (i64::from(self.params.width) << shift, i64::from(self.params.height) << shift);
             ParentOutline::Box([[0, 0], [w, 0], [w, h], [0, h]])
         };
-        self.build.cell(0, site, (0, at), (parent, NO_CELL))
+        self.build.cell(0, (site, None), (0, at), (parent, NO_CELL))
     }
 
     /// Whether the setup (each level's profile table, sampled by the first [`Skin::step`]

@@ -87,9 +87,6 @@ const BATCH: usize = 64;
 /// Lanes of a batch: steps that handle eight pixels at once may run past its end.
 const LANES: usize = BATCH + 8;
 
-/// Outline edges whose wedges are made together.
-const EDGES: usize = 8;
-
 /// Pixels whose heights and normals are evaluated together (a batch's worth: the queue's
 /// arrays are on the stack, and each pixel's sums are its own, whatever the queue's length).
 const QUEUE: usize = BATCH;
@@ -873,49 +870,29 @@ pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wed
     let wedges = &mut slots[1..=n];
     // The first corner of smallest angle: the fan starts there.
     let (mut start, mut smallest) = (0, f32::INFINITY);
-    // A few edges at a time, each step a plain loop over them, so that the divisions go
-    // several at once (the lanes past the outline's end hold zeros, and are not kept).
-    for (chunk, out) in wedges.chunks_mut(EDGES).enumerate() {
-        let first = chunk * EDGES;
-        // The first corner relative to the centre, and the edge, in pixels.
-        let (mut va, mut e) = ([[0.0f32; EDGES]; 2], [[0.0f32; EDGES]; 2]);
-        for l in 0..out.len() {
-            let i = first + l;
-            let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
-            // Wrapping, as release builds always did: a stretch of 1e21 puts an outline's
-            // fixed-point corners far enough apart that the differences overflow i64
-            // (found by fuzzing; a panic with overflow checks on).
-            (va[0][l], va[1][l]) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
-            (e[0][l], e[1][l]) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
-        }
-        // (libm's square root is a scalar instruction, in a loop of its own.)
-        let mut length = [0.0f32; EDGES];
-        for l in 0..EDGES {
-            length[l] = libm::sqrtf(e[0][l] * e[0][l] + e[1][l] * e[1][l]);
-        }
-        let (mut gx, mut gy) = ([0.0f32; EDGES], [0.0f32; EDGES]);
-        let (mut inverse_apothem, mut angle) = ([0.0f32; EDGES], [0.0f32; EDGES]);
-        let [vx, vy] = va;
-        let [ex, ey] = e;
-        for l in 0..EDGES {
-            // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
-            let outward = [ey[l], -ex[l]];
-            let reach = vx[l] * outward[0] + vy[l] * outward[1];
-            let per_reach = 1.0 / reach;
-            // With the centre on or beyond this edge's line (a fold), the wedge reads as
-            // edge.
-            let kept = (reach > 0.0) & (length[l] > 0.0);
-            gx[l] = if kept { outward[0] * per_reach } else { 0.0 };
-            gy[l] = if kept { outward[1] * per_reach } else { 0.0 };
-            inverse_apothem[l] = if kept { length[l] * per_reach } else { 1.0 };
-            angle[l] = pseudo_angle([vx[l], vy[l]]);
-        }
-        for (l, w) in out.iter_mut().enumerate() {
-            let (i, angle) = (first + l, angle[l]);
-            *w = Wedge { g: [gx[l], gy[l]], inverse_apothem: inverse_apothem[l], angle };
-            if angle < smallest || i == 0 {
-                (start, smallest) = (i, angle);
-            }
+    // Corner by corner (a finest cell has about ten: eight lanes at a time left most of two
+    // chunks empty, and neither the square root nor the pseudo-angle went several at once).
+    for (i, w) in wedges.iter_mut().enumerate() {
+        let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
+        // The corner relative to the centre, and the edge, in pixels. Wrapping, as release
+        // builds always did: a stretch of 1e21 puts an outline's fixed-point corners far
+        // enough apart that the differences overflow i64 (found by fuzzing; a panic with
+        // overflow checks on).
+        let (vx, vy) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
+        let (ex, ey) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
+        let length = libm::sqrtf(ex * ex + ey * ey);
+        // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
+        let outward = [ey, -ex];
+        let reach = vx * outward[0] + vy * outward[1];
+        let per_reach = 1.0 / reach;
+        // With the centre on or beyond this edge's line (a fold), the wedge reads as edge.
+        let kept = (reach > 0.0) & (length > 0.0);
+        let g = if kept { [outward[0] * per_reach, outward[1] * per_reach] } else { [0.0, 0.0] };
+        let inverse_apothem = if kept { length * per_reach } else { 1.0 };
+        let angle = pseudo_angle([vx, vy]);
+        *w = Wedge { g, inverse_apothem, angle };
+        if angle < smallest || i == 0 {
+            (start, smallest) = (i, angle);
         }
     }
     wedges.rotate_left(start);
