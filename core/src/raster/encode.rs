@@ -5,13 +5,26 @@ use super::{Clip, Tile};
 
 /// A height in [0, 1] (clamped) as 16 bits: round(h · 65535).
 pub fn height16(h: f32) -> u16 {
-    libm::roundf(h.clamp(0.0, 1.0) * 65535.0) as u16
+    // (libm's roundf is trunc(v + copysign(HALF, v)); the conversion truncates and saturates
+    // alike, and NaN converts to 0 either way.)
+    let v = h.clamp(0.0, 1.0) * 65535.0;
+    (v + HALF.copysign(v)) as u16
 }
 
 /// A unit normal as an 8-bit RGB texel: each component c as round((c · ½ + ½) · 255).
 pub fn normal_rgb8(n: [f32; 3]) -> [u8; 3] {
-    n.map(|c| libm::roundf((c * 0.5 + 0.5) * 255.0).clamp(0.0, 255.0) as u8)
+    // round(v) clamped to [0, 255] and converted, bit for bit: libm's roundf is
+    // trunc(v + copysign(HALF, v)), and truncating before or after the clamp gives the same
+    // conversion (which truncates itself; NaN stays NaN and converts to 0).
+    n.map(|c| {
+        let v = (c * 0.5 + 0.5) * 255.0;
+        (v + HALF.copysign(v)).clamp(0.0, 255.0) as u8
+    })
 }
+
+/// The largest `f32` below ½: added with the value's sign before truncating, it rounds half
+/// away from zero (libm's roundf), without the value's ties of ½ − ulp rounding up.
+const HALF: f32 = 0.5 - 0.25 * f32::EPSILON;
 
 /// Linear [0, 1] (clamped) to an 8-bit sRGB code (IEC 61966-2-1).
 pub fn srgb8(v: f32) -> u8 {
@@ -222,6 +235,30 @@ mod tests {
             same(&table, v.to_bits());
         }
         assert_eq!(table.opaque([0.0, 0.5, 1.0]), srgb8_opaque([0.0, 0.5, 1.0]));
+    }
+
+    #[test]
+    fn the_encodings_round_as_libm_does() {
+        // libm's rounding, as the encodings are defined.
+        let height = |h: f32| libm::roundf(h.clamp(0.0, 1.0) * 65535.0) as u16;
+        let normal = |c: f32| libm::roundf((c * 0.5 + 0.5) * 255.0).clamp(0.0, 255.0) as u8;
+        let check = |c: f32| {
+            assert_eq!(height16(c), height(c), "height16 at {c} ({:#x})", c.to_bits());
+            assert_eq!(normal_rgb8([c, -c, c])[0], normal(c), "normal_rgb8 at {c} ({:#x})", c.to_bits());
+            assert_eq!(normal_rgb8([c, -c, c])[1], normal(-c), "normal_rgb8 at {} ({:#x})", -c, c.to_bits());
+        };
+        // Ties and the values an ulp or two beside them, both encodings' codes.
+        for k in 0..=65535u32 {
+            for v in [k as f32 / 65535.0, (k as f32 + 0.5) / 65535.0, (k as f32 + 0.5) / 127.5 - 1.0] {
+                let bits = v.to_bits();
+                (bits.saturating_sub(3)..=bits.saturating_add(3)).for_each(|b| check(f32::from_bits(b)));
+            }
+        }
+        // A stride through every f32 (both signs), and the special values.
+        (0..=u32::MAX).step_by(65_537).for_each(|b| check(f32::from_bits(b)));
+        for v in [f32::NAN, -f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -0.0, f32::MAX, f32::MIN_POSITIVE] {
+            check(v);
+        }
     }
 
     /// The table's premise: [`srgb8`] never falls as its value rises, so that it equals the

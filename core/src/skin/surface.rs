@@ -218,8 +218,10 @@ impl Sink for Both<'_> {
 }
 
 /// Any set of maps, in the formats an engine uploads: heights (`f32`, 16-bit over
-/// `range`), normals (`f32`, 8-bit RGB) and the shaded preview.
-struct Outputs<'o> {
+/// `range`), normals (`f32`, 8-bit RGB) and the shaded preview. `NORMALS`: whether any of them
+/// needs the normals (when none does, they are not made; a 32-bit build makes them always, for
+/// the flash of one drawing fewer).
+struct Outputs<'o, const NORMALS: bool = true> {
     height: Option<&'o mut [f32]>,
     height16: Option<&'o mut [u16]>,
     normal: Option<&'o mut [[f32; 3]]>,
@@ -230,7 +232,20 @@ struct Outputs<'o> {
     per_span: f32,
 }
 
-impl Outputs<'_> {
+impl<'o> Outputs<'o> {
+    /// Whether any map the outputs hold needs the normals.
+    #[cfg(target_pointer_width = "64")]
+    fn normals(&self) -> bool {
+        self.normal.is_some() || self.normal_rgb8.is_some() || self.preview.is_some()
+    }
+
+    /// The same outputs, with no normal made (none of them may need one).
+    #[cfg(target_pointer_width = "64")]
+    fn heights(self) -> Outputs<'o, false> {
+        let Outputs { height, height16, normal, normal_rgb8, preview, low, per_span } = self;
+        Outputs { height, height16, normal, normal_rgb8, preview, low, per_span }
+    }
+
     /// Whether any map the outputs hold needs the heights and normals.
     fn shades(&self) -> bool {
         self.height.is_some()
@@ -241,9 +256,32 @@ impl Outputs<'_> {
     }
 }
 
-impl Sink for Outputs<'_> {
+impl Outputs<'_> {
+    /// Sets every one of the first `pixels` pixels as [`Sink::set`] sets one to height `z` and
+    /// unit normal `normal`: each format's value made once.
+    fn fill(&mut self, pixels: usize, z: f32, normal: [f32; 3]) {
+        let t = (z - self.low) * self.per_span;
+        if let Some(out) = self.height.as_deref_mut() {
+            out[..pixels].fill(z);
+        }
+        if let Some(out) = self.height16.as_deref_mut() {
+            out[..pixels].fill(height16(t));
+        }
+        if let Some(out) = self.normal.as_deref_mut() {
+            out[..pixels].fill(normal);
+        }
+        if let Some(out) = self.normal_rgb8.as_deref_mut() {
+            out[..pixels].fill(normal_rgb8(normal));
+        }
+        if let Some((out, light, params)) = self.preview.as_mut() {
+            out[..pixels].fill(light.shade(normal, t, params));
+        }
+    }
+}
+
+impl<const NORMALS: bool> Sink for Outputs<'_, NORMALS> {
     const SHADES: bool = true;
-    const NORMALS: bool = true;
+    const NORMALS: bool = NORMALS;
     #[inline]
     fn set(&mut self, i: usize, z: f32, normal: [f32; 3]) {
         let t = (z - self.low) * self.per_span;
@@ -651,7 +689,14 @@ impl<S: Scalar> Skin<'_, S> {
             // What a pixel in no cell reads (every pixel of a built skin lies in one): height 0,
             // the normal straight up.
             let flat = unit_normal([0.0; 2]);
-            (0..pixels).for_each(|i| outputs.set(i, 0.0, flat));
+            outputs.fill(pixels, 0.0, flat);
+            #[cfg(target_pointer_width = "64")]
+            if !outputs.normals() {
+                self.draw(&mut outputs.heights(), cell, tile);
+            } else {
+                self.draw(&mut outputs, cell, tile);
+            }
+            #[cfg(not(target_pointer_width = "64"))]
             self.draw(&mut outputs, cell, tile);
         } else {
             self.draw(&mut NoMaps, cell, tile);
