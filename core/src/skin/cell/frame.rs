@@ -77,10 +77,13 @@ impl Frame {
         let s = self.shift - self.bits;
         let q = |k: usize| {
             let world = round_to_i64(at[k] * self.stretch[k] * self.own_unit);
-            let offset = i64::from(reference.image[k]).saturating_mul(self.world_period[k]);
             let w = world << s;
             if w >> s == world {
-                w.saturating_add(offset)
+                // (Nearly every site is image 0: no offset to add.)
+                match reference.image[k] {
+                    0 => w,
+                    image => w.saturating_add(i64::from(image).saturating_mul(self.world_period[k])),
+                }
             } else if world < 0 {
                 i64::MIN
             } else {
@@ -93,7 +96,10 @@ impl Frame {
     /// A fixed-point point in the frame, relative to `reference`'s image.
     pub(super) fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
         let u = |k: usize| {
-            let local = p[k].saturating_sub(i64::from(reference.image[k]).saturating_mul(self.world_period[k]));
+            let local = match reference.image[k] {
+                0 => p[k],
+                image => p[k].saturating_sub(i64::from(image).saturating_mul(self.world_period[k])),
+            };
             local as f64 * self.to_frame[k]
         };
         [u(0), u(1)]
