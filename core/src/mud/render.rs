@@ -6,7 +6,7 @@
 use super::Mud;
 use crate::raster::{
     Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Srgb8, Stroke, StrokeHit, Tile, coverage_code,
-    draw_mask, draw_time, for_each_hit, pixel_count,
+    draw_mask, draw_time, for_each_hit, for_each_run, pixel_count,
 };
 use crate::scalar::Scalar;
 
@@ -122,6 +122,19 @@ impl<S: Scalar> Mud<'_, S> {
     /// Calls `visit` for every pixel of `clip` that a crack stroke covers (broken by
     /// `render.until`), each stroke widened on either side by `margin` pixels.
     fn draw(&self, render: &MudRender, clip: Clip, margin: f32, mut visit: impl FnMut(StrokeHit)) {
+        let (cut, until) = (render.until < f32::INFINITY, render.until);
+        self.strokes(render, clip, margin, |frame, stroke| {
+            for_each_hit(frame, stroke, |hit| {
+                if !cut || hit.value <= until {
+                    visit(hit);
+                }
+            });
+        });
+    }
+
+    /// Calls `each` with the frame visiting `clip` and every crack stroke (every piece of the
+    /// network, whatever its break time), each widened on either side by `margin` pixels.
+    fn strokes(&self, render: &MudRender, clip: Clip, margin: f32, mut each: impl FnMut(&Frame, &Stroke)) {
         let frame = self.frame(render, clip);
         // On a periodic lattice the view wraps: reduce the offset to one period.
         let [ox, oy] = match frame.period {
@@ -131,7 +144,6 @@ impl<S: Scalar> Mud<'_, S> {
             ],
             None => render.offset,
         };
-        let (cut, until) = (render.until < f32::INFINITY, render.until);
         let ppu = self.pixels_per_unit(render);
         let half = |w: f32| Self::half_width(render, ppu, w) + margin;
         self.for_each_network_piece(|a, b| {
@@ -141,11 +153,7 @@ impl<S: Scalar> Mud<'_, S> {
                 half_width: [half(a.width), half(b.width)],
                 value: [a.time, b.time],
             };
-            for_each_hit(&frame, &stroke, |hit| {
-                if !cut || hit.value <= until {
-                    visit(hit);
-                }
-            });
+            each(&frame, &stroke);
         });
     }
 
@@ -184,7 +192,7 @@ impl<S: Scalar> Mud<'_, S> {
         if let Some(out) = height {
             let out = &mut out[..pixels];
             out.fill(1.0);
-            self.draw_grooves(render, tile.clip(0), |i, h| out[i] = out[i].min(h));
+            self.draw_grooves(render, tile.clip(0), out);
         }
         Ok(())
     }
@@ -224,10 +232,7 @@ impl<S: Scalar> Mud<'_, S> {
         let periodic = self.params.boundary == super::Boundary::Periodic;
         let mut window = HeightWindow::new(scratch, *tile, [render.width, render.height], periodic, 1.0);
         let window_clip = window.clip();
-        self.draw_grooves(render, window_clip, |i, h| {
-            let lower = window.at(i).min(h);
-            window.set(i, lower);
-        });
+        self.draw_grooves(render, window_clip, window.bits());
         // The preview's coverage is the mask's, read from it when it is drawn.
         let mut preview = preview.map(|p| &mut p[..pixels]);
         if let Some(p) = preview.as_deref_mut() {
@@ -250,27 +255,55 @@ impl<S: Scalar> Mud<'_, S> {
         Ok(())
     }
 
-    /// Calls `lower(index, height)` for every pixel of `clip` in a groove: the height map is
-    /// 1 on a cell's surface, and each cell's edge rounds off over [`BEVEL`] spacings into its
-    /// crack, whose floor lies `groove_depth` times (½ + ½ · its width over the widest crack's)
-    /// below the surface: raised cells between grooves, older (wider) cracks deeper. A pixel's
-    /// height is the lowest it is given.
-    fn draw_grooves(&self, render: &MudRender, clip: Clip, mut lower: impl FnMut(usize, f32)) {
+    /// Lowers every pixel of `clip` in a groove (`heights` holds the clip's pixels, row by
+    /// row): the height map is 1 on a cell's surface, and each cell's edge rounds off over
+    /// [`BEVEL`] spacings into its crack, whose floor lies `groove_depth` times (½ + ½ · its
+    /// width over the widest crack's) below the surface: raised cells between grooves, older
+    /// (wider) cracks deeper. A pixel's height is the lowest it is given.
+    fn draw_grooves<H: HeightCell>(&self, render: &MudRender, clip: Clip, heights: &mut [H]) {
         let ppu = self.pixels_per_unit(render);
         let widest = self.widest(render, ppu);
         if widest <= 0.0 {
             return;
         }
         let (bevel, groove_depth) = (BEVEL * ppu, render.groove_depth);
-        self.draw(render, clip, bevel, move |hit| {
-            let crack = hit.half_width - bevel;
-            let from_axis = hit.depth * hit.half_width;
+        // The height a stroke gives a pixel it covers (coverage > 0). Written without
+        // branches, so that a run's lanes are worked on together; the comparisons give what
+        // `max(0.0)` would (the edge's sign does not reach the height: it is squared).
+        let height = move |coverage: f32, depth: f32, half_width: f32| {
+            let crack = half_width - bevel;
+            let from_axis = depth * half_width;
             // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
-            let edge = if from_axis <= crack { 1.0 } else { (1.0 - (from_axis - crack) / bevel).max(0.0) };
+            let fall = 1.0 - (from_axis - crack) / bevel;
+            let edge = if from_axis <= crack {
+                1.0
+            } else if fall > 0.0 {
+                fall
+            } else {
+                0.0
+            };
             let floor = groove_depth * (0.5 + 0.5 * crack / widest);
-            let groove = floor * edge * edge * hit.coverage;
-            lower(hit.pixel, 1.0 - groove);
-        });
+            let groove = floor * edge * edge * coverage;
+            1.0 - groove
+        };
+        // (Not on 32-bit targets, for the Cortex-M3's flash and stack: pixel by pixel there,
+        // the same heights.)
+        if cfg!(target_pointer_width = "64") {
+            let (cut, until) = (render.until < f32::INFINITY, render.until);
+            self.strokes(render, clip, bevel, |frame, stroke| {
+                for_each_run(frame, stroke, heights, |cell, hit| {
+                    let h = height(hit.coverage, hit.depth, hit.half_width);
+                    let hit = (hit.coverage > 0.0) & (!cut | (hit.value <= until));
+                    cell.lower(if hit { h } else { f32::INFINITY });
+                });
+            });
+        } else {
+            self.draw(render, clip, bevel, |hit| {
+                if let Some(cell) = heights.get_mut(hit.pixel) {
+                    cell.lower(height(hit.coverage, hit.depth, hit.half_width));
+                }
+            });
+        }
     }
 
     /// The widest half stroke width ([`Mud::half_width`]) among the ends of the pieces
@@ -303,6 +336,29 @@ impl<S: Scalar> Mud<'_, S> {
 
 /// How far a cell's edge rounds off into its crack in the height map [lattice spacings].
 pub const BEVEL: f32 = 0.6;
+
+/// A pixel of a height map that [`Mud::draw_grooves`] lowers: an `f32`, or its bits (the
+/// scratch's heights).
+trait HeightCell: Copy {
+    /// Sets the height to `h` where `h` is lower (heights are never NaN; a NaN `h` lowers
+    /// nothing, as `min` has it).
+    fn lower(&mut self, h: f32);
+}
+
+impl HeightCell for f32 {
+    #[inline(always)]
+    fn lower(&mut self, h: f32) {
+        *self = if h < *self { h } else { *self };
+    }
+}
+
+impl HeightCell for u32 {
+    #[inline(always)]
+    fn lower(&mut self, h: f32) {
+        let now = f32::from_bits(*self);
+        *self = (if h < now { h } else { now }).to_bits();
+    }
+}
 
 /// The preview's light: from the upper left (x right, y up, z out), unit length.
 fn preview_light() -> [f32; 3] {

@@ -130,6 +130,11 @@ impl<'s> HeightWindow<'s> {
         self.heights[i] = h.to_bits();
     }
 
+    /// The heights' bits, row by row over [`HeightWindow::clip`].
+    pub(crate) fn bits(&mut self) -> &mut [u32] {
+        self.heights
+    }
+
     /// The height of the tile's pixel (column, row within the tile).
     pub fn inside(&self, x: u32, y: u32) -> f32 {
         self.at((y as usize + 1) * (self.tile.width as usize + 2) + x as usize + 1)

@@ -15,6 +15,7 @@ pub use bands::Bands;
 pub use encode::{Derived, HeightWindow, Srgb8, height16, normal_rgb8, srgb8, srgb8_opaque};
 pub use layers::{Layer, Layers, coverage_code, draw_mask, draw_time, scratch_len};
 pub use regions::label_regions;
+pub(crate) use stroke::for_each_run;
 pub use stroke::{Clip, Frame, Stroke, StrokeHit, for_each_hit};
 pub use tile::Tile;
 

@@ -71,6 +71,30 @@ pub struct StrokeHit {
 /// Calls `visit` for every pixel the stroke covers, row by row, once per copy of the stroke
 /// (a wrapped stroke near an edge is drawn at each periodic offset that reaches the raster).
 pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(StrokeHit)) {
+    for_each_copy(frame, stroke, |a, b, bounds| draw_capsule(frame.clip, a, b, bounds, stroke, &mut visit));
+}
+
+/// The most pixels [`for_each_run`] hands over at a time (a multiple of [`LANES`]).
+const RUN: usize = 32;
+
+/// [`for_each_run`] hands over a multiple of this many pixels at a time.
+const LANES: usize = 4;
+
+/// Calls `lane(cell, hit)` for the pixels [`for_each_hit`] visits, in the same order, each
+/// with its cell of `cells` (which holds the clip's pixels, row by row); and for some
+/// neighbours of theirs on the same row, whose `hit.coverage` is not > 0 (0, −0 or NaN):
+/// `lane` must leave those cells as they are. A hit's `pixel` is 0 (the cell is the pixel).
+/// Each row's pixels that the stroke can cover are handed over up to [`RUN`] at a time, in
+/// loops without a branch per pixel, which LLVM vectorises where `lane` has none either.
+pub(crate) fn for_each_run<C>(frame: &Frame, stroke: &Stroke, cells: &mut [C], lane: impl Fn(&mut C, StrokeHit)) {
+    for_each_copy(frame, stroke, |a, b, bounds| draw_runs(frame.clip, a, b, bounds, stroke, cells, &lane));
+}
+
+/// Calls `draw(a, b, bounds)` for each copy of the stroke that reaches the clip: its ends in
+/// pixels and the pixels within the widest half width + 1 of them (first and last column,
+/// first and last row).
+#[inline(always)]
+fn for_each_copy(frame: &Frame, stroke: &Stroke, mut draw: impl FnMut([f32; 2], [f32; 2], [[f32; 2]; 2])) {
     let reach = stroke.half_width[0].max(stroke.half_width[1]) + 1.0;
     let clip = frame.clip;
     // The clip's first and last column and row, within the raster when it does not wrap.
@@ -102,7 +126,7 @@ pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(Stroke
     for y in ys[..copies].iter().filter(|e| e.reached) {
         for x in xs[..copies].iter().filter(|e| e.reached) {
             let (a, b) = ([x.ends[0], y.ends[0]], [x.ends[1], y.ends[1]]);
-            draw_capsule(clip, a, b, [x.pixels, y.pixels], stroke, &mut visit);
+            draw(a, b, [x.pixels, y.pixels]);
         }
     }
 }
@@ -143,20 +167,9 @@ fn draw_capsule(
     // below a, `row` its first pixel's index.
     macro_rules! pixel {
         ($x:expr, $cx:expr, $py:expr, $row:expr) => {{
-            let p = [$cx - a[0], $py];
-            let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
-            let q = [p[0] - d[0] * t, p[1] - d[1] * t];
-            let distance = libm::sqrtf(q[0] * q[0] + q[1] * q[1]);
-            let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
-            let coverage = (half_width - distance + 0.5).min(1.0);
-            if coverage > 0.0 {
-                visit(StrokeHit {
-                    pixel: $row + ($x - clip.x) as usize,
-                    coverage,
-                    depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
-                    half_width,
-                    value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * t,
-                });
+            let hit = sample([$cx - a[0], $py], d, dd, stroke);
+            if hit.coverage > 0.0 {
+                visit(StrokeHit { pixel: $row + ($x - clip.x) as usize, ..hit });
             }
         }};
     }
@@ -182,6 +195,138 @@ fn draw_capsule(
         }
     }
 }
+
+/// What a stroke from `a` to `a + d` (`dd` = |d|²) leaves on the pixel whose centre lies at
+/// `p` from `a` (its `pixel` left 0): the nearest point of the axis, at `t` along it, and the
+/// half width there give the coverage and the depth.
+#[inline(always)]
+fn sample(p: [f32; 2], d: [f32; 2], dd: f32, stroke: &Stroke) -> StrokeHit {
+    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
+    let q = [p[0] - d[0] * t, p[1] - d[1] * t];
+    let distance = libm::sqrtf(q[0] * q[0] + q[1] * q[1]);
+    let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
+    StrokeHit {
+        pixel: 0,
+        coverage: (half_width - distance + 0.5).min(1.0),
+        depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
+        half_width,
+        value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * t,
+    }
+}
+
+/// [`draw_capsule`] for [`for_each_run`]: each row's pixels within [`Span::columns`] (all of
+/// the row's within `bounds` when there is no span), up to [`RUN`] at a time.
+fn draw_runs<C>(
+    clip: Clip,
+    a: [f32; 2],
+    b: [f32; 2],
+    bounds: [[f32; 2]; 2],
+    stroke: &Stroke,
+    cells: &mut [C],
+    lane: &impl Fn(&mut C, StrokeHit),
+) {
+    let [[x0, x1], [y0, y1]] = bounds;
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let dd = d[0] * d[0] + d[1] * d[1];
+    let columns = clip.width as usize;
+    let span = Span::new(a, d, dd, stroke.half_width[0].max(stroke.half_width[1]));
+    let mut scratch = [[0.0f32; RUN]; 2];
+    for y in y0 as i64..=y1 as i64 {
+        let row = (y - clip.y) as usize * columns;
+        let py = y as f32 + 0.5 - a[1];
+        let (first, last) = match &span {
+            Some(span) => {
+                let [from, to] = span.columns(y as f32 + 0.5);
+                ((x0 as i64).max(from), (x1 as i64).min(to))
+            }
+            None => (x0 as i64, x1 as i64),
+        };
+        let mut x = first;
+        while x <= last {
+            let pixels = (last - x + 1).min(RUN as i64) as usize;
+            let start = row + (x - clip.x) as usize;
+            let lanes = pixels.next_multiple_of(LANES);
+            if let (Some(cells), true) = (cells.get_mut(start..start + lanes), span.is_some() && dd > 0.0) {
+                // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
+                let at = [x as f32 + 0.5, a[0], py];
+                span_lanes(at, d, dd, stroke, pixels, &mut scratch, cells, lane);
+            } else {
+                for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
+                    let cx = (x + k as i64) as f32 + 0.5;
+                    lane(cell, sample([cx - a[0], py], d, dd, stroke));
+                }
+            }
+            x += RUN as i64;
+        }
+    }
+}
+
+/// [`sample`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
+/// a stroke with a [`Span`] and a length (`dd` > 0), which lies at column `ax` (`at` = [cx,
+/// ax, py]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
+/// a multiple of [`LANES`], at most [`RUN`], at least `pixels`) with coverage 0. Within a span
+/// every coordinate is finite, and so is the position `t` along the axis, so that comparisons
+/// give what `clamp` and `min` do. Loops over the pixels without a branch, which LLVM
+/// vectorises (the square roots, libm's, one pixel at a time).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn span_lanes<C>(
+    [cx, ax, py]: [f32; 3],
+    d: [f32; 2],
+    dd: f32,
+    stroke: &Stroke,
+    pixels: usize,
+    [t, distance]: &mut [[f32; RUN]; 2],
+    cells: &mut [C],
+    lane: &impl Fn(&mut C, StrokeHit),
+) {
+    let lanes = (cells.len() & !(LANES - 1)).min(RUN);
+    let pd1 = py * d[1];
+    for ((t, r), &k) in t[..lanes].iter_mut().zip(&mut distance[..lanes]).zip(&LANE[..lanes]) {
+        let p0 = (cx + k) - ax;
+        let s = (p0 * d[0] + pd1) / dd;
+        let s = if s > 0.0 { s } else { 0.0 };
+        *t = if s < 1.0 { s } else { 1.0 };
+        let (q0, q1) = (p0 - d[0] * *t, py - d[1] * *t);
+        *r = q0 * q0 + q1 * q1;
+    }
+    for four in distance[..lanes].chunks_exact_mut(LANES) {
+        for r in four {
+            *r = libm::sqrtf(*r);
+        }
+    }
+    let [w0, w1] = stroke.half_width;
+    let [v0, v1] = stroke.value;
+    let pixels = pixels as f32;
+    let cells = &mut cells[..lanes];
+    let lanes = t[..lanes].iter().zip(&distance[..lanes]).zip(&LANE[..lanes]);
+    for (cell, ((&t, &distance), &k)) in cells.iter_mut().zip(lanes) {
+        let w = w0 + (w1 - w0) * t;
+        let c = w - distance + 0.5;
+        let coverage = if c < 1.0 { c } else { 1.0 };
+        lane(
+            cell,
+            StrokeHit {
+                pixel: 0,
+                coverage: if k < pixels { coverage } else { 0.0 },
+                depth: if w > 0.0 { distance / w } else { 1.0 },
+                half_width: w,
+                value: v0 + (v1 - v0) * t,
+            },
+        );
+    }
+}
+
+/// Each lane's column from a run's first: 0, 1, 2, …
+const LANE: [f32; RUN] = {
+    let mut lane = [0.0; RUN];
+    let mut k = 0;
+    while k < RUN {
+        lane[k] = k as f32;
+        k += 1;
+    }
+    lane
+};
 
 /// Strokes and reaches shorter than this many pixels have their rows cut to [`Span`]s (longer
 /// ones are drawn over their whole bounding box).
@@ -337,6 +482,8 @@ mod tests {
         }
     }
 
+    /// [`for_each_hit`] and [`for_each_run`] give the hits of testing every pixel of the
+    /// bounding boxes, bit for bit, in the same order.
     #[test]
     fn rows_cut_to_the_capsule_visit_what_the_whole_boxes_do() {
         extern crate std;
@@ -395,10 +542,21 @@ mod tests {
             let (mut fast, mut whole) = (Vec::new(), Vec::new());
             for_each_hit(&frame, &stroke, |h| fast.push(h));
             every_pixel_of_the_boxes(&frame, &stroke, &mut |h| whole.push(h));
+            // The runs' hits, each pixel's cell holding its index.
+            let mut cells: Vec<usize> = (0..clip.width as usize * clip.height as usize).collect();
+            let runs = core::cell::RefCell::new(Vec::new());
+            for_each_run(&frame, &stroke, &mut cells, |&mut pixel, hit| {
+                if hit.coverage > 0.0 {
+                    runs.borrow_mut().push(StrokeHit { pixel, ..hit });
+                }
+            });
+            let runs = runs.into_inner();
             assert_eq!(fast.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
-            for (f, w) in fast.iter().zip(&whole) {
+            assert_eq!(runs.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
+            for ((f, r), w) in fast.iter().zip(&runs).zip(&whole) {
                 let bits = |h: &StrokeHit| (h.pixel, [h.coverage, h.depth, h.half_width, h.value].map(f32::to_bits));
                 assert_eq!(bits(f), bits(w), "case {case}: {frame:?} {stroke:?}");
+                assert_eq!(bits(r), bits(w), "case {case}: {frame:?} {stroke:?}");
             }
             strokes += usize::from(!whole.is_empty());
             hits += whole.len();
