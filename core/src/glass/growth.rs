@@ -584,7 +584,14 @@ impl Glass<'_> {
                 if hx < x0 || lx > x1 || hy < y0 || ly > y1 {
                     return;
                 }
-                if glass.moving_away(w, direction, a, z) {
+                // Beyond a side of the wedge (the test `nearest_in_sector` starts with), or run
+                // alongside or away from: it does not pull. The wedge's test first, as it is the
+                // cheaper one and passes over most of the pieces beside the tip (its neighbours
+                // at the impact). On 64-bit targets only: with soft floats (the Cortex-M3 of
+                // `targets/run`) the extra products cost more than they save.
+                if (cfg!(target_pointer_width = "64") && glass.beyond_a_side(w, rays, a, z))
+                    || glass.moving_away(w, direction, a, z)
+                {
                     return;
                 }
                 // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
@@ -758,6 +765,23 @@ impl Glass<'_> {
         u.found = (NONE, hit.1, [0.0; 2]);
         u.bounds = [x0, y0, x1, y1];
         u.scan = self.start_scan(Filed::Segments, self.index.grid.span(x0, y0, x1, y1));
+    }
+
+    /// Whether segment `a`–`z` lies beyond one side of the wedge of the sector S (φ ≤ 180°)
+    /// ahead of a tip at `w` whose boundary rays are `rays` ([`Self::wedge`]): both its ends
+    /// on the outer side of one ray, by the very products with which
+    /// [`Self::nearest_in_sector`] then finds no point of it in S. False for a wider sector.
+    #[inline(always)]
+    fn beyond_a_side(&self, w: [f32; 2], rays: [[f32; 2]; 2], a: [f32; 2], z: [f32; 2]) -> bool {
+        if self.sector.cosine < 0.0 {
+            return false;
+        }
+        let (ea, ez) = ([a[0] - w[0], a[1] - w[1]], [z[0] - w[0], z[1] - w[1]]);
+        let [left, right] = rays;
+        let beyond = |ray: [f32; 2], sign: f32| {
+            sign * (ray[0] * ea[1] - ray[1] * ea[0]) < 0.0 && sign * (ray[0] * ez[1] - ray[1] * ez[0]) < 0.0
+        };
+        beyond(right, 1.0) || beyond(left, -1.0)
     }
 
     /// Whether a tip at `w` heading `direction` runs alongside or away from the line of segment
