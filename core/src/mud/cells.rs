@@ -64,13 +64,16 @@ impl RingCursor {
 }
 
 /// A ring walk under way: where it is, its steps, the lowest key it has entered and the
-/// points it has passed.
+/// points it has passed; and whether every mesh cell it has been in has two cut sides (a ring
+/// along a closed crack, which has no vertex), and the lowest spring it has crossed then.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct RingWalk {
     at: RingAt,
     step: usize,
     lowest: usize,
     points: u64,
+    passing: bool,
+    lowest_spring: u32,
 }
 
 /// [`At`] by mesh cell index (the cell as the network sees it is worked out again).
@@ -263,7 +266,8 @@ impl<S: Scalar> Mud<'_, S> {
                 cursor = match (cursor.side..c.sides()).find(|&k| unwalked(k)) {
                     Some(k) => {
                         let at = RingAt::Inside { cell: cursor.cell, k, wrap: [0, 0] };
-                        let walk = RingWalk { at, step: 0, lowest: key(cursor.cell, k), points: 0 };
+                        let (lowest, lowest_spring) = (key(cursor.cell, k), c.cell.sides[k]);
+                        let walk = RingWalk { at, step: 0, lowest, points: 0, passing: true, lowest_spring };
                         RingCursor { side: k, walk: Some(walk), ..cursor }
                     }
                     None => next_cell,
@@ -278,6 +282,7 @@ impl<S: Scalar> Mud<'_, S> {
                 continue;
             };
             let (mut step, mut lowest, mut points) = (walk.step, walk.lowest, walk.points);
+            let (mut passing, mut lowest_spring) = (walk.passing, walk.lowest_spring);
             let end = loop {
                 if step >= self.ring_step_bound() {
                     break Some(RingEnd::Broken);
@@ -286,6 +291,7 @@ impl<S: Scalar> Mud<'_, S> {
                     break None;
                 }
                 let mut entered = usize::MAX;
+                passing = passing && matches!(at, At::Inside { c, .. } if c.cut_count() == 2);
                 let next = self.ring_step(at, start_key, step > 0, SEARCH_POSITIONS, &mut |_, k| {
                     points += 1;
                     if k != usize::MAX {
@@ -303,9 +309,13 @@ impl<S: Scalar> Mud<'_, S> {
                     Ok(next) => at = next,
                     Err(end) => break Some(end),
                 }
+                if let (true, At::Inside { c, k, .. }) = (passing, at) {
+                    lowest_spring = lowest_spring.min(c.cell.sides[k]);
+                }
             };
             let Some(end) = end else {
-                cursor.walk = Some(RingWalk { at: Self::ring_at_of(&at), step, lowest, points });
+                let at = Self::ring_at_of(&at);
+                cursor.walk = Some(RingWalk { at, step, lowest, points, passing, lowest_spring });
                 break;
             };
             let bit = match end {
@@ -315,6 +325,11 @@ impl<S: Scalar> Mud<'_, S> {
             };
             if let Some(bit) = bit {
                 self.ring_starts[lowest / 4] |= 1 << (bit + (lowest % 4) as u32);
+            }
+            // Each side of a closed crack (the cracks of separating springs: those of branches
+            // the trace has counted) is a ring through mesh cells with two cut sides alone.
+            if bit.is_some() && passing {
+                self.note_closed_crack(lowest_spring, 1);
             }
             // A ring has as many points from any start (`cell_counts` reads the sums).
             match bit {

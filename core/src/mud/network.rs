@@ -276,6 +276,15 @@ pub(super) struct Totals {
     pub(super) ring_points: u64,
     /// The rings that wrap around a periodic lattice.
     pub(super) wrapping: u64,
+    /// Branches that rule 2 began (a ring of cut springs about one node that no crack leaves:
+    /// the only way a closed crack of branches comes about).
+    pub(super) node_branches: u32,
+    /// Closed cracks (no vertex on them), counted twice (once from each side: a closed crack
+    /// of separating springs bounds two rings, one of branches is walked both ways), and the
+    /// lowest and the highest of their lowest springs (each is found from its lowest spring:
+    /// [`Mud::closed_cracks`]).
+    pub(super) closed_twice: u64,
+    pub(super) closed_springs: [u32; 2],
 }
 
 /// Where a trace under way stands: the pass, and the item it goes on with.
@@ -302,6 +311,8 @@ pub(super) enum TracePass {
     Number(usize),
     /// Crack points, by spring.
     Offsets(usize),
+    /// The closed cracks of branches, by mesh cell, and the walk along one.
+    Closed(ClosedCursor),
     /// The cells' ring starts.
     Rings(super::cells::RingCursor),
 }
@@ -315,6 +326,37 @@ pub(super) enum DeadEndWalk {
     /// Closing it: mesh cell `at`'s cut spring is next.
     Close { at: usize },
 }
+
+/// Where the count of the closed cracks stands: the mesh cell whose chain is next, and the
+/// walk along it under way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct ClosedCursor {
+    cell: usize,
+    walk: Option<ChainWalk>,
+}
+
+impl ClosedCursor {
+    const START: ClosedCursor = ClosedCursor { cell: 0, walk: None };
+}
+
+/// A walk along a chain of mesh cells with two cut sides each, from the cursor's cell: the
+/// cell it is in and the side it leaves by, its steps, the lowest spring it has crossed, and
+/// whether it is the walk the other way from the start (the chain has an end).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ChainWalk {
+    at: usize,
+    out: usize,
+    steps: usize,
+    lowest: u32,
+    back: bool,
+}
+
+/// The ring-start word's bit (`cells` uses the bits below them) that marks a mesh cell a
+/// branch passes through (two cut sides, neither separating), for the count of the closed
+/// cracks ...
+const CHAIN_CELL: u32 = 1 << 12;
+/// ... and the one that marks such a cell whose chain it has walked.
+const CHAIN_WALKED: u32 = 1 << 13;
 
 /// Where a walk along the network ends: a vertex, and the side of its cell it arrived by.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -433,8 +475,9 @@ impl<S: Scalar> Mud<'_, S> {
     /// 1 + 3·2·4 for the mesh cells along the crack), a mesh
     /// cell (its sides), a cell taken off a stack (its sides; twice more if a crack goes on
     /// from it; the springs turned about if it joins a crack one node away), a node (its
-    /// springs; four times if all are cut), or one step of a walk along a dead-end crack (1) or
-    /// a cell's boundary (3: the next mesh cell's corners); a pass visits only the items the cracks touch, and a word of 32
+    /// springs; four times if all are cut), or one step of a walk along a dead-end crack (1), a
+    /// cell's boundary or a chain of mesh cells with two cut sides (3: the next mesh cell's
+    /// corners); a pass visits only the items the cracks touch, and a word of 32
     /// flags with none of them flagged is one piece (1); undoing the last trace in the copy
     /// of the network's words the trace writes is a word of flags and the springs cut in it
     /// (at most 33). The walks are resumed where they stopped, so no piece depends on a
@@ -581,6 +624,9 @@ impl<S: Scalar> Mud<'_, S> {
             // 2. A node whose springs are all cut is not a cell of its own (see the module
             //    docs).
             TracePass::Nodes(from) => {
+                if from == 0 {
+                    self.totals = Totals::default();
+                }
                 let nodes = self.lattice.node_count();
                 let at = items!(from, nodes, self.touched.nodes, |m: &mut Self, node: usize| m.separate_node(node));
                 if at < nodes { TracePass::Nodes(at) } else { TracePass::StackBranches(0) }
@@ -601,19 +647,17 @@ impl<S: Scalar> Mud<'_, S> {
             }
             // 4. Vertex numbering: each cell's first vertex index (its centroid if cracks end
             //    or meet there, then the cut sides of it on the border), so vertices are
-            //    numbered in cell order. The cells' ring starts are cleared on the way.
+            //    numbered in cell order. The cells' ring starts are cleared on the way, and the
+            //    cells a branch passes through marked for the closed cracks.
             TracePass::Number(from) => {
-                if from == 0 {
-                    self.totals = Totals::default();
-                }
                 // A block no crack touches holds no vertex (and its words are not read).
                 let at = items!(from, cells, self.touched.cells, |m: &mut Self, cell: usize| {
                     m.stack[cell] = m.totals.vertices;
-                    let (degree, border) = m.vertices_in(cell);
+                    let (degree, border, branch) = m.vertices_in(cell);
                     m.totals.vertices += u32::from(degree > 0) + border as u32;
                     m.totals.centroid_degrees += degree as u64;
                     m.totals.border_vertices += border as u64;
-                    m.ring_starts[cell] = 0;
+                    m.ring_starts[cell] = if branch { CHAIN_CELL } else { 0 };
                     corners
                 });
                 if at < cells { TracePass::Number(at) } else { TracePass::Offsets(0) }
@@ -629,9 +673,25 @@ impl<S: Scalar> Mud<'_, S> {
                     m.crack_offset[spring] = m.packed_offset(spring);
                     1 + 2 * SMOOTHING as u64 * super::cells::RING_STEP
                 });
-                if at < springs { TracePass::Offsets(at) } else { TracePass::Rings(RingCursor::START) }
+                match at {
+                    _ if at < springs => TracePass::Offsets(at),
+                    // Without a branch from rule 2 no closed crack is one of branches.
+                    _ if self.totals.node_branches == 0 => TracePass::Rings(RingCursor::START),
+                    _ => TracePass::Closed(ClosedCursor::START),
+                }
             }
-            // 6. The cells' rings: where each one starts (see `cells`).
+            // 6. The closed cracks of branches (those of separating springs are counted with
+            //    the rings below): how many, and where the lowest springs they are found from
+            //    lie (the outputs' counts and the edges' pass need no search for them).
+            TracePass::Closed(cursor) => {
+                let (done, cursor) = self.count_closed(cursor, budget);
+                work += done;
+                match cursor {
+                    Some(c) => TracePass::Closed(c),
+                    None => TracePass::Rings(RingCursor::START),
+                }
+            }
+            // 7. The cells' rings: where each one starts (see `cells`).
             TracePass::Rings(cursor) => {
                 let (done, cursor) = self.find_ring_starts(cursor, budget);
                 work += done;
@@ -724,6 +784,7 @@ impl<S: Scalar> Mud<'_, S> {
         let (true, Some((_, spring))) = (all_cut, least) else { return count.max(1) };
         if !self.close_least_separated_arc(node, spring) {
             self.trace[spring] |= BRANCH;
+            self.totals.node_branches += 1;
         }
         4 * count
     }
@@ -928,13 +989,15 @@ impl<S: Scalar> Mud<'_, S> {
     }
 
     /// Vertices mesh cell `cell` holds: its centroid if 1 or ≥ 3 sides are cut (its degree,
-    /// the cut sides, or 0 if it is none), and each cut side on the border (how many).
-    fn vertices_in(&self, cell: usize) -> (usize, usize) {
+    /// the cut sides, or 0 if it is none), and each cut side on the border (how many); and
+    /// whether a branch passes through it (exactly two sides cut, neither separating).
+    fn vertices_in(&self, cell: usize) -> (usize, usize, bool) {
         let Some(c) = self.cut_cell_as(cell, false) else {
-            return (0, 0);
+            return (0, 0, false);
         };
         let degree = if Self::centroid_is_vertex(&c) { c.cut_count() } else { 0 };
-        (degree, (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)).count())
+        let branch = c.cut_count() == 2 && c.separating_count() == 0;
+        (degree, (0..c.sides()).filter(|&k| c.cut[k] && self.is_border_side(&c, k)).count(), branch)
     }
 
     /// Whether side `k` of a cell is on the open border (no cell on its other side).
@@ -1210,14 +1273,16 @@ impl<S: Scalar> Mud<'_, S> {
     /// by the vertex and side it starts from, then the closed cracks by their lowest spring.
     /// `count` is the number of the edge's points; `points` calls its argument with them in
     /// order.
-    fn for_each_edge(&self, mut edge: impl FnMut(u32, u32, usize, &EdgePoints<'_>)) {
+    /// The closed cracks are looked for from the springs `closed` (all of them lie in
+    /// [`Mud::closed_range`]).
+    fn for_each_edge(&self, closed: core::ops::Range<usize>, mut edge: impl FnMut(u32, u32, usize, &EdgePoints<'_>)) {
         // The setup or a trace under way has no network to show yet.
         if !self.shows_network() {
             return;
         }
         let ignore = core::cell::Cell::new(0);
         self.edges_from_cells(0..self.lattice.cell_count(), &ignore, &mut edge);
-        self.closed_cracks(0..self.lattice.spring_count(), &ignore, &mut edge);
+        self.closed_cracks(closed, &ignore, &mut edge);
     }
 
     /// The walk along an edge from side `k` of mesh cell `c` (see
@@ -1364,6 +1429,115 @@ impl<S: Scalar> Mud<'_, S> {
         }
     }
 
+    /// The springs that the closed cracks are found from (each from its lowest spring, in
+    /// [`Mud::closed_cracks`]) lie in, as the trace found them: none, if no crack is closed.
+    pub(super) fn closed_range(&self) -> core::ops::Range<usize> {
+        let [lowest, highest] = self.totals.closed_springs;
+        if self.totals.closed_twice == 0 { 0..0 } else { lowest as usize..highest as usize + 1 }
+    }
+
+    /// Counts a closed crack whose lowest spring is `spring`, `sides` times of the two.
+    pub(super) fn note_closed_crack(&mut self, spring: u32, sides: u64) {
+        let [lowest, highest] = self.totals.closed_springs;
+        self.totals.closed_springs =
+            if self.totals.closed_twice == 0 { [spring, spring] } else { [lowest.min(spring), highest.max(spring)] };
+        self.totals.closed_twice += sides;
+    }
+
+    /// Counts the closed cracks of branches for the trace ([`Totals::closed_twice`]), from
+    /// `cursor` until the work reaches `budget`: each chain of mesh cells a branch passes
+    /// through (marked when the vertices were numbered) is walked once, from its first cell,
+    /// all the way round (a closed crack: a walk of [`Mud::closed_cracks`] that comes back
+    /// without meeting a vertex) or to both its ends. A mesh cell with two cut sides has both
+    /// or neither separating (the pruning of branches leaves no cell with one), so a closed
+    /// crack is all branches or all separating springs; the rings count the latter
+    /// ([`Mud::find_ring_starts`]). An item is a mesh cell looked at (1) or one step of a walk
+    /// ([`super::cells::RING_STEP`]). Returns the work and the cursor to go on from (`None`:
+    /// done).
+    fn count_closed(&mut self, mut cursor: ClosedCursor, budget: u64) -> (u64, Option<ClosedCursor>) {
+        let cells = self.lattice.cell_count();
+        // The two cut sides of a marked mesh cell.
+        let cut_sides = |m: &Self, cell: usize| {
+            let c = m.lattice.cell(cell)?;
+            let mut cut = (0..c.corners).filter(|&k| m.is_cut(c.sides[k] as usize));
+            Some((c, [cut.next()?, cut.next()?]))
+        };
+        let mut work = 0u64;
+        while work < budget {
+            let start = cursor.cell;
+            let Some(mut walk) = cursor.walk else {
+                if start >= cells {
+                    return (work, None);
+                }
+                // Cells no crack touches are passed over (see `next_flagged`).
+                match next_flagged(self.touched.cells, start, cells) {
+                    Ok(flagged) => cursor.cell = flagged,
+                    Err(word_end) => {
+                        work += 1;
+                        cursor.cell = word_end;
+                        continue;
+                    }
+                }
+                work += 1;
+                let cell = cursor.cell;
+                cursor.cell += 1;
+                if self.ring_starts[cell] & (CHAIN_CELL | CHAIN_WALKED) == CHAIN_CELL
+                    && let Some((_, [out, _])) = cut_sides(self, cell)
+                {
+                    self.ring_starts[cell] |= CHAIN_WALKED;
+                    cursor = ClosedCursor {
+                        cell,
+                        walk: Some(ChainWalk { at: cell, out, steps: 0, lowest: u32::MAX, back: false }),
+                    };
+                }
+                continue;
+            };
+            // One step: across the side the walk leaves its cell by.
+            work += super::cells::RING_STEP;
+            let Some(c) = self.lattice.cell(walk.at) else {
+                cursor = ClosedCursor { cell: start + 1, walk: None };
+                continue;
+            };
+            let spring = c.sides[walk.out];
+            walk.lowest = walk.lowest.min(spring);
+            walk.steps += 1;
+            let across =
+                self.lattice.cells_of_spring(spring as usize).into_iter().flatten().find(|&(n, _)| n != walk.at);
+            let next = match across {
+                // Back at the start: a closed crack (the other way round is the same crack).
+                Some((n, _)) if n == start => {
+                    if !walk.back {
+                        self.note_closed_crack(walk.lowest, 2);
+                    }
+                    None
+                }
+                // On through a cell with two cut sides (the walks are as long as those of
+                // `walk_sides`, at most).
+                Some((n, side)) if walk.steps <= cells && self.ring_starts[n] & CHAIN_CELL != 0 => {
+                    self.ring_starts[n] |= CHAIN_WALKED;
+                    cut_sides(self, n).map(|(_, [a, b])| ChainWalk {
+                        at: n,
+                        out: if a == side { b } else { a },
+                        ..walk
+                    })
+                }
+                // An end: the border, or a vertex.
+                _ => None,
+            };
+            cursor.walk = match next {
+                Some(next) => Some(next),
+                // The other way from the start, to the chain's other end.
+                None if !walk.back && across.is_none_or(|(n, _)| n != start) => cut_sides(self, start)
+                    .map(|(_, [_, out])| ChainWalk { at: start, out, steps: 0, lowest: u32::MAX, back: true }),
+                None => None,
+            };
+            if cursor.walk.is_none() {
+                cursor.cell = start + 1;
+            }
+        }
+        (work, Some(cursor))
+    }
+
     /// Calls `arms(directions)` for every junction (a mesh cell where three or more cracks
     /// meet) with the direction of each crack leaving it, taken from the junction to the
     /// crack's point `reach` lattice units further along it (or its far end, if nearer): the
@@ -1429,28 +1603,27 @@ impl<S: Scalar> Mud<'_, S> {
     /// From what the trace counted, without walking the edges: an edge has two ends, each at
     /// a vertex (a vertex of degree d is the end of d edges), and its points are its ends at
     /// mesh cells' centroids and one for each cut spring along it; a closed crack (no vertex,
-    /// found by its walk) repeats its first point.
+    /// counted by the trace) repeats its first point.
     pub fn network_counts(&self) -> NetworkCounts {
         if !self.shows_network() {
             return NetworkCounts::default();
         }
         let t = &self.totals;
-        let mut closed = 0;
-        self.closed_cracks(0..self.lattice.spring_count(), &core::cell::Cell::new(0), &mut |_, _, _, _| closed += 1);
         let size = |n: u64| usize::try_from(n).unwrap_or(usize::MAX);
         NetworkCounts {
             vertices: t.vertices as usize,
-            edges: size((t.centroid_degrees + t.border_vertices) / 2).saturating_add(closed),
-            points: size(t.cut_springs + t.centroid_degrees).saturating_add(closed),
+            edges: size((t.centroid_degrees + t.border_vertices) / 2 + t.closed_twice / 2),
+            points: size(t.cut_springs + t.centroid_degrees + t.closed_twice / 2),
         }
     }
 
-    /// [`Mud::network_counts`] by walking every edge (what the counts must equal).
+    /// [`Mud::network_counts`] by walking every edge, the closed cracks looked for from every
+    /// spring (what the counts must equal).
     #[cfg(test)]
     pub(super) fn walked_network_counts(&self) -> NetworkCounts {
         let mut counts = NetworkCounts::default();
         self.for_each_vertex(|_| counts.vertices += 1);
-        self.for_each_edge(|_, _, points, _| {
+        self.for_each_edge(0..self.lattice.spring_count(), |_, _, points, _| {
             counts.edges += 1;
             counts.points += points;
         });
@@ -1483,7 +1656,7 @@ impl<S: Scalar> Mud<'_, S> {
             v += 1;
         });
         let (mut e, mut p) = (0, 0);
-        self.for_each_edge(|from, to, _, walk| {
+        self.for_each_edge(self.closed_range(), |from, to, _, walk| {
             let first = p;
             walk(&mut |point| {
                 if let Some(slot) = points.get_mut(p) {

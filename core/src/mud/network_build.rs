@@ -92,7 +92,8 @@ enum Pass {
     Vertices,
     /// Per mesh cell: the edges that start from it.
     Edges,
-    /// Per spring: the closed crack it is the lowest spring of.
+    /// Per spring (of those the trace found closed cracks from): the closed crack it is the
+    /// lowest spring of.
     Closed,
     /// Done.
     Done,
@@ -192,7 +193,8 @@ impl<'a> NetworkBuild<'a> {
 
     /// Does the next piece; returns its work.
     fn piece<S: Scalar>(&mut self, mud: &Mud<'_, S>) -> u64 {
-        let (cells, springs) = (mud.lattice.cell_count(), mud.lattice.spring_count());
+        // The closed cracks are found from springs the trace found them in.
+        let (cells, closed) = (mud.lattice.cell_count(), mud.closed_range());
         let at = self.next;
         let walked = Cell::new(0u64);
         let NetworkBuild { buffers, counts, .. } = self;
@@ -209,16 +211,15 @@ impl<'a> NetworkBuild<'a> {
             Pass::Edges if at < cells => mud.edges_from_cells(at..at + 1, &walked, &mut |from, to, _, walk| {
                 Self::write_edge(buffers, counts, from, to, walk)
             }),
-            Pass::Closed if at < springs => mud.closed_cracks(at..at + 1, &walked, &mut |from, to, _, walk| {
+            Pass::Closed if at < closed.end => mud.closed_cracks(at..at + 1, &walked, &mut |from, to, _, walk| {
                 Self::write_edge(buffers, counts, from, to, walk)
             }),
             _ => {
-                self.pass = match self.pass {
-                    Pass::Vertices => Pass::Edges,
-                    Pass::Edges => Pass::Closed,
-                    _ => Pass::Done,
+                (self.pass, self.next) = match self.pass {
+                    Pass::Vertices => (Pass::Edges, 0),
+                    Pass::Edges => (Pass::Closed, closed.start),
+                    _ => (Pass::Done, 0),
                 };
-                self.next = 0;
                 return 0;
             }
         }

@@ -315,6 +315,15 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
     }
 }
 
+/// A node's u from its 2×2 equilibrium (the module docs' equation, Eq. 2 linearised):
+/// (h·I + Σ k e eᵀ)·u = Σ k (l0 + e·u_j) e, the symmetric matrix [a00 a01; a01 a11] and the
+/// right-hand side b solved by Cramer's rule.
+#[inline(always)]
+fn solve_node<S: Scalar>([a00, a01, a11]: [S; 3], [b0, b1]: [S; 2]) -> (S, S) {
+    let det = a00 * a11 - a01 * a01;
+    ((a11 * b0 - a01 * b1) / det, (a00 * b1 - a01 * b0) / det)
+}
+
 impl<'a, S: Scalar> Mud<'a, S> {
     /// The misfit at which `spring` breaks given the current u; S::MAX if never.
     fn break_misfit_of(&self, spring: usize) -> S {
@@ -412,10 +421,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 b1 += pull * ey;
             }
         }
-        let det = a00 * a11 - a01 * a01;
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
-        let x = (a11 * b0 - a01 * b1) / det;
-        let y = (a00 * b1 - a01 * b0) / det;
+        let (x, y) = solve_node([a00, a01, a11], [b0, b1]);
         let (dx, dy) = (x - old_x, y - old_y);
         let diagonal = (a00 + a11) * S::from_f32(0.5);
         self.ux[node] = x;
@@ -478,10 +485,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
             intact[count] = (spring as u32, other as u32, ex, ey, k, ux, uy);
             count += 1;
         });
-        let det = a00 * a11 - a01 * a01;
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
-        let x = (a11 * b0 - a01 * b1) / det;
-        let y = (a00 * b1 - a01 * b0) / det;
+        let (x, y) = solve_node([a00, a01, a11], [b0, b1]);
         let (dx, dy) = (x - old_x, y - old_y);
         // A neighbour moves by about k·e·Δu over its own diagonal, about this node's.
         let diagonal = (a00 + a11) * S::from_f32(0.5);
