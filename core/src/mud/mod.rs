@@ -565,6 +565,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
             }
         }
         let setup_work = work;
+        // A live trace's words stay in front between its pieces within this call (the physics
+        // does not read the network); the shown network's are put back before it returns.
+        let mut swapped = false;
         while work < budget.max(1) {
             let left = budget.saturating_sub(work);
             if self.finished {
@@ -580,7 +583,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 if self.tracing.is_none() {
                     break;
                 }
-                work += self.trace_step(left);
+                work += self.trace_step_swapped(left, &mut swapped);
                 continue;
             }
             // Live tracing: a trace of the springs broken so far gets one part in
@@ -593,7 +596,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 let first = self.shown_broken == 0;
                 if first || live.saturating_mul(LIVE_SHARE) < physics {
                     let share = if first { u64::MAX } else { physics.div_ceil(LIVE_SHARE) - live };
-                    let done = self.trace_step(left.min(share));
+                    let done = self.trace_step_swapped(left.min(share), &mut swapped);
                     // (The first trace's work is not counted against the share.)
                     if !first {
                         self.live_work += done;
@@ -620,6 +623,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             self.physics_work += done;
             work += done;
         }
+        self.unswap(&mut swapped);
         self.work += work - setup_work;
         Ok(self.progress())
     }

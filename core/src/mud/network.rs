@@ -483,13 +483,26 @@ impl<S: Scalar> Mud<'_, S> {
     /// (at most 33). The walks are resumed where they stopped, so no piece depends on a
     /// crack's length. The trace does not depend on the budgets.
     pub(super) fn trace_step(&mut self, budget: u64) -> u64 {
+        let mut swapped = false;
+        let work = self.trace_step_swapped(budget, &mut swapped);
+        self.unswap(&mut swapped);
+        work
+    }
+
+    /// [`Mud::trace_step`], leaving the words of a trace under way in front (`swapped`: the
+    /// trace's copy is in front, as [`Mud::unswap`] puts back). Calls between which nothing
+    /// reads the network (a run's physics does not) swap the two copies once, not every time.
+    pub(super) fn trace_step_swapped(&mut self, budget: u64, swapped: &mut bool) -> u64 {
         let budget = budget.max(1);
         let mut work = 0u64;
         if self.tracing.is_none() {
             return 0;
         }
         // The trace works in the other copy of the network's words, the shown network stays.
-        self.swap_buffers();
+        if !*swapped {
+            self.swap_buffers();
+            *swapped = true;
+        }
         while let Some(pass) = self.tracing {
             if work >= budget {
                 break;
@@ -502,10 +515,17 @@ impl<S: Scalar> Mud<'_, S> {
             // Done: its words are the network shown now.
             self.shown_broken = self.traced_broken;
             self.shown_traces = self.shown_traces.wrapping_add(1);
-        } else {
-            self.swap_buffers();
+            *swapped = false;
         }
         work
+    }
+
+    /// Puts the shown network's words back in front after [`Mud::trace_step_swapped`].
+    pub(super) fn unswap(&mut self, swapped: &mut bool) {
+        if *swapped {
+            self.swap_buffers();
+            *swapped = false;
+        }
     }
 
     /// Does items of `pass` until their work reaches `budget` or the pass ends; returns the
