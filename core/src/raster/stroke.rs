@@ -116,8 +116,8 @@ fn for_each_copy(frame: &Frame, stroke: &Stroke, mut draw: impl FnMut([f32; 2], 
             let offset = if copies == 3 { (i as f32 - 1.0) * period[k] } else { 0.0 };
             let a = (stroke.start[k] + offset) * frame.scale[k];
             let b = (stroke.end[k] + offset) * frame.scale[k];
-            let lo = libm::floorf(a.min(b) - reach).max(first as f32);
-            let hi = libm::floorf(a.max(b) + reach).min(last as f32);
+            let lo = floor(a.min(b) - reach).max(first as f32);
+            let hi = floor(a.max(b) + reach).min(last as f32);
             Extent { ends: [a, b], pixels: [lo, hi], reached: lo <= hi }
         })
     };
@@ -389,7 +389,7 @@ impl Span {
             let w2 = self.rr - y * y;
             if w2 > 0.0 {
                 let w = libm::sqrtf(w2);
-                (lo, hi) = (lo.min(x - w), hi.max(x + w));
+                (lo, hi) = (lower(lo, x - w), higher(hi, x + w));
             }
         }
         // The long edges, from a ± edge to a + d ± edge.
@@ -397,11 +397,51 @@ impl Span {
             let t = (v - side * self.edge[1]) * self.per_row;
             if (0.0..=1.0).contains(&t) {
                 let x = side * self.edge[0] + t * self.d[0];
-                (lo, hi) = (lo.min(x), hi.max(x));
+                (lo, hi) = (lower(lo, x), higher(hi, x));
             }
         }
         // Pixel x's centre is x + ½; truncation moves neither end inwards past a centre.
         [(self.a[0] + lo - 0.5) as i64, (self.a[0] + hi - 0.5) as i64]
+    }
+}
+
+/// The lower of `a` and `b`, for numbers (what `min` gives when neither is NaN, in fewer
+/// instructions on 64-bit targets: the span's ends are finite where they are compared; on
+/// 32-bit ones, soft-float on some, `min`).
+#[inline(always)]
+fn lower(a: f32, b: f32) -> f32 {
+    if !cfg!(target_pointer_width = "64") {
+        a.min(b)
+    } else if b < a {
+        b
+    } else {
+        a
+    }
+}
+
+/// The higher of `a` and `b`, for numbers (see [`lower`]).
+#[inline(always)]
+fn higher(a: f32, b: f32) -> f32 {
+    if !cfg!(target_pointer_width = "64") {
+        a.max(b)
+    } else if b > a {
+        b
+    } else {
+        a
+    }
+}
+
+/// `libm::floorf(x)` but for the sign of a zero (−0 may come out +0; each caller turns the
+/// result into an integer or compares it, where the two are the same): on 64-bit targets by
+/// truncation below 2²³ in magnitude, where every `f32` converts to an `i32` exactly (32-bit
+/// ones, soft-float on some, keep libm's).
+#[inline(always)]
+fn floor(x: f32) -> f32 {
+    if cfg!(target_pointer_width = "64") && x.abs() < 8_388_608.0 {
+        let t = x as i32 as f32;
+        if t > x { t - 1.0 } else { t }
+    } else {
+        libm::floorf(x)
     }
 }
 
