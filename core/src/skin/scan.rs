@@ -36,6 +36,26 @@ fn crosses(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
     straddles & (if by > ay { lhs < rhs } else { lhs > rhs })
 }
 
+/// [`crosses`], deciding first without products where it can: an edge that does not
+/// straddle the horizontal through `p` is not crossed, and one that does is crossed when `p`
+/// lies left of both its ends and not when it lies at or right of both (the crossing lies
+/// between the ends' x, inclusive). Only an edge `p`'s row meets within its x range is
+/// worked out exactly. (For point-in-outline tests, where most edges near the ray miss its
+/// row; the scan, whose edges all straddle, keeps [`crosses`].)
+#[inline(always)]
+fn crosses_quick(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
+    if (a[1] > p[1]) == (b[1] > p[1]) {
+        return false;
+    }
+    if p[0] < a[0].min(b[0]) {
+        return true;
+    }
+    if p[0] >= a[0].max(b[0]) {
+        return false;
+    }
+    crosses(a, b, p)
+}
+
 /// Whether `outline` contains `p` (even–odd rule, fixed point).
 #[cfg(test)]
 fn contains(outline: &[[i64; 2]], p: [i64; 2]) -> bool {
@@ -53,7 +73,7 @@ pub(super) fn contains_chunked(outline: &[[i64; 2]], boxes: &[[i64; 4]], chunk: 
             continue;
         }
         for i in c * chunk..((c + 1) * chunk).min(n) {
-            inside ^= crosses(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
+            inside ^= crosses_quick(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
         }
     }
     inside
@@ -65,7 +85,7 @@ pub(super) fn contains_among(outline: &[[i64; 2]], edges: u64, p: [i64; 2]) -> b
     let n = outline.len();
     let mut inside = false;
     super::grid::each_edge(edges, |i| {
-        inside ^= crosses(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
+        inside ^= crosses_quick(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
         false
     });
     inside
@@ -340,6 +360,25 @@ mod tests {
             }
         }
         assert!(inside > 300, "{inside}");
+    }
+
+    #[test]
+    fn the_quick_crossing_test_answers_as_the_exact_one() {
+        // Edges and points on a small grid (ends level with the point, the point on an end's
+        // x, on the edge itself) and spread wide (products past i64).
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let (mut crossed, mut worked) = (0, 0);
+        for case in 0..200_000 {
+            let span = if case % 2 == 0 { 9 } else { 1 << 58 };
+            let mut coordinate = || (next(&mut state) % (2 * span + 1)) as i64 - span as i64;
+            let (a, b, p) = ([coordinate(), coordinate()], [coordinate(), coordinate()], [coordinate(), coordinate()]);
+            let exact = crosses(a, b, p);
+            assert_eq!(crosses_quick(a, b, p), exact, "{a:?} → {b:?}, {p:?}");
+            crossed += usize::from(exact);
+            let straddles = (a[1] > p[1]) != (b[1] > p[1]);
+            worked += usize::from(straddles && a[0].min(b[0]) <= p[0] && p[0] < a[0].max(b[0]));
+        }
+        assert!(crossed > 20_000 && worked > 10_000, "{crossed} crossed, {worked} worked out exactly");
     }
 
     /// A xorshift step.
