@@ -3,8 +3,8 @@
 
 use super::Glass;
 use crate::raster::{
-    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Srgb8, Stroke, StrokeHit, Tile, coverage_code,
-    draw_mask, draw_time, for_each_hit, pixel_count,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, SRGB8, Srgb8, Stroke, StrokeHit, Tile,
+    coverage_code, draw_mask, draw_time, for_each_hit, pixel_count,
 };
 
 /// The rasters one [`Glass::render`] call draws: every [`Layers`] field but `cell`.
@@ -152,11 +152,10 @@ impl Glass<'_> {
                     self.draw(render, clip, |hit| p[hit.pixel][3] = p[hit.pixel][3].max(coverage_code(hit.coverage)));
                 }
             }
-            let srgb = Srgb8::new();
             for (i, px) in p.iter_mut().enumerate() {
                 let (x, y) = (tile.x + (i % tile.width as usize) as u32, tile.y + (i / tile.width as usize) as u32);
                 let (x, y) = (x as f32 / render.width as f32, y as f32 / render.height as f32);
-                *px = plate(x, y, f32::from(px[3]) / 255.0, &srgb);
+                *px = plate(x, y, f32::from(px[3]) / 255.0, &SRGB8);
             }
         }
         let Some(scratch) = scratch.filter(|_| needs_window) else {

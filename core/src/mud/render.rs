@@ -5,8 +5,8 @@
 
 use super::Mud;
 use crate::raster::{
-    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, Srgb8, Stroke, StrokeHit, Tile, coverage_code,
-    draw_mask, draw_time, for_each_hit, for_each_run, pixel_count,
+    Clip, Derived, Frame, HeightWindow, Layer, Layers, RasterError, SRGB8, Srgb8, Stroke, StrokeHit, Tile,
+    coverage_code, draw_mask, draw_time, for_each_hit, for_each_run, pixel_count,
 };
 use crate::scalar::Scalar;
 
@@ -246,10 +246,8 @@ impl<S: Scalar> Mud<'_, S> {
             }
         }
         let light = preview_light();
-        let srgb = preview.is_some().then(Srgb8::new);
-        let mut shade = preview
-            .zip(srgb.as_ref())
-            .map(|(p, srgb)| move |i: usize, n: [f32; 3]| p[i] = clay(n, light, f32::from(p[i][3]) / 255.0, srgb));
+        let mut shade =
+            preview.map(|p| move |i: usize, n: [f32; 3]| p[i] = clay(n, light, f32::from(p[i][3]) / 255.0, &SRGB8));
         let shade = shade.as_mut().map(|s| s as &mut dyn FnMut(usize, [f32; 3]));
         window.write(render.bump, Derived { height, height16: h16, normal, normal_rgb8: n8 }, shade);
         Ok(())

@@ -12,7 +12,7 @@ mod stroke;
 mod tile;
 
 pub use bands::Bands;
-pub use encode::{Derived, HeightWindow, Srgb8, height16, normal_rgb8, srgb8, srgb8_opaque};
+pub use encode::{Derived, HeightWindow, SRGB8, Srgb8, height16, normal_rgb8, srgb8, srgb8_opaque};
 pub use layers::{Layer, Layers, coverage_code, draw_mask, draw_time, scratch_len};
 pub use regions::label_regions;
 pub(crate) use stroke::for_each_run;

@@ -109,13 +109,10 @@ pub fn shade(height: &[f32], normal: &[[f32; 3]], params: &ShadeParams, out: &mu
 }
 
 /// The light of a shading: its unit direction and Blinn's half vector between it and a viewer
-/// straight above; on 64-bit targets also the sRGB codes' table (1 KiB, kept off the small
-/// stacks of 32-bit parts, which encode with the power itself: the same codes).
+/// straight above.
 pub(super) struct Light {
     light: [f32; 3],
     half: [f32; 3],
-    #[cfg(target_pointer_width = "64")]
-    srgb: crate::raster::Srgb8,
 }
 
 impl Light {
@@ -123,21 +120,7 @@ impl Light {
     fn new(light: [f32; 3]) -> Light {
         let h = [light[0], light[1], light[2] + 1.0];
         let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-        Light {
-            light,
-            half: [h[0] / hl, h[1] / hl, h[2] / hl],
-            #[cfg(target_pointer_width = "64")]
-            srgb: crate::raster::Srgb8::new(),
-        }
-    }
-
-    /// Linear RGB as an opaque 8-bit sRGB texel ([`crate::raster::srgb8_opaque`]).
-    #[inline]
-    fn encode(&self, c: [f32; 3]) -> [u8; 4] {
-        #[cfg(target_pointer_width = "64")]
-        return self.srgb.opaque(c);
-        #[cfg(not(target_pointer_width = "64"))]
-        return crate::raster::srgb8_opaque(c);
+        Light { light, half: [h[0] / hl, h[1] / hl, h[2] / hl] }
     }
 
     /// The light of checked shading parameters.
@@ -154,7 +137,7 @@ impl Light {
         let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
         let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
         let lit = params.ambient + (1.0 - params.ambient) * diffuse;
-        self.encode(core::array::from_fn(|k| {
+        crate::raster::SRGB8.opaque(core::array::from_fn(|k| {
             let albedo = params.furrow[k] + (params.ridge[k] - params.furrow[k]) * t;
             (albedo * lit + params.specular * gloss).clamp(0.0, 1.0)
         }))
