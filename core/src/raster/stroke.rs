@@ -167,9 +167,9 @@ fn draw_capsule(
     // below a, `row` its first pixel's index.
     macro_rules! pixel {
         ($x:expr, $cx:expr, $py:expr, $row:expr) => {{
-            let hit = sample([$cx - a[0], $py], d, dd, stroke);
-            if hit.coverage > 0.0 {
-                visit(StrokeHit { pixel: $row + ($x - clip.x) as usize, ..hit });
+            let near = near([$cx - a[0], $py], d, dd, stroke);
+            if near.coverage > 0.0 {
+                visit(near.hit($row + ($x - clip.x) as usize, stroke));
             }
         }};
     }
@@ -196,21 +196,39 @@ fn draw_capsule(
     }
 }
 
-/// What a stroke from `a` to `a + d` (`dd` = |d|²) leaves on the pixel whose centre lies at
-/// `p` from `a` (its `pixel` left 0): the nearest point of the axis, at `t` along it, and the
-/// half width there give the coverage and the depth.
+/// Where a pixel lies from a stroke's axis: the nearest point of the axis, at `t` along it,
+/// its `distance` from there, the `half_width` there and the pixel's `coverage`.
+struct Near {
+    t: f32,
+    distance: f32,
+    half_width: f32,
+    coverage: f32,
+}
+
+/// Where the pixel whose centre lies at `p` from `a` lies from a stroke from `a` to `a + d`
+/// (`dd` = |d|²).
 #[inline(always)]
-fn sample(p: [f32; 2], d: [f32; 2], dd: f32, stroke: &Stroke) -> StrokeHit {
+fn near(p: [f32; 2], d: [f32; 2], dd: f32, stroke: &Stroke) -> Near {
     let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
     let q = [p[0] - d[0] * t, p[1] - d[1] * t];
     let distance = libm::sqrtf(q[0] * q[0] + q[1] * q[1]);
     let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
-    StrokeHit {
-        pixel: 0,
-        coverage: (half_width - distance + 0.5).min(1.0),
-        depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
-        half_width,
-        value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * t,
+    Near { t, distance, half_width, coverage: (half_width - distance + 0.5).min(1.0) }
+}
+
+impl Near {
+    /// What the stroke leaves on the pixel `pixel`: the coverage, and the depth and value
+    /// there (worked out only here, so that a pixel the stroke misses costs no division: a
+    /// call on parts without an FPU).
+    #[inline(always)]
+    fn hit(&self, pixel: usize, stroke: &Stroke) -> StrokeHit {
+        StrokeHit {
+            pixel,
+            coverage: self.coverage,
+            depth: if self.half_width > 0.0 { self.distance / self.half_width } else { 1.0 },
+            half_width: self.half_width,
+            value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * self.t,
+        }
     }
 }
 
@@ -253,7 +271,7 @@ fn draw_runs<C>(
             } else {
                 for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
                     let cx = (x + k as i64) as f32 + 0.5;
-                    lane(cell, sample([cx - a[0], py], d, dd, stroke));
+                    lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
                 }
             }
             x += RUN as i64;
@@ -261,7 +279,7 @@ fn draw_runs<C>(
     }
 }
 
-/// [`sample`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
+/// [`near`] and [`Near::hit`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
 /// a stroke with a [`Span`] and a length (`dd` > 0), which lies at column `ax` (`at` = [cx,
 /// ax, py]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
 /// a multiple of [`LANES`], at most [`RUN`], at least `pixels`) with coverage 0. Within a span
