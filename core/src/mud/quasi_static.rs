@@ -325,6 +325,17 @@ fn solve_node<S: Scalar>([a00, a01, a11]: [S; 3], [b0, b1]: [S; 2]) -> (S, S) {
 }
 
 impl<'a, S: Scalar> Mud<'a, S> {
+    /// Moves `node` to its equilibrium, the 2×2 system `a`, `b` ([`solve_node`]): its new u,
+    /// how far it moved (Δu), and the mean of the system's diagonal (a neighbour moves by
+    /// about k·e·Δu over its own diagonal, about this node's).
+    #[inline(always)]
+    fn settle(&mut self, node: usize, a: [S; 3], b: [S; 2]) -> ([S; 2], [S; 2], S) {
+        let (old_x, old_y) = (self.ux[node], self.uy[node]);
+        let (x, y) = solve_node(a, b);
+        (self.ux[node], self.uy[node]) = (x, y);
+        ([x, y], [x - old_x, y - old_y], (a[0] + a[2]) * S::from_f32(0.5))
+    }
+
     /// The misfit at which `spring` breaks given the current u; S::MAX if never.
     fn break_misfit_of(&self, spring: usize) -> S {
         let j = self.other[spring];
@@ -421,12 +432,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 b1 += pull * ey;
             }
         }
-        let (old_x, old_y) = (self.ux[node], self.uy[node]);
-        let (x, y) = solve_node([a00, a01, a11], [b0, b1]);
-        let (dx, dy) = (x - old_x, y - old_y);
-        let diagonal = (a00 + a11) * S::from_f32(0.5);
-        self.ux[node] = x;
-        self.uy[node] = y;
+        let ([x, y], [dx, dy], diagonal) = self.settle(node, [a00, a01, a11], [b0, b1]);
         let tolerance = self.relaxation().tolerance;
         let misfit = self.misfit;
         for k in 0..N {
@@ -485,13 +491,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             intact[count] = (spring as u32, other as u32, ex, ey, k, ux, uy);
             count += 1;
         });
-        let (old_x, old_y) = (self.ux[node], self.uy[node]);
-        let (x, y) = solve_node([a00, a01, a11], [b0, b1]);
-        let (dx, dy) = (x - old_x, y - old_y);
-        // A neighbour moves by about k·e·Δu over its own diagonal, about this node's.
-        let diagonal = (a00 + a11) * S::from_f32(0.5);
-        self.ux[node] = x;
-        self.uy[node] = y;
+        let ([x, y], [dx, dy], diagonal) = self.settle(node, [a00, a01, a11], [b0, b1]);
         let tolerance = self.relaxation().tolerance;
         let misfit = self.misfit;
         for &(spring, other, ex, ey, k, ux, uy) in &intact[..count] {
