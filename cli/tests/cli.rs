@@ -11,12 +11,29 @@ fn hibi(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_hibi")).args(args).output().expect("the binary runs")
 }
 
-/// A fresh, empty directory for one test.
-fn scratch(name: &str) -> PathBuf {
+/// A fresh, empty directory for one test, removed with everything in it when the test ends
+/// (passed or failed).
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A [`Scratch`] directory named after the test.
+fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("hibi-cli-test-{}-{name}", std::process::id()));
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).unwrap();
-    dir
+    Scratch(dir)
 }
 
 fn text(bytes: &[u8]) -> String {
