@@ -326,6 +326,8 @@ impl Builder<'_> {
                 if key.is_nan() || key == f64::INFINITY {
                     continue;
                 }
+                // (The sorted ones and the place after them, whose bounds hold every step.)
+                let (keys, order) = (&mut keys[..=sorted], &mut order[..=sorted]);
                 let mut at = sorted;
                 while at > 0 && keys[at - 1] > key {
                     (keys[at], order[at]) = (keys[at - 1], order[at - 1]);
@@ -403,10 +405,9 @@ impl Builder<'_> {
             (parent[i], parent[next(i, parent.len())])
         };
         match (into & PARENT_EDGE != 0, from & PARENT_EDGE != 0) {
-            (true, true) => {
-                let p = edge(from).0;
-                Corner { at: f.unfixed(p, a), image: a.image, fixed: p }
-            }
+            // (Between two of the parent's edges, where nothing is perturbed: only its
+            // fixed-point position is read.)
+            (true, true) => Corner { fixed: edge(from).0, ..Corner::default() },
             (false, false) if into != from => {
                 circumcentre(f, a, &neighbours[into as usize], &neighbours[from as usize])
             }
@@ -445,12 +446,15 @@ impl Builder<'_> {
         // any level, and the points are written out before the next piece is perturbed.
         let points = &mut [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
         let mut written = 0;
+        // (The last point written, which a repeat of it is not written after.)
+        let mut last = None;
         let mut push = |p: [i64; 2], written: &mut usize| -> Result<(), OutlineFull> {
-            if *written > 0 && out[*written - 1] == p {
+            if last == Some(p) {
                 return Ok(());
             }
             *out.get_mut(*written).ok_or(OutlineFull)? = p;
             *written += 1;
+            last = Some(p);
             Ok(())
         };
         let corner_at = |k: usize| {
@@ -486,8 +490,7 @@ impl Builder<'_> {
             }
             let mut kept = [[0i64; 2]; KEPT_POINTS];
             let (mut m, mut fits) = (0, true);
-            // (Level 0: the edge is one piece, from corner to corner.)
-            let ends = [start, end];
+            let ends;
             let (pieces, nearby) = match crossing.as_deref_mut() {
                 Some(CrossingScratch { pieces, listed }) => {
                     pieces[0] = start;
@@ -497,7 +500,11 @@ impl Builder<'_> {
                     pieces[count + 1] = end;
                     (&pieces[..count + 2], nearby)
                 }
-                None => (&ends[..], Nearby { parent: near, region: [0; 4], listed: None }),
+                // (Level 0: the edge is one piece, from corner to corner.)
+                None => {
+                    ends = [start, end];
+                    (&ends[..], Nearby { parent: near, region: [0; 4], listed: None })
+                }
             };
             for (i, w) in pieces.windows(2).enumerate() {
                 points[0] = w[0].fixed;

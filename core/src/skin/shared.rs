@@ -100,7 +100,8 @@ impl SharedEdges {
         if points.len() > KEPT_POINTS {
             return;
         }
-        let slot = match self.kept.iter().position(|k| !k.valid) {
+        // (A slot is free where its tag is 0.)
+        let slot = match self.tags.iter().position(|&t| t == 0) {
             Some(free) => free,
             None => {
                 let s = self.next;

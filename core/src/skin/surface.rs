@@ -917,8 +917,9 @@ pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wed
     let (mut start, mut smallest) = (0, f32::INFINITY);
     // Corner by corner (a finest cell has about ten: eight lanes at a time left most of two
     // chunks empty, and neither the square root nor the pseudo-angle went several at once).
-    for (i, w) in wedges.iter_mut().enumerate() {
-        let (a, b) = (outline[i], outline[if i + 1 == n { 0 } else { i + 1 }]);
+    for (i, (w, &a)) in wedges.iter_mut().zip(outline).enumerate() {
+        // (The last corner's edge ends at the first.)
+        let b = *outline.get(i + 1).unwrap_or(&outline[0]);
         // The corner relative to the centre, and the edge, in pixels. Wrapping, as release
         // builds always did: a stretch of 1e21 puts an outline's fixed-point corners far
         // enough apart that the differences overflow i64 (found by fuzzing; a panic with

@@ -64,6 +64,11 @@ impl Frame {
     /// A site's position relative to the image of `reference` (the frame every shared
     /// computation is done in).
     pub(super) fn relative(&self, site: &Site, reference: &Site) -> [f64; 2] {
+        // (In the same image, nearly always: its base, as adding 0·period leaves it, the period
+        // being finite and no base −0.)
+        if site.image == reference.image {
+            return site.base;
+        }
         let d = [site.image[0] - reference.image[0], site.image[1] - reference.image[1]];
         [site.base[0] + f64::from(d[0]) * self.period[0], site.base[1] + f64::from(d[1]) * self.period[1]]
     }
@@ -73,6 +78,12 @@ impl Frame {
     /// collinear centres, far off a degenerately stretched surface) saturates there, image
     /// offset included (the skin fuzz target's finding 15).
     pub(super) fn fixed(&self, at: [f64; 2], reference: &Site) -> [i64; 2] {
+        self.fixed_in(at, reference.image)
+    }
+
+    /// [`Frame::fixed`] relative to the periodic image `image`.
+    #[inline(always)]
+    pub(super) fn fixed_in(&self, at: [f64; 2], image: [i32; 2]) -> [i64; 2] {
         // (Below 64: `shift` is at most 44 and `bits` at least 8.)
         let s = self.shift - self.bits;
         let q = |k: usize| {
@@ -80,7 +91,7 @@ impl Frame {
             let w = world << s;
             if w >> s == world {
                 // (Nearly every site is image 0: no offset to add.)
-                match reference.image[k] {
+                match image[k] {
                     0 => w,
                     image => w.saturating_add(i64::from(image).saturating_mul(self.world_period[k])),
                 }
@@ -95,6 +106,10 @@ impl Frame {
 
     /// A fixed-point point in the frame, relative to `reference`'s image.
     pub(super) fn unfixed(&self, p: [i64; 2], reference: &Site) -> [f64; 2] {
+        // (Nearly every site is image 0: no offset to take off.)
+        if reference.image == [0, 0] {
+            return self.in_frame(p);
+        }
         let u = |k: usize| {
             let local = match reference.image[k] {
                 0 => p[k],
@@ -145,7 +160,9 @@ pub(super) struct Corner {
 /// The two sites ordered by (id, image): the first is the one whose frame and direction an
 /// edge between them is computed in.
 pub(super) fn sorted2<'s>(a: &'s Site, b: &'s Site) -> (&'s Site, &'s Site) {
-    if (a.id, a.image) <= (b.id, b.image) { (a, b) } else { (b, a) }
+    // (Ids first; the images, in order, only between images of one site.)
+    let first = if a.id == b.id { (a.image[0], a.image[1]) <= (b.image[0], b.image[1]) } else { a.id < b.id };
+    if first { (a, b) } else { (b, a) }
 }
 
 /// The circumcentre of three sites (a Voronoi vertex), in the frame of the lowest id.

@@ -95,6 +95,11 @@ pub(super) fn perturb(
     let (from, to) = if forward { (start, end) } else { (end, start) };
     // Both ends in `lo`'s frame.
     let place = |c: &Corner| {
+        // (Nearly always in `lo`'s image: its own position, which adding 0·period leaves as it
+        // is, as at [`Frame::relative`].)
+        if c.image == lo.image {
+            return c.at;
+        }
         let d = [c.image[0] - lo.image[0], c.image[1] - lo.image[1]];
         [c.at[0] + f64::from(d[0]) * f.period[0], c.at[1] + f64::from(d[1]) * f.period[1]]
     };
@@ -213,7 +218,14 @@ pub(super) fn perturb(
 /// runs the edge (`forward`: as `line` runs).
 fn inner_fixed(f: &Frame, lo: &Site, (line, forward): (&[[f64; 2]], bool), points: &mut [[i64; 2]]) {
     let pieces = line.len() - 1;
-    for k in 1..pieces {
-        points[if forward { k } else { pieces - k }] = f.fixed(line[k], lo);
+    let mut write = |image: [i32; 2]| {
+        for k in 1..pieces {
+            points[if forward { k } else { pieces - k }] = f.fixed_in(line[k], image);
+        }
+    };
+    // (Nearly every site is image 0, whose points need no offset.)
+    match lo.image {
+        [0, 0] => write([0, 0]),
+        image => write(image),
     }
 }
