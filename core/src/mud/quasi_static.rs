@@ -30,6 +30,37 @@
 use super::{ABSENT, Drive, INTACT, Mud, SolverState, take};
 use crate::scalar::Scalar;
 
+/// `body` for each `k` in `0..n` (`n` at most 6), written out: a loop over a node's springs
+/// whose indices into its arrays are then constants.
+macro_rules! unrolled {
+    ($n:expr, |$k:ident| $body:block) => {{
+        {
+            let $k = 0usize;
+            if $k < $n $body
+        }
+        {
+            let $k = 1usize;
+            if $k < $n $body
+        }
+        {
+            let $k = 2usize;
+            if $k < $n $body
+        }
+        {
+            let $k = 3usize;
+            if $k < $n $body
+        }
+        {
+            let $k = 4usize;
+            if $k < $n $body
+        }
+        {
+            let $k = 5usize;
+            if $k < $n $body
+        }
+    }};
+}
+
 /// No index (empty tree slot, empty queue flag).
 const NONE: u32 = u32::MAX;
 
@@ -62,7 +93,8 @@ pub(super) struct Relaxation<'a, S> {
     leaves: usize,
     /// FIFO ring of nodes to relax.
     queue: &'a mut [u32],
-    /// Per node: QUEUED and TOUCHED bits.
+    /// Per node: QUEUED and TOUCHED bits, and on a regular lattice (64-bit targets) which of
+    /// its springs are broken (from [`BROKEN_SHIFT`] up).
     flags: &'a mut [u32],
     head: usize,
     len: usize,
@@ -102,6 +134,10 @@ pub(super) fn interior_laws<S: Scalar>(lattice: &super::Lattice, material: &supe
 const QUEUED: u32 = 1;
 /// The node is in the touched list.
 const TOUCHED: u32 = 2;
+/// The first of a regular lattice's node's flags that mark its springs broken, one bit per
+/// spring in [`super::Lattice::interior_star`]'s order (64-bit targets: what the relaxation away
+/// from the edges reads instead of the springs' break times).
+const BROKEN_SHIFT: u32 = 2;
 
 /// E-folds of the slowest convergence of the relaxation that the relaxations after a break may
 /// take ([`relax_bound`]).
@@ -189,7 +225,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         }
     }
 
-    /// Nodes `from..end`: neither queued nor touched.
+    /// Nodes `from..end`: neither queued nor touched, no spring broken.
     pub(super) fn clear_nodes(&mut self, from: usize, end: usize) {
         self.flags[from..end].fill(0);
     }
@@ -412,17 +448,22 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// [`Mud::relax`] of a regular lattice's node away from its edges, whose `N` springs and
     /// the nodes they reach are `star` ([`super::Lattice::interior_star`]): the same
-    /// arithmetic in the same order, with the springs' laws from [`interior_laws`].
+    /// arithmetic in the same order, with the springs' laws from [`interior_laws`] and the
+    /// broken ones from the node's flags.
     #[inline(always)]
     fn relax_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
-        let laws = self.relaxation().laws;
+        let r = self.relaxation();
+        let (laws, tolerance) = (r.laws, r.tolerance);
+        let broken = r.flags[node] >> BROKEN_SHIFT;
         let h = self.material.shear;
         let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
-        let intact: [bool; N] = core::array::from_fn(|k| self.break_time[springs[k]] == INTACT);
-        let u: [(S, S); N] = core::array::from_fn(|k| (self.ux[others[k]], self.uy[others[k]]));
-        for k in 0..N {
-            if intact[k] {
+        // (Both arrays cut to one length: one bounds check per node.)
+        let len = self.ux.len().min(self.uy.len());
+        let (ux, uy) = (&self.ux[..len], &self.uy[..len]);
+        let u: [(S, S); N] = core::array::from_fn(|k| (ux[others[k]], uy[others[k]]));
+        unrolled!(N, |k| {
+            if broken & 1 << k == 0 {
                 let [ex, ey, kk] = laws[k];
                 a00 += kk * ex * ex;
                 a01 += kk * ex * ey;
@@ -431,27 +472,23 @@ impl<'a, S: Scalar> Mud<'a, S> {
                 b0 += pull * ex;
                 b1 += pull * ey;
             }
-        }
+        });
         let ([x, y], [dx, dy], diagonal) = self.settle(node, [a00, a01, a11], [b0, b1]);
-        let tolerance = self.relaxation().tolerance;
-        let misfit = self.misfit;
-        for k in 0..N {
-            if !intact[k] {
-                continue;
+        let (misfit, threshold) = (self.misfit, tolerance * diagonal);
+        let shrink = self.params.drive == Drive::Shrink;
+        unrolled!(N, |k| {
+            if broken & 1 << k == 0 {
+                let [ex, ey, kk] = laws[k];
+                let opening = ex * (u[k].0 - x) + ey * (u[k].1 - y);
+                let kappa = self.break_stretch[springs[k]];
+                let denominator = opening + if shrink { kappa } else { S::ONE };
+                if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
+                    self.break_and_relax(springs[k]);
+                } else if kk * (ex * dx + ey * dy).abs() > threshold {
+                    self.relaxation().push(others[k]);
+                }
             }
-            let [ex, ey, kk] = laws[k];
-            let opening = ex * (u[k].0 - x) + ey * (u[k].1 - y);
-            let kappa = self.break_stretch[springs[k]];
-            let denominator = match self.params.drive {
-                Drive::Shrink => opening + kappa,
-                Drive::Growth => opening + S::ONE,
-            };
-            if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
-                self.break_and_relax(springs[k]);
-            } else if kk * (ex * dx + ey * dy).abs() > tolerance * diagonal {
-                self.relaxation().push(others[k]);
-            }
-        }
+        });
         N as u64
     }
 
@@ -588,22 +625,23 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// Returns the springs visited.
     #[inline(always)]
     fn refresh_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
-        let dirs = self.lattice.directions();
-        for k in 0..N {
+        // The star's first half leaves the node, in the lattice's directions.
+        let dirs = N / 2;
+        let broken = self.relaxation().flags[node] >> BROKEN_SHIFT;
+        unrolled!(N, |k| {
             let (spring, other, outgoing) = (springs[k], others[k], k < dirs);
             // A spring between two touched nodes is brought up to date once, from its origin.
-            if !outgoing && self.relaxation().flags[other] & TOUCHED != 0 || self.break_time[spring] != INTACT {
-                continue;
+            if broken & 1 << k == 0 && (outgoing || self.relaxation().flags[other] & TOUCHED == 0) {
+                let (i, j) = if outgoing { (node, other) } else { (other, node) };
+                let value = self.break_misfit_between(spring, i, j, self.lattice.direction_vector(k % dirs));
+                let r = self.relaxation();
+                let before = r.break_misfit[spring];
+                if before != value {
+                    r.break_misfit[spring] = value;
+                    r.update(spring, value < before);
+                }
             }
-            let (i, j) = if outgoing { (node, other) } else { (other, node) };
-            let value = self.break_misfit_between(spring, i, j, self.lattice.direction_vector(k % dirs));
-            let r = self.relaxation();
-            let before = r.break_misfit[spring];
-            if before != value {
-                r.break_misfit[spring] = value;
-                r.update(spring, value < before);
-            }
-        }
+        });
         N as u64
     }
 
@@ -662,6 +700,14 @@ impl<'a, S: Scalar> Mud<'a, S> {
     fn break_and_relax(&mut self, spring: usize) {
         self.break_spring(spring);
         let (a, b) = (self.origin(spring), self.other[spring] as usize);
+        if cfg!(target_pointer_width = "64") && self.lattice.mesh().is_none() {
+            // The spring leaves `a` in its direction d (the star's dth spring) and reaches `b`
+            // in it (the star's (directions + d)th).
+            let (d, dirs) = (self.lattice.spring_origin(spring).1, self.lattice.directions());
+            let r = self.relaxation();
+            r.flags[a] |= 1 << (BROKEN_SHIFT as usize + d);
+            r.flags[b] |= 1 << (BROKEN_SHIFT as usize + dirs + d);
+        }
         let r = self.relaxation();
         r.relaxed = 0;
         r.break_misfit[spring] = S::MAX;
