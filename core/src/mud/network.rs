@@ -1135,13 +1135,22 @@ impl<S: Scalar> Mud<'_, S> {
     /// The network point at a cell's centroid: a dead end (width 0) or a junction (the mean
     /// width and the earliest time of the cracks meeting there).
     fn centroid_point(&self, c: &TracedCell) -> NetworkPoint {
-        let (mut width, mut time, mut n) = (0.0f32, f32::INFINITY, 0);
+        let (mut points, mut n) = ([NetworkPoint::default(); 4], 0);
         for k in (0..c.sides()).filter(|&k| c.cut[k]) {
-            let p = self.side_point(c, k);
-            width += p.width;
-            time = time.min(p.time);
+            points[n] = self.side_point(c, k);
             n += 1;
         }
+        Self::centroid_of(c, &points[..n])
+    }
+
+    /// [`Self::centroid_point`] from the points on the cell's cut sides, in order.
+    fn centroid_of(c: &TracedCell, sides: &[NetworkPoint]) -> NetworkPoint {
+        let (mut width, mut time) = (0.0f32, f32::INFINITY);
+        for p in sides {
+            width += p.width;
+            time = time.min(p.time);
+        }
+        let n = sides.len();
         let width = if n >= 2 { width / n as f32 } else { 0.0 };
         NetworkPoint { at: c.centroid(), width, time }
     }
@@ -1710,9 +1719,12 @@ impl<S: Scalar> Mud<'_, S> {
                 [] => {}
                 [a, b] => emit(self.side_point(&c, a), self.side_point(&c, b)),
                 ref sides => {
-                    let centre = self.centroid_point(&c);
-                    for &k in sides {
-                        emit(self.side_point(&c, k), centre);
+                    let points: [NetworkPoint; 4] = core::array::from_fn(|j| {
+                        if j < n { self.side_point(&c, sides[j]) } else { NetworkPoint::default() }
+                    });
+                    let centre = Self::centroid_of(&c, &points[..n]);
+                    for &point in &points[..n] {
+                        emit(point, centre);
                     }
                 }
             }

@@ -97,34 +97,29 @@ pub(crate) fn for_each_run<C>(frame: &Frame, stroke: &Stroke, cells: &mut [C], l
 fn for_each_copy(frame: &Frame, stroke: &Stroke, mut draw: impl FnMut([f32; 2], [f32; 2], [[f32; 2]; 2])) {
     let reach = stroke.half_width[0].max(stroke.half_width[1]) + 1.0;
     let clip = frame.clip;
-    // The clip's first and last column and row, within the raster when it does not wrap.
-    let (mut left, mut right) = (clip.x, clip.x + i64::from(clip.width) - 1);
-    let (mut top, mut bottom) = (clip.y, clip.y + i64::from(clip.height) - 1);
-    if frame.period.is_none() {
-        (left, right) = (left.max(0), right.min(i64::from(frame.width) - 1));
-        (top, bottom) = (top.max(0), bottom.min(i64::from(frame.height) - 1));
-    }
+    // The clip's first and last column and row.
+    let (left, right) = (clip.x, clip.x + i64::from(clip.width) - 1);
+    let (top, bottom) = (clip.y, clip.y + i64::from(clip.height) - 1);
+    let Some(period) = frame.period else {
+        // Not wrapped: the stroke itself, on the pixels of the clip within the raster.
+        let (left, right) = (left.max(0) as f32, right.min(i64::from(frame.width) - 1) as f32);
+        let (top, bottom) = (top.max(0) as f32, bottom.min(i64::from(frame.height) - 1) as f32);
+        let x = Extent::of(stroke, 0, 0.0, frame.scale[0], reach, [left, right]);
+        let y = Extent::of(stroke, 1, 0.0, frame.scale[1], reach, [top, bottom]);
+        if x.reached && y.reached {
+            draw([x.ends[0], y.ends[0]], [x.ends[1], y.ends[1]], [x.pixels, y.pixels]);
+        }
+        return;
+    };
     // Each axis on its own: the copies' ends in pixels at the periodic offsets −1, 0 and +1
-    // periods (0 alone when the frame does not wrap), and the pixels they reach.
-    let copies = if frame.period.is_some() { 3 } else { 1 };
-    let period = frame.period.unwrap_or([0.0; 2]);
-    let axis = |k: usize, first: i64, last: i64| -> [Extent; 3] {
-        core::array::from_fn(|i| {
-            if i >= copies {
-                return Extent { ends: [0.0; 2], pixels: [0.0; 2], reached: false };
-            }
-            let offset = if copies == 3 { (i as f32 - 1.0) * period[k] } else { 0.0 };
-            let a = (stroke.start[k] + offset) * frame.scale[k];
-            let b = (stroke.end[k] + offset) * frame.scale[k];
-            let lo = floor(a.min(b) - reach).max(first as f32);
-            let hi = floor(a.max(b) + reach).min(last as f32);
-            Extent { ends: [a, b], pixels: [lo, hi], reached: lo <= hi }
-        })
+    // periods, and the pixels they reach.
+    let axis = |k: usize, first: i64, last: i64| {
+        Extent::copies(stroke, k, period[k], frame.scale[k], reach, [first as f32, last as f32])
     };
     let xs = axis(0, left, right);
     let ys = axis(1, top, bottom);
-    for y in ys[..copies].iter().filter(|e| e.reached) {
-        for x in xs[..copies].iter().filter(|e| e.reached) {
+    for y in ys.iter().filter(|e| e.reached) {
+        for x in xs.iter().filter(|e| e.reached) {
             let (a, b) = ([x.ends[0], y.ends[0]], [x.ends[1], y.ends[1]]);
             draw(a, b, [x.pixels, y.pixels]);
         }
@@ -138,6 +133,37 @@ struct Extent {
     ends: [f32; 2],
     pixels: [f32; 2],
     reached: bool,
+}
+
+impl Extent {
+    /// Axis `k` of the copy of `stroke` shifted by `offset` (domain units), at `scale` pixels
+    /// a unit, on the clip's pixels `first` to `last` of that axis.
+    #[inline(always)]
+    fn of(stroke: &Stroke, k: usize, offset: f32, scale: f32, reach: f32, [first, last]: [f32; 2]) -> Extent {
+        let a = (stroke.start[k] + offset) * scale;
+        let b = (stroke.end[k] + offset) * scale;
+        let lo = floor(a.min(b) - reach).max(first);
+        let hi = floor(a.max(b) + reach).min(last);
+        Extent { ends: [a, b], pixels: [lo, hi], reached: lo <= hi }
+    }
+
+    /// [`Extent::of`] the copies a `period` before, at and after the stroke. The copies before
+    /// and after are the middle one shifted by a period, up to their rounding, which `slack`
+    /// covers many times over: one that surely ends short of the clip's first pixel, or starts
+    /// past its last, is not worked out (anything not finite makes the slack NaN, and the copy
+    /// is worked out).
+    #[inline(always)]
+    fn copies(stroke: &Stroke, k: usize, period: f32, scale: f32, reach: f32, pixels: [f32; 2]) -> [Extent; 3] {
+        const MISSED: Extent = Extent { ends: [0.0; 2], pixels: [0.0; 2], reached: false };
+        let extent = |i: usize| Extent::of(stroke, k, (i as f32 - 1.0) * period, scale, reach, pixels);
+        let middle = extent(1);
+        let [a, b] = middle.ends;
+        let shift = period * scale;
+        let slack = (a.abs() + b.abs() + shift.abs()) * (1.0 / 1_048_576.0) + 1.0;
+        let before = if a.max(b) - shift + reach + slack < pixels[0] { MISSED } else { extent(0) };
+        let after = if a.min(b) + shift - reach - slack > pixels[1] { MISSED } else { extent(2) };
+        [before, middle, after]
+    }
 }
 
 /// Draws one copy of a stroke whose ends are `a` and `b` in pixels, within the pixels
@@ -620,6 +646,48 @@ mod tests {
             hits += whole.len();
         }
         assert!(strokes > 2000 && hits > 100_000, "the cases draw: {strokes} strokes, {hits} hits");
+    }
+
+    /// The copies [`Extent::copies`] leaves out are the ones that reach no pixel, at any
+    /// scale and position (near the clip's edges, far from the origin, not finite), and the
+    /// ones it works out are [`Extent::of`]'s, bit for bit.
+    #[test]
+    fn copies_left_out_reach_no_pixel() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut left_out = 0;
+        for case in 0..200_000 {
+            let magnitude = [1.0f32, 64.0, 4096.0, 262_144.0, 1.0e7][case % 5];
+            let period = magnitude * (0.1 + next());
+            let scale = [0.01f32, 0.5, 1.0, 3.7, 100.0][(case / 5) % 5];
+            let first = ((next() - 0.5) * 8.0 + if case % 3 == 0 { 0.0 } else { -4.0 }) as i64 as f32;
+            let last = first + libm::floorf(period * scale) + ((next() - 0.5) * 8.0) as i64 as f32;
+            let at = |u: f32| match case % 11 {
+                0 => f32::NAN,
+                1 => f32::INFINITY,
+                _ => (u * 1.6 - 0.3) * period,
+            };
+            let (start, end) = (at(next()), at(next()) + (next() - 0.5) * 4.0);
+            let stroke = Stroke { start: [start, 0.0], end: [end, 0.0], half_width: [0.5; 2], value: [0.0; 2] };
+            let reach = [1.5f32, 6.0, 300.0][case % 3];
+            let copies = Extent::copies(&stroke, 0, period, scale, reach, [first, last]);
+            for (i, copy) in copies.iter().enumerate() {
+                let every = Extent::of(&stroke, 0, (i as f32 - 1.0) * period, scale, reach, [first, last]);
+                if copy.reached {
+                    let bits = |e: &Extent| (e.ends.map(f32::to_bits), e.pixels.map(f32::to_bits));
+                    assert_eq!(bits(copy), bits(&every), "case {case}");
+                } else {
+                    assert!(!every.reached, "case {case}: copy {i} left out, but it reaches {:?}", every.pixels);
+                    left_out += usize::from(i != 1);
+                }
+            }
+        }
+        assert!(left_out > 100_000, "copies are left out: {left_out}");
     }
 
     #[test]
