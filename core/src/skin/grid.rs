@@ -43,12 +43,19 @@ impl EdgeGrid {
             (u64::BITS - span.leading_zeros()).saturating_sub(BINS.trailing_zeros())
         });
         self.bins = [0; BINS * BINS];
-        let n = outline.len();
-        for (k, &a) in outline.iter().enumerate() {
-            let b = outline[if k + 1 == n { 0 } else { k + 1 }];
-            let bit = 1u64 << k;
-            let (x0, x1) = (self.bin(0, a[0].min(b[0])), self.bin(0, a[0].max(b[0])));
-            let (y0, y1) = (self.bin(1, a[1].min(b[1])), self.bin(1, a[1].max(b[1])));
+        // Each vertex's bins, found once for both its edges: a bin never decreases as its
+        // coordinate grows, so an edge's lowest and highest bins are its ends' lower and higher.
+        let (origin, shift) = (self.origin, self.shift);
+        let bins = |v: [i64; 2]| [bin(origin[0], shift[0], v[0]), bin(origin[1], shift[1], v[1])];
+        let mut a = outline.last().map_or([0; 2], |&v| bins(v));
+        for (k, &b) in outline.iter().enumerate() {
+            // (Edge k runs from vertex k to k + 1: the edge before vertex k, from the last
+            // vertex to the first, is edge n − 1.)
+            let (bin_b, edge) = (bins(b), if k == 0 { outline.len() - 1 } else { k - 1 });
+            let bit = 1u64 << edge;
+            let (x0, x1) = (a[0].min(bin_b[0]), a[0].max(bin_b[0]));
+            let (y0, y1) = (a[1].min(bin_b[1]), a[1].max(bin_b[1]));
+            a = bin_b;
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     self.bins[y * BINS + x] |= bit;
@@ -75,7 +82,7 @@ impl EdgeGrid {
     /// meets it in a bin both are marked in.)
     #[inline]
     fn bin(&self, axis: usize, v: i64) -> usize {
-        (v.saturating_sub(self.origin[axis]) >> self.shift[axis]).clamp(0, BINS as i64 - 1) as usize
+        bin(self.origin[axis], self.shift[axis], v)
     }
 
     /// The edges whose boxes may meet the box [low, high] (a superset of those that do).
@@ -98,6 +105,13 @@ impl EdgeGrid {
     pub(super) fn across(&self, p: [i64; 2]) -> u64 {
         self.rightward[self.bin(1, p[1]) * BINS + self.bin(0, p[0])]
     }
+}
+
+/// The bin of coordinate `v` on an axis whose bins start at `origin` and span 2^`shift` each
+/// ([`EdgeGrid::bin`]).
+#[inline]
+fn bin(origin: i64, shift: u32, v: i64) -> usize {
+    (v.saturating_sub(origin) >> shift).clamp(0, BINS as i64 - 1) as usize
 }
 
 /// Calls `visit` with each edge in `edges` (bit k for edge k), in ascending order, until it

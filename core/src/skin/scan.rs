@@ -82,10 +82,10 @@ pub(super) fn contains_chunked(outline: &[[i64; 2]], boxes: &[[i64; 4]], chunk: 
 /// [`contains`], testing only the edges in `edges` (bit k for edge k), which must hold every
 /// edge the ray from `p` towards +x can cross.
 pub(super) fn contains_among(outline: &[[i64; 2]], edges: u64, p: [i64; 2]) -> bool {
-    let n = outline.len();
     let mut inside = false;
     super::grid::each_edge(edges, |i| {
-        inside ^= crosses_quick(outline[i], outline[if i + 1 == n { 0 } else { i + 1 }], p);
+        // (The last edge ends at the first vertex.)
+        inside ^= crosses_quick(outline[i], *outline.get(i + 1).unwrap_or(&outline[0]), p);
         false
     });
     inside
