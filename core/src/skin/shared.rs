@@ -109,9 +109,10 @@ impl SharedEdges {
                 s
             }
         };
-        let mut kept = Kept { key, count: points.len() as u8, valid: true, points: [[0; 2]; KEPT_POINTS] };
+        // (In place: the points past `count` are never read.)
+        let kept = &mut self.kept[slot];
+        (kept.key, kept.count, kept.valid) = (key, points.len() as u8, true);
         kept.points[..points.len()].copy_from_slice(points);
-        self.kept[slot] = kept;
         self.tags[slot] = key.tag();
     }
 }
