@@ -33,9 +33,11 @@ pub(super) fn crossings(
     let mut along = [0i128; MAX_CROSSINGS + 2];
     nearby.edges_near((low, high), 0, |e| {
         let (p, q) = (parent[e], parent[next(e, m)]);
-        let (s1, s2) = (orient_fixed(x, y, p), orient_fixed(x, y, q));
-        let (s3, s4) = (orient_fixed(p, q, x), orient_fixed(p, q, y));
-        let proper = ((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0)) && ((s3 > 0 && s4 < 0) || (s3 < 0 && s4 > 0));
+        // (The ends against the parent edge first: an end on it, where the edge starts or
+        // ends on the parent's outline, settles it.)
+        let straddles = |s1: i128, s2: i128| (s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0);
+        let proper = straddles(orient_fixed(p, q, x), orient_fixed(p, q, y))
+            && straddles(orient_fixed(x, y, p), orient_fixed(x, y, q));
         if !proper || found == MAX_CROSSINGS {
             return false;
         }
