@@ -251,10 +251,13 @@ fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut pu
     // 2^−shift: scaling by it is exact, like dividing by `unit`.
     let to_pixels = 1.0 / unit as f64;
     // The first row whose centre is not below y (monotone in y, so that the rows of an edge's
-    // lower and higher end are the lower and higher of its ends' rows), made once per vertex.
-    let first_row = |y: i64| (y.clamp(-REACH, REACH) - half + unit - 1) >> shift;
-    let (mut a, mut row_a) = (outline[outline.len() - 1], first_row(outline[outline.len() - 1][1]));
+    // lower and higher end are the lower and higher of its ends' rows), made once per vertex,
+    // as each vertex is taken within reach.
+    let first_row = |y: i64| (y - half + unit - 1) >> shift;
+    let last = within_reach(outline[outline.len() - 1]);
+    let (mut a, mut row_a) = (last, first_row(last[1]));
     for (edge, &b) in outline.iter().enumerate() {
+        let b = within_reach(b);
         let row_b = first_row(b[1]);
         // The edge a→b (in any order: the caller sorts the crossings by row).
         let (a, row_a) = (core::mem::replace(&mut a, b), core::mem::replace(&mut row_a, row_b));
@@ -264,7 +267,6 @@ fn each_crossing(outline: &[[i64; 2]], shift: u32, top: i64, bottom: i64, mut pu
         if from > to {
             continue;
         }
-        let (a, b) = (within_reach(a), within_reach(b));
         // The edge crosses the row through yc at X = ax + (yc − ay)·dx/dy, and `crosses`
         // holds for the pixel centres left of X: the first column not left of it is
         // ceil((X − half) / unit) = ax_pixels + ceil(f), with ax − half = ax_pixels·unit +
