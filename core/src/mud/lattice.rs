@@ -300,11 +300,22 @@ impl<'a> Lattice<'a> {
     /// its edges and the nodes they reach, in [`Lattice::for_each_spring_at`]'s order (the
     /// outgoing springs by direction, then the incoming ones), each spring's direction and
     /// sign given by its place: direction `k % directions`, outgoing for `k < directions`.
-    /// `None` for any other node, size or topology.
+    /// `None` for any other node, size or topology. `reciprocal` is
+    /// [`Lattice::column_reciprocal`]: the node's row without a division.
     #[inline(always)]
-    pub(crate) fn interior_star<const N: usize>(&self, node: usize) -> Option<([usize; N], [usize; N])> {
+    pub(crate) fn interior_star<const N: usize>(
+        &self,
+        node: usize,
+        reciprocal: u64,
+    ) -> Option<([usize; N], [usize; N])> {
         let (n, c) = (self.node_count(), self.columns as usize);
-        let (i, j) = (node % c, node / c);
+        if node > u32::MAX as usize {
+            return None;
+        }
+        // ⌊node/c⌋ = ⌊node·⌈2⁶⁴/c⌉/2⁶⁴⌋ for every 32-bit node (Lemire, Kaser & Kurz 2019,
+        // "Faster remainder by direct computation", Theorem 1 with N = 32, F = 64).
+        let j = ((u128::from(reciprocal) * node as u128) >> 64) as usize;
+        let i = node - j * c;
         if !(i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize) {
             return None;
         }
@@ -324,6 +335,15 @@ impl<'a> Lattice<'a> {
             _ => return None,
         };
         Some((core::array::from_fn(|k| springs[k]), core::array::from_fn(|k| others[k])))
+    }
+
+    /// ⌈2⁶⁴/columns⌉, which [`Lattice::interior_star`] finds a node's row with (0 for fewer
+    /// than two columns: no node is then away from the edges).
+    pub(crate) const fn column_reciprocal(&self) -> u64 {
+        match u64::MAX.checked_div(self.columns as u64) {
+            Some(q) if self.columns > 1 => q + 1,
+            _ => 0,
+        }
     }
 
     /// Number of mesh cells (squares, or two triangles per node), including those whose
@@ -536,6 +556,22 @@ mod tests {
     }
 
     #[test]
+    fn the_column_reciprocal_gives_each_node_its_row() {
+        for columns in [2, 3, 7, 64, 100, 512, 1000, 65535, u32::MAX / 3, u32::MAX] {
+            let reciprocal = lattice(Topology::Square, Boundary::Open, columns, 1).column_reciprocal();
+            let c = u64::from(columns);
+            for node in [0, 1, c - 1, c, c + 1, 2 * c - 1, 12345, 1 << 31, u64::from(u32::MAX) - 1, u64::from(u32::MAX)]
+            {
+                // (Nodes are 32-bit: the run's node indices are.)
+                let Some(node) = u32::try_from(node).ok().map(u64::from) else { continue };
+                let row = ((u128::from(reciprocal) * u128::from(node)) >> 64) as u64;
+                assert_eq!(row, node / c, "{node} / {columns}");
+            }
+        }
+        assert_eq!(lattice(Topology::Square, Boundary::Open, 1, 5).column_reciprocal(), 0);
+    }
+
+    #[test]
     fn the_interior_star_is_the_springs_at_the_node() {
         for (topology, degree) in [(Topology::Square, 4), (Topology::Hexagonal, 6)] {
             for boundary in [Boundary::Open, Boundary::Periodic] {
@@ -550,9 +586,9 @@ mod tests {
                     });
                     let pad = |a: &[usize]| core::array::from_fn::<usize, 6, _>(|k| a.get(k).copied().unwrap_or(0));
                     let star = if degree == 4 {
-                        l.interior_star::<4>(node).map(|(s, o)| (pad(&s), pad(&o)))
+                        l.interior_star::<4>(node, l.column_reciprocal()).map(|(s, o)| (pad(&s), pad(&o)))
                     } else {
-                        l.interior_star::<6>(node).map(|(s, o)| (pad(&s), pad(&o)))
+                        l.interior_star::<6>(node, l.column_reciprocal()).map(|(s, o)| (pad(&s), pad(&o)))
                     };
                     let Some((springs, others)) = star else { continue };
                     found += 1;
@@ -562,7 +598,7 @@ mod tests {
                     assert_eq!(listed[..n], expected[..degree], "{topology:?} {boundary:?} {node}");
                 }
                 assert_eq!(found, 5 * 4, "{topology:?} {boundary:?}");
-                assert!(l.interior_star::<5>(8).is_none());
+                assert!(l.interior_star::<5>(8, l.column_reciprocal()).is_none());
             }
         }
     }

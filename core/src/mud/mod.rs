@@ -457,9 +457,9 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     quasi_static::relax_tolerance(params, S::ZERO),
                     // (Read by the 64-bit targets' fast path only.)
                     if cfg!(target_pointer_width = "64") {
-                        quasi_static::interior_laws(&shape, &material)
+                        (quasi_static::interior_laws(&shape, &material), shape.column_reciprocal())
                     } else {
-                        [[S::ZERO; 3]; 6]
+                        ([[S::ZERO; 3]; 6], 0)
                     },
                 ))
             }

@@ -116,6 +116,10 @@ pub(super) struct Relaxation<'a, S> {
     ///
     /// [`Lattice::interior_star`]: super::Lattice::interior_star
     laws: [[S; 3]; 6],
+    /// The lattice's [`Lattice::column_reciprocal`].
+    ///
+    /// [`Lattice::column_reciprocal`]: super::Lattice::column_reciprocal
+    reciprocal: u64,
 }
 
 /// The spring laws of a regular lattice's node, in [`super::Lattice::interior_star`]'s order:
@@ -199,7 +203,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         (nodes, springs): (usize, usize),
         relax_bound: u64,
         tolerance: S,
-        laws: [[S; 3]; 6],
+        (laws, reciprocal): ([[S; 3]; 6], u64),
     ) -> Self {
         let leaves = springs.div_ceil(BLOCK).next_power_of_two();
         let break_misfit = take(scalars, springs);
@@ -222,6 +226,7 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             relax_bound,
             tolerance,
             laws,
+            reciprocal,
         }
     }
 
@@ -427,10 +432,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
         // Away from a regular lattice's edges, its springs by fixed offsets (64-bit targets:
         // the Cortex-M3's flash holds the general case alone, which computes the same).
         if cfg!(target_pointer_width = "64") {
+            let reciprocal = self.relaxation().reciprocal;
             let star = match self.lattice.topology {
-                super::Topology::Square => self.lattice.interior_star::<4>(node).map(|s| self.relax_interior(node, s)),
+                super::Topology::Square => {
+                    self.lattice.interior_star::<4>(node, reciprocal).map(|s| self.relax_interior(node, s))
+                }
                 super::Topology::Hexagonal => {
-                    self.lattice.interior_star::<6>(node).map(|s| self.relax_interior(node, s))
+                    self.lattice.interior_star::<6>(node, reciprocal).map(|s| self.relax_interior(node, s))
                 }
                 super::Topology::Irregular => None,
             };
@@ -568,10 +576,13 @@ impl<'a, S: Scalar> Mud<'a, S> {
             // Away from a regular lattice's edges, its springs by fixed offsets (as in
             // `Mud::relax`).
             if cfg!(target_pointer_width = "64") {
+                let reciprocal = self.relaxation().reciprocal;
                 let done = match lattice.topology {
-                    super::Topology::Square => lattice.interior_star::<4>(node).map(|s| self.refresh_interior(node, s)),
+                    super::Topology::Square => {
+                        lattice.interior_star::<4>(node, reciprocal).map(|s| self.refresh_interior(node, s))
+                    }
                     super::Topology::Hexagonal => {
-                        lattice.interior_star::<6>(node).map(|s| self.refresh_interior(node, s))
+                        lattice.interior_star::<6>(node, reciprocal).map(|s| self.refresh_interior(node, s))
                     }
                     super::Topology::Irregular => None,
                 };
