@@ -653,13 +653,8 @@ mod tests {
     /// ones it works out are [`Extent::of`]'s, bit for bit.
     #[test]
     fn copies_left_out_reach_no_pixel() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rng = crate::rng::Rng::from_key(0x2545_f491_4f6c_dd1d, 0);
+        let mut next = move || rng.uniform_f32();
         let mut left_out = 0;
         for case in 0..200_000 {
             let magnitude = [1.0f32, 64.0, 4096.0, 262_144.0, 1.0e7][case % 5];
