@@ -33,31 +33,14 @@ use crate::scalar::Scalar;
 /// `body` for each `k` in `0..n` (`n` at most 6), written out: a loop over a node's springs
 /// whose indices into its arrays are then constants.
 macro_rules! unrolled {
-    ($n:expr, |$k:ident| $body:block) => {{
-        {
-            let $k = 0usize;
+    ($n:expr, |$k:ident| $body:block) => {
+        unrolled!(@each $n, $k, $body, 0 1 2 3 4 5)
+    };
+    (@each $n:expr, $k:ident, $body:block, $($i:literal)*) => {{
+        $({
+            let $k: usize = $i;
             if $k < $n $body
-        }
-        {
-            let $k = 1usize;
-            if $k < $n $body
-        }
-        {
-            let $k = 2usize;
-            if $k < $n $body
-        }
-        {
-            let $k = 3usize;
-            if $k < $n $body
-        }
-        {
-            let $k = 4usize;
-            if $k < $n $body
-        }
-        {
-            let $k = 5usize;
-            if $k < $n $body
-        }
+        })*
     }};
 }
 
