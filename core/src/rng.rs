@@ -200,7 +200,7 @@ impl Rng {
             let v = 2.0 * self.uniform_f64() - 1.0;
             let s = u * u + v * v;
             if s > 0.0 && s < 1.0 {
-                let scale = libm::sqrt(-2.0 * libm::log(s) / s);
+                let scale = crate::scalar::sqrt(-2.0 * libm::log(s) / s);
                 return [u * scale, v * scale];
             }
         }
@@ -245,7 +245,7 @@ impl Rng {
     /// k = ⌊(2a/u_s + b)·U + μ + 0.43⌋ from U uniform in [−½, ½), accepted outright in the
     /// squeeze (u_s ≥ 0.07, V ≤ v_r), else when log(V·α/(a/u_s² + b)) ≤ −μ + k·log μ − log k!.
     fn poisson_ptrs(&mut self, mean: f64) -> u32 {
-        let smu = libm::sqrt(mean);
+        let smu = crate::scalar::sqrt(mean);
         let b = 0.931 + 2.53 * smu;
         let a = -0.059 + 0.02483 * b;
         let inv_alpha = 1.1239 + 1.1328 / (b - 3.4);
@@ -342,8 +342,8 @@ mod tests {
     /// `mu4`: Var(s²) ≈ (μ4 − σ⁴)/n).
     fn assert_moments(n: u32, sample: (f64, f64), mean: f64, variance: f64, mu4: f64) {
         let n = f64::from(n);
-        let mean_se = libm::sqrt(variance / n);
-        let var_se = libm::sqrt((mu4 - variance * variance) / n);
+        let mean_se = crate::scalar::sqrt(variance / n);
+        let var_se = crate::scalar::sqrt((mu4 - variance * variance) / n);
         assert!((sample.0 - mean).abs() < 4.0 * mean_se, "mean {} vs {mean} (se {mean_se})", sample.0);
         assert!((sample.1 - variance).abs() < 4.0 * var_se, "variance {} vs {variance} (se {var_se})", sample.1);
     }

@@ -8,13 +8,45 @@
 //! | `micromath` feature | `micromath::F32` | fast approximations of sin, cos, atan2, exp (errors ≤ 1.5·10⁻³, atan2 ≤ 4·10⁻³); IEEE sqrt | same bits everywhere |
 //! | `fixed` feature | `Q16` (Q16.16) | integer arithmetic, saturating; functions in `fixed_point` | same bits everywhere |
 //!
-//! All three are deterministic: the float backends use only IEEE basic operations and
-//! software functions (`libm`, `micromath`), never `mul_add` or platform intrinsics; the
+//! All three are deterministic: the float backends use only IEEE basic operations (the
+//! square root among them, correctly rounded, see [`sqrtf`]) and software functions (`libm`,
+//! `micromath`), never `mul_add` or platform approximations; the
 //! fixed backend is pure integer arithmetic that saturates instead of overflowing, so debug
 //! and release builds agree.
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// The square root of `x`, correctly rounded (IEEE 754), so the same bits on every target.
+/// On x86-64 it is SSE's `sqrtss` by way of the compiler's intrinsic (`safe_arch`), which
+/// LLVM vectorises in a loop: four roots in one `sqrtps`, where `libm::sqrtf`, inline
+/// assembly there, keeps every loop that takes a root scalar. Elsewhere `libm::sqrtf` (the
+/// hardware instruction where there is one, a correctly rounded software root otherwise).
+#[inline(always)]
+pub(crate) fn sqrtf(x: f32) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        safe_arch::get_f32_from_m128_s(safe_arch::sqrt_m128_s(safe_arch::set_m128_s(x)))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        libm::sqrtf(x)
+    }
+}
+
+/// [`sqrtf`] in `f64`: SSE2's `sqrtsd` on x86-64, `libm::sqrt` elsewhere.
+#[inline(always)]
+pub(crate) fn sqrt(x: f64) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let x = safe_arch::set_m128d_s(x);
+        safe_arch::get_f64_from_m128d_s(safe_arch::sqrt_m128d_s(x, x))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        libm::sqrt(x)
+    }
+}
 
 #[cfg(feature = "fixed")]
 pub mod fixed_point;
@@ -116,7 +148,7 @@ impl Scalar for f32 {
         n as f32
     }
     fn sqrt(self) -> Self {
-        if self > 0.0 { libm::sqrtf(self) } else { 0.0 }
+        if self > 0.0 { crate::scalar::sqrtf(self) } else { 0.0 }
     }
     fn sin(self) -> Self {
         libm::sinf(self)
@@ -169,7 +201,7 @@ impl Scalar for micromath::F32 {
     fn sqrt(self) -> Self {
         // micromath's bit-trick sqrt is off by up to 6 %, too coarse for spring lengths;
         // IEEE sqrt is correctly rounded, deterministic and cheap.
-        if self.0 > 0.0 { micromath::F32(libm::sqrtf(self.0)) } else { Self::ZERO }
+        if self.0 > 0.0 { micromath::F32(crate::scalar::sqrtf(self.0)) } else { Self::ZERO }
     }
     fn sin(self) -> Self {
         micromath::F32::sin(self)

@@ -325,7 +325,7 @@ impl Glass<'_> {
     /// (angle φ, radius B), and its offset from `w` and distance.
     fn in_sector(&self, w: [f32; 2], direction: [f32; 2], point: [f32; 2]) -> Option<([f32; 2], f32)> {
         let e = [point[0] - w[0], point[1] - w[1]];
-        let distance = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
+        let distance = crate::scalar::sqrtf(e[0] * e[0] + e[1] * e[1]);
         if distance == 0.0 || distance > self.params.sector_radius {
             return None;
         }
@@ -424,7 +424,7 @@ impl Glass<'_> {
         let length2 = d[0] * d[0] + d[1] * d[1];
         let t = if length2 > 0.0 { (-(ea[0] * d[0] + ea[1] * d[1]) / length2).clamp(t0, t1) } else { t0 };
         let e = [ea[0] + d[0] * t, ea[1] + d[1] * t];
-        let distance = libm::sqrtf(e[0] * e[0] + e[1] * e[1]);
+        let distance = crate::scalar::sqrtf(e[0] * e[0] + e[1] * e[1]);
         if !(distance > 0.0 && distance <= self.params.sector_radius) {
             return None;
         }
@@ -714,7 +714,7 @@ impl Glass<'_> {
         // cracks stay at nearly equal angles) or, for a ring crack, around its course.
         let age = c.age as f32 + u.done / c.speed;
         let weight = 1.0 - libm::expf(-age / p.turn_delay);
-        let spread = p.wander * libm::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
+        let spread = p.wander * crate::scalar::sqrtf(length / UPDATE_LENGTH) * if ring { 1.0 } else { weight };
         let mean = if ring { course } else { c.start_heading };
         let angle = mean + spread * self.forces.normal_f32();
         f[0] += libm::cosf(angle);
@@ -811,7 +811,7 @@ impl Glass<'_> {
     /// from the tip to its nearest point, at distance `d`.
     fn normal_towards(&self, a: [f32; 2], z: [f32; 2], v: [f32; 2], d: f32) -> [f32; 2] {
         let t = [z[0] - a[0], z[1] - a[1]];
-        let length = libm::sqrtf(t[0] * t[0] + t[1] * t[1]);
+        let length = crate::scalar::sqrtf(t[0] * t[0] + t[1] * t[1]);
         if length.is_nan() || length <= 0.0 {
             return [v[0] / d, v[1] / d];
         }
@@ -833,7 +833,7 @@ impl Glass<'_> {
     fn ring_frame(c: &super::CrackSlot) -> (f32, f32, f32) {
         let centre = c.ring.0;
         let rel = [c.tip[0] - centre[0], c.tip[1] - centre[1]];
-        let r = libm::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
+        let r = crate::scalar::sqrtf(rel[0] * rel[0] + rel[1] * rel[1]).max(1e-3);
         let angle = libm::atan2f(rel[1], rel[0]);
         let sense = if c.is(CrackKind::RingCounterClockwise) { 1.0 } else { -1.0 };
         (angle, r, sense)

@@ -150,7 +150,11 @@ fn contraction(m: f64, c: f64, lambda: f64, tau: f64) -> f64 {
     let (p, q, r) = (1.0 - lambda * a, b, -(1.0 - e) * lambda / c);
     let (trace, det) = (p + e, p * e - q * r);
     let discriminant = trace * trace - 4.0 * det;
-    if discriminant >= 0.0 { 0.5 * (libm::fabs(trace) + libm::sqrt(discriminant)) } else { libm::sqrt(det) }
+    if discriminant >= 0.0 {
+        0.5 * (libm::fabs(trace) + crate::scalar::sqrt(discriminant))
+    } else {
+        crate::scalar::sqrt(det)
+    }
 }
 
 /// The slowest [`contraction`] over the stiffnesses a node may see, from its shear spring
@@ -212,7 +216,7 @@ impl NodeConstants {
             weakest = weakest.min(mesh.stiffness(spring));
             springs += mesh.stiffness(spring);
         });
-        NodeConstants { mass, damping: 2.0 * libm::sqrtf(k_max * mass) * alpha, shear, weakest, springs }
+        NodeConstants { mass, damping: 2.0 * crate::scalar::sqrtf(k_max * mass) * alpha, shear, weakest, springs }
     }
 
     /// Whether the node alone passes [`stable`] with its Gershgorin bound h + 2·Σk, for the

@@ -579,7 +579,7 @@ impl Construction {
                 Pass::Jitter => {
                     let radius = JITTER * UNIT as f32;
                     for node in from..end {
-                        let r = radius * libm::sqrtf(rng.uniform_f32());
+                        let r = radius * crate::scalar::sqrtf(rng.uniform_f32());
                         let angle = 2.0 * core::f32::consts::PI * rng.uniform_f32();
                         let (i, j) = ((node % b.columns) as i64, (node / b.columns) as i64);
                         let site = [i * UNIT + (j % 2) * UNIT / 2, j * PITCH];
@@ -689,7 +689,7 @@ fn spring_shape(
     let pa = mesh.position(a);
     let pb = shape.nearest_image(pa, mesh.position(b));
     let d = [pb[0] - pa[0], pb[1] - pa[1]];
-    let l0 = libm::sqrtf(d[0] * d[0] + d[1] * d[1]);
+    let l0 = crate::scalar::sqrtf(d[0] * d[0] + d[1] * d[1]);
     let e = [d[0] / l0, d[1] / l0];
     let middle = [(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5];
     // The circumcentre of each side's cell, measured along the spring's left normal.

@@ -72,13 +72,13 @@ impl<S: Scalar> Material<S> {
         let springs = &stiffness[..lattice.directions()];
         let k_max = springs.iter().fold(shear, |m, &k| m.max(k));
         let k_min = springs.iter().fold(shear, |m, &k| m.min(k));
-        let damping = 2.0 * libm::sqrtf(k_max * mass) * p.damping_factor;
+        let damping = 2.0 * crate::scalar::sqrtf(k_max * mass) * p.damping_factor;
         // Time unit √(ρ·W²·H / (E·H)) = W·√(ρ/E).
-        let time_unit = w * libm::sqrtf(p.density / p.young_modulus);
+        let time_unit = w * crate::scalar::sqrtf(p.density / p.young_modulus);
         let short_step = p.short_step / time_unit;
         let force_tolerance = k_min * p.displacement_tolerance / w;
         let face_area_cm2 = face * w * h_layer;
-        let spread = p.break_stretch_spread / libm::sqrtf(face_area_cm2);
+        let spread = p.break_stretch_spread / crate::scalar::sqrtf(face_area_cm2);
         // Each derived constant names the fields it comes from (k_max and k_min lie between
         // the shear and the springs' face·anisotropy, within [1e-6, 1] once the shear and
         // `stiffness_anisotropy_ratio` are in range).
@@ -103,7 +103,7 @@ impl<S: Scalar> Material<S> {
             force_tolerance: S::from_f32(force_tolerance),
             break_stretch_spread: spread,
             shear_per_area: shear / area,
-            spread_per_root_face: p.break_stretch_spread / libm::sqrtf(w * h_layer),
+            spread_per_root_face: p.break_stretch_spread / crate::scalar::sqrtf(w * h_layer),
         })
     }
 }
@@ -130,7 +130,7 @@ mod tests {
         assert!((m.damping - 40.0).abs() < 1e-5);
         assert!((m.force_tolerance - 2e-5).abs() < 1e-10);
         // τ = 0.001 s in units of W·√(ρ/E) = √1.8e-6 s.
-        assert!((m.short_step - 0.001 / libm::sqrtf(1.8e-6)).abs() < 1e-5);
+        assert!((m.short_step - 0.001 / crate::scalar::sqrtf(1.8e-6)).abs() < 1e-5);
         assert!((m.break_stretch_spread - 0.001).abs() < 1e-9);
     }
 
@@ -139,7 +139,7 @@ mod tests {
         let m = Material::<f32>::new(&MudParams::default(), &lattice(Topology::Hexagonal)).unwrap();
         assert!((m.stiffness[0] - 0.577_350_26).abs() < 1e-6);
         // σ/√A with A = W·H/√3 cm².
-        assert!((m.break_stretch_spread - 0.001 * libm::sqrtf(1.732_050_8)).abs() < 1e-8);
+        assert!((m.break_stretch_spread - 0.001 * crate::scalar::sqrtf(1.732_050_8)).abs() < 1e-8);
     }
 
     #[test]

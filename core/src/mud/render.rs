@@ -361,7 +361,7 @@ impl HeightCell for u32 {
 /// The preview's light: from the upper left (x right, y up, z out), unit length.
 fn preview_light() -> [f32; 3] {
     let l = [-0.5f32, 0.6, 0.62];
-    let length = libm::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    let length = crate::scalar::sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
     l.map(|c| c / length)
 }
 

@@ -294,7 +294,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
             // irregular lattice's springs each have their own face and direction.
             let (spread, factor) = match lattice.mesh() {
                 Some(m) => (
-                    material.spread_per_root_face / libm::sqrtf(m.face(spring)),
+                    material.spread_per_root_face / crate::scalar::sqrtf(m.face(spring)),
                     super::material::anisotropy(
                         m.direction(spring),
                         params.anisotropy_direction,

@@ -32,7 +32,7 @@ pub struct SpacingPrediction {
 /// d_1 and d_N for real N (units of L = 1).
 fn displacements(k: f64, h: f64, rest: f64, n: f64) -> (f64, f64) {
     let c = 1.0 + h / (2.0 * k);
-    let root = libm::sqrt(c * c - 1.0);
+    let root = crate::scalar::sqrt(c * c - 1.0);
     let (alpha, beta) = (c + root, c - root);
     let chain = |m: f64| (libm::pow(alpha, m) - libm::pow(beta, m)) / (alpha - beta);
     let d1 = k * (1.0 - rest) / ((k + h) * chain(n) - k * chain(n - 1.0));

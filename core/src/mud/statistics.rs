@@ -83,7 +83,7 @@ impl<S: Scalar> Mud<'_, S> {
         let mean = plate / f64::from(cells.max(1));
         let spread = if areas.count > 0 {
             let m = areas.sum / areas.count as f64;
-            libm::sqrt((areas.sum_squares / areas.count as f64 - m * m).max(0.0))
+            crate::scalar::sqrt((areas.sum_squares / areas.count as f64 - m * m).max(0.0))
         } else {
             0.0
         };

@@ -212,7 +212,7 @@ impl<'s> HeightWindow<'s> {
         let gx = (at(right, 0) - at(left, 0)) / dx * bump;
         // Rows run down the image; y runs up.
         let gy = (at(0, up) - at(0, down)) / dy * bump;
-        let length = libm::sqrtf(gx * gx + gy * gy + 1.0);
+        let length = crate::scalar::sqrtf(gx * gx + gy * gy + 1.0);
         [-gx / length, -gy / length, 1.0 / length]
     }
 

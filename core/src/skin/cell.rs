@@ -219,7 +219,7 @@ impl<'p> Nearby<'p> {
     fn list(f: &Frame, parent: Parent<'p>, (start, end): (&Corner, &Corner), space: &'p mut [u32; LISTED]) -> Self {
         let (x, y) = (start.fixed, end.fixed);
         let d = f.in_frame([y[0] - x[0], y[1] - x[1]]);
-        let length = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
+        let length = crate::scalar::sqrt(d[0] * d[0] + d[1] * d[1]);
         let reach = f.reach * length;
         // (Plus the stay-inside test's slack, and a few units for rounding to fixed point.)
         // Saturating: a huge perturbation ratio (1e30) reaches past i64 (`as` saturates), and

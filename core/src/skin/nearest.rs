@@ -178,7 +178,7 @@ impl Buckets {
         // without jitter) gets one bucket and the other axis all of them.
         let target = count.max(1) as f64;
         let area = extent[0] * extent[1];
-        let edge = if area > 0.0 { libm::sqrt(area / target) } else { extent[0].max(extent[1]) / target };
+        let edge = if area > 0.0 { crate::scalar::sqrt(area / target) } else { extent[0].max(extent[1]) / target };
         let mut dims = [0, 1].map(|k| {
             let d = libm::ceil(extent[k] / edge);
             // (`as` takes NaN to 0 and saturates: a box of no extent is one bucket.)

@@ -64,7 +64,7 @@ fn light_direction(l: [f32; 3]) -> Option<[f32; 3]> {
     let square = |v: [f32; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     let squared = square(l);
     let l = if squared.is_finite() && squared >= f32::MIN_POSITIVE { l } else { l.map(|v| v / largest) };
-    let length = libm::sqrtf(square(l));
+    let length = crate::scalar::sqrtf(square(l));
     Some([l[0] / length, l[1] / length, l[2] / length])
 }
 
@@ -119,7 +119,7 @@ impl Light {
     /// From a unit direction towards the light.
     fn new(light: [f32; 3]) -> Light {
         let h = [light[0], light[1], light[2] + 1.0];
-        let hl = libm::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        let hl = crate::scalar::sqrtf(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
         Light { light, half: [h[0] / hl, h[1] / hl, h[2] / hl] }
     }
 
@@ -133,7 +133,7 @@ impl Light {
     /// ridge colour with √t; Lambert's diffuse term plus ambient, and a Blinn–Phong highlight.
     pub(super) fn shade(&self, n: [f32; 3], t: f32, params: &ShadeParams) -> [u8; 4] {
         let (light, half) = (self.light, self.half);
-        let t = libm::sqrtf(t.clamp(0.0, 1.0));
+        let t = crate::scalar::sqrtf(t.clamp(0.0, 1.0));
         let diffuse = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
         let gloss = libm::powf((n[0] * half[0] + n[1] * half[1] + n[2] * half[2]).max(0.0), 24.0);
         let lit = params.ambient + (1.0 - params.ambient) * diffuse;

@@ -45,7 +45,7 @@ impl Lattice {
         let l = &p.level[level];
         let period = [f64::from(p.width) / f64::from(l.stretch[0]), f64::from(p.height) / f64::from(l.stretch[1])];
         let s = f64::from(l.spacing);
-        let row = if p.layout == SiteLayout::Triangular { s * libm::sqrt(3.0) / 2.0 } else { s };
+        let row = if p.layout == SiteLayout::Triangular { s * crate::scalar::sqrt(3.0) / 2.0 } else { s };
         let mut count = [round_to_i64(period[0] / s).max(1), round_to_i64(period[1] / row).max(1)];
         let mut step = [s, row];
         if p.periodic {
@@ -127,7 +127,7 @@ impl Lattice {
     /// normal jitter redrawn until within it, random layout J = 1): per axis they are at most
     /// `(½ + J/2)` steps apart.
     pub(super) fn reach(&self) -> f64 {
-        let diagonal = libm::sqrt(self.step[0] * self.step[0] + self.step[1] * self.step[1]);
+        let diagonal = crate::scalar::sqrt(self.step[0] * self.step[0] + self.step[1] * self.step[1]);
         (0.5 + 0.5 * self.jitter + 0.01) * diagonal
     }
 
@@ -149,7 +149,7 @@ impl Lattice {
         }
         let sigma = if self.layout == SiteLayout::Triangular && dj % 2 != 0 { 0.5 } else { 0.0 };
         // (`as` saturates a huge count: the caller caps it.)
-        Some(libm::floor(sigma + self.jitter + libm::sqrt(radius * radius - dy * dy) / self.step[0]) as i64)
+        Some(libm::floor(sigma + self.jitter + crate::scalar::sqrt(radius * radius - dy * dy) / self.step[0]) as i64)
     }
 
     /// How many lattice indices (i, j) within `range` (inclusive: i0, j0, i1, j1) have a centre

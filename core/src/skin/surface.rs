@@ -926,7 +926,7 @@ pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wed
         // overflow checks on).
         let (vx, vy) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
         let (ex, ey) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
-        let length = libm::sqrtf(ex * ex + ey * ey);
+        let length = crate::scalar::sqrtf(ex * ex + ey * ey);
         // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
         let outward = [ey, -ex];
         let reach = vx * outward[0] + vy * outward[1];

@@ -106,7 +106,7 @@ pub(super) fn perturb(
         [c.at[0] + f64::from(d[0]) * f.period[0], c.at[1] + f64::from(d[1]) * f.period[1]]
     };
     let (p0, p1) = (place(from), place(to));
-    let length = libm::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
+    let length = crate::scalar::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
     let pieces = 1usize << f.depth;
     let mut line = [[0.0f64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
     line[0] = p0;
