@@ -2300,7 +2300,9 @@ void hibi_mud_destroy(struct hibi_mud *mud);
  * trace, of `hibi_mud_shown_broken_springs` springs, drawn at the displacements of now. When
  * the physics ends, the cracks as they end are traced in the same way, and the run is
  * finished when that trace is done. The run (its physics, its final network, its work) does
- * not depend on the budgets; which live network a call shows does. Writes where it stands
+ * not depend on the budgets; which live network a call shows does. A budget of `UINT64_MAX`
+ * runs to the end in the one call, where no live network could be seen: it makes none, and
+ * ends with the same outputs, bit for bit, in less work (the physics and the final trace). Writes where it stands
  * to `*progress` unless it is NULL. Call until `progress.finished`.
  *
  * # Safety

@@ -547,6 +547,12 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// same work (the switches between the physics and a live trace are at fixed counts of
     /// their work). Which live network a call shows depends on where its budget ends.
     ///
+    /// A budget of `u64::MAX` ([`Mud::run`]) runs to the end in this one call, so no live
+    /// network could be seen before it returns: it makes none. It does the physics and the
+    /// final trace only, and ends with the same outputs, bit for bit, as every other budget
+    /// (the network, the cells, the statistics, the rasters, every break time), with less
+    /// work.
+    ///
     /// An error ends the run: the call that finds it and every later one return it, and the
     /// outputs stay those of the uncracked plate.
     pub fn step(&mut self, budget: u64) -> Result<MudProgress, MudError> {
@@ -592,7 +598,10 @@ impl<'a, S: Scalar> Mud<'a, S> {
             // `LIVE_CHECK` units. Each switch is at a fixed count of the physics' and the
             // traces' work, so the order of the pieces does not depend on the budgets.
             let (physics, live) = (self.physics_work, self.live_work);
-            let slice = if self.tracing.is_some() {
+            let slice = if budget == u64::MAX {
+                // A call that runs to the end: no live network it traced could be seen.
+                left
+            } else if self.tracing.is_some() {
                 let first = self.shown_broken == 0;
                 if first || live.saturating_mul(LIVE_SHARE) < physics {
                     let share = if first { u64::MAX } else { physics.div_ceil(LIVE_SHARE) - live };
@@ -628,7 +637,8 @@ impl<'a, S: Scalar> Mud<'a, S> {
         Ok(self.progress())
     }
 
-    /// Runs to the end (target shrink or crack density), or to an error ([`Mud::step`]).
+    /// Runs to the end (target shrink or crack density), or to an error: [`Mud::step`] with a
+    /// budget of `u64::MAX`, which makes no live trace (nothing could show one).
     pub fn run(&mut self) -> Result<MudProgress, MudError> {
         self.step(u64::MAX)
     }
