@@ -398,11 +398,11 @@ impl GlassParams {
         self.validate()?;
         let grid = Grid::new(self.width, self.height, GRID_CELL);
         let (cracks, vertices) = (self.max_cracks as usize, self.max_vertices as usize);
-        // Segment grid: heads, entry item and next; tip grid: heads, entry item and next;
-        // one stamp per edge (to visit each segment once per query); per vertex a face mark
-        // and a component root.
+        // Segment grid: heads, the heads F2 starts from, entry item and next; tip grid: heads,
+        // entry item and next; one stamp per edge (to visit each segment once per query); per
+        // vertex a face mark and a component root.
         let words = (|| {
-            let segment = grid.cells().checked_add(vertices.checked_mul(2 * ENTRIES_PER_VERTEX)?)?;
+            let segment = grid.cells().checked_mul(2)?.checked_add(vertices.checked_mul(2 * ENTRIES_PER_VERTEX)?)?;
             let tip = grid.cells().checked_add(cracks.checked_mul(2)?)?;
             segment.checked_add(tip)?.checked_add(vertices.checked_mul(3)?)
         })()
@@ -444,6 +444,13 @@ pub struct Glass<'a> {
 struct SpatialIndex<'a> {
     grid: Grid,
     segments: Buckets<'a>,
+    /// Per segment cell whose list holds entries filed in the time step under way (its head
+    /// at `fresh` or later): the first entry of that list that F2 has to look at, past the
+    /// segments grown in this time step, which F2 passes over (all tips move at once). Read
+    /// only for such a cell, so written only as such a cell gets its first entry of the step.
+    earlier: &'a mut [u32],
+    /// The first segment entry filed in the time step under way.
+    fresh: u32,
     tips: Buckets<'a>,
     /// Per edge: the stamp of the latest query that visited it (to visit each segment once).
     stamps: &'a mut [u32],
@@ -572,6 +579,7 @@ impl<'a> Glass<'a> {
             entries: take(&mut words, 2 * vertices * ENTRIES_PER_VERTEX).as_chunks_mut().0,
             used: 0,
         };
+        let earlier = take(&mut words, grid.cells());
         let tips = Buckets {
             heads: take(&mut words, grid.cells()),
             entries: take(&mut words, 2 * cracks).as_chunks_mut().0,
@@ -593,7 +601,7 @@ impl<'a> Glass<'a> {
             vertex_count: 0,
             edges: &mut buffers.edges[..vertices],
             edge_count: 0,
-            index: SpatialIndex { grid, segments, tips, stamps, stamp: 0 },
+            index: SpatialIndex { grid, segments, earlier, fresh: 0, tips, stamps, stamp: 0 },
             clock: Clock {
                 time: 0,
                 cursor: 0,
@@ -910,6 +918,7 @@ mod tests {
             |g| {
                 g.index.segments.heads.fill(7);
                 g.index.segments.entries.fill([3, 5]);
+                g.index.earlier.fill(11);
                 g.index.tips.heads.fill(9);
                 g.index.tips.entries.fill([1, 2]);
             },

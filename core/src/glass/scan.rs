@@ -13,13 +13,16 @@ pub(super) enum Filed {
     Tips,
     /// The crack segments, by edge; each is visited once per scan, however many cells it is in.
     Segments,
+    /// The crack segments as F2 reads them: as [`Filed::Segments`], but a cell's entries for
+    /// segments grown in the time step under way, which F2 passes over by their time, are
+    /// skipped unseen where they lead its list (`SpatialIndex::earlier`).
+    Earlier,
 }
 
 /// Where a scan of the cells `cells` (inclusive, as [`super::grid::Grid::span`] gives them)
 /// stands: the cell at (`cx`, `cy`), and the next entry of its list to visit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Scan {
-    filed: Filed,
     cells: (usize, usize, usize, usize),
     cx: usize,
     cy: usize,
@@ -29,9 +32,9 @@ pub(super) struct Scan {
 }
 
 impl Scan {
-    /// A scan of `filed` over `cells`, not yet started.
-    pub(super) const fn new(filed: Filed, cells: (usize, usize, usize, usize)) -> Scan {
-        Scan { filed, cells, cx: cells.0, cy: cells.1, entered: false, entry: NONE }
+    /// A scan over `cells`, not yet started.
+    pub(super) const fn new(cells: (usize, usize, usize, usize)) -> Scan {
+        Scan { cells, cx: cells.0, cy: cells.1, entered: false, entry: NONE }
     }
 }
 
@@ -39,7 +42,7 @@ impl Glass<'_> {
     /// Starts a scan of `filed` over `cells`: a segment scan takes a fresh stamp, so that it
     /// visits each segment once.
     pub(super) fn start_scan(&mut self, filed: Filed, cells: (usize, usize, usize, usize)) -> Scan {
-        if filed == Filed::Segments {
+        if filed != Filed::Tips {
             self.index.stamp = self.index.stamp.wrapping_add(1);
             if self.index.stamp == 0 {
                 // The stamps start over (every 2³² − 1 scans): those of the edges so far are
@@ -48,21 +51,24 @@ impl Glass<'_> {
                 self.index.stamp = 1;
             }
         }
-        Scan::new(filed, cells)
+        Scan::new(cells)
     }
 
-    /// Goes on with `scan` until it has visited every entry of its cells (true) or the work
-    /// reaches `deadline` (false; the next call goes on from there). One unit per cell looked
-    /// at and per entry passed: a cell for which `skip(cx, cy)` holds (one wholly
-    /// outside a tip's sector) or that is empty is passed over after its unit; `visit` gets
-    /// every item of the others (a segment once per scan).
+    /// Goes on with `scan` of the tips ([`Filed::Tips`]: `SEGMENTS` and `EARLIER` false), of the
+    /// segments ([`Filed::Segments`]: `SEGMENTS`) or of the segments as F2 reads them
+    /// ([`Filed::Earlier`]: both), as [`Self::start_scan`] started it, until it has
+    /// visited every entry of its cells (true) or the work reaches `deadline` (false; the next
+    /// call goes on from there). One unit per cell looked at and per entry passed: a cell for
+    /// which `skip(cx, cy)` holds (one wholly outside a tip's sector) or that is empty is
+    /// passed over after its unit; `visit` gets every item of the others (a segment once per
+    /// scan).
     ///
     /// The scans and their visitors are inlined into the update on 64-bit targets (out of
     /// line, generation took 1.30 times the instructions of the inlined build); on 32-bit ones
     /// the compiler decides, as the 256 KiB of flash of `targets/run`'s Cortex-M3 has no room
     /// for three inlined copies.
     #[cfg_attr(target_pointer_width = "64", inline(always))]
-    pub(super) fn go_on(
+    pub(super) fn go_on<const SEGMENTS: bool, const EARLIER: bool>(
         &mut self,
         scan: &mut Scan,
         deadline: u64,
@@ -75,29 +81,29 @@ impl Glass<'_> {
         // 64-bit targets only: the Cortex-M3's flash has no room for the second copy.
         let (cx0, _, cx1, cy1) = scan.cells;
         let cells = (cy1 + 1).saturating_sub(scan.cy).saturating_mul((cx1 + 1).saturating_sub(cx0));
+        let filed = if SEGMENTS { self.index.segments.used } else { self.index.tips.used };
         let far = cfg!(target_pointer_width = "64")
-            && deadline.saturating_sub(self.clock.work) > (cells as u64).saturating_add(self.filed(scan.filed) as u64);
-        match (scan.filed, far) {
-            (Filed::Tips, false) => self.go_on_in::<false, true>(scan, deadline, skip, visit),
-            (Filed::Segments, false) => self.go_on_in::<true, true>(scan, deadline, skip, visit),
-            (Filed::Tips, true) => self.go_on_in::<false, false>(scan, deadline, skip, visit),
-            (Filed::Segments, true) => self.go_on_in::<true, false>(scan, deadline, skip, visit),
+            && deadline.saturating_sub(self.clock.work) > (cells as u64).saturating_add(filed as u64);
+        if far {
+            self.go_on_in::<SEGMENTS, EARLIER, false>(scan, deadline, skip, visit)
+        } else {
+            self.go_on_in::<SEGMENTS, EARLIER, true>(scan, deadline, skip, visit)
         }
     }
 
-    /// The entries filed in the grid that `filed` names.
-    #[inline(always)]
-    fn filed(&self, filed: Filed) -> usize {
-        match filed {
-            Filed::Tips => self.index.tips.used,
-            Filed::Segments => self.index.segments.used,
-        }
+    /// The first entry of segment cell `cell` that F2 looks at, for a cell with entries filed
+    /// in the time step under way (`SpatialIndex::earlier`). Out of line, so that the entry
+    /// loops it leads to keep their registers.
+    #[inline(never)]
+    fn earlier(&self, cell: usize) -> u32 {
+        self.index.earlier[cell]
     }
 
-    /// [`Self::go_on`] over the segments (`SEGMENTS`) or the tips, checking the deadline before
-    /// every unit (`BUDGETED`) or not (a scan [`Self::go_on`] found cannot reach it).
+    /// [`Self::go_on`] over the segments (`SEGMENTS`; from the entries F2 reads, `EARLIER`) or
+    /// the tips, checking the deadline before every unit (`BUDGETED`) or not (a scan
+    /// [`Self::go_on`] found cannot reach it).
     #[cfg_attr(target_pointer_width = "64", inline(always))]
-    fn go_on_in<const SEGMENTS: bool, const BUDGETED: bool>(
+    fn go_on_in<const SEGMENTS: bool, const EARLIER: bool, const BUDGETED: bool>(
         &mut self,
         scan: &mut Scan,
         deadline: u64,
@@ -147,9 +153,16 @@ impl Glass<'_> {
             }
             work += 1;
             let heads = if SEGMENTS { &self.index.segments.heads } else { &self.index.tips.heads };
-            let head = heads[cy * columns + cx];
+            let cell = cy * columns + cx;
+            let head = heads[cell];
             entered = true;
-            entry = if head == NONE || skip(cx, cy) { NONE } else { head };
+            entry = if head == NONE || skip(cx, cy) {
+                NONE
+            } else if EARLIER && head >= self.index.fresh {
+                self.earlier(cell)
+            } else {
+                head
+            };
         };
         (scan.cx, scan.cy, scan.entered, scan.entry) = (cx, cy, entered, entry);
         self.clock.work = work;
