@@ -259,6 +259,19 @@ impl<S: Scalar> Mud<'_, S> {
     /// width over the widest crack's) below the surface: raised cells between grooves, older
     /// (wider) cracks deeper. A pixel's height is the lowest it is given.
     fn draw_grooves<H: HeightCell>(&self, render: &MudRender, clip: Clip, heights: &mut [H]) {
+        self.draw_grooves_fringe(render, clip, heights, fringe_lowers);
+    }
+
+    /// [`Mud::draw_grooves`], drawing the strokes' anti-aliased fringes (on 64-bit targets)
+    /// where `fringe(bevel, widest stroke, groove depth)` says they can lower a height.
+    #[inline(always)]
+    fn draw_grooves_fringe<H: HeightCell>(
+        &self,
+        render: &MudRender,
+        clip: Clip,
+        heights: &mut [H],
+        fringe: fn(f32, f32, f32) -> bool,
+    ) {
         let ppu = self.pixels_per_unit(render);
         let widest = self.widest(render, ppu);
         if widest <= 0.0 {
@@ -288,8 +301,9 @@ impl<S: Scalar> Mud<'_, S> {
         // the same heights.)
         if cfg!(target_pointer_width = "64") {
             let (cut, until) = (render.until < f32::INFINITY, render.until);
+            let fringe = fringe(bevel, widest + bevel, groove_depth);
             self.strokes(render, clip, bevel, |frame, stroke| {
-                for_each_run(frame, stroke, heights, |cell, hit| {
+                for_each_run(frame, stroke, heights, fringe, |cell, hit| {
                     let h = height(hit.coverage, hit.depth, hit.half_width);
                     let hit = (hit.coverage > 0.0) & (!cut | (hit.value <= until));
                     cell.lower(if hit { h } else { f32::INFINITY });
@@ -334,6 +348,23 @@ impl<S: Scalar> Mud<'_, S> {
 
 /// How far a cell's edge rounds off into its crack in the height map [lattice spacings].
 pub const BEVEL: f32 = 0.6;
+
+/// Whether a groove stroke's anti-aliased fringe (its pixels whose centre lies past the half
+/// width `w` there, coverage < ½) can lower a height below 1, for strokes at most `widest`
+/// pixels half wide (the margin `bevel` included) and floors at most `groove_depth` deep. In
+/// the fringe the distance is above w, so depth and distance from the axis round to at least
+/// w, while the crack's edge w − bevel rounds to within ulp(w)/2 of it (below w, the stroke
+/// being at most 2²⁰ bevels half wide): the bevel's fall there is at most
+/// w/bevel·2⁻²⁴ + 2⁻²³ (bounded here four times over), and the groove, the floor times the
+/// fall squared times the coverage, at most ½·`groove_depth`·fall². Where that is below
+/// 2⁻²⁶, 1 − groove rounds to 1 and the fringe lowers nothing. Anything not finite says it
+/// can.
+fn fringe_lowers(bevel: f32, widest: f32, groove_depth: f32) -> bool {
+    let ratio = widest / bevel;
+    let fall = ratio * (1.0 / 4_194_304.0) + 1.0 / 2_097_152.0;
+    let quiet = ratio <= 1_048_576.0 && groove_depth * fall * fall <= 1.0 / 33_554_432.0;
+    !quiet
+}
 
 /// A pixel of a height map that [`Mud::draw_grooves`] lowers: an `f32`, or its bits (the
 /// scratch's heights).
@@ -412,5 +443,42 @@ mod tests {
                 assert_eq!(mud.widest(&render, ppu).to_bits(), pieces.to_bits(), "{params:?} {render:?}");
             }
         }
+    }
+
+    /// Height maps drawn without the strokes' fringes where [`fringe_lowers`] says they lower
+    /// nothing are those drawn with them, bit for bit, over sizes, widths, groove depths and
+    /// views; and the fringes are left out in most of them.
+    #[test]
+    fn a_fringe_left_out_lowers_nothing() {
+        let params = MudParams { columns: 24, rows: 24, ..MudParams::default() };
+        let memory = params.memory().expect("valid parameters");
+        let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
+        let buffers = MudBuffers { scalars: &mut scalars, words: &mut words };
+        let mut mud = Mud::new(&params, buffers).expect("memory suffices");
+        mud.run().expect("a stable run");
+        let mut rng = crate::rng::Rng::from_key(0x5eed_f12e, 0);
+        let (mut left_out, cases) = (0, 300);
+        for case in 0..cases {
+            let width = 8 + (rng.uniform_f32() * 600.0) as u32;
+            let render = MudRender {
+                width_scale: [0.0, 0.3, 1.0, 4.0, 40.0][case % 5] * (0.5 + rng.uniform_f32()),
+                min_width: [0.0, 1.0, 2.5][case % 3],
+                groove_depth: [0.0, 0.01, 1.0, 30.0, 1.0e4, 1.0e9][case % 6] * (0.5 + rng.uniform_f32()),
+                offset: [rng.uniform_f32() * 50.0, rng.uniform_f32() * 50.0],
+                until: if case % 4 == 0 { 20.0 * rng.uniform_f32() } else { f32::INFINITY },
+                ..MudRender::fit(mud.extent(), width)
+            };
+            let clip = Clip::whole(render.width, render.height);
+            let pixels = (render.width * render.height) as usize;
+            let (mut with, mut without) = (vec![1.0f32; pixels], vec![1.0f32; pixels]);
+            mud.draw_grooves_fringe(&render, clip, &mut with, |_, _, _| true);
+            mud.draw_grooves(&render, clip, &mut without);
+            let same = with.iter().zip(&without).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "case {case}: {render:?}");
+            let ppu = mud.pixels_per_unit(&render);
+            let widest = mud.widest(&render, ppu);
+            left_out += usize::from(!fringe_lowers(BEVEL * ppu, widest + BEVEL * ppu, render.groove_depth));
+        }
+        assert!(left_out > cases / 2, "the fringe left out in {left_out} of {cases}");
     }
 }

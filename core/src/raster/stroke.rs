@@ -86,8 +86,18 @@ const LANES: usize = 4;
 /// `lane` must leave those cells as they are. A hit's `pixel` is 0 (the cell is the pixel).
 /// Each row's pixels that the stroke can cover are handed over up to [`RUN`] at a time, in
 /// loops without a branch per pixel, which LLVM vectorises where `lane` has none either.
-pub(crate) fn for_each_run<C>(frame: &Frame, stroke: &Stroke, cells: &mut [C], lane: impl Fn(&mut C, StrokeHit)) {
-    for_each_copy(frame, stroke, |a, b, bounds| draw_runs(frame.clip, a, b, bounds, stroke, cells, &lane));
+///
+/// Without `fringe`, the pixels whose centre lies farther than the half width from the axis
+/// (the anti-aliased fringe, coverage < ½, up to ½ pixel wide) may be left out: every pixel
+/// with coverage ≥ ½ is still visited, and the rest in the same order.
+pub(crate) fn for_each_run<C>(
+    frame: &Frame,
+    stroke: &Stroke,
+    cells: &mut [C],
+    fringe: bool,
+    lane: impl Fn(&mut C, StrokeHit),
+) {
+    for_each_copy(frame, stroke, |a, b, bounds| draw_runs(frame.clip, a, b, bounds, (stroke, fringe), cells, &lane));
 }
 
 /// Calls `draw(a, b, bounds)` for each copy of the stroke that reaches the clip: its ends in
@@ -185,7 +195,7 @@ fn draw_capsule(
     // (Not on 32-bit targets, for the Cortex-M3's flash: the whole bounding box visits the
     // same hits.)
     let span = if cfg!(target_pointer_width = "64") {
-        Span::new(a, d, dd, stroke.half_width[0].max(stroke.half_width[1]))
+        Span::new(a, d, dd, stroke.half_width[0].max(stroke.half_width[1]), FRINGE)
     } else {
         None
     };
@@ -259,13 +269,14 @@ impl Near {
 }
 
 /// [`draw_capsule`] for [`for_each_run`]: each row's pixels within [`Span::columns`] (all of
-/// the row's within `bounds` when there is no span), up to [`RUN`] at a time.
+/// the row's within `bounds` when there is no span), up to [`RUN`] at a time; the span
+/// reaches the anti-aliased fringe only with `fringe`.
 fn draw_runs<C>(
     clip: Clip,
     a: [f32; 2],
     b: [f32; 2],
     bounds: [[f32; 2]; 2],
-    stroke: &Stroke,
+    (stroke, fringe): (&Stroke, bool),
     cells: &mut [C],
     lane: &impl Fn(&mut C, StrokeHit),
 ) {
@@ -273,7 +284,8 @@ fn draw_runs<C>(
     let d = [b[0] - a[0], b[1] - a[1]];
     let dd = d[0] * d[0] + d[1] * d[1];
     let columns = clip.width as usize;
-    let span = Span::new(a, d, dd, stroke.half_width[0].max(stroke.half_width[1]));
+    let widest = stroke.half_width[0].max(stroke.half_width[1]);
+    let span = Span::new(a, d, dd, widest, if fringe { FRINGE } else { 0.0 });
     let mut scratch = [[0.0f32; RUN]; 2];
     for y in y0 as i64..=y1 as i64 {
         let row = (y - clip.y) as usize * columns;
@@ -385,12 +397,16 @@ const SPAN_REACH: f32 = 262144.0;
 /// [`SPAN_LIMIT`] and [`SPAN_REACH`] allow (a few 1/1000 pixel).
 const SPAN_SLACK: f32 = 0.125;
 
+/// How far past its half width a stroke's anti-aliasing reaches, in pixels.
+const FRINGE: f32 = 0.5;
+
 /// The capsule whose pixels a stroke can cover (from `a` to `a + d`, in pixels), row by row:
 /// a row's centre line meets it in one interval (it is convex), bounded by where the line
 /// meets the two end discs and the two long edges. A pixel covers nothing unless its centre
-/// lies within its half width + ½ of the axis (coverage = half width − distance + ½): the
-/// capsule's radius is the widest half width + ½ + [`SPAN_SLACK`], so that every pixel with
-/// coverage lies in its row's span.
+/// lies within its half width and ½ ([`FRINGE`]) of the axis (its coverage is the half width
+/// less the distance, plus ½): the capsule's radius is the widest half width, ½ and
+/// [`SPAN_SLACK`], so that every pixel with coverage lies in its row's span (without the
+/// fringe, the widest half width and [`SPAN_SLACK`]: every pixel with coverage ≥ ½).
 struct Span {
     a: [f32; 2],
     d: [f32; 2],
@@ -404,11 +420,11 @@ struct Span {
 }
 
 impl Span {
-    /// The capsule of a stroke whose widest half width is `widest`, or `None` when its rows
-    /// are drawn whole (a stroke or width past [`SPAN_LIMIT`], a start past [`SPAN_REACH`], no
-    /// width, anything not finite).
-    fn new(a: [f32; 2], d: [f32; 2], dd: f32, widest: f32) -> Option<Span> {
-        let radius = widest + 0.5 + SPAN_SLACK;
+    /// The capsule of a stroke whose widest half width is `widest`, reaching `fringe` pixels
+    /// past it, or `None` when its rows are drawn whole (a stroke or width past
+    /// [`SPAN_LIMIT`], a start past [`SPAN_REACH`], no width, anything not finite).
+    fn new(a: [f32; 2], d: [f32; 2], dd: f32, widest: f32, fringe: f32) -> Option<Span> {
+        let radius = widest + fringe + SPAN_SLACK;
         let small = |v: f32, limit: f32| v.abs() < limit;
         let fits = small(d[0], SPAN_LIMIT)
             && small(d[1], SPAN_LIMIT)
@@ -567,7 +583,8 @@ mod tests {
     }
 
     /// [`for_each_hit`] and [`for_each_run`] give the hits of testing every pixel of the
-    /// bounding boxes, bit for bit, in the same order.
+    /// bounding boxes, bit for bit, in the same order; [`for_each_run`] without the fringe
+    /// those of coverage ≥ ½ among them, and leaves out some of the rest.
     #[test]
     fn rows_cut_to_the_capsule_visit_what_the_whole_boxes_do() {
         extern crate std;
@@ -579,7 +596,7 @@ mod tests {
             state ^= state << 17;
             (state >> 40) as f32 / (1u64 << 24) as f32
         };
-        let (mut strokes, mut hits) = (0, 0);
+        let (mut strokes, mut hits, mut fringe_left) = (0, 0, 0);
         for case in 0..4000 {
             let periodic = case % 2 == 0;
             let (width, height) = (8 + (next() * 120.0) as u32, 8 + (next() * 120.0) as u32);
@@ -629,12 +646,32 @@ mod tests {
             // The runs' hits, each pixel's cell holding its index.
             let mut cells: Vec<usize> = (0..clip.width as usize * clip.height as usize).collect();
             let runs = core::cell::RefCell::new(Vec::new());
-            for_each_run(&frame, &stroke, &mut cells, |&mut pixel, hit| {
+            for_each_run(&frame, &stroke, &mut cells, true, |&mut pixel, hit| {
                 if hit.coverage > 0.0 {
                     runs.borrow_mut().push(StrokeHit { pixel, ..hit });
                 }
             });
             let runs = runs.into_inner();
+            // Without the fringe: every hit of coverage ≥ ½ among them, in the same order.
+            let (mut cells, inner) = ((0..cells.len()).collect::<Vec<usize>>(), core::cell::RefCell::new(Vec::new()));
+            for_each_run(&frame, &stroke, &mut cells, false, |&mut pixel, hit| {
+                if hit.coverage > 0.0 {
+                    inner.borrow_mut().push(StrokeHit { pixel, ..hit });
+                }
+            });
+            let inner = inner.into_inner();
+            let wanted: Vec<&StrokeHit> = whole.iter().filter(|h| h.coverage >= 0.5).collect();
+            let mut from = inner.iter().filter(|h| h.coverage >= 0.5);
+            for w in &wanted {
+                let r = from.next().expect("a hit of coverage >= 1/2 left out");
+                assert_eq!(
+                    (r.pixel, [r.coverage, r.depth, r.half_width, r.value].map(f32::to_bits)),
+                    (w.pixel, [w.coverage, w.depth, w.half_width, w.value].map(f32::to_bits)),
+                    "case {case}: {frame:?} {stroke:?}"
+                );
+            }
+            assert!(inner.len() <= runs.len(), "case {case}: the fringe left out added hits");
+            fringe_left += runs.len() - inner.len();
             assert_eq!(fast.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
             assert_eq!(runs.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
             for ((f, r), w) in fast.iter().zip(&runs).zip(&whole) {
@@ -646,6 +683,7 @@ mod tests {
             hits += whole.len();
         }
         assert!(strokes > 2000 && hits > 100_000, "the cases draw: {strokes} strokes, {hits} hits");
+        assert!(fringe_left > hits / 20, "without the fringe, {fringe_left} of {hits} hits left out");
     }
 
     /// The copies [`Extent::copies`] leaves out are the ones that reach no pixel, at any
