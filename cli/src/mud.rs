@@ -177,6 +177,10 @@ pub fn simulate(params: &MudParams, wants: &[Want], threads: usize, progress: &P
         e => Failure::Runtime(e.to_string()),
     };
     let mut mud = Mud::new(params, MudBuffers { scalars: &mut scalars, words: &mut words }).map_err(failure)?;
+    // With no bar to move, one call: it makes no live trace, which nothing here would show.
+    if progress.is_hidden() {
+        mud.run().map_err(failure)?;
+    }
     loop {
         let p = mud.step(2_000_000).map_err(failure)?;
         progress.set_fraction(fraction(params, p.shrink, p.crack_density));

@@ -40,6 +40,11 @@ impl Progress {
         Progress { bar: ProgressBar::hidden() }
     }
 
+    /// Whether nothing shows the bar (`--quiet`, work inside a larger bar, or no terminal).
+    pub fn is_hidden(&self) -> bool {
+        self.bar.is_hidden()
+    }
+
     /// Sets the fraction done, 0 to 1.
     pub fn set_fraction(&self, fraction: f32) {
         self.bar.set_position((fraction.clamp(0.0, 1.0) * STEPS as f32) as u64);
