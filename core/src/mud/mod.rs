@@ -1056,10 +1056,10 @@ mod tests {
         }
     }
 
-    /// Frame budgets: any budget gives the run of one call, bit for bit, and the same work in
-    /// total, and each call does at most its budget and one piece bounded by a row (explicit),
-    /// a node's springs (quasi-static) or [`TRACE_PIECE`] (the tracing, which shows nothing
-    /// while under way).
+    /// Frame budgets: any budget gives the same run, bit for bit, and the same work in total,
+    /// and each call does at most its budget and one piece bounded by a row (explicit), a
+    /// node's springs (quasi-static) or [`TRACE_PIECE`] (the tracing, which shows nothing
+    /// while under way); one unbounded call gives the same run in less work (no live trace).
     #[test]
     fn budgets_change_no_bit_and_bound_each_call() {
         use Boundary::{Open, Periodic};
@@ -1080,11 +1080,16 @@ mod tests {
         ];
         for (topology, boundary, solver, drive) in cases {
             let p = MudParams { topology, boundary, solver, drive, ..small };
-            let whole = outcome(&p, None);
-            assert!(whole.progress.0 > 0, "{p:?}: nothing broke");
-            for budget in [1, 7, 1000] {
-                assert!(outcome(&p, Some(budget)) == whole, "{p:?}: budget {budget} changed the run");
+            let stepped = outcome(&p, Some(1));
+            assert!(stepped.progress.0 > 0, "{p:?}: nothing broke");
+            for budget in [7, 1000] {
+                assert!(outcome(&p, Some(budget)) == stepped, "{p:?}: budget {budget} changed the run");
             }
+            let whole = outcome(&p, None);
+            assert!(whole.progress.4 < stepped.progress.4, "{p:?}: one call did {:?}", whole.progress);
+            let work =
+                (stepped.progress.0, stepped.progress.1, stepped.progress.2, stepped.progress.3, whole.progress.4);
+            assert!(whole == Outcome { progress: work, ..stepped }, "{p:?}: one call changed the run");
             // Tracing again in one call finds the network the budgeted trace found.
             let m = p.memory().unwrap();
             let (mut s, mut w) = (vec![0.0f32; m.scalars], vec![0u32; m.words]);
