@@ -205,7 +205,7 @@ def test_a_render_on_several_threads_gives_the_same_arrays():
 def test_the_gil_is_released_while_a_model_runs():
     # While another thread is inside run(), this thread keeps running Python: if run() held
     # the GIL, this loop would be stopped for the whole run.
-    mud = hibi.Mud(columns=96, rows=96)
+    mud = hibi.Mud(columns=160, rows=160)
     worker = threading.Thread(target=mud.run)
     ticks = 0
     start = time.perf_counter()
