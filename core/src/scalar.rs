@@ -9,8 +9,8 @@
 //! | `fixed` feature | `Q16` (Q16.16) | integer arithmetic, saturating; functions in `fixed_point` | same bits everywhere |
 //!
 //! All three are deterministic: the float backends use only IEEE basic operations (the
-//! square root among them, correctly rounded, see [`sqrtf`]) and software functions (`libm`,
-//! `micromath`), never `mul_add` or platform approximations; the
+//! square root among them, correctly rounded in every implementation) and software functions
+//! (`libm`, `micromath`), never `mul_add` or platform approximations; the
 //! fixed backend is pure integer arithmetic that saturates instead of overflowing, so debug
 //! and release builds agree.
 
