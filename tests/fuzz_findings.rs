@@ -676,3 +676,33 @@ fn a_second_impact_at_the_first_ones_point_keeps_the_fragments_simple() {
         hibi_glass_destroy(glass);
     }
 }
+
+/// Finding 18: an impact `FLT_MIN` above the bottom edge of a 131 × 129 plate. The fragment
+/// around the plate passed the impact three times and had a spike whose tip lay `FLT_MIN`
+/// above the plate's corner below the impact. Seen from the spike's other corners, 10 px
+/// away, the f64 cross products put that corner on the spike's edge, so the ear clipping saw
+/// no ear, clipped the largest corner anyway, and `hibi_pieces_counts` refused the valid ring
+/// with `HIBI_ERROR_RING_CROSSES`. The ear tests' orientations are now exact.
+#[test]
+fn fragments_of_an_impact_flt_min_above_the_edge_cut_into_pieces() {
+    let mut params = hibi_glass_params_default();
+    (params.width, params.height, params.impact) = (131.0, 129.0, [65.5, f32::MIN_POSITIVE]);
+    params.seed = 2_077_957_313_077_646_640;
+    (params.max_cracks, params.max_vertices) = (199, 2657);
+    let mut glass = core::ptr::null_mut();
+    let mut progress = hibi_glass_progress::default();
+    let plate = 131.0 * 129.0;
+    // SAFETY: valid pointers; a live plate.
+    unsafe {
+        assert_eq!(hibi_glass_create(&params, &mut glass), HIBI_OK);
+        for _ in 0..2 {
+            assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
+        }
+        let (rings, points) = fragments(glass);
+        let area: f64 = rings.iter().map(|ring| ring.area).sum();
+        assert!((area - plate).abs() <= 1e-4 * plate, "{} rings cover {area} of {plate} px²", rings.len());
+        let pieces = pieces_area(&rings, &points);
+        assert!((pieces - plate).abs() <= 1e-4 * plate, "pieces cover {pieces} of {plate} px²");
+        hibi_glass_destroy(glass);
+    }
+}

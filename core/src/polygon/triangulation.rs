@@ -15,9 +15,10 @@
 //! triangle's and the rest's, so the triangles' signed areas add up to the polygon's
 //! (outer ring's minus the holes') up to the rounding of their f64 cross products. A corner
 //! of zero area (collinear points, a repeated point, the fold of a slit) is removed without a
-//! triangle. When no corner is marked an ear (a ring that crosses itself, or points so close
-//! that the tests disagree), the corner of largest area is clipped anyway, so the work stays
-//! bounded; a corner of negative area is then dropped rather than written clockwise.
+//! triangle. The ear tests' orientations are exact (Shewchuk's adaptive predicate), so a
+//! simple ring always has an ear, however close its points. When no corner is marked an ear
+//! (a ring that crosses itself), the corner of largest area is clipped anyway, so the work
+//! stays bounded; a corner of negative area is then dropped rather than written clockwise.
 
 use super::Ring;
 
@@ -27,9 +28,21 @@ pub(crate) fn cross(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> f64 {
     (f64::from(b[0]) - ax) * (f64::from(c[1]) - ay) - (f64::from(b[1]) - ay) * (f64::from(c[0]) - ax)
 }
 
-/// Whether `p` lies in or on counter-clockwise triangle (a, b, c).
+/// The orientation of (a, b, c) with an exact sign: positive counter-clockwise with y up,
+/// negative clockwise, zero only for collinear points. [`cross`] rounds: two f32 points
+/// `FLT_MIN` apart, seen from a point 10 px away, have the same f64 cross product, which
+/// put a point outside an ear on its edge and left a simple ring with no ear. Shewchuk's
+/// adaptive test ("Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
+/// Predicates", 1997) is exact for f32 points, whose differences' products neither overflow
+/// nor underflow in f64.
+fn orient(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> f64 {
+    let at = |p: [f32; 2]| robust::Coord { x: p[0], y: p[1] };
+    robust::orient2d(at(a), at(b), at(c))
+}
+
+/// Whether `p` lies in or on counter-clockwise triangle (a, b, c) (exact).
 fn in_triangle(a: [f32; 2], b: [f32; 2], c: [f32; 2], p: [f32; 2]) -> bool {
-    cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0
+    orient(a, b, p) >= 0.0 && orient(b, c, p) >= 0.0 && orient(c, a, p) >= 0.0
 }
 
 /// Scratch words per node of the cycle.
@@ -197,7 +210,7 @@ fn is_ear(c: &Cycle, points: &[[f32; 2]], v: u32) -> bool {
     let at = |i: u32| points[c.point[i as usize] as usize];
     let (p, n) = (c.prev[v as usize], c.next[v as usize]);
     let (a, b, d) = (at(p), at(v), at(n));
-    let corner = cross(a, b, d);
+    let corner = orient(a, b, d);
     if corner == 0.0 {
         return true;
     }
@@ -237,7 +250,7 @@ fn clip(c: &mut Cycle, points: &[[f32; 2]], emit: &mut impl FnMut([u32; 3])) {
             v = largest_corner(c, points, cursor, remaining);
         }
         let (p, n) = (c.prev[v as usize], c.next[v as usize]);
-        if cross(at(c, p), at(c, v), at(c, n)) > 0.0 {
+        if orient(at(c, p), at(c, v), at(c, n)) > 0.0 {
             emit([c.point[p as usize], c.point[v as usize], c.point[n as usize]]);
         }
         c.link(p, n);
@@ -262,4 +275,52 @@ fn largest_corner(c: &Cycle, points: &[[f32; 2]], start: u32, remaining: usize) 
         v = c.next[v as usize];
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point `FLT_MIN` below an ear's corner, seen from corners 10 px away: the rounded
+    /// cross product puts it on the ear's edge, the exact orientation outside.
+    #[test]
+    fn a_point_flt_min_from_a_corner_is_outside_its_triangle() {
+        let (a, b, d) = ([55.813_747, 2.041_761_2], [65.5, f32::MIN_POSITIVE], [58.814_26, 2.510_050_5]);
+        let below = [65.5, 0.0];
+        assert_eq!(cross(a, b, below), 0.0, "the rounded test cannot tell");
+        assert!(orient(a, b, below) < 0.0 && orient(a, b, d) > 0.0);
+        assert!(!in_triangle(a, b, d, below));
+        assert!(in_triangle(a, b, d, [60.0, 1.5]) && in_triangle(a, b, d, a));
+    }
+
+    /// What was left of a glass fragment's ring after clipping, a spike whose tip is
+    /// `FLT_MIN` above a corner of its base: the rounded tests saw no ear (the base's corner
+    /// on the spike's edge), and clipping the largest corner made overlapping triangles.
+    #[test]
+    fn a_ring_with_corners_flt_min_apart_is_cut_into_its_area() {
+        let t = f32::MIN_POSITIVE;
+        let points = [
+            [0.0, 129.0],
+            [55.813_747, 2.041_761_2],
+            [65.5, t],
+            [58.814_26, 2.510_050_5],
+            [57.082_626, 3.777_431],
+            [72.773_33, 0.617_575_5],
+            [73.381_73, 0.451_368_7],
+            [65.5, 0.0],
+            [131.0, 0.0],
+        ];
+        let ring = Ring { area: 0.0, first_point: 0, point_count: 9, hole_of: super::super::NOT_A_HOLE, reserved: 0 };
+        let mut scratch = [0u32; 4 * 9];
+        let (mut sum, mut count) = (0.0, 0);
+        polygon(&[ring], 0, &mut [], &[0], &points, &mut scratch, &mut |t| {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            assert!(orient(a, b, c) > 0.0);
+            sum += cross(a, b, c);
+            count += 1;
+        });
+        let area = ring_area2(&ring, &points);
+        assert!((sum - area).abs() <= 1e-9 * area, "triangles {sum}, ring {area}");
+        assert_eq!(count, 7);
+    }
 }
