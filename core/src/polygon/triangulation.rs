@@ -14,8 +14,8 @@
 //! Exact in its bookkeeping: clipping a corner splits the cycle's signed area into the
 //! triangle's and the rest's, so the triangles' signed areas add up to the polygon's
 //! (outer ring's minus the holes') up to the rounding of their f64 cross products. A corner
-//! of zero area (collinear points, a repeated point, the fold of a slit) is removed without a
-//! triangle. The ear tests' orientations are exact (Shewchuk's adaptive predicate), so a
+//! of zero area (collinear points, a repeated point, the fold of a slit, or one whose f64
+//! cross product at any of its corners rounds to zero) is removed without a triangle. The ear tests' orientations are exact (Shewchuk's adaptive predicate), so a
 //! simple ring always has an ear, however close its points. When no corner is marked an ear
 //! (a ring that crosses itself), the corner of largest area is clipped anyway, so the work
 //! stays bounded; a corner of negative area is then dropped rather than written clockwise.
@@ -250,7 +250,11 @@ fn clip(c: &mut Cycle, points: &[[f32; 2]], emit: &mut impl FnMut([u32; 3])) {
             v = largest_corner(c, points, cursor, remaining);
         }
         let (p, n) = (c.prev[v as usize], c.next[v as usize]);
-        if orient(at(c, p), at(c, v), at(c, n)) > 0.0 {
+        // Written only when it is counter-clockwise as a caller sees it, in the f64 cross
+        // product at each of its corners: a corner exactly convex but thinner than that
+        // rounding (points FLT_MIN apart) is clipped without a triangle, as a collinear one is.
+        let (a, b, d) = (at(c, p), at(c, v), at(c, n));
+        if cross(a, b, d) > 0.0 && cross(b, d, a) > 0.0 && cross(d, a, b) > 0.0 {
             emit([c.point[p as usize], c.point[v as usize], c.point[n as usize]]);
         }
         c.link(p, n);
@@ -315,7 +319,7 @@ mod tests {
         let (mut sum, mut count) = (0.0, 0);
         polygon(&[ring], 0, &mut [], &[0], &points, &mut scratch, &mut |t| {
             let [a, b, c] = t.map(|i| points[i as usize]);
-            assert!(orient(a, b, c) > 0.0);
+            assert!(cross(a, b, c) > 0.0 && cross(b, c, a) > 0.0 && cross(c, a, b) > 0.0);
             sum += cross(a, b, c);
             count += 1;
         });
