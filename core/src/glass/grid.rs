@@ -30,8 +30,10 @@ impl Grid {
     /// The cell range (inclusive) covering [x0, x1] × [y0, y1], clamped to the grid.
     pub(super) fn span(&self, x0: f32, y0: f32, x1: f32, y1: f32) -> (usize, usize, usize, usize) {
         // `as` truncates towards zero and saturates (negative and NaN give 0): the floor of
-        // v / cell clamped at 0, without calling floorf.
-        let clamp = |v: f32, n: usize| ((v / self.cell) as usize).min(n - 1);
+        // v / cell clamped at 0, without calling floorf. Through u32, whose saturating
+        // conversion is a few instructions shorter than a 64-bit one (the grid has at most 256
+        // cells a side, so the clamp gives the same cell).
+        let clamp = |v: f32, n: usize| ((v / self.cell) as u32 as usize).min(n - 1);
         (clamp(x0, self.columns), clamp(y0, self.rows), clamp(x1, self.columns), clamp(y1, self.rows))
     }
 }

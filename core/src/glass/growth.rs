@@ -488,8 +488,8 @@ impl Glass<'_> {
                     if !self.sum_tips(i, &mut u, deadline) {
                         break false;
                     }
-                    let [x0, y0, x1, y1] = u.bounds;
-                    u.scan = self.start_scan(Filed::Earlier, self.index.grid.span(x0, y0, x1, y1));
+                    // The same cells: the sector's box.
+                    u.scan = self.start_scan(Filed::Earlier, u.scan.cells());
                     u.stage = Stage::Segments;
                 }
                 Stage::Segments => {
@@ -1152,11 +1152,13 @@ struct SectorRow {
 }
 
 impl SectorCells {
-    /// The share of the tests of the cells of row `cy`.
+    /// The share of the tests of the cells of row `cy`. A cell's index reaches f32 through
+    /// u32 here and in [`Self::outside`]: at most 256 a side, so the same value, by a shorter
+    /// conversion than a 64-bit index's.
     #[inline(always)]
     fn row(&self, cy: usize) -> SectorRow {
         let [left, right] = self.rays;
-        let ay = cy as f32 * self.cell - self.w[1];
+        let ay = cy as u32 as f32 * self.cell - self.w[1];
         let by = ay + self.cell;
         let ny = nearest_to_zero(ay, by);
         SectorRow { ny2: ny * ny, right_y: [right[0] * ay, right[0] * by], left_y: [left[0] * ay, left[0] * by] }
@@ -1187,7 +1189,7 @@ impl SectorCells {
     fn outside(&self, row: SectorRow, cx: usize) -> bool {
         let [left, right] = self.rays;
         // The cell's corners relative to the apex, in x.
-        let ax = cx as f32 * self.cell - self.w[0];
+        let ax = cx as u32 as f32 * self.cell - self.w[0];
         let bx = ax + self.cell;
         let nx = nearest_to_zero(ax, bx);
         if nx * nx + row.ny2 > self.reach2 {
