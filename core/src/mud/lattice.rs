@@ -296,35 +296,35 @@ impl<'a> Lattice<'a> {
         }
     }
 
-    /// The `N` springs at a square (`N` = 4) or hexagonal (`N` = 6) lattice's node away from
-    /// its edges and the nodes they reach, in [`Lattice::for_each_spring_at`]'s order (the
-    /// outgoing springs by direction, then the incoming ones), each spring's direction and
-    /// sign given by its place: direction `k % directions`, outgoing for `k < directions`.
-    /// `None` for any other node, size or topology. `reciprocal` is
-    /// [`Lattice::column_reciprocal`]: the node's row without a division.
+    /// The row of a square or hexagonal lattice's node away from its edges (`None` for any
+    /// other node, size or topology), found with `reciprocal` ([`Lattice::column_reciprocal`]).
     #[inline(always)]
-    pub(crate) fn interior_star<const N: usize>(
-        &self,
-        node: usize,
-        reciprocal: u64,
-    ) -> Option<([usize; N], [usize; N])> {
-        let (n, c) = (self.node_count(), self.columns as usize);
-        if node > u32::MAX as usize {
+    pub(crate) fn interior_row(&self, node: usize, reciprocal: u64) -> Option<usize> {
+        let c = self.columns as usize;
+        if node > u32::MAX as usize || matches!(self.topology, Topology::Irregular) {
             return None;
         }
         // ⌊node/c⌋ = ⌊node·⌈2⁶⁴/c⌉/2⁶⁴⌋ for every 32-bit node (Lemire, Kaser & Kurz 2019,
         // "Faster remainder by direct computation", Theorem 1 with N = 32, F = 64).
         let j = ((u128::from(reciprocal) * node as u128) >> 64) as usize;
         let i = node - j * c;
-        if !(i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize) {
-            return None;
-        }
+        (i >= 1 && i + 1 < c && j >= 1 && j + 1 < self.rows as usize).then_some(j)
+    }
+
+    /// The `N` springs at a square (`N` = 4) or hexagonal (`N` = 6) lattice's node away from
+    /// its edges ([`Lattice::interior_row`]), whose row's parity is `odd` (0 or 1), and the
+    /// nodes they reach, in [`Lattice::for_each_spring_at`]'s order (the outgoing springs by
+    /// direction, then the incoming ones), each spring's direction and sign given by its
+    /// place: direction `k % directions`, outgoing for `k < directions`. `None` for any other
+    /// `N` or topology.
+    #[inline(always)]
+    pub(crate) fn star_in_row<const N: usize>(&self, node: usize, odd: usize) -> Option<([usize; N], [usize; N])> {
+        let (n, c) = (self.node_count(), self.columns as usize);
         let (springs, others) = match (self.topology, N) {
             (Topology::Square, 4) => {
                 ([node, n + node, node - 1, n + node - c, 0, 0], [node + 1, node + c, node - 1, node - c, 0, 0])
             }
             (Topology::Hexagonal, 6) => {
-                let odd = j % 2;
                 let (up_right, up_left) = (node + c + odd, node + c + odd - 1);
                 let (down_left, down_right) = (node - c - (1 - odd), node - c + odd);
                 (
@@ -337,7 +337,7 @@ impl<'a> Lattice<'a> {
         Some((core::array::from_fn(|k| springs[k]), core::array::from_fn(|k| others[k])))
     }
 
-    /// ⌈2⁶⁴/columns⌉, which [`Lattice::interior_star`] finds a node's row with (0 for fewer
+    /// ⌈2⁶⁴/columns⌉, which [`Lattice::interior_row`] finds a node's row with (0 for fewer
     /// than two columns: no node is then away from the edges).
     pub(crate) const fn column_reciprocal(&self) -> u64 {
         match u64::MAX.checked_div(self.columns as u64) {
@@ -585,10 +585,11 @@ mod tests {
                         n += 1;
                     });
                     let pad = |a: &[usize]| core::array::from_fn::<usize, 6, _>(|k| a.get(k).copied().unwrap_or(0));
+                    let Some(row) = l.interior_row(node, l.column_reciprocal()) else { continue };
                     let star = if degree == 4 {
-                        l.interior_star::<4>(node, l.column_reciprocal()).map(|(s, o)| (pad(&s), pad(&o)))
+                        l.star_in_row::<4>(node, row % 2).map(|(s, o)| (pad(&s), pad(&o)))
                     } else {
-                        l.interior_star::<6>(node, l.column_reciprocal()).map(|(s, o)| (pad(&s), pad(&o)))
+                        l.star_in_row::<6>(node, row % 2).map(|(s, o)| (pad(&s), pad(&o)))
                     };
                     let Some((springs, others)) = star else { continue };
                     found += 1;
@@ -598,7 +599,7 @@ mod tests {
                     assert_eq!(listed[..n], expected[..degree], "{topology:?} {boundary:?} {node}");
                 }
                 assert_eq!(found, 5 * 4, "{topology:?} {boundary:?}");
-                assert!(l.interior_star::<5>(8, l.column_reciprocal()).is_none());
+                assert!(l.star_in_row::<5>(8, 0).is_none());
             }
         }
     }

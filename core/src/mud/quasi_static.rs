@@ -77,7 +77,8 @@ pub(super) struct Relaxation<'a, S> {
     /// FIFO ring of nodes to relax.
     queue: &'a mut [u32],
     /// Per node: QUEUED and TOUCHED bits, and on a regular lattice (64-bit targets) which of
-    /// its springs are broken (from [`BROKEN_SHIFT`] up).
+    /// its springs are broken (from [`BROKEN_SHIFT`] up) and whether it lies away from the
+    /// edges ([`INTERIOR`], [`ODD_ROW_SHIFT`]).
     flags: &'a mut [u32],
     head: usize,
     len: usize,
@@ -94,10 +95,10 @@ pub(super) struct Relaxation<'a, S> {
     relax_bound: u64,
     /// The relaxation tolerance at the misfit now ([`relax_tolerance`]).
     tolerance: S,
-    /// A regular lattice's spring laws in [`Lattice::interior_star`]'s order: e towards the
+    /// A regular lattice's spring laws in [`Lattice::star_in_row`]'s order: e towards the
     /// other node, and k ([`interior_laws`]).
     ///
-    /// [`Lattice::interior_star`]: super::Lattice::interior_star
+    /// [`Lattice::star_in_row`]: super::Lattice::star_in_row
     laws: [[S; 3]; 6],
     /// The lattice's [`Lattice::column_reciprocal`].
     ///
@@ -105,7 +106,7 @@ pub(super) struct Relaxation<'a, S> {
     reciprocal: u64,
 }
 
-/// The spring laws of a regular lattice's node, in [`super::Lattice::interior_star`]'s order:
+/// The spring laws of a regular lattice's node, in [`super::Lattice::star_in_row`]'s order:
 /// e towards the other node (the direction's vector, negated for an incoming spring) and k,
 /// as [`Mud::relax`] finds them spring by spring. (Unused on the irregular lattice.)
 pub(super) fn interior_laws<S: Scalar>(lattice: &super::Lattice, material: &super::Material<S>) -> [[S; 3]; 6] {
@@ -117,14 +118,51 @@ pub(super) fn interior_laws<S: Scalar>(lattice: &super::Lattice, material: &supe
     })
 }
 
+/// The entries of a table of [`interior_system`]s ([`Mud::quasi_static_step`]): one per set of a
+/// node's six springs broken on the 64-bit targets, which relax a regular lattice's nodes away
+/// from its edges by fixed offsets (none on the others, whose flash holds the general case
+/// alone).
+const SYSTEMS: usize = if cfg!(target_pointer_width = "64") { 64 } else { 0 };
+
+/// The least budget for which [`Mud::quasi_static_step`] tabulates the [`interior_system`]s
+/// (filling the table is a few thousand instructions; a unit of work about a hundred).
+const TABULATE_FROM: u64 = 1 << 12;
+
+/// A regular lattice's node's 2×2 system away from the edges ([`Mud::relax`]'s, in its order)
+/// when the springs in `broken` (bit k: the star's kth, of the first `n`) are broken: the
+/// matrix h·I + Σ k e eᵀ over the intact springs (`laws`: [`interior_laws`]), its determinant
+/// ([`solve_node`]'s) and its diagonal's mean ([`Mud::settle`]'s).
+fn interior_system<S: Scalar>(laws: &[[S; 3]; 6], n: usize, shear: S, broken: usize) -> [S; 5] {
+    let (mut a00, mut a01, mut a11) = (shear, S::ZERO, shear);
+    for (k, &[ex, ey, kk]) in laws.iter().enumerate().take(n) {
+        if broken & 1 << k == 0 {
+            a00 += kk * ex * ex;
+            a01 += kk * ex * ey;
+            a11 += kk * ey * ey;
+        }
+    }
+    [a00, a01, a11, determinant([a00, a01, a11]), diagonal_mean([a00, a01, a11])]
+}
+
+/// [`interior_system`] where no table holds it (a small budget), out of the relaxation's way.
+#[inline(never)]
+fn untabulated_system<S: Scalar>(laws: &[[S; 3]; 6], n: usize, shear: S, broken: usize) -> [S; 5] {
+    interior_system(laws, n, shear, broken)
+}
+
 /// The node is in the queue.
 const QUEUED: u32 = 1;
 /// The node is in the touched list.
 const TOUCHED: u32 = 2;
 /// The first of a regular lattice's node's flags that mark its springs broken, one bit per
-/// spring in [`super::Lattice::interior_star`]'s order (64-bit targets: what the relaxation away
+/// spring in [`super::Lattice::star_in_row`]'s order (64-bit targets: what the relaxation away
 /// from the edges reads instead of the springs' break times).
 const BROKEN_SHIFT: u32 = 2;
+/// A regular lattice's node away from its edges ([`super::Lattice::interior_row`]; 64-bit
+/// targets), whose springs the relaxation finds by fixed offsets.
+const INTERIOR: u32 = 1 << (BROKEN_SHIFT + 6);
+/// The flag that says an [`INTERIOR`] node's row is odd.
+const ODD_ROW_SHIFT: u32 = BROKEN_SHIFT + 7;
 
 /// E-folds of the slowest convergence of the relaxation that the relaxations after a break may
 /// take ([`relax_bound`]).
@@ -213,9 +251,16 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         }
     }
 
-    /// Nodes `from..end`: neither queued nor touched, no spring broken.
-    pub(super) fn clear_nodes(&mut self, from: usize, end: usize) {
-        self.flags[from..end].fill(0);
+    /// Nodes `from..end` of `lattice`: neither queued nor touched, no spring broken, and
+    /// (64-bit targets) marked [`INTERIOR`] and [`ODD_ROW_SHIFT`] where they are.
+    pub(super) fn clear_nodes(&mut self, from: usize, end: usize, lattice: &super::Lattice) {
+        let reciprocal = self.reciprocal;
+        for (node, flags) in self.flags[from..end].iter_mut().enumerate().map(|(k, f)| (from + k, f)) {
+            *flags = match lattice.interior_row(node, reciprocal) {
+                Some(row) if cfg!(target_pointer_width = "64") => INTERIOR | (row as u32 & 1) << ODD_ROW_SHIFT,
+                _ => 0,
+            };
+        }
     }
 
     /// The tree's slots: 2·leaves.
@@ -319,7 +364,9 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         }
     }
 
-    fn pop(&mut self) -> Option<usize> {
+    /// The next queued node, marked touched, and its flags then.
+    #[inline(always)]
+    fn pop(&mut self) -> Option<(usize, u32)> {
         if self.len == 0 {
             return None;
         }
@@ -329,13 +376,13 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
             self.head = 0;
         }
         self.len -= 1;
-        self.flags[node] &= !QUEUED;
-        if self.flags[node] & TOUCHED == 0 {
-            self.flags[node] |= TOUCHED;
+        let flags = self.flags[node] & !QUEUED;
+        if flags & TOUCHED == 0 {
             self.touched[self.touched_len] = node as u32;
             self.touched_len += 1;
         }
-        Some(node)
+        self.flags[node] = flags | TOUCHED;
+        Some((node, flags | TOUCHED))
     }
 }
 
@@ -343,9 +390,26 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
 /// (h·I + Σ k e eᵀ)·u = Σ k (l0 + e·u_j) e, the symmetric matrix [a00 a01; a01 a11] and the
 /// right-hand side b solved by Cramer's rule.
 #[inline(always)]
-fn solve_node<S: Scalar>([a00, a01, a11]: [S; 3], [b0, b1]: [S; 2]) -> (S, S) {
-    let det = a00 * a11 - a01 * a01;
+fn solve_node<S: Scalar>(a: [S; 3], b: [S; 2]) -> (S, S) {
+    solve_with(a, determinant(a), b)
+}
+
+/// [`solve_node`] given the matrix's determinant `det` ([`determinant`]).
+#[inline(always)]
+fn solve_with<S: Scalar>([a00, a01, a11]: [S; 3], det: S, [b0, b1]: [S; 2]) -> (S, S) {
     ((a11 * b0 - a01 * b1) / det, (a00 * b1 - a01 * b0) / det)
+}
+
+/// The determinant of the symmetric matrix [a00 a01; a01 a11].
+#[inline(always)]
+fn determinant<S: Scalar>([a00, a01, a11]: [S; 3]) -> S {
+    a00 * a11 - a01 * a01
+}
+
+/// The mean of the diagonal of [a00 a01; a01 a11].
+#[inline(always)]
+fn diagonal_mean<S: Scalar>([a00, _, a11]: [S; 3]) -> S {
+    (a00 + a11) * S::from_f32(0.5)
 }
 
 impl<'a, S: Scalar> Mud<'a, S> {
@@ -357,7 +421,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (old_x, old_y) = (self.ux[node], self.uy[node]);
         let (x, y) = solve_node(a, b);
         (self.ux[node], self.uy[node]) = (x, y);
-        ([x, y], [x - old_x, y - old_y], (a[0] + a[2]) * S::from_f32(0.5))
+        ([x, y], [x - old_x, y - old_y], diagonal_mean(a))
     }
 
     /// The misfit at which `spring` breaks given the current u; S::MAX if never.
@@ -411,17 +475,19 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// Solves node `node`'s 2×2 equilibrium for u, and queues its neighbours
     /// if u moved by more than the tolerance ([`relax_tolerance`]). Returns the springs visited.
-    fn relax(&mut self, node: usize) -> u64 {
+    /// `flags` are the node's ([`Relaxation::flags`]); `systems` the [`interior_system`]s by
+    /// set of broken springs, if tabulated (if not, they are summed here).
+    fn relax(&mut self, node: usize, flags: u32, systems: Option<&[[S; 5]; SYSTEMS]>) -> u64 {
         // Away from a regular lattice's edges, its springs by fixed offsets (64-bit targets:
         // the Cortex-M3's flash holds the general case alone, which computes the same).
-        if cfg!(target_pointer_width = "64") {
-            let reciprocal = self.relaxation().reciprocal;
+        if cfg!(target_pointer_width = "64") && flags & INTERIOR != 0 {
+            let odd = (flags >> ODD_ROW_SHIFT & 1) as usize;
             let star = match self.lattice.topology {
                 super::Topology::Square => {
-                    self.lattice.interior_star::<4>(node, reciprocal).map(|s| self.relax_interior(node, s))
+                    self.lattice.star_in_row::<4>(node, odd).map(|s| self.relax_interior(node, flags, s, systems))
                 }
                 super::Topology::Hexagonal => {
-                    self.lattice.interior_star::<6>(node, reciprocal).map(|s| self.relax_interior(node, s))
+                    self.lattice.star_in_row::<6>(node, odd).map(|s| self.relax_interior(node, flags, s, systems))
                 }
                 super::Topology::Irregular => None,
             };
@@ -438,16 +504,26 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// [`Mud::relax`] of a regular lattice's node away from its edges, whose `N` springs and
-    /// the nodes they reach are `star` ([`super::Lattice::interior_star`]): the same
+    /// the nodes they reach are `star` ([`super::Lattice::star_in_row`]): the same
     /// arithmetic in the same order, with the springs' laws from [`interior_laws`] and the
-    /// broken ones from the node's flags.
+    /// broken ones from the node's `flags`.
     #[inline(always)]
-    fn relax_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
+    fn relax_interior<const N: usize>(
+        &mut self,
+        node: usize,
+        flags: u32,
+        (springs, others): ([usize; N], [usize; N]),
+        systems: Option<&[[S; 5]; SYSTEMS]>,
+    ) -> u64 {
         let r = self.relaxation();
         let (laws, tolerance) = (r.laws, r.tolerance);
-        let broken = r.flags[node] >> BROKEN_SHIFT;
-        let h = self.material.shear;
-        let (mut a00, mut a01, mut a11) = (h, S::ZERO, h);
+        let broken = flags >> BROKEN_SHIFT;
+        // The matrix, its determinant and diagonal depend on the broken springs alone.
+        let set = broken as usize & 63;
+        let [a00, a01, a11, det, diagonal] = match systems.and_then(|table| table.get(set)) {
+            Some(&system) => system,
+            None => untabulated_system(&laws, N, self.material.shear, set),
+        };
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         // (Both arrays cut to one length: one bounds check per node.)
         let len = self.ux.len().min(self.uy.len());
@@ -456,15 +532,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
         unrolled!(N, |k| {
             if broken & 1 << k == 0 {
                 let [ex, ey, kk] = laws[k];
-                a00 += kk * ex * ex;
-                a01 += kk * ex * ey;
-                a11 += kk * ey * ey;
                 let pull = kk * (S::ONE + ex * u[k].0 + ey * u[k].1);
                 b0 += pull * ex;
                 b1 += pull * ey;
             }
         });
-        let ([x, y], [dx, dy], diagonal) = self.settle(node, [a00, a01, a11], [b0, b1]);
+        let (old_x, old_y) = (self.ux[node], self.uy[node]);
+        let (x, y) = solve_with([a00, a01, a11], det, [b0, b1]);
+        (self.ux[node], self.uy[node]) = (x, y);
+        let (dx, dy) = (x - old_x, y - old_y);
         let (misfit, threshold) = (self.misfit, tolerance * diagonal);
         let shrink = self.params.drive == Drive::Shrink;
         unrolled!(N, |k| {
@@ -558,14 +634,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
             let node = self.relaxation().touched[t] as usize;
             // Away from a regular lattice's edges, its springs by fixed offsets (as in
             // `Mud::relax`).
-            if cfg!(target_pointer_width = "64") {
-                let reciprocal = self.relaxation().reciprocal;
+            let flags = if cfg!(target_pointer_width = "64") { self.relaxation().flags[node] } else { 0 };
+            if flags & INTERIOR != 0 {
+                let odd = (flags >> ODD_ROW_SHIFT & 1) as usize;
                 let done = match lattice.topology {
                     super::Topology::Square => {
-                        lattice.interior_star::<4>(node, reciprocal).map(|s| self.refresh_interior(node, s))
+                        lattice.star_in_row::<4>(node, odd).map(|s| self.refresh_interior(node, s))
                     }
                     super::Topology::Hexagonal => {
-                        lattice.interior_star::<6>(node, reciprocal).map(|s| self.refresh_interior(node, s))
+                        lattice.star_in_row::<6>(node, odd).map(|s| self.refresh_interior(node, s))
                     }
                     super::Topology::Irregular => None,
                 };
@@ -615,7 +692,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     }
 
     /// [`Mud::refresh_touched`]'s update of one node away from a regular lattice's edges,
-    /// whose springs and the nodes they reach are `star` ([`super::Lattice::interior_star`]).
+    /// whose springs and the nodes they reach are `star` ([`super::Lattice::star_in_row`]).
     /// Returns the springs visited.
     #[inline(always)]
     fn refresh_interior<const N: usize>(&mut self, node: usize, (springs, others): ([usize; N], [usize; N])) -> u64 {
@@ -644,26 +721,51 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// the way back through [`Mud::step`] between them. Returns the work done: at most
     /// `max(budget, 1)` − 1 plus the springs at one node.
     pub(super) fn quasi_static_step(&mut self, budget: u64) -> u64 {
-        let mut work = self.quasi_static_piece(budget);
+        // A regular lattice's nodes away from its edges: their 2×2 systems by set of broken
+        // springs, for a budget that repays filling them in (the same values, in a table on
+        // the stack for this call).
+        let mut table = [[S::ZERO; 5]; SYSTEMS];
+        let regular = !matches!(self.lattice.topology, super::Topology::Irregular);
+        let tabulated = SYSTEMS > 0 && budget >= TABULATE_FROM && regular;
+        if tabulated {
+            let (laws, springs) = (self.relaxation().laws, 2 * self.lattice.directions());
+            for (set, system) in table.iter_mut().enumerate() {
+                *system = interior_system(&laws, springs, self.material.shear, set);
+            }
+        }
+        let systems = tabulated.then_some(&table);
+        let mut work = self.quasi_static_piece(budget, systems);
         while work < budget && !self.finished {
-            work += self.quasi_static_piece(budget - work);
+            work += self.quasi_static_piece(budget - work, systems);
         }
         work
     }
 
-    /// One piece of quasi-static work: relax one queued node (its springs), or drop it from
-    /// the queue once [`relax_bound`] nodes have been relaxed since the last break (one unit),
+    /// One piece of quasi-static work: relax queued nodes (their springs), each dropped from
+    /// the queue instead once [`relax_bound`] nodes have been relaxed since the last break (one
+    /// unit), until the queue is empty or the work reaches `budget` (at least one node); or
     /// refresh the touched nodes' springs until the work reaches `budget` (at least one
-    /// node's), or break the next spring (jumping the misfit to it; one unit). Returns the work
+    /// node's); or break the next spring (jumping the misfit to it; one unit). Returns the work
     /// done (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
-    fn quasi_static_piece(&mut self, budget: u64) -> u64 {
-        if let Some(node) = self.relaxation().pop() {
-            let r = self.relaxation();
-            if r.relaxed >= r.relax_bound {
-                return 1;
+    fn quasi_static_piece(&mut self, budget: u64, systems: Option<&[[S; 5]; SYSTEMS]>) -> u64 {
+        if let Some(first) = self.relaxation().pop() {
+            let ((mut node, mut flags), mut work) = (first, 0u64);
+            loop {
+                let r = self.relaxation();
+                if r.relaxed >= r.relax_bound {
+                    work += 1;
+                } else {
+                    r.relaxed += 1;
+                    work += self.relax(node, flags, systems);
+                }
+                if work >= budget {
+                    return work;
+                }
+                match self.relaxation().pop() {
+                    Some(next) => (node, flags) = next,
+                    None => return work,
+                }
             }
-            r.relaxed += 1;
-            return self.relax(node);
         }
         if self.relaxation().touched_len > 0 {
             let work = self.refresh_touched(budget.max(1));

@@ -144,7 +144,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     self.uy[from..end].fill(S::ZERO);
                     match &mut self.solver {
                         SolverState::Explicit(d) => d.clear_nodes(from, end),
-                        SolverState::QuasiStatic(r) => r.clear_nodes(from, end),
+                        SolverState::QuasiStatic(r) => r.clear_nodes(from, end, &self.lattice),
                     }
                     end
                 }
