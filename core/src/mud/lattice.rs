@@ -124,6 +124,7 @@ impl<'a> Lattice<'a> {
     }
 
     /// Unit vector of `spring`, from its origin towards the node it reaches (deep layer).
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     pub fn spring_vector(&self, spring: usize) -> [f32; 2] {
         match &self.mesh {
             Some(m) => m.direction(spring),
@@ -413,6 +414,7 @@ impl<'a> Lattice<'a> {
     }
 
     /// Mesh cell `cell` (`node·cells_per_node + k`), if all its sides exist.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     pub fn cell(&self, cell: usize) -> Option<Cell> {
         if let Some(m) = &self.mesh {
             let (nodes, sides) = m.cell(cell)?;

@@ -788,12 +788,15 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// The nodes `spring` joins (the one it leaves first), if it exists: from the run's table
     /// of the nodes springs reach, without the lattice's arithmetic.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     fn spring_ends(&self, spring: usize) -> Option<(usize, usize)> {
         let other = self.other[spring];
         (other != ABSENT).then(|| (self.origin(spring), other as usize))
     }
 
-    /// Current displacement of `node` from its deep node.
+    /// Current displacement of `node` from its deep node. (Inlined on 64-bit targets, where
+    /// the traces call it for every corner; not on 32-bit ones, for the Cortex-M3's flash.)
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     fn displacement(&self, node: usize) -> (S, S) {
         match self.solver {
             SolverState::Explicit(_) => (self.ux[node], self.uy[node]),

@@ -1070,8 +1070,10 @@ impl<S: Scalar> Mud<'_, S> {
     pub(super) fn traced_as(&self, cell: usize, c: Cell, wrap: [i32; 2], positions: bool) -> TracedCell {
         let mut t = TracedCell { index: cell, cell: c, corner: [[0.0; 2]; 4], cut: [false; 4], separating: [false; 4] };
         for k in 0..c.corners {
-            t.cut[k] = self.is_cut(c.sides[k] as usize);
-            t.separating[k] = self.separates(c.sides[k] as usize);
+            // (One read of the spring's word: `is_cut` and `separates` of it.)
+            let word = self.trace[c.sides[k] as usize];
+            t.cut[k] = word != INTACT;
+            t.separating[k] = word != INTACT && word & BRANCH == 0;
         }
         if !positions {
             return t;
