@@ -217,10 +217,15 @@ fn is_ear(c: &Cycle, points: &[[f32; 2]], v: u32) -> bool {
     if corner < 0.0 || corner.is_nan() {
         return false;
     }
+    // A point outside the triangle's box is outside the triangle: most points are, and the
+    // box's comparisons are exact and cheaper than the orientations.
+    let (low, high) =
+        ([a[0].min(b[0]).min(d[0]), a[1].min(b[1]).min(d[1])], [a[0].max(b[0]).max(d[0]), a[1].max(b[1]).max(d[1])]);
     let mut q = c.next[n as usize];
     while q != p {
         let x = at(q);
-        if x != a && x != b && x != d && in_triangle(a, b, d, x) {
+        let boxed = x[0] >= low[0] && x[0] <= high[0] && x[1] >= low[1] && x[1] <= high[1];
+        if boxed && x != a && x != b && x != d && in_triangle(a, b, d, x) {
             return false;
         }
         q = c.next[q as usize];
