@@ -589,6 +589,21 @@ unsafe fn fragments(glass: *mut hibi_glass) -> (Vec<hibi_core::polygon::Ring>, V
     }
 }
 
+/// Asserts that the fragments of `glass` and their convex pieces each cover the `plate` px² of
+/// the plate (within 10⁻⁴), through the C ABI.
+///
+/// # Safety
+///
+/// `glass` must be a live plate.
+unsafe fn fragments_and_pieces_cover(glass: *mut hibi_glass, plate: f64) {
+    // SAFETY: the caller's.
+    let (rings, points) = unsafe { fragments(glass) };
+    let area: f64 = rings.iter().map(|ring| ring.area).sum();
+    assert!((area - plate).abs() <= 1e-4 * plate, "{} rings cover {area} of {plate} px²", rings.len());
+    let pieces = pieces_area(&rings, &points);
+    assert!((pieces - plate).abs() <= 1e-4 * plate, "pieces cover {pieces} of {plate} px²");
+}
+
 /// The area the convex pieces of `rings` (for a physics engine) cover, through the C ABI.
 fn pieces_area(rings: &[hibi_core::polygon::Ring], points: &[hibi_vec2]) -> f64 {
     let (rp, pp) = (rings.as_ptr(), points.as_ptr());
@@ -668,11 +683,7 @@ fn a_second_impact_at_the_first_ones_point_keeps_the_fragments_simple() {
         for _ in 0..2 {
             assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
         }
-        let (rings, points) = fragments(glass);
-        let area: f64 = rings.iter().map(|ring| ring.area).sum();
-        assert!((area - plate).abs() <= 1e-4 * plate, "{} rings cover {area} of {plate} px²", rings.len());
-        let pieces = pieces_area(&rings, &points);
-        assert!((pieces - plate).abs() <= 1e-4 * plate, "pieces cover {pieces} of {plate} px²");
+        fragments_and_pieces_cover(glass, plate);
         hibi_glass_destroy(glass);
     }
 }
@@ -698,11 +709,7 @@ fn fragments_of_an_impact_flt_min_above_the_edge_cut_into_pieces() {
         for _ in 0..2 {
             assert_eq!(hibi_glass_step(glass, 16_384, &mut progress), HIBI_OK);
         }
-        let (rings, points) = fragments(glass);
-        let area: f64 = rings.iter().map(|ring| ring.area).sum();
-        assert!((area - plate).abs() <= 1e-4 * plate, "{} rings cover {area} of {plate} px²", rings.len());
-        let pieces = pieces_area(&rings, &points);
-        assert!((pieces - plate).abs() <= 1e-4 * plate, "pieces cover {pieces} of {plate} px²");
+        fragments_and_pieces_cover(glass, plate);
         hibi_glass_destroy(glass);
     }
 }
