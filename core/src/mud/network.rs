@@ -1056,6 +1056,28 @@ impl<S: Scalar> Mud<'_, S> {
             .then(|| self.traced_as(cell, c, [0, 0], positions))
     }
 
+    /// Calls `visit` with every mesh cell the network may cut a side of, in order: on 64-bit
+    /// targets the cells its trace touched (see `Touched`), on 32-bit ones, for the Cortex-M3's
+    /// flash, every cell.
+    pub(super) fn for_each_touched_cell(&self, mut visit: impl FnMut(usize)) {
+        let cells = self.lattice.cell_count();
+        if !cfg!(target_pointer_width = "64") {
+            (0..cells).for_each(visit);
+            return;
+        }
+        for (w, &word) in self.touched.cells.iter().enumerate() {
+            let mut bits = word;
+            while bits != 0 {
+                let cell = w * BLOCK + bits.trailing_zeros() as usize;
+                if cell >= cells {
+                    return;
+                }
+                visit(cell);
+                bits &= bits - 1;
+            }
+        }
+    }
+
     /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
     pub(super) fn traced_cell(&self, cell: usize, wrap: [i32; 2]) -> Option<TracedCell> {
         self.lattice.cell(cell).map(|c| self.traced(cell, c, wrap))
@@ -1132,6 +1154,12 @@ impl<S: Scalar> Mud<'_, S> {
     fn side_point(&self, c: &TracedCell, k: usize) -> NetworkPoint {
         let spring = c.cell.sides[k] as usize;
         NetworkPoint { at: self.crack_point(c, k), width: self.separation(spring), time: self.cut_time(spring) }
+    }
+
+    /// [`Self::side_point`], its spring's separation from `widths` when it holds it.
+    fn side_point_in(&self, c: &TracedCell, k: usize, widths: &mut Widths) -> NetworkPoint {
+        let spring = c.cell.sides[k] as usize;
+        NetworkPoint { at: self.crack_point(c, k), width: widths.separation(self, spring), time: self.cut_time(spring) }
     }
 
     /// The network point at a cell's centroid: a dead end (width 0) or a junction (the mean
@@ -1710,8 +1738,10 @@ impl<S: Scalar> Mud<'_, S> {
         if !self.shows_network() {
             return;
         }
-        for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.cut_cell(cell) else { continue };
+        // Each cut spring is a side of two cells: its separation is worked out once.
+        let mut widths = Widths::new();
+        self.for_each_touched_cell(|cell| {
+            let Some(c) = self.cut_cell(cell) else { return };
             let (mut cut, mut n) = ([0usize; 4], 0);
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
                 cut[n] = k;
@@ -1719,10 +1749,10 @@ impl<S: Scalar> Mud<'_, S> {
             }
             match cut[..n] {
                 [] => {}
-                [a, b] => emit(self.side_point(&c, a), self.side_point(&c, b)),
+                [a, b] => emit(self.side_point_in(&c, a, &mut widths), self.side_point_in(&c, b, &mut widths)),
                 ref sides => {
                     let points: [NetworkPoint; 4] = core::array::from_fn(|j| {
-                        if j < n { self.side_point(&c, sides[j]) } else { NetworkPoint::default() }
+                        if j < n { self.side_point_in(&c, sides[j], &mut widths) } else { NetworkPoint::default() }
                     });
                     let centre = Self::centroid_of(&c, &points[..n]);
                     for &point in &points[..n] {
@@ -1730,7 +1760,39 @@ impl<S: Scalar> Mud<'_, S> {
                     }
                 }
             }
+        });
+    }
+}
+
+/// The separations of the cut springs a pass over the mesh cells has worked out, by spring
+/// (each spring is a side of two cells, met one after the other in a pass): a direct-mapped
+/// table, a spring's slot holding the last spring worked out there. On 32-bit targets, for the
+/// Cortex-M3's stack, one slot.
+pub(super) struct Widths {
+    springs: [u32; WIDTHS],
+    widths: [f32; WIDTHS],
+}
+
+/// Slots of [`Widths`]: a power of two.
+const WIDTHS: usize = if cfg!(target_pointer_width = "64") { 512 } else { 1 };
+
+impl Widths {
+    pub(super) fn new() -> Widths {
+        Widths { springs: [u32::MAX; WIDTHS], widths: [0.0; WIDTHS] }
+    }
+
+    /// [`Mud::separation`] of `spring`.
+    #[inline(always)]
+    pub(super) fn separation<S: Scalar>(&mut self, mud: &Mud<'_, S>, spring: usize) -> f32 {
+        // Fibonacci hashing: springs close in number land in slots far apart.
+        let slot =
+            (spring as u32).wrapping_mul(0x9e37_79b9).rotate_left(WIDTHS.trailing_zeros()) as usize & (WIDTHS - 1);
+        if self.springs[slot] == spring as u32 {
+            return self.widths[slot];
         }
+        let width = mud.separation(spring);
+        (self.springs[slot], self.widths[slot]) = (spring as u32, width);
+        width
     }
 }
 

@@ -302,13 +302,23 @@ impl<S: Scalar> Mud<'_, S> {
         if cfg!(target_pointer_width = "64") {
             let (cut, until) = (render.until < f32::INFINITY, render.until);
             let fringe = fringe(bevel, widest + bevel, groove_depth);
-            self.strokes(render, clip, bevel, |frame, stroke| {
-                for_each_run(frame, stroke, heights, fringe, |cell, hit| {
-                    let h = height(hit.coverage, hit.depth, hit.half_width);
-                    let hit = (hit.coverage > 0.0) & (!cut | (hit.value <= until));
-                    cell.lower(if hit { h } else { f32::INFINITY });
+            // (Drawn apart without a cut, so that the lanes do not work out the break times.)
+            if cut {
+                self.strokes(render, clip, bevel, |frame, stroke| {
+                    for_each_run(frame, stroke, heights, fringe, |cell, hit| {
+                        let h = height(hit.coverage, hit.depth, hit.half_width);
+                        let hit = (hit.coverage > 0.0) & (hit.value <= until);
+                        cell.lower(if hit { h } else { f32::INFINITY });
+                    });
                 });
-            });
+            } else {
+                self.strokes(render, clip, bevel, |frame, stroke| {
+                    for_each_run(frame, stroke, heights, fringe, |cell, hit| {
+                        let h = height(hit.coverage, hit.depth, hit.half_width);
+                        cell.lower(if hit.coverage > 0.0 { h } else { f32::INFINITY });
+                    });
+                });
+            }
         } else {
             self.draw(render, clip, bevel, |hit| {
                 if let Some(cell) = heights.get_mut(hit.pixel) {
@@ -328,11 +338,12 @@ impl<S: Scalar> Mud<'_, S> {
         if !self.shows_network() {
             return widest;
         }
-        for cell in 0..self.lattice.cell_count() {
-            let Some(c) = self.cut_cell_as(cell, false) else { continue };
+        let mut widths = super::network::Widths::new();
+        self.for_each_touched_cell(|cell| {
+            let Some(c) = self.cut_cell_as(cell, false) else { return };
             let (mut sum, mut n) = (0.0f32, 0);
             for k in (0..c.sides()).filter(|&k| c.cut[k]) {
-                let width = self.separation(c.cell.sides[k] as usize);
+                let width = widths.separation(self, c.cell.sides[k] as usize);
                 widest = widest.max(Self::half_width(render, pixels_per_unit, width));
                 sum += width;
                 n += 1;
@@ -341,7 +352,7 @@ impl<S: Scalar> Mud<'_, S> {
                 let centroid = if n >= 2 { sum / n as f32 } else { 0.0 };
                 widest = widest.max(Self::half_width(render, pixels_per_unit, centroid));
             }
-        }
+        });
         widest
     }
 }

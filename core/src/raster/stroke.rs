@@ -74,9 +74,6 @@ pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(Stroke
     for_each_copy(frame, stroke, |a, b, bounds| draw_capsule(frame.clip, a, b, bounds, stroke, &mut visit));
 }
 
-/// The most pixels [`for_each_run`] hands over at a time (a multiple of [`LANES`]).
-const RUN: usize = 32;
-
 /// [`for_each_run`] hands over a multiple of this many pixels at a time.
 const LANES: usize = 4;
 
@@ -84,8 +81,8 @@ const LANES: usize = 4;
 /// with its cell of `cells` (which holds the clip's pixels, row by row); and for some
 /// neighbours of theirs on the same row, whose `hit.coverage` is not > 0 (0, −0 or NaN):
 /// `lane` must leave those cells as they are. A hit's `pixel` is 0 (the cell is the pixel).
-/// Each row's pixels that the stroke can cover are handed over up to [`RUN`] at a time, in
-/// loops without a branch per pixel, which LLVM vectorises where `lane` has none either.
+/// Each row's pixels that the stroke can cover are handed over together, in a loop without a
+/// branch per pixel, which LLVM vectorises where `lane` has none either.
 ///
 /// Without `fringe`, the pixels whose centre lies farther than the half width from the axis
 /// (the anti-aliased fringe, coverage < ½, up to ½ pixel wide) may be left out: every pixel
@@ -269,7 +266,7 @@ impl Near {
 }
 
 /// [`draw_capsule`] for [`for_each_run`]: each row's pixels within [`Span::columns`] (all of
-/// the row's within `bounds` when there is no span), up to [`RUN`] at a time; the span
+/// the row's within `bounds` when there is no span), each row in one loop; the span
 /// reaches the anti-aliased fringe only with `fringe`.
 fn draw_runs<C>(
     clip: Clip,
@@ -286,8 +283,8 @@ fn draw_runs<C>(
     let columns = clip.width as usize;
     let widest = stroke.half_width[0].max(stroke.half_width[1]);
     let span = Span::new(a, d, dd, widest, if fringe { FRINGE } else { 0.0 });
-    let mut scratch = [[0.0f32; RUN]; 2];
-    for y in y0 as i64..=y1 as i64 {
+    let [top, bottom] = span.as_ref().map_or([y0 as i64, y1 as i64], |span| span.rows([y0, y1]));
+    for y in top..=bottom {
         let row = (y - clip.y) as usize * columns;
         let py = y as f32 + 0.5 - a[1];
         let (first, last) = match &span {
@@ -297,22 +294,21 @@ fn draw_runs<C>(
             }
             None => (x0 as i64, x1 as i64),
         };
-        let mut x = first;
-        while x <= last {
-            let pixels = (last - x + 1).min(RUN as i64) as usize;
-            let start = row + (x - clip.x) as usize;
-            let lanes = pixels.next_multiple_of(LANES);
-            if let (Some(cells), true) = (cells.get_mut(start..start + lanes), span.is_some() && dd > 0.0) {
-                // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
-                let at = [x as f32 + 0.5, a[0], py];
-                span_lanes(at, d, dd, stroke, pixels, &mut scratch, cells, lane);
-            } else {
-                for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
-                    let cx = (x + k as i64) as f32 + 0.5;
-                    lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
-                }
+        if first > last {
+            continue;
+        }
+        let pixels = (last - first + 1) as usize;
+        let start = row + (first - clip.x) as usize;
+        let lanes = pixels.next_multiple_of(LANES);
+        if let (Some(cells), true) = (cells.get_mut(start..start + lanes), span.is_some() && dd > 0.0) {
+            // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
+            let at = [first as f32 + 0.5, a[0], py];
+            span_lanes(at, d, dd, stroke, pixels, cells, lane);
+        } else {
+            for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
+                let cx = (first + k as i64) as f32 + 0.5;
+                lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
             }
-            x += RUN as i64;
         }
     }
 }
@@ -320,9 +316,9 @@ fn draw_runs<C>(
 /// [`near`] and [`Near::hit`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
 /// a stroke with a [`Span`] and a length (`dd` > 0), which lies at column `ax` (`at` = [cx,
 /// ax, py]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
-/// a multiple of [`LANES`], at most [`RUN`], at least `pixels`) with coverage 0. Within a span
-/// every coordinate is finite, and so is the position `t` along the axis, so that comparisons
-/// give what `clamp` and `min` do. Loops over the pixels without a branch, which LLVM
+/// a multiple of [`LANES`], at least `pixels`) with coverage 0. Within a span every coordinate
+/// is finite, and so is the position `t` along the axis, so that comparisons give what `clamp`
+/// and `min` do. Loops over the pixels without a branch, which LLVM
 /// vectorises (the square roots too, four in one instruction on x86-64: [`crate::scalar::sqrtf`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -332,31 +328,22 @@ fn span_lanes<C>(
     dd: f32,
     stroke: &Stroke,
     pixels: usize,
-    [t, distance]: &mut [[f32; RUN]; 2],
     cells: &mut [C],
     lane: &impl Fn(&mut C, StrokeHit),
 ) {
-    let lanes = (cells.len() & !(LANES - 1)).min(RUN);
+    let lanes = cells.len() & !(LANES - 1);
     let pd1 = py * d[1];
-    for ((t, r), &k) in t[..lanes].iter_mut().zip(&mut distance[..lanes]).zip(&LANE[..lanes]) {
-        let p0 = (cx + k) - ax;
-        let s = (p0 * d[0] + pd1) / dd;
-        let s = if s > 0.0 { s } else { 0.0 };
-        *t = if s < 1.0 { s } else { 1.0 };
-        let (q0, q1) = (p0 - d[0] * *t, py - d[1] * *t);
-        *r = q0 * q0 + q1 * q1;
-    }
-    for four in distance[..lanes].chunks_exact_mut(LANES) {
-        for r in four {
-            *r = crate::scalar::sqrtf(*r);
-        }
-    }
     let [w0, w1] = stroke.half_width;
     let [v0, v1] = stroke.value;
-    let pixels = pixels as f32;
-    let cells = &mut cells[..lanes];
-    let lanes = t[..lanes].iter().zip(&distance[..lanes]).zip(&LANE[..lanes]);
-    for (cell, ((&t, &distance), &k)) in cells.iter_mut().zip(lanes) {
+    // (A span is at most a few thousand pixels wide.)
+    let pixels = pixels.min(i32::MAX as usize) as i32;
+    for (cell, i) in cells[..lanes].iter_mut().zip(0i32..) {
+        let p0 = (cx + i as f32) - ax;
+        let s = (p0 * d[0] + pd1) / dd;
+        let s = if s > 0.0 { s } else { 0.0 };
+        let t = if s < 1.0 { s } else { 1.0 };
+        let (q0, q1) = (p0 - d[0] * t, py - d[1] * t);
+        let distance = crate::scalar::sqrtf(q0 * q0 + q1 * q1);
         let w = w0 + (w1 - w0) * t;
         let c = w - distance + 0.5;
         let coverage = if c < 1.0 { c } else { 1.0 };
@@ -364,7 +351,7 @@ fn span_lanes<C>(
             cell,
             StrokeHit {
                 pixel: 0,
-                coverage: if k < pixels { coverage } else { 0.0 },
+                coverage: if i < pixels { coverage } else { 0.0 },
                 depth: if w > 0.0 { distance / w } else { 1.0 },
                 half_width: w,
                 value: v0 + (v1 - v0) * t,
@@ -372,17 +359,6 @@ fn span_lanes<C>(
         );
     }
 }
-
-/// Each lane's column from a run's first: 0, 1, 2, …
-const LANE: [f32; RUN] = {
-    let mut lane = [0.0; RUN];
-    let mut k = 0;
-    while k < RUN {
-        lane[k] = k as f32;
-        k += 1;
-    }
-    lane
-};
 
 /// Strokes and reaches shorter than this many pixels have their rows cut to [`Span`]s (longer
 /// ones are drawn over their whole bounding box).
@@ -410,6 +386,8 @@ const FRINGE: f32 = 0.5;
 struct Span {
     a: [f32; 2],
     d: [f32; 2],
+    /// The radius.
+    radius: f32,
     /// The radius, squared.
     rr: f32,
     /// The long edges' offset from the axis: the radius along the unit normal (NaN when the
@@ -436,11 +414,23 @@ impl Span {
         }
         let length = crate::scalar::sqrtf(dd);
         let edge = [-d[1] / length * radius, d[0] / length * radius];
-        Some(Span { a, d, rr: radius * radius, edge, per_row: 1.0 / d[1] })
+        Some(Span { a, d, radius, rr: radius * radius, edge, per_row: 1.0 / d[1] })
+    }
+
+    /// The first and last row of `y0` to `y1` whose pixel centres may lie in the capsule: the
+    /// rows whose centre lies within the radius of the axis's top and bottom (first > last when
+    /// none does).
+    #[inline(always)]
+    fn rows(&self, [y0, y1]: [f32; 2]) -> [i64; 2] {
+        let (top, bottom) = (lower(0.0, self.d[1]), higher(0.0, self.d[1]));
+        let first = floor(self.a[1] + top - self.radius - 0.5).max(y0);
+        let last = floor(self.a[1] + bottom + self.radius - 0.5).min(y1);
+        [first as i64, last as i64]
     }
 
     /// The first and last column whose pixel centre may lie in the capsule on the row whose
     /// centre is at `cy` (first > last when none does).
+    #[inline(always)]
     fn columns(&self, cy: f32) -> [i64; 2] {
         let v = cy - self.a[1];
         let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
