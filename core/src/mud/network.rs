@@ -1078,6 +1078,19 @@ impl<S: Scalar> Mud<'_, S> {
         }
     }
 
+    /// Mesh cell `cell` and which of its sides the network cuts, if any is, for a cell
+    /// [`Self::for_each_touched_cell`] gives: what [`Self::cut_cell_as`] tells without the
+    /// positions, inlined on 64-bit targets into the passes that read only the cuts.
+    #[inline(always)]
+    pub(super) fn cut_sides(&self, cell: usize) -> Option<(Cell, [bool; 4])> {
+        if !cfg!(target_pointer_width = "64") {
+            return self.cut_cell_as(cell, false).map(|t| (t.cell, t.cut));
+        }
+        let c = self.lattice.cell(cell)?;
+        let cut: [bool; 4] = core::array::from_fn(|k| k < c.corners && self.is_cut(c.sides[k] as usize));
+        cut.contains(&true).then_some((c, cut))
+    }
+
     /// Mesh cell `cell` as the network sees it, its positions shifted by `wrap` periods.
     pub(super) fn traced_cell(&self, cell: usize, wrap: [i32; 2]) -> Option<TracedCell> {
         self.lattice.cell(cell).map(|c| self.traced(cell, c, wrap))

@@ -340,10 +340,10 @@ impl<S: Scalar> Mud<'_, S> {
         }
         let mut widths = super::network::Widths::new();
         self.for_each_touched_cell(|cell| {
-            let Some(c) = self.cut_cell_as(cell, false) else { return };
+            let Some((c, cut)) = self.cut_sides(cell) else { return };
             let (mut sum, mut n) = (0.0f32, 0);
-            for k in (0..c.sides()).filter(|&k| c.cut[k]) {
-                let width = widths.separation(self, c.cell.sides[k] as usize);
+            for k in (0..c.corners).filter(|&k| cut[k]) {
+                let width = widths.separation(self, c.sides[k] as usize);
                 widest = widest.max(Self::half_width(render, pixels_per_unit, width));
                 sum += width;
                 n += 1;
