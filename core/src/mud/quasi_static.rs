@@ -132,7 +132,7 @@ const TABULATE_FROM: u64 = 1 << 12;
 /// when the springs in `broken` (bit k: the star's kth, of the first `n`) are broken: the
 /// matrix h·I + Σ k e eᵀ over the intact springs (`laws`: [`interior_laws`]), its determinant
 /// ([`solve_node`]'s) and its diagonal's mean ([`Mud::settle`]'s).
-fn interior_system<S: Scalar>(laws: &[[S; 3]; 6], n: usize, shear: S, broken: usize) -> [S; 5] {
+fn interior_system<S: Scalar>(laws: &[[S; 3]], n: usize, shear: S, broken: usize) -> [S; 5] {
     let (mut a00, mut a01, mut a11) = (shear, S::ZERO, shear);
     for (k, &[ex, ey, kk]) in laws.iter().enumerate().take(n) {
         if broken & 1 << k == 0 {
@@ -144,9 +144,23 @@ fn interior_system<S: Scalar>(laws: &[[S; 3]; 6], n: usize, shear: S, broken: us
     [a00, a01, a11, determinant([a00, a01, a11]), diagonal_mean([a00, a01, a11])]
 }
 
+/// The spring laws [`Interior`] holds: a regular lattice's six on the 64-bit targets (none on
+/// the others, which relax every node by the general case).
+const LAWS: usize = if cfg!(target_pointer_width = "64") { 6 } else { 0 };
+
+/// What [`Mud::quasi_static_step`] hands the relaxations of a regular lattice's nodes away
+/// from its edges, for the length of the call.
+struct Interior<'t, S> {
+    /// The spring laws ([`interior_laws`]).
+    laws: [[S; 3]; LAWS],
+    /// The [`interior_system`]s by set of broken springs, if tabulated (if not, they are
+    /// summed node by node).
+    systems: Option<&'t [[S; 5]; SYSTEMS]>,
+}
+
 /// [`interior_system`] where no table holds it (a small budget), out of the relaxation's way.
 #[inline(never)]
-fn untabulated_system<S: Scalar>(laws: &[[S; 3]; 6], n: usize, shear: S, broken: usize) -> [S; 5] {
+fn untabulated_system<S: Scalar>(laws: &[[S; 3]], n: usize, shear: S, broken: usize) -> [S; 5] {
     interior_system(laws, n, shear, broken)
 }
 
@@ -354,14 +368,25 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
     }
 
     fn push(&mut self, node: usize) {
-        if self.flags[node] & QUEUED == 0 {
+        if cfg!(target_pointer_width = "64") {
+            queue_node(self.flags, self.queue, self.head, &mut self.len, node);
+        } else if self.flags[node] & QUEUED == 0 {
             self.flags[node] |= QUEUED;
-            // The ring's tail, wrapped without a division (head and len are below capacity).
-            let capacity = self.queue.len();
-            let tail = self.head + self.len;
-            self.queue[if tail >= capacity { tail - capacity } else { tail }] = node as u32;
+            let tail = ring_slot(self.head + self.len, self.queue.len());
+            self.queue[tail] = node as u32;
             self.len += 1;
         }
+    }
+
+    /// [`Relaxation::push`] of `others[k]` for each bit k of `moves`, lowest first.
+    #[inline(always)]
+    fn push_each<const N: usize>(&mut self, others: &[usize; N], mut moves: u32) {
+        let mut len = self.len;
+        while moves != 0 {
+            queue_node(self.flags, self.queue, self.head, &mut len, others[moves.trailing_zeros() as usize % N]);
+            moves &= moves - 1;
+        }
+        self.len = len;
     }
 
     /// The next queued node, marked touched, and its flags then.
@@ -377,13 +402,38 @@ impl<'a, S: Scalar> Relaxation<'a, S> {
         }
         self.len -= 1;
         let flags = self.flags[node] & !QUEUED;
-        if flags & TOUCHED == 0 {
+        if cfg!(target_pointer_width = "64") {
+            // Without a branch on whether the node is touched, as `push` queues.
+            if self.touched_len < self.touched.len() {
+                self.touched[self.touched_len] = node as u32;
+            }
+            self.touched_len += (flags & TOUCHED ^ TOUCHED) as usize / TOUCHED as usize;
+        } else if flags & TOUCHED == 0 {
             self.touched[self.touched_len] = node as u32;
             self.touched_len += 1;
         }
         self.flags[node] = flags | TOUCHED;
         Some((node, flags | TOUCHED))
     }
+}
+
+/// Queues `node` ([`Relaxation::push`]) in the ring `queue` of `len` nodes from `head`, unless
+/// its `flags` say it is queued, without a branch on whether it is: the tail slot is free
+/// (unless every node is queued), so writing the node there does no harm if it is.
+#[inline(always)]
+fn queue_node(flags: &mut [u32], queue: &mut [u32], head: usize, len: &mut usize, node: usize) {
+    let node_flags = flags[node];
+    if *len < queue.len() {
+        queue[ring_slot(head + *len, queue.len())] = node as u32;
+    }
+    flags[node] = node_flags | QUEUED;
+    *len += (node_flags & QUEUED ^ QUEUED) as usize;
+}
+
+/// Ring position `at` (below twice the `capacity`) wrapped without a division.
+#[inline(always)]
+fn ring_slot(at: usize, capacity: usize) -> usize {
+    if at >= capacity { at - capacity } else { at }
 }
 
 /// A node's u from its 2×2 equilibrium (the module docs' equation, Eq. 2 linearised):
@@ -475,19 +525,20 @@ impl<'a, S: Scalar> Mud<'a, S> {
 
     /// Solves node `node`'s 2×2 equilibrium for u, and queues its neighbours
     /// if u moved by more than the tolerance ([`relax_tolerance`]). Returns the springs visited.
-    /// `flags` are the node's ([`Relaxation::flags`]); `systems` the [`interior_system`]s by
-    /// set of broken springs, if tabulated (if not, they are summed here).
-    fn relax(&mut self, node: usize, flags: u32, systems: Option<&[[S; 5]; SYSTEMS]>) -> u64 {
+    /// `flags` are the node's ([`Relaxation::flags`]); `interior` the regular lattice's spring
+    /// laws and, if tabulated, [`interior_system`]s (if not, they are summed here).
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    fn relax(&mut self, node: usize, flags: u32, interior: &Interior<'_, S>) -> u64 {
         // Away from a regular lattice's edges, its springs by fixed offsets (64-bit targets:
         // the Cortex-M3's flash holds the general case alone, which computes the same).
         if cfg!(target_pointer_width = "64") && flags & INTERIOR != 0 {
             let odd = (flags >> ODD_ROW_SHIFT & 1) as usize;
             let star = match self.lattice.topology {
                 super::Topology::Square => {
-                    self.lattice.star_in_row::<4>(node, odd).map(|s| self.relax_interior(node, flags, s, systems))
+                    self.lattice.star_in_row::<4>(node, odd).map(|s| self.relax_interior(node, flags, s, interior))
                 }
                 super::Topology::Hexagonal => {
-                    self.lattice.star_in_row::<6>(node, odd).map(|s| self.relax_interior(node, flags, s, systems))
+                    self.lattice.star_in_row::<6>(node, odd).map(|s| self.relax_interior(node, flags, s, interior))
                 }
                 super::Topology::Irregular => None,
             };
@@ -512,17 +563,33 @@ impl<'a, S: Scalar> Mud<'a, S> {
         &mut self,
         node: usize,
         flags: u32,
-        (springs, others): ([usize; N], [usize; N]),
-        systems: Option<&[[S; 5]; SYSTEMS]>,
+        star: ([usize; N], [usize; N]),
+        interior: &Interior<'_, S>,
     ) -> u64 {
-        let r = self.relaxation();
-        let (laws, tolerance) = (r.laws, r.tolerance);
-        let broken = flags >> BROKEN_SHIFT;
+        // Most nodes have all their springs: their updates test none.
+        match flags >> BROKEN_SHIFT & 63 {
+            0 => self.relax_star(node, 0, star, interior),
+            broken => self.relax_star(node, broken, star, interior),
+        }
+        N as u64
+    }
+
+    /// [`Mud::relax_interior`] of a node whose broken springs are `broken` (bit k: the star's
+    /// kth).
+    #[inline(always)]
+    fn relax_star<const N: usize>(
+        &mut self,
+        node: usize,
+        broken: u32,
+        (springs, others): ([usize; N], [usize; N]),
+        interior: &Interior<'_, S>,
+    ) {
+        let laws = &interior.laws[..];
         // The matrix, its determinant and diagonal depend on the broken springs alone.
-        let set = broken as usize & 63;
-        let [a00, a01, a11, det, diagonal] = match systems.and_then(|table| table.get(set)) {
+        let set = broken as usize;
+        let [a00, a01, a11, det, diagonal] = match interior.systems.and_then(|table| table.get(set)) {
             Some(&system) => system,
-            None => untabulated_system(&laws, N, self.material.shear, set),
+            None => untabulated_system(laws, N, self.material.shear, set),
         };
         let (mut b0, mut b1) = (S::ZERO, S::ZERO);
         // (Both arrays cut to one length: one bounds check per node.)
@@ -541,22 +608,34 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let (x, y) = solve_with([a00, a01, a11], det, [b0, b1]);
         (self.ux[node], self.uy[node]) = (x, y);
         let (dx, dy) = (x - old_x, y - old_y);
-        let (misfit, threshold) = (self.misfit, tolerance * diagonal);
+        let (misfit, threshold) = (self.misfit, self.relaxation().tolerance * diagonal);
         let shrink = self.params.drive == Drive::Shrink;
+        // Which springs break (bit k: the star's kth) and which other nodes move by more than
+        // the tolerance, as `Mud::relax` decides them; then its breaks and queueings, in its
+        // order.
+        let (mut breaks, mut moves) = (0u32, 0u32);
         unrolled!(N, |k| {
             if broken & 1 << k == 0 {
                 let [ex, ey, kk] = laws[k];
                 let opening = ex * (u[k].0 - x) + ey * (u[k].1 - y);
                 let kappa = self.break_stretch[springs[k]];
                 let denominator = opening + if shrink { kappa } else { S::ONE };
-                if denominator > S::ZERO && kappa - S::ONE <= misfit * denominator {
+                let breaking = (denominator > S::ZERO) & (kappa - S::ONE <= misfit * denominator);
+                breaks |= u32::from(breaking) << k;
+                moves |= u32::from(kk * (ex * dx + ey * dy).abs() > threshold) << k;
+            }
+        });
+        if breaks == 0 {
+            self.relaxation().push_each(&others, moves);
+        } else {
+            for k in 0..N {
+                if breaks & 1 << k != 0 {
                     self.break_and_relax(springs[k]);
-                } else if kk * (ex * dx + ey * dy).abs() > threshold {
+                } else if moves & 1 << k != 0 {
                     self.relaxation().push(others[k]);
                 }
             }
-        });
-        N as u64
+        }
     }
 
     /// [`Mud::relax`] with room for `DEGREE` springs at the node, on the irregular lattice's
@@ -727,16 +806,17 @@ impl<'a, S: Scalar> Mud<'a, S> {
         let mut table = [[S::ZERO; 5]; SYSTEMS];
         let regular = !matches!(self.lattice.topology, super::Topology::Irregular);
         let tabulated = SYSTEMS > 0 && budget >= TABULATE_FROM && regular;
+        let laws: [[S; 3]; LAWS] = core::array::from_fn(|k| self.relaxation().laws[k]);
         if tabulated {
-            let (laws, springs) = (self.relaxation().laws, 2 * self.lattice.directions());
+            let springs = 2 * self.lattice.directions();
             for (set, system) in table.iter_mut().enumerate() {
                 *system = interior_system(&laws, springs, self.material.shear, set);
             }
         }
-        let systems = tabulated.then_some(&table);
-        let mut work = self.quasi_static_piece(budget, systems);
+        let interior = Interior { laws, systems: tabulated.then_some(&table) };
+        let mut work = self.quasi_static_piece(budget, &interior);
         while work < budget && !self.finished {
-            work += self.quasi_static_piece(budget - work, systems);
+            work += self.quasi_static_piece(budget - work, &interior);
         }
         work
     }
@@ -747,7 +827,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
     /// refresh the touched nodes' springs until the work reaches `budget` (at least one
     /// node's); or break the next spring (jumping the misfit to it; one unit). Returns the work
     /// done (springs visited): at most `max(budget, 1)` − 1 plus the springs at one node.
-    fn quasi_static_piece(&mut self, budget: u64, systems: Option<&[[S; 5]; SYSTEMS]>) -> u64 {
+    fn quasi_static_piece(&mut self, budget: u64, interior: &Interior<'_, S>) -> u64 {
         if let Some(first) = self.relaxation().pop() {
             let ((mut node, mut flags), mut work) = (first, 0u64);
             loop {
@@ -756,7 +836,7 @@ impl<'a, S: Scalar> Mud<'a, S> {
                     work += 1;
                 } else {
                     r.relaxed += 1;
-                    work += self.relax(node, flags, systems);
+                    work += self.relax(node, flags, interior);
                 }
                 if work >= budget {
                     return work;
