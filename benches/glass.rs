@@ -1,13 +1,16 @@
 //! Model B benchmark: the paper's 640×640 plate, M_ave = 100; generation, then the mask and
-//! the time map, averaged over 200 seeds.
+//! the time map, averaged over 200 seeds. Prints the times and writes their ratios, the
+//! performance page's table, to `docs/src/generated/bench-glass.md`.
 //!
 //!     cargo bench --bench glass
 
 use std::time::{Duration, Instant};
 
 use hibi_core::glass::{Glass, GlassLayers, GlassParams, GlassRender};
+use hibi_tests::{load_average, write_bench_tables};
 
 fn main() {
+    let load = load_average();
     let base = GlassParams::default();
     let m = base.memory().expect("valid parameters");
     let mut memory = m.allocate();
@@ -28,9 +31,21 @@ fn main() {
         glass.render(&render, GlassLayers { time: Some(&mut time), ..Default::default() }).expect("buffer suffices");
         times += start.elapsed();
     }
+    let load = [load, load_average()];
+    let ms = |d: Duration| d.as_secs_f64() * 1e3 / f64::from(plates);
     println!("| 640×640, M_ave = 100 (mean of {plates} seeds) | time |");
     println!("|---|---|");
-    println!("| generation | {:.2} ms |", generation.as_secs_f64() * 1e3 / f64::from(plates));
-    println!("| mask | {:.2} ms |", masks.as_secs_f64() * 1e3 / f64::from(plates));
-    println!("| time map | {:.2} ms |", times.as_secs_f64() * 1e3 / f64::from(plates));
+    println!("| generation | {:.2} ms |", ms(generation));
+    println!("| mask | {:.2} ms |", ms(masks));
+    println!("| time map | {:.2} ms |", ms(times));
+    let ratio = |d: Duration| d.as_secs_f64() / generation.as_secs_f64();
+    let tables = format!(
+        "| step, mean of {plates} seeds | ÷ generation |\n|---|---|\n\
+         | generation (`Glass::new` and stepping to the end) | 1 |\n\
+         | the crack mask, 640 × 640 | {:.2}× |\n\
+         | the break-time map, 640 × 640 | {:.2}× |\n",
+        ratio(masks),
+        ratio(times)
+    );
+    write_bench_tables("bench-glass.md", "cargo bench --bench glass", load, &tables);
 }

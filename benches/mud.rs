@@ -4,9 +4,11 @@
 //! 128² for the speed ratio; the irregular lattice beside the hexagonal one. Crack statistics
 //! are printed so that speeds are read at equal statistics. Then the outputs of the default
 //! 128² run, each call's median over [`OUTPUT_RUNS`] calls: `network`, `cells` and a 512²
-//! `render` of the height map.
+//! `render` of the height map. Prints the times; a run at the default sizes also writes the
+//! statistics and the ratios, the performance page's tables, to
+//! `docs/src/generated/bench-mud.md`.
 //!
-//!     cargo bench --bench mud                # the table of the README
+//!     cargo bench --bench mud                # the performance page's tables
 //!     cargo bench --bench mud -- 64 128      # other sizes (quasi-static only)
 
 use std::time::Instant;
@@ -16,6 +18,7 @@ use hibi_core::mud::{
 };
 use hibi_core::polygon::Ring;
 use hibi_core::raster::{Layers, scratch_len};
+use hibi_tests::{load_average, write_bench_tables};
 
 /// Calls of each output whose median time is printed.
 const OUTPUT_RUNS: usize = 21;
@@ -55,8 +58,9 @@ fn median_ms(mut f: impl FnMut()) -> f64 {
     times[OUTPUT_RUNS / 2]
 }
 
-/// The outputs of the default 128² run, one call each: their median times.
-fn outputs() {
+/// The outputs of the default 128² run, one call each: their median times, and the rows of the
+/// page's table of them (each time divided by `run`, seconds).
+fn outputs(run: f64) -> String {
     let params = MudParams { columns: 128, rows: 128, ..MudParams::default() };
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
@@ -89,6 +93,22 @@ fn outputs() {
     println!("| `network` ({} vertices, {} edges, {} points) | {network:.2} ms |", n.vertices, n.edges, n.points);
     println!("| `cells` ({} rings, {} points) | {cells:.2} ms |", c.rings, c.points);
     println!("| `render`, height map {}×{} | {rendered:.2} ms |", render.width, render.height);
+    let ratio = |ms: f64| ms / (run * 1e3);
+    format!(
+        "| `network` ({} vertices, {} edges, {} points) | {:.3}× |\n\
+         | `cells` ({} rings, {} points) | {:.3}× |\n\
+         | `render` of the height map, {} × {} | {:.3}× |\n",
+        n.vertices,
+        n.edges,
+        n.points,
+        ratio(network),
+        c.rings,
+        c.points,
+        ratio(cells),
+        render.width,
+        render.height,
+        ratio(rendered)
+    )
 }
 
 fn row(size: u32, name: &str, r: &Run) {
@@ -103,6 +123,7 @@ fn row(size: u32, name: &str, r: &Run) {
 }
 
 fn main() {
+    let load = load_average();
     let sizes: Vec<u32> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let custom = !sizes.is_empty();
     let sizes = if custom { sizes } else { vec![64, 128, 256, 512] };
@@ -110,27 +131,61 @@ fn main() {
         "| lattice | solver (run, trace, cells) | time | spring updates/s | crack density (1/cm) | cells | mean cell area (cm²) |"
     );
     println!("|---|---|---|---|---|---|---|");
-    let mut times = Vec::new();
+    // Each run's lattice, solver (the page's words) and figures, in the order run.
+    let mut runs: Vec<(u32, &str, Run)> = Vec::new();
     for &size in &sizes {
         let fast = run(size, Solver::QuasiStatic, Topology::Hexagonal);
         row(size, "hex, quasi-static", &fast);
-        times.push((size, fast.seconds));
+        runs.push((size, "hexagonal, quasi-static", fast));
         if !custom && (size == 128 || size == 256) {
-            row(size, "irregular, quasi-static", &run(size, Solver::QuasiStatic, Topology::Irregular));
+            let irregular = run(size, Solver::QuasiStatic, Topology::Irregular);
+            row(size, "irregular, quasi-static", &irregular);
+            runs.push((size, "irregular, quasi-static", irregular));
         }
         if !custom && size == 128 {
             let explicit = run(size, Solver::Explicit, Topology::Hexagonal);
             row(size, "hex, explicit", &explicit);
-            println!("| {size}² | explicit / quasi-static | {:.1}× | | | | |", explicit.seconds / fast.seconds);
+            runs.push((size, "hexagonal, explicit", explicit));
         }
     }
-    if let (Some(&(a, ta)), Some(&(b, tb))) = (times.first(), times.last())
-        && b > a
+    let seconds = |size: u32, solver: &str| runs.iter().find(|r| r.0 == size && r.1 == solver).map(|r| r.2.seconds);
+    let hexagonal = "hexagonal, quasi-static";
+    let times: Vec<(u32, f64)> = runs.iter().filter(|r| r.1 == hexagonal).map(|r| (r.0, r.2.seconds)).collect();
+    let exponent =
+        |(a, ta): (u32, f64), (b, tb): (u32, f64)| (tb / ta).ln() / ((f64::from(b) / f64::from(a)).powi(2)).ln();
+    if let (Some(&first), Some(&last)) = (times.first(), times.last())
+        && last.0 > first.0
     {
-        let exponent = (tb / ta).ln() / ((f64::from(b) / f64::from(a)).powi(2)).ln();
-        println!("\ncost grows as nodes^{exponent:.2} from {a}² to {b}²");
+        println!("\ncost grows as nodes^{:.2} from {}² to {}²", exponent(first, last), first.0, last.0);
     }
-    if !custom {
-        outputs();
+    if custom {
+        return;
     }
+    let mut tables = String::from(
+        "| lattice | solver | crack density (1/cm) | cells | mean cell area (cm²) |\n|---|---|---|---|---|\n",
+    );
+    for (size, solver, r) in &runs {
+        let s = &r.stats;
+        tables += &format!("| {size}² | {solver} | {:.3} | {} | {:.1} |\n", s.crack_density, s.cells, s.mean_cell_area);
+    }
+    let ratio = |a: Option<f64>, b: Option<f64>| a.zip(b).map_or(f64::NAN, |(a, b)| a / b);
+    tables += &format!(
+        "\n| comparison | ratio |\n|---|---|\n\
+         | explicit solver (the paper's damped short steps) ÷ quasi-static, 128² | **{:.0}×** the time |\n\
+         | cost growth from 64² to 512² (quasi-static), as a power of the node count | nodes^{:.2} |\n\
+         | 512² ÷ 256² | {:.2}× the time for 4× the nodes |\n\
+         | irregular lattice ÷ hexagonal, 128² | {:.2}× the time |\n\
+         | irregular lattice ÷ hexagonal, 256² | {:.2}× the time |\n",
+        ratio(seconds(128, "hexagonal, explicit"), seconds(128, hexagonal)),
+        exponent(times[0], times[times.len() - 1]),
+        ratio(seconds(512, hexagonal), seconds(256, hexagonal)),
+        ratio(seconds(128, "irregular, quasi-static"), seconds(128, hexagonal)),
+        ratio(seconds(256, "irregular, quasi-static"), seconds(256, hexagonal)),
+    );
+    let run_128 = seconds(128, hexagonal).expect("the 128² run is among the default sizes");
+    tables += &format!(
+        "\n| one call, 128² default run, median of {OUTPUT_RUNS} | ÷ the quasi-static run, trace and cells |\n|---|---|\n{}",
+        outputs(run_128)
+    );
+    write_bench_tables("bench-mud.md", "cargo bench --bench mud", [load, load_average()], &tables);
 }

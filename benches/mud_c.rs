@@ -3,11 +3,12 @@
 //! [`c_library_dir`], the system's `cc` with `-O2`), runs it and prints its table: on the default
 //! 128² run, each output with the counts call a C caller makes first to size its buffers
 //! (network, cells) and a 512-pixel-wide height render, the median of 21 calls each, in
-//! milliseconds and as a fraction of the run's own time.
+//! milliseconds and as a fraction of the run's own time. Writes the fractions, the performance
+//! page's table, to `docs/src/generated/bench-mud-c.md`.
 //!
 //!     cargo bench --bench mud_c
 
-use hibi_tests::{NATIVE_STATIC_LIBS, c_library_dir, tool, workspace_root};
+use hibi_tests::{NATIVE_STATIC_LIBS, c_library_dir, load_average, tool, workspace_root, write_bench_tables};
 
 fn main() {
     let root = workspace_root();
@@ -28,7 +29,20 @@ fn main() {
         "{compiler} benches/c/mud_outputs.c failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
+    let load = load_average();
     let ran = std::process::Command::new(&exe).output().expect("run the C program");
     assert!(ran.status.success(), "benches/c/mud_outputs.c failed:\n{}", String::from_utf8_lossy(&ran.stderr));
-    print!("{}", String::from_utf8_lossy(&ran.stdout));
+    let load = [load, load_average()];
+    let printed = String::from_utf8_lossy(&ran.stdout);
+    print!("{printed}");
+    // The outputs' rows, each call with its fraction of the run (the time column left out).
+    let mut tables = String::from(
+        "| from C, 128² default run, median of 21 calls | ÷ the run (`hibi_mud_create`, then `hibi_mud_step` to the end) |\n|---|---|\n",
+    );
+    for line in printed.lines().filter(|l| l.starts_with("| `hibi_mud_")) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        assert!(cells.len() == 5, "a row of three columns: {line}");
+        tables += &format!("| {} | {} |\n", cells[1], cells[3]);
+    }
+    write_bench_tables("bench-mud-c.md", "cargo bench --bench mud_c", load, &tables);
 }

@@ -8,13 +8,18 @@
 //! FastNoiseLite's normal is taken two ways: by central differences on its value grid
 //! (402×402 evaluations, the usual way to get a normal map from noise), and pointwise, with
 //! four extra evaluations per pixel (x ± 1, y ± 1). A last row sums three octaves a third apart
-//! (FBm, lacunarity 3), as our three levels are, normal again from its grid.
+//! (FBm, lacunarity 3), as our three levels are, normal again from its grid. Each of hibi's
+//! maps is also rendered alone, as a caller that wants one layer renders it (printed only).
+//!
+//! Prints the times and writes the ratios, the performance page's tables, to
+//! `docs/src/generated/bench-skin.md`.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use fastnoise_lite::FractalType;
 use hibi_core::skin::{Skin, SkinLayers, SkinRender, preset};
+use hibi_tests::{load_average, write_bench_tables};
 
 #[path = "support/cellular.rs"]
 mod cellular;
@@ -41,6 +46,7 @@ fn timed(f: impl FnOnce()) -> Duration {
 }
 
 fn main() {
+    let load = load_average();
     let params = preset("fig19a").expect("preset exists");
     let (w, h) = (params.width as usize, params.height as usize);
     let pixels = w * h;
@@ -59,7 +65,7 @@ fn main() {
 
     // Every measurement once per round, so that a slow spell of the machine hits them alike;
     // round 0 warms up and is not counted.
-    let mut times = [(); 7].map(|()| Vec::with_capacity(RUNS));
+    let mut times = [(); 9].map(|()| Vec::with_capacity(RUNS));
     let mut cell_count = 0;
     for round in 0..=RUNS {
         // Ours: build, then render, into the same buffers each round.
@@ -72,6 +78,18 @@ fn main() {
         let total = start.elapsed();
         cell_count = skin.cells().len();
         black_box((&height, &normals));
+        // Each map on its own, as a caller that wants one layer renders it.
+        let render = SkinRender::default();
+        let height_only = timed(|| {
+            let layers = SkinLayers { height: Some(&mut height), ..SkinLayers::default() };
+            skin.render(&render, layers).expect("buffers suffice");
+            black_box(&height);
+        });
+        let normal_only = timed(|| {
+            let layers = SkinLayers { normal: Some(&mut normals), ..SkinLayers::default() };
+            skin.render(&render, layers).expect("buffers suffice");
+            black_box(&normals);
+        });
 
         // FastNoiseLite: the value alone, one evaluation per pixel.
         let value = timed(|| {
@@ -101,12 +119,23 @@ fn main() {
         let gridded3 = timed(|| on_grid(&octaves, w, h, &mut grid, &mut height, &mut normals));
 
         if round > 0 {
-            for (list, t) in times.iter_mut().zip([built, total - built, total, value, gridded, pointwise, gridded3]) {
+            for (list, t) in times.iter_mut().zip([
+                built,
+                total - built,
+                total,
+                value,
+                gridded,
+                pointwise,
+                gridded3,
+                height_only,
+                normal_only,
+            ]) {
                 list.push(t);
             }
         }
     }
-    let [build, render, total, value, gridded, pointwise, gridded3] = times.map(median);
+    let [build, render, total, value, gridded, pointwise, gridded3, height_only, normal_only] = times.map(median);
+    let load = [load, load_average()];
 
     let ratio = |d: Duration| total.as_secs_f64() / d.as_secs_f64();
     println!(
@@ -117,6 +146,8 @@ fn main() {
     println!("| hibi Model C: build (`Skin::new` + `run`) | {:.2} ms | |", ms(build));
     println!("| hibi Model C: render height + normal | {:.2} ms | |", ms(render));
     println!("| hibi Model C: total | {:.2} ms | |", ms(total));
+    println!("| hibi Model C: render height alone | {:.2} ms | |", ms(height_only));
+    println!("| hibi Model C: render normal alone | {:.2} ms | |", ms(normal_only));
     println!(
         "| FastNoiseLite Distance2Sub, 1/{SPACING} px⁻¹: value per pixel | {:.2} ms | {:.2}× |",
         ms(value),
@@ -137,4 +168,22 @@ fn main() {
         ms(gridded3),
         ratio(gridded3)
     );
+    let part = |d: Duration| 100.0 * d.as_secs_f64() / (build + render).as_secs_f64();
+    let tables = format!(
+        "| FastNoiseLite variant, {w}×{h} | hibi's time ÷ it |\n|---|---|\n\
+         | value per pixel, one octave | {:.2}× |\n\
+         | value and normal by central differences on its {gw} × {gh} value grid | {:.2}× |\n\
+         | value and normal pointwise (four extra evaluations per pixel) | {:.2}× |\n\
+         | three octaves (FBm, lacunarity 3) and the normal from its grid | {:.2}× |\n\n\
+         | hibi's time (medians taken apart) | share |\n|---|---|\n\
+         | the build (`Skin::new` and `run`: {cell_count} cells) | {:.0} % |\n\
+         | the render of both maps | {:.0} % |\n",
+        ratio(value),
+        ratio(gridded),
+        ratio(pointwise),
+        ratio(gridded3),
+        part(build),
+        part(render)
+    );
+    write_bench_tables("bench-skin.md", "cargo bench --bench skin", load, &tables);
 }

@@ -62,6 +62,35 @@ pub fn workspace_root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The machine's load average over the last minute, from Linux's `/proc/loadavg` (None where
+/// there is none): the benches note it beside the ratios they write.
+pub fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg").ok()?.split_whitespace().next()?.parse().ok()
+}
+
+/// Writes `tables`, what one run of `command` measured, to `docs/src/generated/<file>`, the
+/// part of the performance page that run makes, under a line naming the command and the load
+/// average when the run started and ended (`load`); prints the path.
+pub fn write_bench_tables(file: &str, command: &str, load: [Option<f64>; 2], tables: &str) {
+    let load = match load {
+        [Some(start), Some(end)] => format!("; load average {start:.1} as it started, {end:.1} as it ended"),
+        _ => String::new(),
+    };
+    let text = format!(
+        "<!-- Written by `{command}`; do not edit. -->\n\nOne run of `{command}` ({}, {}, {} logical CPUs{load}):\n\n{tables}",
+        std::env::consts::ARCH,
+        std::env::consts::OS,
+        std::thread::available_parallelism().map_or(1, usize::from),
+    );
+    let path = format!("docs/src/generated/{file}");
+    print!("\n{tables}");
+    std::fs::write(workspace_root().join(&path), text).unwrap_or_else(|e| panic!("write {path}: {e}"));
+    println!(
+        "
+wrote {path}"
+    );
+}
+
 /// The directory cargo builds this profile into (`target/debug` or `target/release`), found
 /// from the running test binary (`target/<profile>/deps/<test>`).
 pub fn profile_dir() -> PathBuf {
