@@ -305,7 +305,7 @@ impl<S: Scalar> Mud<'_, S> {
             // (Drawn apart without a cut, so that the lanes do not work out the break times.)
             if cut {
                 self.strokes(render, clip, bevel, |frame, stroke| {
-                    for_each_run(frame, stroke, heights, fringe, |cell, hit| {
+                    for_each_run(frame, stroke, heights, fringe, move |cell, hit| {
                         let h = height(hit.coverage, hit.depth, hit.half_width);
                         let hit = (hit.coverage > 0.0) & (hit.value <= until);
                         cell.lower(if hit { h } else { f32::INFINITY });
@@ -313,7 +313,7 @@ impl<S: Scalar> Mud<'_, S> {
                 });
             } else {
                 self.strokes(render, clip, bevel, |frame, stroke| {
-                    for_each_run(frame, stroke, heights, fringe, |cell, hit| {
+                    for_each_run(frame, stroke, heights, fringe, move |cell, hit| {
                         let h = height(hit.coverage, hit.depth, hit.half_width);
                         cell.lower(if hit.coverage > 0.0 { h } else { f32::INFINITY });
                     });

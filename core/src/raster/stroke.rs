@@ -299,7 +299,8 @@ fn draw_runs<C>(
         }
         let pixels = (last - first + 1) as usize;
         let start = row + (first - clip.x) as usize;
-        let lanes = pixels.next_multiple_of(LANES);
+        // (At most a clip's width: this does not overflow.)
+        let lanes = (pixels + (LANES - 1)) & !(LANES - 1);
         if let (Some(cells), true) = (cells.get_mut(start..start + lanes), span.is_some() && dd > 0.0) {
             // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
             let at = [first as f32 + 0.5, a[0], py];
