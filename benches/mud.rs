@@ -170,7 +170,7 @@ fn main() {
     }
     let ratio = |a: Option<f64>, b: Option<f64>| a.zip(b).map_or(f64::NAN, |(a, b)| a / b);
     tables += &format!(
-        "\n| comparison | ratio |\n|---|---|\n\
+        "\nThe speed ratios:\n\n| comparison | ratio |\n|---|---|\n\
          | explicit solver (the paper's damped short steps) ÷ quasi-static, 128² | **{:.0}×** the time |\n\
          | cost growth from 64² to 512² (quasi-static), as a power of the node count | nodes^{:.2} |\n\
          | 512² ÷ 256² | {:.2}× the time for 4× the nodes |\n\
@@ -184,7 +184,7 @@ fn main() {
     );
     let run_128 = seconds(128, hexagonal).expect("the 128² run is among the default sizes");
     tables += &format!(
-        "\n| one call, 128² default run, median of {OUTPUT_RUNS} | ÷ the quasi-static run, trace and cells |\n|---|---|\n{}",
+        "\nWhat an engine calls once the run is done, each call's time ÷ the run's:\n\n| one call, 128² default run, median of {OUTPUT_RUNS} | ÷ the quasi-static run, trace and cells |\n|---|---|\n{}",
         outputs(run_128)
     );
     write_bench_tables("bench-mud.md", "cargo bench --bench mud", [load, load_average()], &tables);

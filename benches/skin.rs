@@ -175,6 +175,7 @@ fn main() {
          | value and normal by central differences on its {gw} × {gh} value grid | {:.2}× |\n\
          | value and normal pointwise (four extra evaluations per pixel) | {:.2}× |\n\
          | three octaves (FBm, lacunarity 3) and the normal from its grid | {:.2}× |\n\n\
+         How hibi's own time splits:\n\n\
          | hibi's time (medians taken apart) | share |\n|---|---|\n\
          | the build (`Skin::new` and `run`: {cell_count} cells) | {:.0} % |\n\
          | the render of both maps | {:.0} % |\n",
