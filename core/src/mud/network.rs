@@ -368,12 +368,12 @@ struct Arrival {
 impl<S: Scalar> Mud<'_, S> {
     /// Whether `spring` is cut in the traced network (branches included).
     pub(super) fn is_cut(&self, spring: usize) -> bool {
-        self.trace[spring] != INTACT
+        cut(self.trace[spring])
     }
 
     /// Whether `spring` separates two cells (cut and not a branch).
     pub(super) fn separates(&self, spring: usize) -> bool {
-        self.trace[spring] != INTACT && self.trace[spring] & BRANCH == 0
+        separating(self.trace[spring])
     }
 
     /// The break time of a cut spring, long steps.
@@ -1107,8 +1107,7 @@ impl<S: Scalar> Mud<'_, S> {
         for k in 0..c.corners {
             // (One read of the spring's word: `is_cut` and `separates` of it.)
             let word = self.trace[c.sides[k] as usize];
-            t.cut[k] = word != INTACT;
-            t.separating[k] = word != INTACT && word & BRANCH == 0;
+            (t.cut[k], t.separating[k]) = (cut(word), separating(word));
         }
         if !positions {
             return t;
@@ -1775,6 +1774,19 @@ impl<S: Scalar> Mud<'_, S> {
             }
         });
     }
+}
+
+/// Whether a spring's trace word says it is cut ([`Mud::is_cut`]).
+#[inline(always)]
+fn cut(word: u32) -> bool {
+    word != INTACT
+}
+
+/// Whether a spring's trace word says it separates two cells: cut and not a branch
+/// ([`Mud::separates`]).
+#[inline(always)]
+fn separating(word: u32) -> bool {
+    cut(word) && word & BRANCH == 0
 }
 
 /// The separations of the cut springs a pass over the mesh cells has worked out, by spring
