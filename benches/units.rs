@@ -21,7 +21,8 @@
 //!
 //! The nanoseconds depend on the machine; the ratios between models and phases, measured in one
 //! run, are the figure to carry to another machine, and "a budget of N units takes N × (ns per
-//! unit)" holds on the machine that ran it.
+//! unit)" holds on the machine that ran it. The table goes to
+//! `docs/src/generated/bench-units.md`, which the engine integration page includes.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -29,6 +30,7 @@ use std::time::{Duration, Instant};
 use hibi_core::glass::{FragmentBuild, Glass, GlassParams};
 use hibi_core::mud::{CellBuild, Mud, MudParams, NetworkBuild, Solver};
 use hibi_core::skin::{Skin, preset};
+use hibi_tests::{load_average, write_bench_tables};
 
 /// Units of work per `step` call: an engine frame's worth.
 const BUDGET: u64 = 10_000;
@@ -37,20 +39,22 @@ const ROUNDS: usize = 10;
 
 /// The phases measured, in the order of the table: (model, phase).
 const PHASES: [(&str, &str); 11] = [
-    ("mud, 64² hexagonal, quasi-static", "setup"),
-    ("mud, 64² hexagonal, quasi-static", "quasi-static solver"),
-    ("mud, 64² hexagonal, quasi-static", "network tracing"),
+    (MUD_QUASI_STATIC, "setup"),
+    (MUD_QUASI_STATIC, "quasi-static solver (and its live traces)"),
+    (MUD_QUASI_STATIC, "network tracing (the final trace)"),
+    (MUD_QUASI_STATIC, "network build (`NetworkBuild`)"),
+    (MUD_QUASI_STATIC, "cell build (`CellBuild`)"),
     ("mud, 16² hexagonal, explicit", "setup"),
-    ("mud, 16² hexagonal, explicit", "explicit solver"),
-    ("mud, 16² hexagonal, explicit", "network tracing"),
-    ("mud, 64² hexagonal, quasi-static", "network build"),
-    ("mud, 64² hexagonal, quasi-static", "cell build"),
-    ("glass, 640×640, M_ave = 100", "growth"),
-    ("glass, 640×640, M_ave = 100", "fragment build"),
-    ("skin, fig19a, 400×400, 3 levels", "setup"),
+    ("mud, 16² hexagonal, explicit", "explicit solver (and its live traces)"),
+    ("mud, 16² hexagonal, explicit", "network tracing (the final trace)"),
+    ("glass, 640 × 640, M_ave = 100", "growth"),
+    ("glass, 640 × 640, M_ave = 100", "fragment build (`FragmentBuild`)"),
+    (SKIN, "setup"),
 ];
+const MUD_QUASI_STATIC: &str = "mud, 64² hexagonal, quasi-static";
+const SKIN: &str = "skin, `fig19a`, 400 × 400, three levels";
 /// Skin's cells, the last row (kept apart so that the array above stays one type).
-const SKIN_CELLS: (&str, &str) = ("skin, fig19a, 400×400, 3 levels", "cells and divisions");
+const SKIN_CELLS: (&str, &str) = (SKIN, "cells and divisions");
 
 /// The work and time of one phase of one run.
 #[derive(Clone, Copy, Default)]
@@ -176,6 +180,7 @@ fn median(mut values: Vec<f64>) -> f64 {
 }
 
 fn main() {
+    let load = load_average();
     let quasi_static = MudParams { columns: 64, rows: 64, ..MudParams::default() };
     let explicit = MudParams { columns: 16, rows: 16, solver: Solver::Explicit, ..MudParams::default() };
     let plate = GlassParams::default();
@@ -185,7 +190,7 @@ fn main() {
     let mut last = vec![Sample::default(); rows.len()];
     for round in 0..=ROUNDS {
         let (qs, ex) = (mud(&quasi_static), mud(&explicit));
-        let samples: Vec<Sample> = [&qs.0[..], &ex.0[..], &qs.1[..], &glass(&plate)[..], &skin(&fig19a)[..]].concat();
+        let samples: Vec<Sample> = [&qs.0[..], &qs.1[..], &ex.0[..], &glass(&plate)[..], &skin(&fig19a)[..]].concat();
         for (i, s) in samples.into_iter().enumerate() {
             if round > 0 && s.work > 0 {
                 ns_per_unit[i].push(s.time.as_secs_f64() * 1e9 / s.work as f64);
@@ -196,22 +201,23 @@ fn main() {
     let ns: Vec<f64> = ns_per_unit.into_iter().map(|v| if v.is_empty() { f64::NAN } else { median(v) }).collect();
     // The reference: the quasi-static solver's unit.
     let reference = ns[1];
-    println!("step({BUDGET}) to the end; median of {ROUNDS} rounds");
-    println!();
-    println!(
-        "| run | phase | units of work | calls | time | ns per unit | ÷ quasi-static solver's | ms per 10 000 units |"
+    let mut tables = format!(
+        "`step({BUDGET})` to the end, median of {ROUNDS} rounds:\n\n\
+         | run | phase | units of work | calls | ns per unit | ÷ quasi-static solver's | ms per {BUDGET} units |\n\
+         |---|---|---|---|---|---|---|\n"
     );
-    println!("|---|---|---|---|---|---|---|---|");
     for (i, (run, phase)) in rows.iter().enumerate() {
         let s = &last[i];
-        println!(
-            "| {run} | {phase} | {} | {} | {:.2} ms | {:.2} | {:.2} | {:.3} |",
+        let run = if i > 0 && rows[i - 1].0 == *run { "" } else { run };
+        let significant = |v: f64| if v < 10.0 { format!("{v:.2}") } else { format!("{v:.0}") };
+        tables.push_str(&format!(
+            "| {run} | {phase} | {} | {} | {} | {} | {:.3} |\n",
             s.work,
             s.calls,
-            ns[i] * s.work as f64 / 1e6,
-            ns[i],
-            ns[i] / reference,
-            ns[i] * 10_000.0 / 1e6
-        );
+            significant(ns[i]),
+            significant(ns[i] / reference),
+            ns[i] * BUDGET as f64 / 1e6
+        ));
     }
+    write_bench_tables("bench-units.md", "cargo bench --bench units", [load, load_average()], &tables);
 }
