@@ -75,10 +75,25 @@ struct Fan<'w> {
 const COUNTED: usize = 256;
 
 /// Counting a fan longer than this, eight pixels start past the wedges at or below all of
-/// them (found by a binary search) and stop at the first wedge past them all (the angles
-/// ascend). Eight pixels of a coarse cell's long fan mostly span a few of its wedges; a short
-/// fan, the finest cells' own, would not repay the search and the mispredicted branch.
+/// them, found by a binary search, and count on to the last wedge at or below the largest of
+/// them (the angles ascend); on a 64-bit build ([`WINDOWED`]) the search's steps depend on the
+/// fan's length alone, and [`WINDOW`] wedges are counted whatever their angles unless more lie
+/// below the largest. Eight pixels of a coarse cell's long fan mostly span a few of its
+/// wedges. A shorter fan (the finest cells' own and, in Table 1's presets, most of the next
+/// level's) is counted whole: no search, and no loop exit that depends on the pixels' angles,
+/// which a processor mispredicts. (A 32-bit part, whose branches cost a cycle or two, counts
+/// fewer fans whole.)
+#[cfg(target_pointer_width = "64")]
+const LONG_FAN: usize = 32;
+#[cfg(not(target_pointer_width = "64"))]
 const LONG_FAN: usize = 12;
+
+/// Whether a long fan's pixels count a window of wedges after a search without branches (see
+/// [`LONG_FAN`]); a 32-bit part takes fewer steps with branches.
+const WINDOWED: bool = cfg!(target_pointer_width = "64");
+
+/// Wedges of a long fan counted for eight pixels (see [`LONG_FAN`]).
+const WINDOW: usize = 4;
 
 /// Pixels whose wedges are looked up together: of one finest-level cell for its own level,
 /// of the cells that share their coarser cells for the coarser levels.
@@ -429,7 +444,11 @@ impl<S: Scalar> Batch<S> {
                     );
                     let first = low.iter().fold(f32::INFINITY, |m, &a| if a < m { a } else { m });
                     let nan = angles.iter().fold(false, |nan, a| nan | a.is_nan());
-                    let skip = if nan { 0 } else { wedges.partition_point(|w| w.angle <= first) };
+                    let skip = match (nan, WINDOWED) {
+                        (true, _) => 0,
+                        (false, true) => at_most(wedges, first),
+                        (false, false) => wedges.partition_point(|w| w.angle <= first),
+                    };
                     (
                         skip,
                         if nan {
@@ -441,6 +460,21 @@ impl<S: Scalar> Batch<S> {
                 } else {
                     (0, f32::INFINITY)
                 };
+                if long && WINDOWED {
+                    // WINDOW wedges from at most `skip` (a long fan has more), counted whatever
+                    // their angles, when none past them is at most the largest of the eight.
+                    let start = skip.min(wedges.len() - WINDOW);
+                    let beyond = wedges.get(start + WINDOW).map_or(f32::INFINITY, |w| w.angle);
+                    if beyond > last {
+                        let mut k = [start as u32; 8];
+                        for w in &wedges[start..][..WINDOW] {
+                            let t = w.angle;
+                            k = core::array::from_fn(|l| k[l] + u32::from(t <= angles[l]));
+                        }
+                        ks.copy_from_slice(&k);
+                        continue;
+                    }
+                }
                 let mut k = [skip as u32; 8];
                 for w in &wedges[skip..] {
                     let t = w.angle;
@@ -971,6 +1005,20 @@ fn pseudo_angles(x: [f32; 8], y: [f32; 8]) -> [f32; 8] {
         out[l] += base[l];
     }
     out
+}
+
+/// How many of `wedges` (at least one, their angles ascending) have an angle at most `a`: a
+/// binary search whose steps depend on the fan's length alone, not on `a` (each picks one of
+/// two indices, with no branch).
+#[inline(always)]
+fn at_most(wedges: &[Wedge], a: f32) -> usize {
+    let (mut base, mut size) = (0, wedges.len());
+    while size > 1 {
+        let half = size / 2;
+        base = if wedges[base + half].angle <= a { base + half } else { base };
+        size -= half;
+    }
+    base + usize::from(wedges[base].angle <= a)
 }
 
 /// Whether the angles of a fan's wedges ascend from the first to the last (the fan of a cell
