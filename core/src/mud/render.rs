@@ -286,7 +286,11 @@ impl<S: Scalar> Mud<'_, S> {
             let from_axis = depth * half_width;
             // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
             let fall = 1.0 - (from_axis - crack) / bevel;
-            let edge = if from_axis <= crack {
+            // (On 64-bit targets the fall's floor at 0 first: a maximum in the lanes.)
+            let edge = if cfg!(target_pointer_width = "64") {
+                let fall = if fall > 0.0 { fall } else { 0.0 };
+                if from_axis <= crack { 1.0 } else { fall }
+            } else if from_axis <= crack {
                 1.0
             } else if fall > 0.0 {
                 fall
@@ -313,9 +317,11 @@ impl<S: Scalar> Mud<'_, S> {
                 });
             } else {
                 self.strokes(render, clip, bevel, |frame, stroke| {
+                    // A pixel the stroke does not cover (coverage ≤ 0) is given a height of
+                    // at least 1 (the floor and the edge squared are not negative), which
+                    // lowers none: the heights start at 1.
                     for_each_run(frame, stroke, heights, fringe, move |cell, hit| {
-                        let h = height(hit.coverage, hit.depth, hit.half_width);
-                        cell.lower(if hit.coverage > 0.0 { h } else { f32::INFINITY });
+                        cell.lower(height(hit.coverage, hit.depth, hit.half_width));
                     });
                 });
             }

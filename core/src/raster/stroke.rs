@@ -71,7 +71,7 @@ pub struct StrokeHit {
 /// Calls `visit` for every pixel the stroke covers, row by row, once per copy of the stroke
 /// (a wrapped stroke near an edge is drawn at each periodic offset that reaches the raster).
 pub fn for_each_hit(frame: &Frame, stroke: &Stroke, mut visit: impl FnMut(StrokeHit)) {
-    for_each_copy(frame, stroke, |a, b, bounds| draw_capsule(frame.clip, a, b, bounds, stroke, &mut visit));
+    for_each_copy::<false>(frame, stroke, |a, b, bounds| draw_capsule(frame.clip, a, b, bounds, stroke, &mut visit));
 }
 
 /// [`for_each_run`] hands over a multiple of this many pixels at a time.
@@ -94,14 +94,21 @@ pub(crate) fn for_each_run<C>(
     fringe: bool,
     lane: impl Fn(&mut C, StrokeHit),
 ) {
-    for_each_copy(frame, stroke, |a, b, bounds| draw_runs(frame.clip, a, b, bounds, (stroke, fringe), cells, &lane));
+    for_each_copy::<true>(frame, stroke, |a, b, bounds| {
+        draw_runs(frame.clip, a, b, bounds, (stroke, fringe), cells, &lane)
+    });
 }
 
 /// Calls `draw(a, b, bounds)` for each copy of the stroke that reaches the clip: its ends in
 /// pixels and the pixels within the widest half width + 1 of them (first and last column,
-/// first and last row).
+/// first and last row). With `BOTH` on 64-bit targets, the two axes at once where only the
+/// stroke itself can reach the clip (the same copies).
 #[inline(always)]
-fn for_each_copy(frame: &Frame, stroke: &Stroke, mut draw: impl FnMut([f32; 2], [f32; 2], [[f32; 2]; 2])) {
+fn for_each_copy<const BOTH: bool>(
+    frame: &Frame,
+    stroke: &Stroke,
+    mut draw: impl FnMut([f32; 2], [f32; 2], [[f32; 2]; 2]),
+) {
     let reach = stroke.half_width[0].max(stroke.half_width[1]) + 1.0;
     let clip = frame.clip;
     // The clip's first and last column and row.
@@ -118,6 +125,17 @@ fn for_each_copy(frame: &Frame, stroke: &Stroke, mut draw: impl FnMut([f32; 2], 
         }
         return;
     };
+    // Both axes at once where only the stroke itself can reach the clip (most strokes): what
+    // the copies below find then.
+    if BOTH && cfg!(target_pointer_width = "64") {
+        let pixels = [[left as f32, right as f32], [top as f32, bottom as f32]];
+        if let Some(middle) = Extent::middle_only(stroke, period, frame.scale, reach, pixels) {
+            if let Some((a, b, bounds)) = middle {
+                draw(a, b, bounds);
+            }
+            return;
+        }
+    }
     // Each axis on its own: the copies' ends in pixels at the periodic offsets −1, 0 and +1
     // periods, and the pixels they reach.
     let axis = |k: usize, first: i64, last: i64| {
@@ -152,6 +170,38 @@ impl Extent {
         let lo = floor(a.min(b) - reach).max(first);
         let hi = floor(a.max(b) + reach).min(last);
         Extent { ends: [a, b], pixels: [lo, hi], reached: lo <= hi }
+    }
+
+    /// [`Extent::copies`] of both axes (`period`, `scale`, `pixels` each x then y) where on
+    /// neither a copy before or after the stroke can reach the clip: `Some` with the stroke's
+    /// ends and the pixels it reaches if it does on both axes, `None` if not; or `None` where
+    /// a copy before or after may reach the clip, or a pixel coordinate is 2²³ or more in
+    /// magnitude (or not finite).
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn middle_only(
+        stroke: &Stroke,
+        period: [f32; 2],
+        scale: [f32; 2],
+        reach: f32,
+        pixels: [[f32; 2]; 2],
+    ) -> Option<Option<([f32; 2], [f32; 2], [[f32; 2]; 2])>> {
+        // As [`Extent::copies`] works out the middle copy (`Extent::of` at 0 periods).
+        let at = |p: [f32; 2]| -> [f32; 2] { core::array::from_fn(|k| (p[k] + 0.0 * period[k]) * scale[k]) };
+        let (a, b) = (at(stroke.start), at(stroke.end));
+        for k in 0..2 {
+            let shift = period[k] * scale[k];
+            let slack = (a[k].abs() + b[k].abs() + shift.abs()) * (1.0 / 1_048_576.0) + 1.0;
+            let before = a[k].max(b[k]) - shift + reach + slack < pixels[k][0];
+            let after = a[k].min(b[k]) + shift - reach - slack > pixels[k][1];
+            if !(before && after) {
+                return None;
+            }
+        }
+        let ends = [a[0].min(b[0]) - reach, a[1].min(b[1]) - reach, a[0].max(b[0]) + reach, a[1].max(b[1]) + reach];
+        let [x0, y0, x1, y1] = floor4(ends)?;
+        let (x, y) = ([x0.max(pixels[0][0]), x1.min(pixels[0][1])], [y0.max(pixels[1][0]), y1.min(pixels[1][1])]);
+        Some((x[0] <= x[1] && y[0] <= y[1]).then_some((a, b, [x, y])))
     }
 
     /// [`Extent::of`] the copies a `period` before, at and after the stroke. The copies before
@@ -283,6 +333,11 @@ fn draw_runs<C>(
     let columns = clip.width as usize;
     let widest = stroke.half_width[0].max(stroke.half_width[1]);
     let span = Span::new(a, d, dd, widest, if fringe { FRINGE } else { 0.0 });
+    let span = match span {
+        Some(span) if dd > 0.0 => return span_rows(clip, a, d, dd, [[x0, x1], [y0, y1]], &span, stroke, cells, lane),
+        span => span,
+    };
+    // Pixel by pixel: a stroke without a span or without a length.
     let [top, bottom] = span.as_ref().map_or([y0 as i64, y1 as i64], |span| span.rows([y0, y1]));
     for y in top..=bottom {
         let row = (y - clip.y) as usize * columns;
@@ -299,18 +354,60 @@ fn draw_runs<C>(
         }
         let pixels = (last - first + 1) as usize;
         let start = row + (first - clip.x) as usize;
-        // (At most a clip's width: this does not overflow.)
-        let lanes = (pixels + (LANES - 1)) & !(LANES - 1);
-        if let (Some(cells), true) = (cells.get_mut(start..start + lanes), span.is_some() && dd > 0.0) {
-            // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
-            let at = [first as f32 + 0.5, a[0], py];
-            span_lanes(at, d, dd, stroke, pixels, cells, lane);
-        } else {
-            for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
-                let cx = (first + k as i64) as f32 + 0.5;
-                lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
+        for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
+            let cx = (first + k as i64) as f32 + 0.5;
+            lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
+        }
+    }
+}
+
+/// [`draw_runs`] of a stroke with a [`Span`] and a length (`dd` > 0), from `a` along `d`: the
+/// rows in blocks of [`LANES`], each block's columns worked out together, and each row's
+/// pixels by [`span_lanes`] (pixel by pixel where the cells end before its last lanes).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn span_rows<C>(
+    clip: Clip,
+    a: [f32; 2],
+    d: [f32; 2],
+    dd: f32,
+    [[x0, x1], [y0, y1]]: [[f32; 2]; 2],
+    span: &Span,
+    stroke: &Stroke,
+    cells: &mut [C],
+    lane: &impl Fn(&mut C, StrokeHit),
+) {
+    let columns = clip.width as usize;
+    let [top, bottom] = span.row_ends([y0, y1]);
+    let (mut y, bottom) = (top as i64, bottom as i64);
+    // Row centres, exact (a span's rows lie well within 2²³), and so is counting them up.
+    let mut cy: [f32; LANES] = core::array::from_fn(|j| top + (j as f32 + 0.5));
+    while y <= bottom {
+        let [from, to] = span.block_columns(cy, [x0, x1]);
+        for j in 0..LANES.min((bottom - y + 1) as usize) {
+            let (first, last) = (i64::from(from[j]), i64::from(to[j]));
+            if first > last {
+                continue;
+            }
+            let row = (y + j as i64 - clip.y) as usize * columns;
+            let py = cy[j] - a[1];
+            let pixels = (last - first + 1) as usize;
+            let start = row + (first - clip.x) as usize;
+            // (At most a clip's width: this does not overflow.)
+            let lanes = (pixels + (LANES - 1)) & !(LANES - 1);
+            if let Some(cells) = cells.get_mut(start..start + lanes) {
+                // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
+                let at = [first as f32 + 0.5, a[0], py];
+                span_lanes(at, d, dd, stroke, pixels, cells, lane);
+            } else {
+                for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
+                    let cx = (first + k as i64) as f32 + 0.5;
+                    lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
+                }
             }
         }
+        y += LANES as i64;
+        cy = cy.map(|c| c + LANES as f32);
     }
 }
 
@@ -422,11 +519,51 @@ impl Span {
     /// rows whose centre lies within the radius of the axis's top and bottom (first > last when
     /// none does).
     #[inline(always)]
-    fn rows(&self, [y0, y1]: [f32; 2]) -> [i64; 2] {
+    fn rows(&self, bounds: [f32; 2]) -> [i64; 2] {
+        self.row_ends(bounds).map(|y| y as i64)
+    }
+
+    /// [`Span::rows`], as whole numbers in `f32`.
+    #[inline(always)]
+    fn row_ends(&self, [y0, y1]: [f32; 2]) -> [f32; 2] {
         let (top, bottom) = (lower(0.0, self.d[1]), higher(0.0, self.d[1]));
-        let first = floor(self.a[1] + top - self.radius - 0.5).max(y0);
-        let last = floor(self.a[1] + bottom + self.radius - 0.5).min(y1);
-        [first as i64, last as i64]
+        let ends = [self.a[1] + top - self.radius - 0.5, self.a[1] + bottom + self.radius - 0.5];
+        // (Both at once on 64-bit targets.)
+        let both = if cfg!(target_pointer_width = "64") { floor4([ends[0], ends[1], 0.0, 0.0]) } else { None };
+        let [first, last] = both.map_or_else(|| ends.map(floor), |[first, last, _, _]| [first, last]);
+        [first.max(y0), last.min(y1)]
+    }
+
+    /// [`Span::columns`] of the rows whose centres are at `cy`, at once (without a branch, which
+    /// LLVM vectorises), limited to the columns `x0` to `x1` (each a whole number of at most
+    /// 2²³ in magnitude): each row's first and last column (first > last when none is).
+    #[inline(always)]
+    fn block_columns(&self, cy: [f32; LANES], [x0, x1]: [f32; 2]) -> [[i32; LANES]; 2] {
+        let (mut first, mut last) = ([0.0f32; LANES], [0.0f32; LANES]);
+        for ((&cy, first), last) in cy.iter().zip(&mut first).zip(&mut last) {
+            let v = cy - self.a[1];
+            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            // A disc the row misses moves neither end (x ∓ −∞ = ±∞).
+            for (x, y) in [(0.0, v), (self.d[0], v - self.d[1])] {
+                let w2 = self.rr - y * y;
+                let w = if w2 > 0.0 { crate::scalar::sqrtf(w2) } else { f32::NEG_INFINITY };
+                (lo, hi) = (lower(lo, x - w), higher(hi, x + w));
+            }
+            // Nor does an edge the row misses (NaN compares false).
+            for side in [1.0f32, -1.0] {
+                let t = (v - side * self.edge[1]) * self.per_row;
+                let x = side * self.edge[0] + t * self.d[0];
+                let x = if (0.0..=1.0).contains(&t) { x } else { f32::NAN };
+                (lo, hi) = (lower(lo, x), higher(hi, x));
+            }
+            // As `columns` has them, each end limited to the columns first (truncation and the
+            // limits each move an end the same way, in either order).
+            let from = self.a[0] + lo - 0.5;
+            let to = self.a[0] + hi - 0.5;
+            *first = lower(higher(from, x0), x1 + 1.0);
+            *last = higher(lower(to, x1), x0 - 1.0);
+        }
+        [truncate(first), truncate(last)]
     }
 
     /// The first and last column whose pixel centre may lie in the capsule on the row whose
@@ -480,6 +617,34 @@ fn higher(a: f32, b: f32) -> f32 {
     } else {
         a
     }
+}
+
+/// Each of `x` truncated towards zero, for whole-number parts below 2³¹ in magnitude (what
+/// `as i32` gives them): SSE2's `cvttps2dq` on x86-64, four in one instruction.
+#[inline(always)]
+fn truncate(x: [f32; LANES]) -> [i32; LANES] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        safe_arch::truncate_m128_to_m128i(safe_arch::m128::from_array(x)).into()
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        x.map(|x| x as i32)
+    }
+}
+
+/// [`floor`] of each of `x`, four at once, or `None` if one is 2²³ or more in magnitude (or not
+/// a number).
+#[inline(always)]
+fn floor4(x: [f32; LANES]) -> Option<[f32; LANES]> {
+    if !x.iter().fold(true, |small, x| small & (x.abs() < 8_388_608.0)) {
+        return None;
+    }
+    let t = truncate(x);
+    Some(core::array::from_fn(|k| {
+        let t = t[k] as f32;
+        if t > x[k] { t - 1.0 } else { t }
+    }))
 }
 
 /// `libm::floorf(x)` but for the sign of a zero (−0 may come out +0; each caller turns the
