@@ -598,7 +598,6 @@ impl Glass<'_> {
                 if owner == crack || edge.time[0] >= now {
                     return;
                 }
-                let [lx, ly, hx, hy] = span_of(a, z);
                 // Beyond a side of the wedge (the test `nearest_in_sector` starts with), or run
                 // alongside or away from: it does not pull. The wedge's test first, as it is the
                 // cheaper one and passes over most of the pieces beside the tip (its neighbours
@@ -609,6 +608,7 @@ impl Glass<'_> {
                 {
                     return;
                 }
+                let [lx, ly, hx, hy] = span_of(a, z);
                 // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
                 // than B from the tip (it has no point in S), or farther than its crack's nearest
                 // point found so far (it would not replace it). The box's distance is a lower
