@@ -382,29 +382,30 @@ fn span_rows<C>(
     let (mut y, bottom) = (top as i64, bottom as i64);
     // Row centres, exact (a span's rows lie well within 2²³), and so is counting them up.
     let mut cy: [f32; LANES] = core::array::from_fn(|j| top + (j as f32 + 0.5));
+    let mut row = (y - clip.y) as usize * columns;
     while y <= bottom {
+        // Each row's columns, pixels and coordinates.
         let [from, to] = span.block_columns(cy, [x0, x1]);
+        let count: [i32; LANES] = core::array::from_fn(|j| to[j] - from[j] + 1);
+        let (cx, py) = (from.map(|x| x as f32 + 0.5), cy.map(|c| c - a[1]));
+        let pd1 = py.map(|p| p * d[1]);
         for j in 0..LANES.min((bottom - y + 1) as usize) {
-            let (first, last) = (i64::from(from[j]), i64::from(to[j]));
-            if first > last {
-                continue;
-            }
-            let row = (y + j as i64 - clip.y) as usize * columns;
-            let py = cy[j] - a[1];
-            let pixels = (last - first + 1) as usize;
-            let start = row + (first - clip.x) as usize;
-            // (At most a clip's width: this does not overflow.)
-            let lanes = (pixels + (LANES - 1)) & !(LANES - 1);
-            if let Some(cells) = cells.get_mut(start..start + lanes) {
-                // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
-                let at = [first as f32 + 0.5, a[0], py];
-                span_lanes(at, d, dd, stroke, pixels, cells, lane);
-            } else {
-                for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
-                    let cx = (first + k as i64) as f32 + 0.5;
-                    lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
+            let (first, pixels) = (i64::from(from[j]), count[j]);
+            if pixels > 0 {
+                let start = row + (first - clip.x) as usize;
+                // (At most a clip's width: this does not overflow.)
+                let lanes = (pixels as usize + (LANES - 1)) & !(LANES - 1);
+                if let Some(cells) = cells.get_mut(start..start + lanes) {
+                    // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
+                    span_lanes([cx[j], a[0], py[j], pd1[j]], d, dd, stroke, pixels, cells, lane);
+                } else {
+                    for (k, cell) in cells.iter_mut().skip(start).take(pixels as usize).enumerate() {
+                        let cx = (first + k as i64) as f32 + 0.5;
+                        lane(cell, near([cx - a[0], py[j]], d, dd, stroke).hit(0, stroke));
+                    }
                 }
             }
+            row += columns;
         }
         y += LANES as i64;
         cy = cy.map(|c| c + LANES as f32);
@@ -413,7 +414,7 @@ fn span_rows<C>(
 
 /// [`near`] and [`Near::hit`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
 /// a stroke with a [`Span`] and a length (`dd` > 0), which lies at column `ax` (`at` = [cx,
-/// ax, py]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
+/// ax, py, py · d₁]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
 /// a multiple of [`LANES`], at least `pixels`) with coverage 0. Within a span every coordinate
 /// is finite, and so is the position `t` along the axis, so that comparisons give what `clamp`
 /// and `min` do. Loops over the pixels without a branch, which LLVM
@@ -421,20 +422,17 @@ fn span_rows<C>(
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn span_lanes<C>(
-    [cx, ax, py]: [f32; 3],
+    [cx, ax, py, pd1]: [f32; 4],
     d: [f32; 2],
     dd: f32,
     stroke: &Stroke,
-    pixels: usize,
+    pixels: i32,
     cells: &mut [C],
     lane: &impl Fn(&mut C, StrokeHit),
 ) {
     let lanes = cells.len() & !(LANES - 1);
-    let pd1 = py * d[1];
     let [w0, w1] = stroke.half_width;
     let [v0, v1] = stroke.value;
-    // (A span is at most a few thousand pixels wide.)
-    let pixels = pixels.min(i32::MAX as usize) as i32;
     for (cell, i) in cells[..lanes].iter_mut().zip(0i32..) {
         let p0 = (cx + i as f32) - ax;
         let s = (p0 * d[0] + pd1) / dd;
