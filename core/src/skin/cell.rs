@@ -74,6 +74,9 @@ pub(super) struct CrossingScratch {
 /// Most parent edges listed near one bisector edge (beyond, its tests look at all of them).
 const LISTED: usize = 64;
 
+// (The edges of a list that meet a box are marked a bit each.)
+const _: () = assert!(LISTED <= 64);
+
 impl CrossingScratch {
     pub(super) fn new() -> CrossingScratch {
         CrossingScratch { pieces: [Corner::default(); MAX_CROSSINGS + 2], listed: [0; LISTED] }
@@ -120,14 +123,21 @@ pub(super) struct Parent<'p> {
 impl Parent<'_> {
     /// Calls `visit` with each edge whose box meets [low, high] (widened by `slack`), in the
     /// outline's order, until it returns true.
-    fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, mut visit: impl FnMut(usize) -> bool) {
+    fn edges_near(&self, (low, high): ([i64; 2], [i64; 2]), slack: i64, visit: impl FnMut(usize) -> bool) {
         let Some(grid) = self.grid else {
             return edges_near(self.outline, self.chunks, (low, high), slack, visit);
         };
         let outline = self.outline;
         let m = outline.len();
         let wide = ([low[0] - slack, low[1] - slack], [high[0] + slack, high[1] + slack]);
-        each_edge(grid.near(wide), |e| !apart(outline[e], outline[next(e, m)], wide) && visit(e));
+        // The edges whose boxes meet, marked without branches (which do follows the outline's
+        // shape, no pattern a processor could learn), then visited.
+        let mut meet = 0;
+        each_edge(grid.near(wide), |e| {
+            meet |= u64::from(!apart(outline[e], outline[next(e, m)], wide)) << e;
+            false
+        });
+        each_edge(meet, visit);
     }
 
     /// Whether the outline contains `p` (even–odd rule, fixed point).
@@ -257,15 +267,13 @@ impl<'p> Nearby<'p> {
         match self.listed {
             Some(listed) if r[0] <= x0 && r[1] <= y0 && x1 <= r[2] && y1 <= r[3] => {
                 let m = outline.len();
-                for &e in listed {
-                    let e = e as usize;
-                    if apart(outline[e], outline[next(e, m)], wide) {
-                        continue;
-                    }
-                    if visit(e) {
-                        return;
-                    }
+                // Those whose boxes meet, marked without branches (a bit per place in the
+                // list, which holds at most 64), then visited.
+                let mut meet = 0u64;
+                for (i, &e) in listed.iter().enumerate() {
+                    meet |= u64::from(!apart(outline[e as usize], outline[next(e as usize, m)], wide)) << i;
                 }
+                each_edge(meet, |i| visit(listed[i] as usize));
             }
             _ => self.parent.edges_near((low, high), slack, visit),
         }
@@ -316,27 +324,22 @@ impl Builder<'_> {
             None if m > FEW => return Err(OutlineFull),
             _ => None,
         };
-        // A few: sorted once (by distance, ties by place: a stable insertion sort of those at a
-        // finite distance), handed out in that order.
-        let (mut keys, mut order, mut sorted) = ([0.0f64; FEW], [0u8; FEW], 0);
-        if walk.is_none() {
-            for (i, s) in neighbours.iter().enumerate() {
-                let key = distance(s);
-                // (NaN and infinity are never handed out.)
-                if key.is_nan() || key == f64::INFINITY {
-                    continue;
-                }
-                // (The sorted ones and the place after them, whose bounds hold every step.)
-                let (keys, order) = (&mut keys[..=sorted], &mut order[..=sorted]);
-                let mut at = sorted;
-                while at > 0 && keys[at - 1] > key {
-                    (keys[at], order[at]) = (keys[at - 1], order[at - 1]);
-                    at -= 1;
-                }
-                // (At most FEW: fewer than 256.)
-                (keys[at], order[at]) = (key, i as u8);
-                sorted += 1;
+        // A handful (nearly always a parent's children): the nearest of those left picked at
+        // each turn, without branches (ties by place: the first of equal keys). Their keys are
+        // the distances' bits, which order as the distances do (none is negative; NaN and
+        // infinity are never handed out: they are left out as the largest key).
+        let mut handful = [FAR; SHORT];
+        let few = walk.is_none() && m <= SHORT;
+        if few {
+            for (key, s) in handful.iter_mut().zip(neighbours) {
+                let d = distance(s);
+                *key = if d.is_nan() || d == f64::INFINITY { FAR } else { d.to_bits() };
             }
+        }
+        // More: sorted once (by distance, ties by place), handed out in that order.
+        let (mut order, mut sorted) = ([0u8; FEW], 0);
+        if walk.is_none() && !few {
+            sorted = sort_few(neighbours, distance, &mut order);
         }
         let mut handed = 0;
         // (Unbounded until the first clip: the nearest neighbours clip the parent.)
@@ -349,6 +352,18 @@ impl Builder<'_> {
                     Some(j) => j,
                     None => break,
                 },
+                None if few => {
+                    let (mut nearest, mut at) = (FAR, SHORT);
+                    for (i, &key) in handful[..m].iter().enumerate() {
+                        let nearer = key < nearest;
+                        nearest = core::hint::select_unpredictable(nearer, key, nearest);
+                        at = core::hint::select_unpredictable(nearer, i, at);
+                    }
+                    // (Every one handed out.)
+                    let Some(key) = handful.get_mut(at) else { break };
+                    *key = FAR;
+                    at
+                }
                 None => {
                     // (Every one handed out.)
                     if handed == sorted {
@@ -444,7 +459,15 @@ impl Builder<'_> {
         // The points of one perturbed piece of a bisector edge (its start, inner points and
         // end: 2^depth + 1), on the stack: one outline's edges are built one after another, at
         // any level, and the points are written out before the next piece is perturbed.
-        let points = &mut [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
+        // (A shallow subdivision's few points in an array of their own, cheaper to set up.)
+        let (mut shallow, mut deep);
+        let points: &mut [[i64; 2]] = if f.depth <= SHALLOW_DEPTH {
+            shallow = [[0i64; 2]; (1 << SHALLOW_DEPTH) + 1];
+            &mut shallow
+        } else {
+            deep = [[0i64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
+            &mut deep
+        };
         let mut written = 0;
         // (The last point written, which a repeat of it is not written after.)
         let mut last = None;
@@ -538,6 +561,41 @@ impl Builder<'_> {
     }
 }
 
+/// Neighbour lists up to this long are handed out nearest first by picking the nearest left
+/// at each turn; longer ones (up to [`FEW`]) are sorted ([`sort_few`]).
+const SHORT: usize = 16;
+
+/// The key of a neighbour never handed out (at an infinite or NaN distance, or handed out
+/// already): infinity's bits, above every finite distance's.
+const FAR: u64 = 0x7FF0_0000_0000_0000;
+
+/// Writes into `order` the places of `neighbours` (at most [`FEW`]) at a finite distance, by
+/// distance, ties by place (a stable insertion sort); returns how many.
+fn sort_few(neighbours: &[Site], distance: impl Fn(&Site) -> f64, order: &mut [u8; FEW]) -> usize {
+    let mut keys = [0.0f64; FEW];
+    let mut sorted = 0;
+    for (i, s) in neighbours.iter().enumerate() {
+        let key = distance(s);
+        // (NaN and infinity are never handed out.)
+        if key.is_nan() || key == f64::INFINITY {
+            continue;
+        }
+        // (The sorted ones and the place after them, whose bounds hold every step.)
+        let (keys, order) = (&mut keys[..=sorted], &mut order[..=sorted]);
+        let mut at = sorted;
+        while at > 0 && keys[at - 1] > key {
+            (keys[at], order[at]) = (keys[at - 1], order[at - 1]);
+            at -= 1;
+        }
+        // (At most FEW: fewer than 256.)
+        (keys[at], order[at]) = (key, i as u8);
+        sorted += 1;
+    }
+    sorted
+}
+
+const _: () = assert!(SHORT <= FEW);
+
 /// The key both cells give the bisector edge of `a` and `b` from `start` to `end` (as `a`
 /// runs it); whether `a` runs it in the key's direction; and the fixed-point offset of the
 /// lower site's image, which kept points are relative to. (In two's complement: a period
@@ -559,6 +617,11 @@ pub(super) const FEW: usize = 96;
 
 // (A few are sorted by their places in bytes.)
 const _: () = assert!(FEW <= 256);
+
+/// Subdivision depths up to this one (the finer levels', where nearly all edges are) have
+/// their points in arrays of their own length, which are cheaper to set up than the
+/// deepest's.
+const SHALLOW_DEPTH: u32 = 2;
 
 /// Most parent-outline crossings one bisector edge is split at.
 const MAX_CROSSINGS: usize = 16;

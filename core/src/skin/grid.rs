@@ -11,22 +11,26 @@ const BINS: usize = 8;
 /// through their chunk boxes.
 const GRID_EDGES: usize = 64;
 
-/// The bins of one outline of at most [`GRID_EDGES`] edges.
+/// The bins of one outline of at most [`GRID_EDGES`] edges. An edge's box covers a range of
+/// bins along each axis, and meets a box of bins exactly when its ranges meet the box's on
+/// both axes: so per axis and bin, the edges whose range starts at or before it and those
+/// whose range ends at or after it answer every question in a few words, without a loop
+/// over bins.
 #[derive(Clone, Copy)]
 pub(super) struct EdgeGrid {
     /// The outline's lowest corner, and per axis the power of two a bin spans.
     origin: [i64; 2],
     shift: [u32; 2],
-    /// Per bin (row by row), the edges whose boxes meet it (bit k for edge k, from vertex k
-    /// to vertex k + 1).
-    bins: [u64; BINS * BINS],
-    /// Per bin, the edges whose boxes meet it or a bin to its right in the same row.
-    rightward: [u64; BINS * BINS],
+    /// Per axis and bin, the edges whose range starts at or before it (bit k for edge k,
+    /// from vertex k to vertex k + 1).
+    up_to: [[u64; BINS]; 2],
+    /// Per axis and bin, the edges whose range ends at or after it.
+    from: [[u64; BINS]; 2],
 }
 
 impl EdgeGrid {
     pub(super) const fn new() -> EdgeGrid {
-        EdgeGrid { origin: [0; 2], shift: [0; 2], bins: [0; BINS * BINS], rightward: [0; BINS * BINS] }
+        EdgeGrid { origin: [0; 2], shift: [0; 2], up_to: [[0; BINS]; 2], from: [[0; BINS]; 2] }
     }
 
     /// Bins the edges of `outline`, whose bounding box is [low, high], if it has at most
@@ -42,7 +46,9 @@ impl EdgeGrid {
             let span = high[k].saturating_sub(low[k]) as u64;
             (u64::BITS - span.leading_zeros()).saturating_sub(BINS.trailing_zeros())
         });
-        self.bins = [0; BINS * BINS];
+        // Each edge marked at the bin its range starts at and the bin it ends at, per axis,
+        // then spread: forwards from a start, backwards from an end.
+        let (mut starts, mut ends) = ([[0u64; BINS]; 2], [[0u64; BINS]; 2]);
         // Each vertex's bins, found once for both its edges: a bin never decreases as its
         // coordinate grows, so an edge's lowest and highest bins are its ends' lower and higher.
         let (origin, shift) = (self.origin, self.shift);
@@ -53,20 +59,19 @@ impl EdgeGrid {
             // vertex to the first, is edge n − 1.)
             let (bin_b, edge) = (bins(b), if k == 0 { outline.len() - 1 } else { k - 1 });
             let bit = 1u64 << edge;
-            let (x0, x1) = (a[0].min(bin_b[0]), a[0].max(bin_b[0]));
-            let (y0, y1) = (a[1].min(bin_b[1]), a[1].max(bin_b[1]));
-            a = bin_b;
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    self.bins[y * BINS + x] |= bit;
-                }
+            for axis in 0..2 {
+                starts[axis][a[axis].min(bin_b[axis])] |= bit;
+                ends[axis][a[axis].max(bin_b[axis])] |= bit;
             }
+            a = bin_b;
         }
-        for (row, bins) in self.rightward.chunks_exact_mut(BINS).zip(self.bins.chunks_exact(BINS)) {
-            let mut right = 0;
-            for (r, &b) in row.iter_mut().zip(bins).rev() {
-                right |= b;
-                *r = right;
+        for axis in 0..2 {
+            let (mut started, mut ended) = (0, 0);
+            for b in 0..BINS {
+                started |= starts[axis][b];
+                self.up_to[axis][b] = started;
+                ended |= ends[axis][BINS - 1 - b];
+                self.from[axis][BINS - 1 - b] = ended;
             }
         }
     }
@@ -85,25 +90,21 @@ impl EdgeGrid {
         bin(self.origin[axis], self.shift[axis], v)
     }
 
-    /// The edges whose boxes may meet the box [low, high] (a superset of those that do).
+    /// The edges whose boxes may meet the box [low, high] (a superset of those that do): those
+    /// whose bins meet its bins on both axes.
     #[inline]
     pub(super) fn near(&self, (low, high): ([i64; 2], [i64; 2])) -> u64 {
-        let (x0, x1) = (self.bin(0, low[0]), self.bin(0, high[0]));
-        let (y0, y1) = (self.bin(1, low[1]), self.bin(1, high[1]));
-        let mut edges = 0;
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                edges |= self.bins[y * BINS + x];
-            }
-        }
-        edges
+        let on =
+            |axis: usize| self.from[axis][self.bin(axis, low[axis])] & self.up_to[axis][self.bin(axis, high[axis])];
+        on(0) & on(1)
     }
 
     /// The edges whose boxes may meet the ray from `p` towards +x (a superset of those that
-    /// do).
+    /// do): those whose bins take in `p`'s row and reach its bin or beyond.
     #[inline]
     pub(super) fn across(&self, p: [i64; 2]) -> u64 {
-        self.rightward[self.bin(1, p[1]) * BINS + self.bin(0, p[0])]
+        let row = self.bin(1, p[1]);
+        self.from[0][self.bin(0, p[0])] & self.from[1][row] & self.up_to[1][row]
     }
 }
 

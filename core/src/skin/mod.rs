@@ -888,7 +888,7 @@ impl Build<'_> {
         neighbours: (usize, usize),
         (parent, parent_index): (ParentOutline, u32),
     ) -> Result<Option<usize>, Full> {
-        let f = self.frames[level];
+        let f = &self.frames[level];
         let (head, tail) = self.vertices.split_at_mut(self.vertex_count);
         let mut box_chunks = [[0i64; 4]; 1];
         let (grid, crossing, buckets) = match level.checked_sub(1) {
@@ -913,14 +913,14 @@ impl Build<'_> {
                 let count = cell::chunk_boxes(b, &mut box_chunks);
                 let frame = &mut self.parent_frames[self.layout.frames_at(level)..][..b.len()];
                 for (k, v) in frame.iter_mut().enumerate() {
-                    *v = cell::parent_vertex(&f, b, k);
+                    *v = cell::parent_vertex(f, b, k);
                 }
                 Parent { outline: b, chunks: &box_chunks[..count], grid: None, frame }
             }
         };
         let n = self
             .builder
-            .outline(&f, &site, (&self.sites[neighbours.0..neighbours.0 + neighbours.1], buckets), outline, {
+            .outline(f, &site, (&self.sites[neighbours.0..neighbours.0 + neighbours.1], buckets), outline, {
                 let room = tail.len().min(self.layout.outline[level]);
                 (&mut tail[..room], cell::EdgeWork { shared, crossing, own })
             })

@@ -42,18 +42,17 @@ fn crosses(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
 /// between the ends' x, inclusive). Only an edge `p`'s row meets within its x range is
 /// worked out exactly. (For point-in-outline tests, where most edges near the ray miss its
 /// row; the scan, whose edges all straddle, keeps [`crosses`].)
+/// The three cases are told apart without branches (which one an edge falls in follows the
+/// outline's shape); only the rare exact case branches.
 #[inline(always)]
 fn crosses_quick(a: [i64; 2], b: [i64; 2], p: [i64; 2]) -> bool {
-    if (a[1] > p[1]) == (b[1] > p[1]) {
-        return false;
+    let straddles = (a[1] > p[1]) != (b[1] > p[1]);
+    let left = p[0] < a[0].min(b[0]);
+    let between = !left & (p[0] < a[0].max(b[0]));
+    if straddles & between {
+        return crosses(a, b, p);
     }
-    if p[0] < a[0].min(b[0]) {
-        return true;
-    }
-    if p[0] >= a[0].max(b[0]) {
-        return false;
-    }
-    crosses(a, b, p)
+    straddles & left
 }
 
 /// Whether `outline` contains `p` (even–odd rule, fixed point).

@@ -4,6 +4,8 @@
 
 use super::super::params::MAX_PERTURBATION_DEPTH;
 use super::super::sites::Site;
+#[cfg(target_pointer_width = "64")]
+use super::SHALLOW_DEPTH;
 use super::frame::{Corner, Frame, bisector_meets_edge, sorted2};
 use super::{MAX_CROSSINGS, Nearby, next};
 use crate::rng::{Rng, Stream};
@@ -30,29 +32,31 @@ pub(super) fn crossings(
     let parent = nearby.parent.outline;
     let m = parent.len();
     let mut found = 0;
-    let mut along = [0i128; MAX_CROSSINGS + 2];
+    // Position along start → end, which the crossings are ordered by.
+    let along = |c: &Corner| {
+        i128::from(c.fixed[0] - x[0]) * i128::from(y[0] - x[0])
+            + i128::from(c.fixed[1] - x[1]) * i128::from(y[1] - x[1])
+    };
     nearby.edges_near((low, high), 0, |e| {
         let (p, q) = (parent[e], parent[next(e, m)]);
-        // (The ends against the parent edge first: an end on it, where the edge starts or
-        // ends on the parent's outline, settles it.)
-        let straddles = |s1: i128, s2: i128| (s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0);
+        // (Proper crossings only: an end on the parent edge, where the edge starts or ends on
+        // the parent's outline, is none. All four sides worked out, without branches: which
+        // edges straddle follows the outline's shape, no pattern a processor could learn.)
+        let straddles = |s1: i128, s2: i128| ((s1 > 0) & (s2 < 0)) | ((s1 < 0) & (s2 > 0));
         let proper = straddles(orient_fixed(p, q, x), orient_fixed(p, q, y))
-            && straddles(orient_fixed(x, y, p), orient_fixed(x, y, q));
+            & straddles(orient_fixed(x, y, p), orient_fixed(x, y, q));
         if !proper || found == MAX_CROSSINGS {
             return false;
         }
         let c = bisector_meets_edge(f, a, b, p, q);
-        // Order by position along start → end.
-        let t = i128::from(c.fixed[0] - x[0]) * i128::from(y[0] - x[0])
-            + i128::from(c.fixed[1] - x[1]) * i128::from(y[1] - x[1]);
+        // (Inserted in order: crossings are rare, and their positions recomputed as compared.)
+        let t = along(&c);
         let mut i = found + 1;
-        while i > 1 && along[i - 1] > t {
+        while i > 1 && along(&out[i - 1]) > t {
             out[i] = out[i - 1];
-            along[i] = along[i - 1];
             i -= 1;
         }
         out[i] = c;
-        along[i] = t;
         found += 1;
         false
     });
@@ -67,14 +71,15 @@ pub(super) fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 /// Whether `p` lies in the triangle (a, b, c), boundary included.
 pub(super) fn in_triangle(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
     let (x, y, z) = (orient(a, b, p), orient(b, c, p), orient(c, a, p));
-    (x >= 0.0 && y >= 0.0 && z >= 0.0) || (x <= 0.0 && y <= 0.0 && z <= 0.0)
+    // (Without branches: the signs follow the perturbation's draws.)
+    ((x >= 0.0) & (y >= 0.0) & (z >= 0.0)) | ((x <= 0.0) & (y <= 0.0) & (z <= 0.0))
 }
 
 /// Whether the open segments p–q and r–s cross.
 pub(super) fn cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
     let (d1, d2) = (orient(p, q, r), orient(p, q, s));
     let (d3, d4) = (orient(r, s, p), orient(r, s, q));
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
+    (d1 * d2 < 0.0) & (d3 * d4 < 0.0)
 }
 
 /// The inner points of the edge between `a`'s and `b`'s cells from corner `start` to `end`
@@ -85,6 +90,25 @@ pub(super) fn cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool 
 /// the edge's own stream in the direction the lower id runs it, and judged on data both
 /// cells share, so both cells get the same points.
 pub(super) fn perturb(
+    f: &Frame,
+    a: &Site,
+    b: &Site,
+    ends: (&Corner, &Corner),
+    nearby: &Nearby,
+    points: &mut [[i64; 2]],
+) -> usize {
+    // The finer levels' shallow subdivisions (depth 2 and less, where nearly all edges are)
+    // get a line of their own length, which is cheaper to set up than the deepest one's.
+    #[cfg(target_pointer_width = "64")]
+    if f.depth <= SHALLOW_DEPTH {
+        return perturb_in::<{ (1 << SHALLOW_DEPTH) + 1 }>(f, a, b, ends, nearby, points);
+    }
+    perturb_in::<{ (1 << MAX_PERTURBATION_DEPTH) + 1 }>(f, a, b, ends, nearby, points)
+}
+
+/// [`perturb`] with a line of `N` points (at least 2^depth + 1).
+#[inline(always)]
+fn perturb_in<const N: usize>(
     f: &Frame,
     a: &Site,
     b: &Site,
@@ -108,7 +132,7 @@ pub(super) fn perturb(
     let (p0, p1) = (place(from), place(to));
     let length = crate::scalar::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]));
     let pieces = 1usize << f.depth;
-    let mut line = [[0.0f64; 2]; (1 << MAX_PERTURBATION_DEPTH) + 1];
+    let mut line = [[0.0f64; 2]; N];
     line[0] = p0;
     line[pieces] = p1;
     if length > 0.0 {
