@@ -3,13 +3,16 @@
 //! bands, one per thread, and the PNG is encoded on one) and the default gallery (one figure per
 //! thread). Each command runs with `--threads 1` and `--threads 2`, alternately, three times;
 //! the table gives the fastest of each and their ratio, and checks that both wrote the same
-//! bytes.
+//! bytes. The table goes to `docs/src/generated/bench-threads.md`, which the performance page
+//! includes.
 //!
 //! `cargo bench --bench threads`
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
+
+use hibi_tests::{load_average, write_bench_tables};
 
 /// Runs `hibi args… --threads N` and returns how long it took.
 fn timed(hibi: &Path, args: &[String], threads: usize) -> Duration {
@@ -40,10 +43,9 @@ fn main() {
     let hibi = hibi_tests::cli_dir().join("hibi");
     let dir = std::env::temp_dir().join(format!("hibi-bench-threads-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch directory");
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    println!("hibi on 1 and 2 threads ({cores} cores available), fastest of 3 runs each, one run of this bench\n");
-    println!("| command | 1 thread | 2 threads | speed-up |");
-    println!("|---|---|---|---|");
+    let load = load_average();
+    println!("hibi on 1 and 2 threads, fastest of 3 runs each");
+    let mut tables = String::from("| command | 1 thread | 2 threads | speed-up |\n|---|---|---|---|\n");
     let cases: [(&str, &[&str]); 5] = [
         ("hibi mud --size 2048 (shaded)", &["mud", "--size", "2048"]),
         ("hibi mud --size 2048 --layer height", &["mud", "--size", "2048", "--layer", "height"]),
@@ -69,7 +71,10 @@ fn main() {
         }
         assert!(contents(&output(1).0) == contents(&output(2).0), "{name}: the pictures differ");
         let ratio = one.as_secs_f64() / two.as_secs_f64();
-        println!("| `{name}` | {:.2} s | {:.2} s | {ratio:.2}× |", one.as_secs_f64(), two.as_secs_f64());
+        let row = format!("| `{name}` | {:.2} s | {:.2} s | {ratio:.2}× |\n", one.as_secs_f64(), two.as_secs_f64());
+        print!("{row}");
+        tables.push_str(&row);
     }
+    write_bench_tables("bench-threads.md", "cargo bench --bench threads", [load, load_average()], &tables);
     std::fs::remove_dir_all(&dir).expect("remove the scratch directory");
 }
