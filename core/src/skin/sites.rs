@@ -85,6 +85,9 @@ impl Lattice {
 
     /// The site at lattice index (i, j), which may lie outside the surface (a periodic image,
     /// or beyond the edge of a non-periodic surface).
+    // (Inlined on 64-bit targets: a division's test of each site in its box then reads the
+    // position where it was worked out, and the whole site is stored only when kept.)
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
     pub(super) fn site(&self, i: i64, j: i64) -> Site {
         let (wi, wj, image) = if self.periodic {
             let (wi, wj) = (i.rem_euclid(self.count[0]), j.rem_euclid(self.count[1]));
