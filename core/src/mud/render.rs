@@ -338,28 +338,30 @@ impl<S: Scalar> Mud<'_, S> {
     /// [`Mud::for_each_network_piece`] gives, 0 if none: each cut side's point has its
     /// spring's separation, and a cell's centroid (where 1 or at least 3 sides are cut) the
     /// mean of its cut sides' (0 at a dead end). Found from the widths alone, without the
-    /// points' positions.
+    /// points' positions: the half width of the widest end, the half width never falling as
+    /// the width rises (what the widest of the ends' half widths is, bit for bit).
     fn widest(&self, render: &MudRender, pixels_per_unit: f32) -> f32 {
-        let mut widest = 0.0f32;
         if !self.shows_network() {
-            return widest;
+            return 0.0;
         }
+        let (mut widest, mut any) = (0.0f32, false);
         let mut widths = super::network::Widths::new();
         self.for_each_touched_cell(|cell| {
             let Some((c, cut)) = self.cut_sides(cell) else { return };
+            any = true;
             let (mut sum, mut n) = (0.0f32, 0);
             for k in (0..c.corners).filter(|&k| cut[k]) {
                 let width = widths.separation(self, c.sides[k] as usize);
-                widest = widest.max(Self::half_width(render, pixels_per_unit, width));
+                widest = if width > widest { width } else { widest };
                 sum += width;
                 n += 1;
             }
-            if n != 2 {
-                let centroid = if n >= 2 { sum / n as f32 } else { 0.0 };
-                widest = widest.max(Self::half_width(render, pixels_per_unit, centroid));
+            if n >= 3 {
+                let centroid = sum / n as f32;
+                widest = if centroid > widest { centroid } else { widest };
             }
         });
-        widest
+        if any { Self::half_width(render, pixels_per_unit, widest) } else { 0.0 }
     }
 }
 
