@@ -1025,13 +1025,28 @@ impl Build<'_> {
                 let s = lattice.site(i, j);
                 let p = f.site_fixed(&s);
                 let in_box = (low[0] <= p[0]) & (p[0] <= high[0]) & (low[1] <= p[1]) & (p[1] <= high[1]);
-                if in_box && outer.contains(p) {
+                if in_box {
+                    let inside = outer.contains(p);
                     if count == MAX_CHILDREN {
-                        *work += done;
-                        return Err(Full);
+                        if inside {
+                            *work += done;
+                            return Err(Full);
+                        }
+                        continue;
                     }
-                    self.sites[base + count] = s;
-                    count += 1;
+                    // (On 64-bit targets written whether or not it is inside, and counted only
+                    // if it is: which sites are inside follows the parent's shape, no pattern a
+                    // processor could learn. The slot past the count is free.)
+                    #[cfg(target_pointer_width = "64")]
+                    {
+                        self.sites[base + count] = s;
+                        count += usize::from(inside);
+                    }
+                    #[cfg(not(target_pointer_width = "64"))]
+                    if inside {
+                        self.sites[base + count] = s;
+                        count += 1;
+                    }
                 }
             }
             d.count = count as u16;
