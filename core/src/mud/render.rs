@@ -278,14 +278,15 @@ impl<S: Scalar> Mud<'_, S> {
             return;
         }
         let (bevel, groove_depth) = (BEVEL * ppu, render.groove_depth);
-        // The height a stroke gives a pixel it covers (coverage > 0). Written without
-        // branches, so that a run's lanes are worked on together; the comparisons give what
-        // `max(0.0)` would (the edge's sign does not reach the height: it is squared).
-        let height = move |coverage: f32, depth: f32, half_width: f32| {
+        // The height a stroke gives a pixel it covers (coverage > 0), `from_axis` pixels from
+        // its axis. Written without branches, so that a run's lanes are worked on together;
+        // the comparisons give what `max(0.0)` would (the edge's sign does not reach the
+        // height: it is squared). The render's constants divide once, as reciprocals.
+        let (per_bevel, per_widest) = (1.0 / bevel, 1.0 / widest);
+        let height = move |coverage: f32, from_axis: f32, half_width: f32| {
             let crack = half_width - bevel;
-            let from_axis = depth * half_width;
             // 1 on the crack's floor, falling to 0 at the bevel's outer edge.
-            let fall = 1.0 - (from_axis - crack) / bevel;
+            let fall = 1.0 - (from_axis - crack) * per_bevel;
             // (On 64-bit targets the fall's floor at 0 first: a maximum in the lanes.)
             let edge = if cfg!(target_pointer_width = "64") {
                 let fall = if fall > 0.0 { fall } else { 0.0 };
@@ -297,7 +298,7 @@ impl<S: Scalar> Mud<'_, S> {
             } else {
                 0.0
             };
-            let floor = groove_depth * (0.5 + 0.5 * crack / widest);
+            let floor = groove_depth * (0.5 + 0.5 * crack * per_widest);
             let groove = floor * edge * edge * coverage;
             1.0 - groove
         };
@@ -310,7 +311,7 @@ impl<S: Scalar> Mud<'_, S> {
             if cut {
                 self.strokes(render, clip, bevel, |frame, stroke| {
                     for_each_run(frame, stroke, heights, fringe, move |cell, hit| {
-                        let h = height(hit.coverage, hit.depth, hit.half_width);
+                        let h = height(hit.coverage, hit.distance, hit.half_width);
                         let hit = (hit.coverage > 0.0) & (hit.value <= until);
                         cell.lower(if hit { h } else { f32::INFINITY });
                     });
@@ -321,14 +322,14 @@ impl<S: Scalar> Mud<'_, S> {
                     // at least 1 (the floor and the edge squared are not negative), which
                     // lowers none: the heights start at 1.
                     for_each_run(frame, stroke, heights, fringe, move |cell, hit| {
-                        cell.lower(height(hit.coverage, hit.depth, hit.half_width));
+                        cell.lower(height(hit.coverage, hit.distance, hit.half_width));
                     });
                 });
             }
         } else {
             self.draw(render, clip, bevel, |hit| {
                 if let Some(cell) = heights.get_mut(hit.pixel) {
-                    cell.lower(height(hit.coverage, hit.depth, hit.half_width));
+                    cell.lower(height(hit.coverage, hit.distance, hit.half_width));
                 }
             });
         }

@@ -64,6 +64,9 @@ pub struct StrokeHit {
     pub depth: f32,
     /// Half width there, in pixels.
     pub half_width: f32,
+    /// Distance from the stroke's axis, in pixels (`depth` times `half_width`, without the
+    /// division's rounding).
+    pub distance: f32,
     /// The carried value there.
     pub value: f32,
 }
@@ -292,7 +295,7 @@ struct Near {
 /// (`dd` = |d|²).
 #[inline(always)]
 fn near(p: [f32; 2], d: [f32; 2], dd: f32, stroke: &Stroke) -> Near {
-    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) * (1.0 / dd)).clamp(0.0, 1.0) } else { 0.0 };
     let q = [p[0] - d[0] * t, p[1] - d[1] * t];
     let distance = crate::scalar::sqrtf(q[0] * q[0] + q[1] * q[1]);
     let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
@@ -310,6 +313,7 @@ impl Near {
             coverage: self.coverage,
             depth: if self.half_width > 0.0 { self.distance / self.half_width } else { 1.0 },
             half_width: self.half_width,
+            distance: self.distance,
             value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * self.t,
         }
     }
@@ -433,9 +437,10 @@ fn span_lanes<C>(
     let lanes = cells.len() & !(LANES - 1);
     let [w0, w1] = stroke.half_width;
     let [v0, v1] = stroke.value;
+    let per_dd = 1.0 / dd;
     for (cell, i) in cells[..lanes].iter_mut().zip(0i32..) {
         let p0 = (cx + i as f32) - ax;
-        let s = (p0 * d[0] + pd1) / dd;
+        let s = (p0 * d[0] + pd1) * per_dd;
         let s = if s > 0.0 { s } else { 0.0 };
         let t = if s < 1.0 { s } else { 1.0 };
         let (q0, q1) = (p0 - d[0] * t, py - d[1] * t);
@@ -450,6 +455,7 @@ fn span_lanes<C>(
                 coverage: if i < pixels { coverage } else { 0.0 },
                 depth: if w > 0.0 { distance / w } else { 1.0 },
                 half_width: w,
+                distance,
                 value: v0 + (v1 - v0) * t,
             },
         );
@@ -717,7 +723,7 @@ mod tests {
             for y in y0 as i64..=y1 as i64 {
                 for x in x0 as i64..=x1 as i64 {
                     let p = [x as f32 + 0.5 - a[0], y as f32 + 0.5 - a[1]];
-                    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) / dd).clamp(0.0, 1.0) } else { 0.0 };
+                    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) * (1.0 / dd)).clamp(0.0, 1.0) } else { 0.0 };
                     let q = [p[0] - d[0] * t, p[1] - d[1] * t];
                     let distance = crate::scalar::sqrtf(q[0] * q[0] + q[1] * q[1]);
                     let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
@@ -728,6 +734,7 @@ mod tests {
                             coverage,
                             depth: if half_width > 0.0 { distance / half_width } else { 1.0 },
                             half_width,
+                            distance,
                             value: stroke.value[0] + (stroke.value[1] - stroke.value[0]) * t,
                         });
                     }
@@ -819,8 +826,8 @@ mod tests {
             for w in &wanted {
                 let r = from.next().expect("a hit of coverage >= 1/2 left out");
                 assert_eq!(
-                    (r.pixel, [r.coverage, r.depth, r.half_width, r.value].map(f32::to_bits)),
-                    (w.pixel, [w.coverage, w.depth, w.half_width, w.value].map(f32::to_bits)),
+                    (r.pixel, [r.coverage, r.depth, r.half_width, r.distance, r.value].map(f32::to_bits)),
+                    (w.pixel, [w.coverage, w.depth, w.half_width, w.distance, w.value].map(f32::to_bits)),
                     "case {case}: {frame:?} {stroke:?}"
                 );
             }
@@ -829,7 +836,9 @@ mod tests {
             assert_eq!(fast.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
             assert_eq!(runs.len(), whole.len(), "case {case}: {frame:?} {stroke:?}");
             for ((f, r), w) in fast.iter().zip(&runs).zip(&whole) {
-                let bits = |h: &StrokeHit| (h.pixel, [h.coverage, h.depth, h.half_width, h.value].map(f32::to_bits));
+                let bits = |h: &StrokeHit| {
+                    (h.pixel, [h.coverage, h.depth, h.half_width, h.distance, h.value].map(f32::to_bits))
+                };
                 assert_eq!(bits(f), bits(w), "case {case}: {frame:?} {stroke:?}");
                 assert_eq!(bits(r), bits(w), "case {case}: {frame:?} {stroke:?}");
             }
