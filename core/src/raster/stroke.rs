@@ -193,10 +193,7 @@ impl Extent {
         let at = |p: [f32; 2]| -> [f32; 2] { core::array::from_fn(|k| (p[k] + 0.0 * period[k]) * scale[k]) };
         let (a, b) = (at(stroke.start), at(stroke.end));
         for k in 0..2 {
-            let shift = period[k] * scale[k];
-            let slack = (a[k].abs() + b[k].abs() + shift.abs()) * (1.0 / 1_048_576.0) + 1.0;
-            let before = a[k].max(b[k]) - shift + reach + slack < pixels[k][0];
-            let after = a[k].min(b[k]) + shift - reach - slack > pixels[k][1];
+            let [before, after] = Extent::copies_miss(a[k], b[k], period[k] * scale[k], reach, pixels[k]);
             if !(before && after) {
                 return None;
             }
@@ -208,21 +205,27 @@ impl Extent {
     }
 
     /// [`Extent::of`] the copies a `period` before, at and after the stroke. The copies before
-    /// and after are the middle one shifted by a period, up to their rounding, which `slack`
-    /// covers many times over: one that surely ends short of the clip's first pixel, or starts
-    /// past its last, is not worked out (anything not finite makes the slack NaN, and the copy
-    /// is worked out).
+    /// and after are the middle one shifted by a period, up to their rounding: one that
+    /// [`Extent::copies_miss`] finds surely ends short of the clip's first pixel, or starts
+    /// past its last, is not worked out.
     #[inline(always)]
     fn copies(stroke: &Stroke, k: usize, period: f32, scale: f32, reach: f32, pixels: [f32; 2]) -> [Extent; 3] {
         const MISSED: Extent = Extent { ends: [0.0; 2], pixels: [0.0; 2], reached: false };
         let extent = |i: usize| Extent::of(stroke, k, (i as f32 - 1.0) * period, scale, reach, pixels);
         let middle = extent(1);
         let [a, b] = middle.ends;
-        let shift = period * scale;
+        let [before, after] = Extent::copies_miss(a, b, period * scale, reach, pixels);
+        [if before { MISSED } else { extent(0) }, middle, if after { MISSED } else { extent(2) }]
+    }
+
+    /// Whether the copies `shift` pixels before and after one whose ends on an axis are `a`
+    /// and `b` surely end short of the first of `pixels` and start past the last, by a slack
+    /// that covers their rounding many times over (anything not finite makes the slack NaN:
+    /// then neither is sure).
+    #[inline(always)]
+    fn copies_miss(a: f32, b: f32, shift: f32, reach: f32, pixels: [f32; 2]) -> [bool; 2] {
         let slack = (a.abs() + b.abs() + shift.abs()) * (1.0 / 1_048_576.0) + 1.0;
-        let before = if a.max(b) - shift + reach + slack < pixels[0] { MISSED } else { extent(0) };
-        let after = if a.min(b) + shift - reach - slack > pixels[1] { MISSED } else { extent(2) };
-        [before, middle, after]
+        [a.max(b) - shift + reach + slack < pixels[0], a.min(b) + shift - reach - slack > pixels[1]]
     }
 }
 
