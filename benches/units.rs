@@ -61,14 +61,12 @@ const SKIN_CELLS: (&str, &str) = (SKIN, "cells and divisions");
 struct Sample {
     work: u64,
     time: Duration,
-    calls: u64,
 }
 
 impl Sample {
     fn add(&mut self, work: u64, time: Duration) {
         self.work += work;
         self.time += time;
-        self.calls += 1;
     }
 }
 
@@ -156,12 +154,11 @@ fn skin(params: &hibi_core::skin::SkinParams) -> [Sample; 2] {
     let mut phases = [Sample::default(); 2];
     // The setup is one call's worth at this budget: stepped a piece a call (one unit's budget)
     // and timed as a whole, so that it ends a call of its own.
-    let (mut work, mut calls, start) = (0, 0, Instant::now());
+    let (mut work, start) = (0, Instant::now());
     while skin.is_setting_up() {
         work = skin.step(1).work;
-        calls += 1;
     }
-    phases[0] = Sample { work, time: start.elapsed(), calls };
+    phases[0] = Sample { work, time: start.elapsed() };
     let mut finished = false;
     while !finished {
         let start = Instant::now();
@@ -203,17 +200,16 @@ fn main() {
     let reference = ns[1];
     let mut tables = format!(
         "`step({BUDGET})` to the end, median of {ROUNDS} rounds:\n\n\
-         | run | phase | units of work | calls | ns per unit | ÷ quasi-static solver's | ms per {BUDGET} units |\n\
-         |---|---|---|---|---|---|---|\n"
+         | run | phase | units | ns per unit | ÷ a quasi-static unit | ms per {BUDGET} units |\n\
+         |---|---|---|---|---|---|\n"
     );
     for (i, (run, phase)) in rows.iter().enumerate() {
         let s = &last[i];
         let run = if i > 0 && rows[i - 1].0 == *run { "" } else { run };
         let significant = |v: f64| if v < 10.0 { format!("{v:.2}") } else { format!("{v:.0}") };
         tables.push_str(&format!(
-            "| {run} | {phase} | {} | {} | {} | {} | {:.3} |\n",
+            "| {run} | {phase} | {} | {} | {} | {:.3} |\n",
             s.work,
-            s.calls,
             significant(ns[i]),
             significant(ns[i] / reference),
             ns[i] * BUDGET as f64 / 1e6
