@@ -244,6 +244,7 @@ fn draw_capsule(
     let [[x0, x1], [y0, y1]] = bounds;
     let d = [b[0] - a[0], b[1] - a[1]];
     let dd = d[0] * d[0] + d[1] * d[1];
+    let per_dd = 1.0 / dd;
     let columns = clip.width as usize;
     // (Not on 32-bit targets, for the Cortex-M3's flash: the whole bounding box visits the
     // same hits.)
@@ -256,7 +257,7 @@ fn draw_capsule(
     // below a, `row` its first pixel's index.
     macro_rules! pixel {
         ($x:expr, $cx:expr, $py:expr, $row:expr) => {{
-            let near = near([$cx - a[0], $py], d, dd, stroke);
+            let near = near([$cx - a[0], $py], d, dd, per_dd, stroke);
             if near.coverage > 0.0 {
                 visit(near.hit($row + ($x - clip.x) as usize, stroke));
             }
@@ -295,10 +296,10 @@ struct Near {
 }
 
 /// Where the pixel whose centre lies at `p` from `a` lies from a stroke from `a` to `a + d`
-/// (`dd` = |d|²).
+/// (`dd` = |d|², `per_dd` = 1 / dd, divided once per stroke).
 #[inline(always)]
-fn near(p: [f32; 2], d: [f32; 2], dd: f32, stroke: &Stroke) -> Near {
-    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) * (1.0 / dd)).clamp(0.0, 1.0) } else { 0.0 };
+fn near(p: [f32; 2], d: [f32; 2], dd: f32, per_dd: f32, stroke: &Stroke) -> Near {
+    let t = if dd > 0.0 { ((p[0] * d[0] + p[1] * d[1]) * per_dd).clamp(0.0, 1.0) } else { 0.0 };
     let q = [p[0] - d[0] * t, p[1] - d[1] * t];
     let distance = crate::scalar::sqrtf(q[0] * q[0] + q[1] * q[1]);
     let half_width = stroke.half_width[0] + (stroke.half_width[1] - stroke.half_width[0]) * t;
@@ -344,6 +345,7 @@ fn draw_runs<C>(
         Some(span) if dd > 0.0 => return span_rows(clip, a, d, dd, [[x0, x1], [y0, y1]], &span, stroke, cells, lane),
         span => span,
     };
+    let per_dd = 1.0 / dd;
     // Pixel by pixel: a stroke without a span or without a length.
     let [top, bottom] = span.as_ref().map_or([y0 as i64, y1 as i64], |span| span.rows([y0, y1]));
     for y in top..=bottom {
@@ -363,7 +365,7 @@ fn draw_runs<C>(
         let start = row + (first - clip.x) as usize;
         for (k, cell) in cells.iter_mut().skip(start).take(pixels).enumerate() {
             let cx = (first + k as i64) as f32 + 0.5;
-            lane(cell, near([cx - a[0], py], d, dd, stroke).hit(0, stroke));
+            lane(cell, near([cx - a[0], py], d, dd, per_dd, stroke).hit(0, stroke));
         }
     }
 }
@@ -385,6 +387,7 @@ fn span_rows<C>(
     lane: &impl Fn(&mut C, StrokeHit),
 ) {
     let columns = clip.width as usize;
+    let per_dd = 1.0 / dd;
     let [top, bottom] = span.row_ends([y0, y1]);
     let (mut y, bottom) = (top as i64, bottom as i64);
     // Row centres, exact (a span's rows lie well within 2²³), and so is counting them up.
@@ -404,11 +407,11 @@ fn span_rows<C>(
                 let lanes = (pixels as usize + (LANES - 1)) & !(LANES - 1);
                 if let Some(cells) = cells.get_mut(start..start + lanes) {
                     // Within a span's bounds x + ½ is exact, and so is counting it up by 1.
-                    span_lanes([cx[j], a[0], py[j], pd1[j]], d, dd, stroke, pixels, cells, lane);
+                    span_lanes([cx[j], a[0], py[j], pd1[j]], d, per_dd, stroke, pixels, cells, lane);
                 } else {
                     for (k, cell) in cells.iter_mut().skip(start).take(pixels as usize).enumerate() {
                         let cx = (first + k as i64) as f32 + 0.5;
-                        lane(cell, near([cx - a[0], py[j]], d, dd, stroke).hit(0, stroke));
+                        lane(cell, near([cx - a[0], py[j]], d, dd, per_dd, stroke).hit(0, stroke));
                     }
                 }
             }
@@ -420,7 +423,7 @@ fn span_rows<C>(
 }
 
 /// [`near`] and [`Near::hit`] of `pixels` pixels from column `cx` (x + ½) on the row `py` below the start of
-/// a stroke with a [`Span`] and a length (`dd` > 0), which lies at column `ax` (`at` = [cx,
+/// a stroke with a [`Span`] and a length (`per_dd` = 1 / |d|², `d` ≠ 0), which lies at column `ax` (`at` = [cx,
 /// ax, py, py · d₁]), each handed to `lane` with its cell, and of the pixels after them (`cells` holds
 /// a multiple of [`LANES`], at least `pixels`) with coverage 0. Within a span every coordinate
 /// is finite, and so is the position `t` along the axis, so that comparisons give what `clamp`
@@ -431,7 +434,7 @@ fn span_rows<C>(
 fn span_lanes<C>(
     [cx, ax, py, pd1]: [f32; 4],
     d: [f32; 2],
-    dd: f32,
+    per_dd: f32,
     stroke: &Stroke,
     pixels: i32,
     cells: &mut [C],
@@ -440,7 +443,6 @@ fn span_lanes<C>(
     let lanes = cells.len() & !(LANES - 1);
     let [w0, w1] = stroke.half_width;
     let [v0, v1] = stroke.value;
-    let per_dd = 1.0 / dd;
     for (cell, i) in cells[..lanes].iter_mut().zip(0i32..) {
         let p0 = (cx + i as f32) - ax;
         let s = (p0 * d[0] + pd1) * per_dd;
