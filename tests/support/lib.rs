@@ -70,7 +70,9 @@ pub fn load_average() -> Option<f64> {
 
 /// Writes `tables`, what one run of `command` measured, to `docs/src/generated/<file>`, the
 /// part of the performance page that run makes, under a line naming the command and the load
-/// average when the run started and ended (`load`); prints the path.
+/// average when the run started and ended (`load`); prints the path. Under Valgrind (which
+/// preloads its `vgpreload` library into the program) the times are Valgrind's: the tables are
+/// printed and the file is left as it is.
 pub fn write_bench_tables(file: &str, command: &str, load: [Option<f64>; 2], tables: &str) {
     let load = match load {
         [Some(start), Some(end)] => format!("; load average {start:.1} as it started, {end:.1} as it ended"),
@@ -84,6 +86,10 @@ pub fn write_bench_tables(file: &str, command: &str, load: [Option<f64>; 2], tab
     );
     let path = format!("docs/src/generated/{file}");
     print!("\n{tables}");
+    if std::env::var("LD_PRELOAD").is_ok_and(|preload| preload.contains("vgpreload")) {
+        println!("\nunder Valgrind: {path} left as it is");
+        return;
+    }
     std::fs::write(workspace_root().join(&path), text).unwrap_or_else(|e| panic!("write {path}: {e}"));
     println!(
         "
