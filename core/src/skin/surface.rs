@@ -946,38 +946,104 @@ pub(super) fn fan(outline: &[[i64; 2]], c: [i64; 2], bits: u32, slots: &mut [Wed
     // like an exact division (below 2^53 also like (x as f64 / unit) as f32).
     let to_pixels = 1.0 / (1u64 << bits) as f32;
     let pixels = |x: i64| x as f32 * to_pixels;
+    // Corner i relative to the centre, and its edge (to the next corner; the last corner's
+    // edge ends at the first), in pixels. Wrapping, as release builds always did: a stretch of
+    // 1e21 puts an outline's fixed-point corners far enough apart that the differences
+    // overflow i64 (found by fuzzing; a panic with overflow checks on).
+    let corner = |i: usize, a: [i64; 2]| {
+        let b = *outline.get(i + 1).unwrap_or(&outline[0]);
+        let v = [pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1]))];
+        (v, [pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1]))])
+    };
     let wedges = &mut slots[1..=n];
     // The first corner of smallest angle: the fan starts there.
     let (mut start, mut smallest) = (0, f32::INFINITY);
-    // Corner by corner (a finest cell has about ten: eight lanes at a time left most of two
-    // chunks empty, and neither the square root nor the pseudo-angle went several at once).
+    // Four corners at a time on x86-64 (a finest cell has about ten), their square roots and
+    // divisions in SSE's lanes; the lanes past the last corner repeat it and are not written.
+    #[cfg(target_arch = "x86_64")]
+    {
+        for (chunk, at) in wedges.chunks_mut(4).zip((0..n).step_by(4)) {
+            let (mut v, mut e) = ([[0.0f32; 4]; 2], [[0.0f32; 4]; 2]);
+            for l in 0..4 {
+                let i = (at + l).min(n - 1);
+                let (vl, el) = corner(i, outline[i]);
+                [v[0][l], v[1][l], e[0][l], e[1][l]] = [vl[0], vl[1], el[0], el[1]];
+            }
+            // (Lane by lane: a copy of the chunk's length would be a call.)
+            for (w, made) in chunk.iter_mut().zip(four_wedges(v, e)) {
+                *w = made;
+            }
+        }
+        for (i, w) in wedges.iter().enumerate() {
+            if w.angle < smallest || i == 0 {
+                (start, smallest) = (i, w.angle);
+            }
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
     for (i, (w, &a)) in wedges.iter_mut().zip(outline).enumerate() {
-        // (The last corner's edge ends at the first.)
-        let b = *outline.get(i + 1).unwrap_or(&outline[0]);
-        // The corner relative to the centre, and the edge, in pixels. Wrapping, as release
-        // builds always did: a stretch of 1e21 puts an outline's fixed-point corners far
-        // enough apart that the differences overflow i64 (found by fuzzing; a panic with
-        // overflow checks on).
-        let (vx, vy) = (pixels(a[0].wrapping_sub(c[0])), pixels(a[1].wrapping_sub(c[1])));
-        let (ex, ey) = (pixels(b[0].wrapping_sub(a[0])), pixels(b[1].wrapping_sub(a[1])));
-        let length = crate::scalar::sqrtf(ex * ex + ey * ey);
-        // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
-        let outward = [ey, -ex];
-        let reach = vx * outward[0] + vy * outward[1];
-        let per_reach = 1.0 / reach;
-        // With the centre on or beyond this edge's line (a fold), the wedge reads as edge.
-        let kept = (reach > 0.0) & (length > 0.0);
-        let g = if kept { [outward[0] * per_reach, outward[1] * per_reach] } else { [0.0, 0.0] };
-        let inverse_apothem = if kept { length * per_reach } else { 1.0 };
-        let angle = pseudo_angle([vx, vy]);
-        *w = Wedge { g, inverse_apothem, angle };
-        if angle < smallest || i == 0 {
-            (start, smallest) = (i, angle);
+        let (v, e) = corner(i, a);
+        *w = wedge(v, e);
+        if w.angle < smallest || i == 0 {
+            (start, smallest) = (i, w.angle);
         }
     }
     wedges.rotate_left(start);
     let ascending = ascends(wedges);
     slots[0] = Wedge { angle: if ascending { ASCENDING } else { 0.0 }, ..slots[n] };
+}
+
+/// The wedge of a corner `v` (relative to the centre) whose edge (to the next corner) is `e`,
+/// in pixels.
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+#[inline(always)]
+fn wedge(v: [f32; 2], e: [f32; 2]) -> Wedge {
+    let ([vx, vy], [ex, ey]) = (v, e);
+    let length = crate::scalar::sqrtf(ex * ex + ey * ey);
+    // Outward normal of a counter-clockwise edge, unnormalised: (e_y, −e_x).
+    let outward = [ey, -ex];
+    let reach = vx * outward[0] + vy * outward[1];
+    let per_reach = 1.0 / reach;
+    // With the centre on or beyond this edge's line (a fold), the wedge reads as edge.
+    let kept = (reach > 0.0) & (length > 0.0);
+    let g = if kept { [outward[0] * per_reach, outward[1] * per_reach] } else { [0.0, 0.0] };
+    let inverse_apothem = if kept { length * per_reach } else { 1.0 };
+    Wedge { g, inverse_apothem, angle: pseudo_angle([vx, vy]) }
+}
+
+/// [`wedge`] of four corners (x and y of each in a lane) in SSE, bit for bit: each lane's
+/// arithmetic is the same IEEE operations in the same order, each choice made with masks.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn four_wedges(v: [[f32; 4]; 2], e: [[f32; 4]; 2]) -> [Wedge; 4] {
+    use safe_arch::*;
+    let splat = set_splat_m128;
+    let (vx, vy, ex, ey) = (m128::from(v[0]), m128::from(v[1]), m128::from(e[0]), m128::from(e[1]));
+    let length = sqrt_m128(add_m128(mul_m128(ex, ex), mul_m128(ey, ey)));
+    let across = bitxor_m128(ex, splat(-0.0));
+    let reach = add_m128(mul_m128(vx, ey), mul_m128(vy, across));
+    let per_reach = div_m128(splat(1.0), reach);
+    let kept = bitand_m128(cmp_gt_mask_m128(reach, zeroed_m128()), cmp_gt_mask_m128(length, zeroed_m128()));
+    let mut gx = bitand_m128(kept, mul_m128(ey, per_reach));
+    let mut gy = bitand_m128(kept, mul_m128(across, per_reach));
+    let mut inverse_apothem =
+        bitor_m128(bitand_m128(kept, mul_m128(length, per_reach)), bitandnot_m128(kept, splat(1.0)));
+    // The pseudo-angle of v, as [`pseudo_angles`] makes it.
+    let (upper, right) = (cmp_ge_mask_m128(vy, zeroed_m128()), cmp_ge_mask_m128(vx, zeroed_m128()));
+    let (ax, ay) = (bitandnot_m128(splat(-0.0), vx), bitandnot_m128(splat(-0.0), vy));
+    let differ = bitxor_m128(upper, right);
+    let num = bitor_m128(bitand_m128(differ, ax), bitandnot_m128(differ, ay));
+    let base = add_m128(bitandnot_m128(upper, splat(2.0)), bitand_m128(differ, splat(1.0)));
+    let sum = add_m128(ax, ay);
+    let zero = cmp_eq_mask_m128(sum, zeroed_m128());
+    let total = bitor_m128(bitand_m128(zero, splat(1.0)), bitandnot_m128(zero, sum));
+    let mut angle = add_m128(div_m128(num, total), base);
+    // (A lane per wedge.)
+    transpose_four_m128(&mut gx, &mut gy, &mut inverse_apothem, &mut angle);
+    [gx, gy, inverse_apothem, angle].map(|w| {
+        let [x, y, inverse_apothem, angle] = w.to_array();
+        Wedge { g: [x, y], inverse_apothem, angle }
+    })
 }
 
 /// The front slot's angle (which no pixel compares with) in a fan whose angles ascend.
@@ -1038,6 +1104,35 @@ fn unit_normal(slope: [f32; 2]) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn four_wedges_are_the_wedges_bit_for_bit() {
+        // Every sign and zero, folds (the centre on or beyond the edge's line), zero-length
+        // edges, tiny and huge magnitudes; then a spread as cells' corners have.
+        let values = [0.0, -0.0, f32::from_bits(1), -f32::MIN_POSITIVE, 1.0, -1.0, 0.5, -7.25, 123.5, 3.0e18, -1e-20];
+        let special = values.iter().flat_map(|&x| values.iter().map(move |&y| [x, y]));
+        let spread = (0..4096u32).map(|i| [libm::sinf(i as f32 * 0.37) * 9.0, libm::cosf(i as f32 * 0.11) * -11.0]);
+        let mut all = [[0.0f32; 2]; 11 * 11 + 4096];
+        for (slot, d) in all.iter_mut().zip(special.chain(spread)) {
+            *slot = d;
+        }
+        let bits = |w: &Wedge| [w.g[0], w.g[1], w.inverse_apothem, w.angle].map(f32::to_bits);
+        let mut checked = 0;
+        for (k, chunk) in all.chunks_exact(4).enumerate() {
+            let chunk: [[f32; 2]; 4] = core::array::from_fn(|l| chunk[l]);
+            // Each corner with the edges of corners further on, so that every pairing comes up.
+            let edges: [[f32; 2]; 4] = core::array::from_fn(|l| all[(k * 7 + l * 13 + 1) % all.len()]);
+            let v = [chunk.map(|d| d[0]), chunk.map(|d| d[1])];
+            let e = [edges.map(|d| d[0]), edges.map(|d| d[1])];
+            for (l, got) in four_wedges(v, e).iter().enumerate() {
+                let want = wedge(chunk[l], edges[l]);
+                assert_eq!(bits(got), bits(&want), "{:?} {:?}", chunk[l], edges[l]);
+                checked += 1;
+            }
+        }
+        assert!(checked >= 4096, "{checked}");
+    }
 
     #[test]
     fn eight_pseudo_angles_are_the_pseudo_angles_bit_for_bit() {
