@@ -501,6 +501,21 @@ impl<S: Scalar> Batch<S> {
         // (The wedge's g and 1 / apothem first, where u and q go.)
         let picked = us.chunks_exact_mut(8).zip(qxs.chunks_exact_mut(8).zip(qys.chunks_exact_mut(8)));
         for (ks, (gx, (gy, inverse_apothem))) in self.wedge[all.clone()].chunks_exact(8).zip(picked) {
+            // (On x86-64 four wedges at a time, each read whole and turned into lanes.)
+            #[cfg(target_arch = "x86_64")]
+            for h in [0, 4] {
+                use safe_arch::{m128, transpose_four_m128};
+                let read = |l: usize| {
+                    let w = &fan.slots[ks[h + l] as usize];
+                    m128::from([w.g[0], w.g[1], w.inverse_apothem, w.angle])
+                };
+                let (mut a, mut b, mut c, mut d) = (read(0), read(1), read(2), read(3));
+                transpose_four_m128(&mut a, &mut b, &mut c, &mut d);
+                gx[h..h + 4].copy_from_slice(&a.to_array());
+                gy[h..h + 4].copy_from_slice(&b.to_array());
+                inverse_apothem[h..h + 4].copy_from_slice(&c.to_array());
+            }
+            #[cfg(not(target_arch = "x86_64"))]
             for l in 0..8 {
                 let w = &fan.slots[ks[l] as usize];
                 (gx[l], gy[l], inverse_apothem[l]) = (w.g[0], w.g[1], w.inverse_apothem);
