@@ -563,6 +563,13 @@ impl<S: Scalar> Batch<S> {
                 // (Heights alone: the two ends' heights apart, for plain loops, where the
                 // normals' sums would be.)
                 let [h0, h1] = &mut self.slope;
+                #[cfg(target_arch = "x86_64")]
+                for j in (0..n).step_by(4) {
+                    let [near, _, far, _] = four_ends(ridge.table, &self.interval[j..j + 4]);
+                    h0[j..j + 4].copy_from_slice(&near);
+                    h1[j..j + 4].copy_from_slice(&far);
+                }
+                #[cfg(not(target_arch = "x86_64"))]
                 for (j, &k) in self.interval[..n].iter().enumerate() {
                     let [[a0, _], [a1, _]] = ridge.table.ends(k);
                     (h0[j], h1[j]) = (a0, a1);
@@ -573,23 +580,16 @@ impl<S: Scalar> Batch<S> {
                 }
                 continue;
             }
-            // (On x86-64 four intervals at a time, each read whole and turned into lanes; the
-            // lanes past the queue read stale intervals, each one of the table's.)
+            // (On x86-64 four intervals at a time: `four_ends`.)
             #[cfg(target_arch = "x86_64")]
             let ends = {
-                use safe_arch::{m128, transpose_four_m128};
                 let [h0, s0, h1, s1] = &mut self.ends;
                 for j in (0..n).step_by(4) {
-                    let read = |l: usize| {
-                        let [[a, b], [c, d]] = ridge.table.ends(self.interval[j + l]);
-                        m128::from([a, b, c, d])
-                    };
-                    let (mut a, mut b, mut c, mut d) = (read(0), read(1), read(2), read(3));
-                    transpose_four_m128(&mut a, &mut b, &mut c, &mut d);
-                    h0[j..j + 4].copy_from_slice(&a.to_array());
-                    s0[j..j + 4].copy_from_slice(&b.to_array());
-                    h1[j..j + 4].copy_from_slice(&c.to_array());
-                    s1[j..j + 4].copy_from_slice(&d.to_array());
+                    let [a, b, c, d] = four_ends(ridge.table, &self.interval[j..j + 4]);
+                    h0[j..j + 4].copy_from_slice(&a);
+                    s0[j..j + 4].copy_from_slice(&b);
+                    h1[j..j + 4].copy_from_slice(&c);
+                    s1[j..j + 4].copy_from_slice(&d);
                 }
                 let [h0, s0, h1, s1] = &self.ends;
                 h0[..n]
@@ -631,6 +631,23 @@ impl<S: Scalar> Batch<S> {
         }
         self.ready = 0;
     }
+}
+
+/// The samples at the ends of four intervals `k` ([`ProfileTable::ends`]), each read whole and
+/// turned into lanes: the heights at their near ends, the slopes there, the heights at their
+/// far ends and the slopes there. (Lanes past a queue read stale intervals, each one of the
+/// table's.)
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn four_ends(table: &ProfileTable, k: &[u32]) -> [[f32; 4]; 4] {
+    use safe_arch::{m128, transpose_four_m128};
+    let read = |l: usize| {
+        let [[a, b], [c, d]] = table.ends(k[l]);
+        m128::from([a, b, c, d])
+    };
+    let (mut a, mut b, mut c, mut d) = (read(0), read(1), read(2), read(3));
+    transpose_four_m128(&mut a, &mut b, &mut c, &mut d);
+    [a, b, c, d].map(m128::to_array)
 }
 
 impl<S: Scalar> Ridge<'_, S> {
