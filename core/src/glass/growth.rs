@@ -122,6 +122,30 @@ pub(super) enum Stage {
 /// The F2 entries of an update: past this many cracks in S, the rest each pull on their own.
 const NEAR: usize = 16;
 
+/// Where a tip sums F2 from: its crack, where it is, and its sector S (heading, boundary rays,
+/// box).
+#[derive(Clone, Copy)]
+struct Sight {
+    crack: u32,
+    w: [f32; 2],
+    direction: [f32; 2],
+    rays: [[f32; 2]; 2],
+    bounds: [f32; 4],
+}
+
+/// F2 summed so far: per crack in S, its nearest point's distance and normal (`count` of
+/// them), and the pulls of the cracks past NEAR.
+#[derive(Clone, Copy, Debug)]
+struct Sums {
+    near: [(u32, f32, [f32; 2]); NEAR],
+    count: usize,
+    extra: [f32; 2],
+}
+
+impl Sums {
+    const EMPTY: Sums = Sums { near: [(NONE, 0.0, [0.0; 2]); NEAR], count: 0, extra: [0.0; 2] };
+}
+
 /// The state of one tip update (Eqs. 12–17) between the calls of [`Glass::step`] that carry it
 /// out: what it set out from, the forces summed so far, and the move.
 #[derive(Clone, Copy, Debug)]
@@ -140,11 +164,8 @@ pub(super) struct Update {
     bounds: [f32; 4],
     /// F1 + F2 so far.
     force: [f32; 2],
-    /// F2: per crack in S, its nearest point's distance and normal; `count` of them.
-    near: [(u32, f32, [f32; 2]); NEAR],
-    count: usize,
-    /// F2 of the cracks past NEAR.
-    extra: [f32; 2],
+    /// F2 so far.
+    sums: Sums,
     /// The move: its heading and length, where it ends, and the first crack or edge it meets.
     heading: f32,
     length: f32,
@@ -170,9 +191,7 @@ impl Update {
         rays: [[0.0; 2]; 2],
         bounds: [0.0; 4],
         force: [0.0; 2],
-        near: [(NONE, 0.0, [0.0; 2]); NEAR],
-        count: 0,
-        extra: [0.0; 2],
+        sums: Sums::EMPTY,
         heading: 0.0,
         length: 0.0,
         next: [0.0; 2],
@@ -568,15 +587,10 @@ impl Glass<'_> {
     /// distance. A crack's pieces are folded into one entry per crack (the nearest); past NEAR
     /// cracks the rest each pull on their own. True when every segment in S has been seen.
     fn sum_segments(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
-        let p = self.params;
         let w = self.cracks[i].tip;
-        let (direction, rays) = (u.direction, u.rays);
-        let [x0, y0, x1, y1] = u.bounds;
-        let crack = i as u32;
-        let now = self.clock.time as f32;
-        let radius = p.sector_radius;
-        let cells = self.sector_cells(w, rays, 0.0);
-        let (near, count, extra) = (&mut u.near, &mut u.count, &mut u.extra);
+        let cells = self.sector_cells(w, u.rays, 0.0);
+        let sight = Sight { crack: i as u32, w, direction: u.direction, rays: u.rays, bounds: u.bounds };
+        let sums = &mut u.sums;
         let outside = cells.test();
         self.go_on::<true, true>(
             &mut u.scan,
@@ -584,79 +598,88 @@ impl Glass<'_> {
             outside,
             |_, _| true,
             #[cfg_attr(target_pointer_width = "64", inline(always))]
-            |glass, e| {
-                let edge = &glass.edges[e as usize];
-                let (a, z) = glass.edge_points(e);
-                // Outside the sector's box: no point of it is in the sector. Tested first, as it
-                // passes over most of the segments the scan meets.
-                if apart(a, z, [x0, y0, x1, y1]) {
-                    return;
-                }
-                let owner = edge.crack;
-                // Not its own crack, nor pieces other tips grew earlier in this time step (all
-                // tips move at once).
-                if owner == crack || edge.time[0] >= now {
-                    return;
-                }
-                // Beyond a side of the wedge (the test `nearest_in_sector` starts with), or run
-                // alongside or away from: it does not pull. The wedge's test first, as it is the
-                // cheaper one and passes over most of the pieces beside the tip (its neighbours
-                // at the impact). On 64-bit targets only: with soft floats (the Cortex-M3 of
-                // `targets/run`) the extra products cost more than they save.
-                if (cfg!(target_pointer_width = "64") && glass.beyond_a_side(w, rays, a, z))
-                    || glass.moving_away(w, direction, a, z)
-                {
-                    return;
-                }
-                let [lx, ly, hx, hy] = span_of(a, z);
-                // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
-                // than B from the tip (it has no point in S), or farther than its crack's nearest
-                // point found so far (it would not replace it). The box's distance is a lower
-                // bound on the segment's (up to rounding, which SLACK covers many times over).
-                let gap = |lo: f32, hi: f32, at: f32| {
-                    if at < lo {
-                        lo - at
-                    } else if at > hi {
-                        at - hi
-                    } else {
-                        0.0
-                    }
-                };
-                let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
-                let box_distance2 = gx * gx + gy * gy;
-                // The bound against B first (no bound below is larger), so that a far segment
-                // skips the search for its crack's entry.
-                let far = radius + SLACK;
-                if box_distance2 > far * far {
-                    return;
-                }
-                let slot = near[..*count].iter().position(|n| n.0 == owner);
-                let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
-                if box_distance2 > bound * bound {
-                    return;
-                }
-                let Some((v, d)) = glass.nearest_in_sector(w, direction, rays, a, z) else { return };
-                let normal = glass.normal_towards(a, z, v, d);
-                // Only a crack the tip is closing in on can be met; one it runs alongside or away
-                // from (a neighbour from the same impact, diverging) does not pull.
-                if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
-                    return;
-                }
-                match slot.map(|k| &mut near[k]) {
-                    Some(n) if d < n.1 => *n = (owner, d, normal),
-                    Some(_) => {}
-                    None if *count < NEAR => {
-                        near[*count] = (owner, d, normal);
-                        *count += 1;
-                    }
-                    None => {
-                        let k = p.crack_attraction / (d * d);
-                        extra[0] += k * normal[0];
-                        extra[1] += k * normal[1];
-                    }
-                }
-            },
+            |glass, e| glass.pull(&sight, sums, e),
         )
+    }
+
+    /// Folds segment `e` into `sums`, the F2 of the tip `sight` (see [`Self::sum_segments`]).
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    fn pull(&self, sight: &Sight, sums: &mut Sums, e: u32) {
+        let p = &self.params;
+        let (w, direction, rays) = (sight.w, sight.direction, sight.rays);
+        let now = self.clock.time as f32;
+        let radius = p.sector_radius;
+        let edge = &self.edges[e as usize];
+        let (a, z) = self.edge_points(e);
+        // Outside the sector's box: no point of it is in the sector. Tested first, as it
+        // passes over most of the segments the scan meets.
+        if apart(a, z, sight.bounds) {
+            return;
+        }
+        let owner = edge.crack;
+        // Not its own crack, nor pieces other tips grew earlier in this time step (all
+        // tips move at once).
+        if owner == sight.crack || edge.time[0] >= now {
+            return;
+        }
+        // Beyond a side of the wedge (the test `nearest_in_sector` starts with), or run
+        // alongside or away from: it does not pull. The wedge's test first, as it is the
+        // cheaper one and passes over most of the pieces beside the tip (its neighbours
+        // at the impact). On 64-bit targets only: with soft floats (the Cortex-M3 of
+        // `targets/run`) the extra products cost more than they save.
+        if (cfg!(target_pointer_width = "64") && self.beyond_a_side(w, rays, a, z))
+            || self.moving_away(w, direction, a, z)
+        {
+            return;
+        }
+        let [lx, ly, hx, hy] = span_of(a, z);
+        // Skipped unseen, as they cannot change the sum: a segment whose box lies farther
+        // than B from the tip (it has no point in S), or farther than its crack's nearest
+        // point found so far (it would not replace it). The box's distance is a lower
+        // bound on the segment's (up to rounding, which SLACK covers many times over).
+        let gap = |lo: f32, hi: f32, at: f32| {
+            if at < lo {
+                lo - at
+            } else if at > hi {
+                at - hi
+            } else {
+                0.0
+            }
+        };
+        let (gx, gy) = (gap(lx, hx, w[0]), gap(ly, hy, w[1]));
+        let box_distance2 = gx * gx + gy * gy;
+        // The bound against B first (no bound below is larger), so that a far segment
+        // skips the search for its crack's entry.
+        let far = radius + SLACK;
+        if box_distance2 > far * far {
+            return;
+        }
+        let (near, count) = (&mut sums.near, &mut sums.count);
+        let slot = near[..*count].iter().position(|n| n.0 == owner);
+        let bound = slot.map_or(radius, |k| near[k].1.min(radius)) + SLACK;
+        if box_distance2 > bound * bound {
+            return;
+        }
+        let Some((v, d)) = self.nearest_in_sector(w, direction, rays, a, z) else { return };
+        let normal = self.normal_towards(a, z, v, d);
+        // Only a crack the tip is closing in on can be met; one it runs alongside or away
+        // from (a neighbour from the same impact, diverging) does not pull.
+        if normal[0] * direction[0] + normal[1] * direction[1] <= 0.0 {
+            return;
+        }
+        match slot.map(|k| &mut near[k]) {
+            Some(n) if d < n.1 => *n = (owner, d, normal),
+            Some(_) => {}
+            None if *count < NEAR => {
+                near[*count] = (owner, d, normal);
+                *count += 1;
+            }
+            None => {
+                let k = p.crack_attraction / (d * d);
+                sums.extra[0] += k * normal[0];
+                sums.extra[1] += k * normal[1];
+            }
+        }
     }
 
     /// The sum F1 + F2 + F3 on the tip and the move it makes (Eqs. 12–16): the cracks' F2
@@ -677,14 +700,14 @@ impl Glass<'_> {
                 nearest = (d, normal[0] * direction[0] + normal[1] * direction[1]);
             }
         };
-        for &(_, d, normal) in &u.near[..u.count] {
+        for &(_, d, normal) in &u.sums.near[..u.sums.count] {
             closer(d, normal);
             let k = p.crack_attraction / (d * d);
             f[0] += k * normal[0];
             f[1] += k * normal[1];
         }
-        f[0] += u.extra[0];
-        f[1] += u.extra[1];
+        f[0] += u.sums.extra[0];
+        f[1] += u.sums.extra[1];
         // F2 for the plate's edges; one farther than B (and SLACK) from the tip has no point
         // in S (its nearest point's offset across it is exactly the tip's, so its distance is
         // at least that).
