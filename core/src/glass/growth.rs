@@ -109,7 +109,8 @@ pub(super) enum Phase {
 /// Where the update of a tip under way stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Stage {
-    /// F1: the tips in its sector.
+    /// F1: the tips in its sector (and F2 in the same walk of its cells, when the budget cannot
+    /// run out in it: [`Glass::sum_forces`]).
     Tips,
     /// F2: the segments in its sector.
     Segments,
@@ -504,6 +505,11 @@ impl Glass<'_> {
         let over = loop {
             match u.stage {
                 Stage::Tips => {
+                    if self.sum_forces(i, &mut u, deadline) {
+                        self.plan_move(i, &mut u);
+                        u.stage = Stage::Path;
+                        continue;
+                    }
                     if !self.sum_tips(i, &mut u, deadline) {
                         break false;
                     }
@@ -545,11 +551,9 @@ impl Glass<'_> {
     /// wholly outside S (by more than SLACK, which covers the rounding of `in_sector`'s cosine)
     /// hold no tip in it. True when every tip in S has pushed.
     fn sum_tips(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
-        let p = self.params;
         let w = self.cracks[i].tip;
-        let direction = u.direction;
+        let sight = Sight { crack: i as u32, w, direction: u.direction, rays: u.rays, bounds: u.bounds };
         let cells = self.sector_cells(w, u.rays, SLACK);
-        let far = p.sector_radius + SLACK;
         let force = &mut u.force;
         let outside = cells.test();
         self.go_on::<false, false>(
@@ -558,28 +562,93 @@ impl Glass<'_> {
             outside,
             |_, _| true,
             #[cfg_attr(target_pointer_width = "64", inline(always))]
-            |glass, j| {
-                if j as usize == i {
-                    return;
-                }
-                let other = &glass.cracks[j as usize];
-                let e = [other.before[0] - w[0], other.before[1] - w[1]];
-                // Only a tip growing towards this one pushes it (two tips closing in turn apart);
-                // one running away from it, as the radial cracks of an impact do, does not. Tested
-                // first, with the distance bound, as they are cheaper than `in_sector`'s root (the
-                // same offset, so the same outcome).
-                if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0
-                    || e[0] * e[0] + e[1] * e[1] > far * far
-                {
-                    return;
-                }
-                if let Some((e, r)) = glass.in_sector(w, direction, other.before) {
-                    let k = p.tip_repulsion / (r * r * r);
-                    force[0] -= k * e[0];
-                    force[1] -= k * e[1];
-                }
-            },
+            |glass, j| glass.push(&sight, force, j),
         )
+    }
+
+    /// Adds the push of crack `j`'s tip to `force`, the F1 of the tip `sight` (see
+    /// [`Self::sum_tips`]).
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    fn push(&self, sight: &Sight, force: &mut [f32; 2], j: u32) {
+        if j == sight.crack {
+            return;
+        }
+        let p = &self.params;
+        let w = sight.w;
+        let far = p.sector_radius + SLACK;
+        let other = &self.cracks[j as usize];
+        let e = [other.before[0] - w[0], other.before[1] - w[1]];
+        // Only a tip growing towards this one pushes it (two tips closing in turn apart);
+        // one running away from it, as the radial cracks of an impact do, does not. Tested
+        // first, with the distance bound, as they are cheaper than `in_sector`'s root (the
+        // same offset, so the same outcome).
+        if e[0] * other.before_direction[0] + e[1] * other.before_direction[1] >= 0.0
+            || e[0] * e[0] + e[1] * e[1] > far * far
+        {
+            return;
+        }
+        if let Some((e, r)) = self.in_sector(w, sight.direction, other.before) {
+            let k = p.tip_repulsion / (r * r * r);
+            force[0] -= k * e[0];
+            force[1] -= k * e[1];
+        }
+    }
+
+    /// F1 and F2 of an update in one walk of its sector's cells (a cell's tips, then its
+    /// segments), for an update whose scans have not started and cannot reach the deadline
+    /// (on 64-bit targets): the very visits, in the same order, and the same units, as
+    /// [`Self::sum_tips`] then [`Self::sum_segments`], with each cell's place found once. False
+    /// (nothing done) otherwise.
+    fn sum_forces(&mut self, i: usize, u: &mut Update, deadline: u64) -> bool {
+        let cells = u.scan.cells();
+        let (cx0, cy0, cx1, cy1) = cells;
+        if !cfg!(target_pointer_width = "64") || u.scan != Scan::new(cells) || cx0 > cx1 {
+            return false;
+        }
+        let count = (cy1 + 1).saturating_sub(cy0).saturating_mul(cx1 + 1 - cx0);
+        let filed = self.index.tips.used.saturating_add(self.index.segments.used);
+        if deadline.saturating_sub(self.clock.work) <= (2 * count as u64).saturating_add(filed as u64) {
+            return false;
+        }
+        let w = self.cracks[i].tip;
+        let sight = Sight { crack: i as u32, w, direction: u.direction, rays: u.rays, bounds: u.bounds };
+        let (near, far) = (self.sector_cells(w, u.rays, 0.0), self.sector_cells(w, u.rays, SLACK));
+        self.start_scan(Filed::Earlier, cells);
+        let columns = self.index.grid.columns;
+        let mut work = self.clock.work;
+        for cy in cy0..=cy1 {
+            let row = near.row(cy);
+            for cx in cx0..=cx1 {
+                let cell = cy * columns + cx;
+                work += 2;
+                let mut entry = self.index.tips.heads[cell];
+                if entry != NONE && !far.outside(row, cx) {
+                    while entry != NONE {
+                        work += 1;
+                        let [item, next] = self.index.tips.entries[entry as usize];
+                        entry = next;
+                        self.push(&sight, &mut u.force, item);
+                    }
+                }
+                let head = self.index.segments.heads[cell];
+                if head == NONE || near.outside(row, cx) {
+                    continue;
+                }
+                let mut entry = if head >= self.index.fresh { self.earlier(cell) } else { head };
+                while entry != NONE {
+                    work += 1;
+                    let [item, next] = self.index.segments.entries[entry as usize];
+                    entry = next;
+                    if self.index.stamps[item as usize] == self.index.stamp {
+                        continue;
+                    }
+                    self.index.stamps[item as usize] = self.index.stamp;
+                    self.pull(&sight, &mut u.sums, item);
+                }
+            }
+        }
+        self.clock.work = work;
+        true
     }
 
     /// F2, from where the scan stopped: for every crack in S, one pull along its normal at its

@@ -104,7 +104,7 @@ impl Glass<'_> {
     /// in the time step under way (`SpatialIndex::earlier`). Out of line, so that the entry
     /// loops it leads to keep their registers.
     #[inline(never)]
-    fn earlier(&self, cell: usize) -> u32 {
+    pub(super) fn earlier(&self, cell: usize) -> u32 {
         self.index.earlier[cell]
     }
 
