@@ -969,7 +969,10 @@ impl Glass<'_> {
         let own_last = self.cracks[i].last_segment;
         let w = self.cracks[i].tip;
         let path = Segment::new(Point::new(w[0], w[1]), Point::new(u.next[0], u.next[1]));
-        let [x0, y0, x1, y1] = u.bounds;
+        let bounds = u.bounds;
+        if self.trace_whole(&path, own_last, u, deadline) {
+            return true;
+        }
         let found = &mut u.found;
         self.go_on::<true, false>(
             &mut u.scan,
@@ -982,28 +985,70 @@ impl Glass<'_> {
             #[cfg_attr(target_pointer_width = "64", inline(always))]
             |glass, e| {
                 let (a, z) = glass.edge_points(e);
-                !cfg!(target_pointer_width = "64") || !apart(a, z, [x0, y0, x1, y1])
+                !cfg!(target_pointer_width = "64") || !apart(a, z, bounds)
             },
             #[cfg_attr(target_pointer_width = "64", inline(always))]
-            |glass, e| {
-                if e == own_last {
-                    return;
-                }
-                let (a, z) = glass.edge_points(e);
-                if !cfg!(target_pointer_width = "64") && apart(a, z, [x0, y0, x1, y1]) {
-                    return;
-                }
-                let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
-                let (t, at) = match path.intersect(other) {
-                    Intersection::None => return,
-                    Intersection::Point { point, along_first, .. } => (along_first, point),
-                    Intersection::Overlap { start, .. } => (path.closest_parameter(start), start),
-                };
-                if t > 0.0 && t < found.1 {
-                    *found = (e, t, [at.x, at.y]);
-                }
-            },
+            |glass, e| glass.cross(&path, own_last, bounds, found, e),
         )
+    }
+
+    /// The scan of [`Self::trace_path`] in one go, by plain loops over its cells, for a scan
+    /// that has not started and cannot reach the deadline (on 64-bit targets): the same visits
+    /// and units. False (nothing done) otherwise.
+    fn trace_whole(&mut self, path: &Segment<f32>, own_last: u32, u: &mut Update, deadline: u64) -> bool {
+        let cells = u.scan.cells();
+        let (cx0, cy0, cx1, cy1) = cells;
+        if !cfg!(target_pointer_width = "64") || u.scan != Scan::new(cells) || cx0 > cx1 {
+            return false;
+        }
+        let count = (cy1 + 1).saturating_sub(cy0).saturating_mul(cx1 + 1 - cx0);
+        if deadline.saturating_sub(self.clock.work) <= (count as u64).saturating_add(self.index.segments.used as u64) {
+            return false;
+        }
+        let bounds = u.bounds;
+        let columns = self.index.grid.columns;
+        let mut work = self.clock.work;
+        for cy in cy0..=cy1 {
+            for cx in cx0..=cx1 {
+                work += 1;
+                let mut entry = self.index.segments.heads[cy * columns + cx];
+                while entry != NONE {
+                    work += 1;
+                    let [item, next] = self.index.segments.entries[entry as usize];
+                    entry = next;
+                    let (a, z) = self.edge_points(item);
+                    if apart(a, z, bounds) || self.index.stamps[item as usize] == self.index.stamp {
+                        continue;
+                    }
+                    self.index.stamps[item as usize] = self.index.stamp;
+                    self.cross(path, own_last, bounds, &mut u.found, item);
+                }
+            }
+        }
+        self.clock.work = work;
+        true
+    }
+
+    /// Keeps segment `e` in `found` when the move `path` (box `bounds`) meets it nearer than
+    /// what `found` holds (see [`Self::trace_path`]).
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    fn cross(&self, path: &Segment<f32>, own_last: u32, bounds: [f32; 4], found: &mut (u32, f32, [f32; 2]), e: u32) {
+        if e == own_last {
+            return;
+        }
+        let (a, z) = self.edge_points(e);
+        if !cfg!(target_pointer_width = "64") && apart(a, z, bounds) {
+            return;
+        }
+        let other = Segment::new(Point::new(a[0], a[1]), Point::new(z[0], z[1]));
+        let (t, at) = match path.intersect(other) {
+            Intersection::None => return,
+            Intersection::Point { point, along_first, .. } => (along_first, point),
+            Intersection::Overlap { start, .. } => (path.closest_parameter(start), start),
+        };
+        if t > 0.0 && t < found.1 {
+            *found = (e, t, [at.x, at.y]);
+        }
     }
 
     /// Makes the move (Eqs. 16–17): the tip goes to where it ends, stopping exactly on a
