@@ -69,10 +69,27 @@ pub(super) fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 }
 
 /// Whether `p` lies in the triangle (a, b, c), boundary included.
+#[cfg(test)]
 pub(super) fn in_triangle(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
     let (x, y, z) = (orient(a, b, p), orient(b, c, p), orient(c, a, p));
-    // (Without branches: the signs follow the perturbation's draws.)
     ((x >= 0.0) & (y >= 0.0) & (z >= 0.0)) | ((x <= 0.0) & (y <= 0.0) & (z <= 0.0))
+}
+
+/// Whether `p` lies in the triangle (x, b, c) or in (y, b, c), boundary included: what
+/// the triangle test (the signs of the three orientations) tells of each, their shared side
+/// b–c worked out once.
+pub(super) fn in_either_triangle(p: [f64; 2], (x, y): ([f64; 2], [f64; 2]), b: [f64; 2], c: [f64; 2]) -> bool {
+    let side = orient(b, c, p);
+    let within = |a: [f64; 2]| {
+        let (u, w) = (orient(a, b, p), orient(c, a, p));
+        ((u >= 0.0) & (side >= 0.0) & (w >= 0.0)) | ((u <= 0.0) & (side <= 0.0) & (w <= 0.0))
+    };
+    // (Both, without branches, on 64-bit targets: which one holds follows the perturbation's
+    // draws. A 32-bit target's soft float skips the second where the first holds.)
+    #[cfg(target_pointer_width = "64")]
+    return within(x) | within(y);
+    #[cfg(not(target_pointer_width = "64"))]
+    return within(x) || within(y);
 }
 
 /// Whether the open segments p–q and r–s cross.
@@ -184,7 +201,7 @@ fn perturb_in<const N: usize>(
     }
     let line = &line[..=pieces];
     let (x, y) = (lo.base, f.relative(hi, lo));
-    if !line[1..pieces].iter().all(|&q| in_triangle(q, x, p0, p1) || in_triangle(q, y, p0, p1)) {
+    if !line[1..pieces].iter().all(|&q| in_either_triangle(q, (x, y), p0, p1)) {
         return 1;
     }
     // The diamond's outline: no piece between points inside it can cross it where it is
@@ -253,5 +270,23 @@ fn inner_fixed(f: &Frame, lo: &Site, (line, forward): (&[[f64; 2]], bool), point
     match lo.image {
         [0, 0] => write([0, 0]),
         image => write(image),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn either_triangle_is_each_triangle_tested_apart() {
+        // Points on a small grid (on sides and corners too) against diamonds of every shape,
+        // convex or not, and degenerate ones.
+        let mut rng = Rng::from_key(7, 0);
+        let mut coordinate = || f64::from(rng.next_u32() % 9) - 4.0;
+        for _ in 0..20_000 {
+            let [p, x, y, b, c] = [(); 5].map(|()| [coordinate(), coordinate()]);
+            let apart = in_triangle(p, x, b, c) || in_triangle(p, y, b, c);
+            assert_eq!(in_either_triangle(p, (x, y), b, c), apart, "{p:?} {x:?} {y:?} {b:?} {c:?}");
+        }
     }
 }
