@@ -618,11 +618,19 @@ impl Glass<'_> {
         let mut work = self.clock.work;
         for cy in cy0..=cy1 {
             let row = near.row(cy);
-            for cx in cx0..=cx1 {
-                let cell = cy * columns + cx;
+            // The row's cells in the scan, their lists of tips and of segments.
+            let first = cy * columns + cx0;
+            let last = cy * columns + cx1;
+            let (tips, segments) = (&self.index.tips.heads[first..=last], &self.index.segments.heads[first..=last]);
+            for (k, (&tip, &head)) in tips.iter().zip(segments).enumerate() {
                 work += 2;
-                let mut entry = self.index.tips.heads[cell];
-                if entry != NONE && !far.outside(row, cx) {
+                if tip == NONE && head == NONE {
+                    continue;
+                }
+                let (cx, cell) = (cx0 + k, first + k);
+                let column = near.column(cx);
+                let mut entry = tip;
+                if entry != NONE && !far.outside_at(row, column) {
                     while entry != NONE {
                         work += 1;
                         let [item, next] = self.index.tips.entries[entry as usize];
@@ -630,8 +638,7 @@ impl Glass<'_> {
                         self.push(&sight, &mut u.force, item);
                     }
                 }
-                let head = self.index.segments.heads[cell];
-                if head == NONE || near.outside(row, cx) {
+                if head == NONE || near.outside_at(row, column) {
                     continue;
                 }
                 let mut entry = if head >= self.index.fresh { self.earlier(cell) } else { head };
@@ -1278,6 +1285,15 @@ struct SectorCells {
     margin: f32,
 }
 
+/// A column's share of [`SectorCells::outside`]: its corners' offset from the apex in x,
+/// squared as for the disc at its nearest, and times the rays for the wedge.
+#[derive(Clone, Copy)]
+struct SectorColumn {
+    nx2: f32,
+    right_x: [f32; 2],
+    left_x: [f32; 2],
+}
+
 /// A row's share of [`SectorCells::outside`]: its corners' offset from the apex in y, that
 /// offset's square for the disc, and its products with the rays for the wedge (formed once a
 /// row, the very products the per-corner tests use).
@@ -1319,17 +1335,30 @@ impl SectorCells {
         }
     }
 
-    /// Whether cell `cx` of `row` lies outside the sector by more than the margin: its nearest
-    /// point farther than B from the apex, or (φ ≤ 180°) every corner beyond one side of the
-    /// wedge.
+    /// The share of the tests of the cells of column `cx`, as [`Self::row`] for a row (it
+    /// does not depend on the margin either, so one serves the tests of both margins).
     #[inline(always)]
-    fn outside(&self, row: SectorRow, cx: usize) -> bool {
+    fn column(&self, cx: usize) -> SectorColumn {
         let [left, right] = self.rays;
         // The cell's corners relative to the apex, in x.
         let ax = cx as u32 as f32 * self.cell - self.w[0];
         let bx = ax + self.cell;
         let nx = nearest_to_zero(ax, bx);
-        if nx * nx + row.ny2 > self.reach2 {
+        SectorColumn { nx2: nx * nx, right_x: [right[1] * ax, right[1] * bx], left_x: [left[1] * ax, left[1] * bx] }
+    }
+
+    /// Whether cell `cx` of `row` lies outside the sector by more than the margin: its nearest
+    /// point farther than B from the apex, or (φ ≤ 180°) every corner beyond one side of the
+    /// wedge.
+    #[inline(always)]
+    fn outside(&self, row: SectorRow, cx: usize) -> bool {
+        self.outside_at(row, self.column(cx))
+    }
+
+    /// [`Self::outside`] for the cell of `row` and `column`.
+    #[inline(always)]
+    fn outside_at(&self, row: SectorRow, column: SectorColumn) -> bool {
+        if column.nx2 + row.ny2 > self.reach2 {
             return true;
         }
         if !self.wedge {
@@ -1338,7 +1367,7 @@ impl SectorCells {
         // Beyond a side of the wedge: every corner (x, y) on the outer side of it, by the
         // cross product ray × corner = ray_x·y − ray_y·x.
         let m = self.margin;
-        let (right_x, left_x) = ([right[1] * ax, right[1] * bx], [left[1] * ax, left[1] * bx]);
+        let (right_x, left_x) = (column.right_x, column.left_x);
         let outside_right = row.right_y.iter().all(|&y| right_x.iter().all(|&x| y - x < -m));
         let outside_left = row.left_y.iter().all(|&y| left_x.iter().all(|&x| y - x > m));
         outside_right || outside_left
