@@ -622,8 +622,8 @@ impl Glass<'_> {
             let first = cy * columns + cx0;
             let last = cy * columns + cx1;
             let (tips, segments) = (&self.index.tips.heads[first..=last], &self.index.segments.heads[first..=last]);
+            work += 2 * tips.len() as u64;
             for (k, (&tip, &head)) in tips.iter().zip(segments).enumerate() {
-                work += 2;
                 if tip == NONE && head == NONE {
                     continue;
                 }
@@ -1016,9 +1016,10 @@ impl Glass<'_> {
         let columns = self.index.grid.columns;
         let mut work = self.clock.work;
         for cy in cy0..=cy1 {
-            for cx in cx0..=cx1 {
-                work += 1;
-                let mut entry = self.index.segments.heads[cy * columns + cx];
+            let heads = &self.index.segments.heads[cy * columns + cx0..=cy * columns + cx1];
+            work += heads.len() as u64;
+            for &head in heads {
+                let mut entry = head;
                 while entry != NONE {
                     work += 1;
                     let [item, next] = self.index.segments.entries[entry as usize];
