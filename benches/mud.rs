@@ -1,7 +1,8 @@
 //! Model A benchmark: what a user waits for on the default preset, one thread: the
 //! quasi-static run (tracing its network at the end) and the cells, at 64² to 512², with the
 //! growth exponent of the cost in the node count; the explicit solver (the paper's loop) at
-//! 128² for the speed ratio; the irregular lattice beside the hexagonal one. Crack statistics
+//! 128² for the speed ratio; the irregular lattice beside the hexagonal one; each the fastest
+//! of [`RUNS`] runs. Crack statistics
 //! are printed so that speeds are read at equal statistics. Then the outputs of the default
 //! 128² run, each call's median over [`OUTPUT_RUNS`] calls: `network`, `cells` and a 512²
 //! `render` of the height map. Prints the times; a run at the default sizes also writes the
@@ -29,20 +30,31 @@ struct Run {
     stats: CrackStatistics,
 }
 
-/// Sets up and runs to the end (the network is traced as the run ends), then writes the cells.
+/// Runs of each lattice and solver; the fastest is kept, so that a slow spell of a shared
+/// machine does not bend the growth exponent.
+const RUNS: usize = 3;
+
+/// Sets up and runs to the end (the network is traced as the run ends), then writes the cells:
+/// the fastest of [`RUNS`] runs (each the same run, bit for bit).
 fn run(size: u32, solver: Solver, topology: Topology) -> Run {
     let params = MudParams { columns: size, rows: size, solver, topology, ..MudParams::default() };
     let memory = params.memory().expect("valid parameters");
     let (mut scalars, mut words) = (vec![0.0f32; memory.scalars], vec![0u32; memory.words]);
-    let start = Instant::now();
-    let mut mud = Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
-    let progress = mud.run().expect("a stable run");
-    let counts = mud.cell_counts();
-    let (mut rings, mut points) = (vec![Ring::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);
-    mud.cells(&mut rings, &mut points).expect("buffers suffice");
-    let seconds = start.elapsed().as_secs_f64();
-    let stats = mud.statistics();
-    Run { seconds, work: progress.work, stats }
+    let mut fastest: Option<Run> = None;
+    for _ in 0..RUNS {
+        let start = Instant::now();
+        let mut mud =
+            Mud::new(&params, MudBuffers { scalars: &mut scalars, words: &mut words }).expect("memory suffices");
+        let progress = mud.run().expect("a stable run");
+        let counts = mud.cell_counts();
+        let (mut rings, mut points) = (vec![Ring::default(); counts.rings], vec![[0.0f32; 2]; counts.points]);
+        mud.cells(&mut rings, &mut points).expect("buffers suffice");
+        let seconds = start.elapsed().as_secs_f64();
+        if fastest.as_ref().is_none_or(|f| seconds < f.seconds) {
+            fastest = Some(Run { seconds, work: progress.work, stats: mud.statistics() });
+        }
+    }
+    fastest.expect("RUNS is at least one")
 }
 
 /// The median time of `OUTPUT_RUNS` calls of `f`, milliseconds.
