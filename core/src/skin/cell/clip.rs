@@ -141,3 +141,32 @@ pub(super) fn first_from(bits: &[u64], from: usize, n: usize, set: bool) -> usiz
     }
     (w * 64 + word.trailing_zeros() as usize).min(n)
 }
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    #[test]
+    fn sides_beyond_marks_what_the_one_vertex_test_marks() {
+        // Chunks of every length up to 64 around lines of every direction, with coordinates on
+        // the line, signed zeros, huge, infinite and NaN ones among them.
+        let mut rng = Rng::from_key(11, 0);
+        let special = [0.0, -0.0, 1e300, -1e300, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 0.5];
+        let mut coordinate = move || match rng.next_u32() % 16 {
+            k @ 0..8 => special[k as usize],
+            k => f64::from(k) - 12.0 + f64::from(rng.next_u32() % 4) * 0.25,
+        };
+        for round in 0..4_000 {
+            let (m, d) = ([coordinate(), coordinate()], [coordinate(), coordinate()]);
+            let mut vertices = [ClipVertex::default(); 64];
+            for v in &mut vertices {
+                v.at = [coordinate(), coordinate()];
+            }
+            let chunk = &vertices[..round % 64 + 1];
+            let side = |p: [f64; 2]| (p[0] - m[0]) * d[0] + (p[1] - m[1]) * d[1];
+            let one_by_one = chunk.iter().enumerate().fold(0u64, |w, (i, v)| w | (u64::from(side(v.at) > 0.0) << i));
+            assert_eq!(sides_beyond(chunk, (m, d)), one_by_one, "{m:?} {d:?}");
+        }
+    }
+}
