@@ -511,16 +511,13 @@ impl<S: Scalar> Batch<S> {
             // (On x86-64 four wedges at a time, each read whole and turned into lanes.)
             #[cfg(target_arch = "x86_64")]
             for h in [0, 4] {
-                use safe_arch::{m128, transpose_four_m128};
-                let read = |l: usize| {
+                let [a, b, c, _] = four_lanes(|l| {
                     let w = &fan.slots[ks[h + l] as usize];
-                    m128::from([w.g[0], w.g[1], w.inverse_apothem, w.angle])
-                };
-                let (mut a, mut b, mut c, mut d) = (read(0), read(1), read(2), read(3));
-                transpose_four_m128(&mut a, &mut b, &mut c, &mut d);
-                gx[h..h + 4].copy_from_slice(&a.to_array());
-                gy[h..h + 4].copy_from_slice(&b.to_array());
-                inverse_apothem[h..h + 4].copy_from_slice(&c.to_array());
+                    [w.g[0], w.g[1], w.inverse_apothem, w.angle]
+                });
+                gx[h..h + 4].copy_from_slice(&a);
+                gy[h..h + 4].copy_from_slice(&b);
+                inverse_apothem[h..h + 4].copy_from_slice(&c);
             }
             #[cfg(not(target_arch = "x86_64"))]
             for l in 0..8 {
@@ -640,12 +637,20 @@ impl<S: Scalar> Batch<S> {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn four_ends(table: &ProfileTable, k: &[u32]) -> [[f32; 4]; 4] {
-    use safe_arch::{m128, transpose_four_m128};
-    let read = |l: usize| {
+    four_lanes(|l| {
         let [[a, b], [c, d]] = table.ends(k[l]);
-        m128::from([a, b, c, d])
-    };
-    let (mut a, mut b, mut c, mut d) = (read(0), read(1), read(2), read(3));
+        [a, b, c, d]
+    })
+}
+
+/// Four records of four values, `read(0)` to `read(3)`, each read whole and turned into lanes
+/// (SSE's transpose): lane l of the k-th array is value k of record l.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn four_lanes(read: impl Fn(usize) -> [f32; 4]) -> [[f32; 4]; 4] {
+    use safe_arch::{m128, transpose_four_m128};
+    let (mut a, mut b, mut c, mut d) =
+        (m128::from(read(0)), m128::from(read(1)), m128::from(read(2)), m128::from(read(3)));
     transpose_four_m128(&mut a, &mut b, &mut c, &mut d);
     [a, b, c, d].map(m128::to_array)
 }
